@@ -1,0 +1,141 @@
+# gibake — build, test, bake, demo, bench, install (GNU make).
+#
+#   make                 build every tool and the runtime into build/bin
+#   make test            install missing packages, build, run every test, then
+#                        the unit tests again under AddressSanitizer + UBSan
+#   make demo            install missing packages, build, bake and show the Cornell box
+#   make deps            apt-get install the Debian packages that are missing
+#   make bake SCENE=f    bake one scene into bake/ (pattern rules: make -j works)
+#   make bench           benchmarks (bench/), figures on stdout
+#   make fuzz            libFuzzer targets, FUZZ_SECONDS each, from tests/fuzz/corpus
+#   make install PREFIX=/usr/local
+#   make clean
+#
+# Sources are found by their place: formats/*.c and *.cpp, common/*.c, tools/<name>/*.c
+# and runtime/*.c go into one static library; tools/<name>/main.c becomes
+# build/bin/<name>, runtime/main.c becomes build/bin/gbview; tests/unit/test_*.c
+# become test programs. Adding a file needs no change here.
+
+PREFIX ?= /usr/local
+BUILD ?= build
+CC ?= cc
+CXX ?= g++
+OPT ?= -O2
+SANITIZE ?=
+FUZZ_SECONDS ?= 20
+
+DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
+  libopenvdb-dev libtbb-dev libembree-dev libflann-dev liblz4-dev libcgal-dev \
+  libopenmesh-dev libopenimageio-dev libepoxy-dev libglfw3-dev libegl-dev \
+  libegl-mesa0 libgl1-mesa-dri
+
+SANITIZE_FLAGS = $(if $(SANITIZE),-fsanitize=$(SANITIZE) -fno-sanitize-recover=all -fno-omit-frame-pointer)
+CPPFLAGS += -Iformats -Icommon -Itests -MMD -MP -D_GNU_SOURCE
+CFLAGS += -std=c11 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS)
+CXXFLAGS += -std=c++17 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS) \
+  -Wno-deprecated-declarations
+LDFLAGS += -pthread $(SANITIZE_FLAGS)
+LDLIBS += -lopenvdb -ltbb -lOpenImageIO -lOpenImageIO_Util -lOpenMeshCore \
+  -lembree3 -lflann -lepoxy -lglfw -lEGL -lz -lm -lstdc++
+
+TOOLS := $(patsubst tools/%/main.c,%,$(wildcard tools/*/main.c))
+PROGRAMS := $(TOOLS) $(if $(wildcard runtime/main.c),gbview)
+LIBRARY_C := $(wildcard formats/*.c common/*.c) $(filter-out %/main.c,$(wildcard tools/*/*.c runtime/*.c))
+LIBRARY_CXX := $(wildcard formats/*.cpp)
+LIBRARY_OBJECTS := $(LIBRARY_C:%.c=$(BUILD)/obj/%.o) $(LIBRARY_CXX:%.cpp=$(BUILD)/obj/%.o)
+LIBRARY := $(BUILD)/libgibake.a
+UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(wildcard tests/unit/test_*.c))
+FUZZ_TARGETS := $(patsubst tests/fuzz/%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
+BIN := $(BUILD)/bin
+
+.PHONY: all deps test check unit-tests demo bake bench fuzz install clean
+.DELETE_ON_ERROR:
+.SECONDARY:
+
+all: $(PROGRAMS:%=$(BIN)/%)
+
+deps:
+	@missing=$$(for p in $(DEB_PACKAGES); do \
+	  dpkg-query -W -f='$${Status}\n' $$p 2>/dev/null | grep -q 'ok installed' || echo $$p; done); \
+	if [ -n "$$missing" ]; then \
+	  echo "make deps: installing" $$missing; \
+	  apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q $$missing; \
+	fi
+
+$(BUILD)/obj/%.o: %.c
+	@mkdir -p $(@D)
+	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
+
+$(BUILD)/obj/%.o: %.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c $< -o $@
+
+$(LIBRARY): $(LIBRARY_OBJECTS)
+	@mkdir -p $(@D)
+	rm -f $@ && ar rcs $@ $^
+
+$(BIN)/gbview: $(BUILD)/obj/runtime/main.o $(LIBRARY)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+$(BIN)/%: $(BUILD)/obj/tools/%/main.o $(LIBRARY)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+$(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(LIBRARY)
+	@mkdir -p $(@D)
+	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+unit-tests: $(UNIT_TESTS)
+
+# The whole suite, then the unit tests again under the sanitizers.
+test: deps
+	$(MAKE) check
+
+check: all unit-tests
+	GB_BIN=$(abspath $(BIN)) GB_ROOT=$(CURDIR) prove --exec '' $(UNIT_TESTS) tests/cli/*.t
+	$(MAKE) BUILD=build/asan OPT=-O1 SANITIZE=address,undefined unit-tests
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+	  GB_ROOT=$(CURDIR) prove --exec '' $(UNIT_TESTS:$(BUILD)/%=build/asan/%)
+
+demo: deps
+	$(MAKE) all
+	$(BIN)/scene-info scenes/cornell/cornell.scene
+
+# Baking: one pattern rule per tool; each later tool adds its own.
+BAKE ?= bake
+SCENE ?= scenes/cornell/cornell.scene
+SCENE_NAME := $(basename $(notdir $(SCENE)))
+vpath %.scene $(dir $(SCENE))
+bake: $(BAKE)/$(SCENE_NAME).vdb
+
+$(BAKE)/%.vdb: %.scene $(BIN)/voxelize
+	@mkdir -p $(@D)
+	$(BIN)/voxelize $< -o $@
+
+bench: all
+	@for b in bench/*.sh; do [ -f "$$b" ] && GB_BIN=$(abspath $(BIN)) sh $$b; done; true
+
+# libFuzzer: the library is rebuilt with clang into build/fuzz.
+fuzz:
+	$(MAKE) BUILD=build/fuzz CC=clang CXX=clang++ OPT=-O1 \
+	  SANITIZE=fuzzer-no-link,address,undefined $(FUZZ_TARGETS:%=build/fuzz/fuzz/%)
+	@for t in $(FUZZ_TARGETS); do \
+	  mkdir -p build/fuzz/corpus/$$t; \
+	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
+	  build/fuzz/fuzz/$$t -max_total_time=$(FUZZ_SECONDS) build/fuzz/corpus/$$t \
+	    tests/fuzz/corpus/$$t || exit 1; \
+	done
+
+$(BUILD)/fuzz/%: $(BUILD)/obj/tests/fuzz/%.o $(LIBRARY)
+	@mkdir -p $(@D)
+	$(CXX) $(LDFLAGS) -fsanitize=fuzzer $^ $(LDLIBS) -o $@
+
+install: all
+	install -d $(DESTDIR)$(PREFIX)/bin
+	install -m 755 $(PROGRAMS:%=$(BIN)/%) $(DESTDIR)$(PREFIX)/bin
+
+clean:
+	rm -rf build bake
+
+-include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

@@ -1,0 +1,30 @@
+/* progress.h — the progress bar a tool prints on stderr during long work.
+ *
+ * Library code takes a gb_progress_callback (and its user pointer) and calls
+ * it with the fraction done; it never prints. A tool's main() passes
+ * gb_progress_report with a gb_progress of its own, which draws
+ *     voxelize [##########          ] 50%  3 s left
+ * on stderr, only when stderr is a terminal and --quiet was not given.
+ * The caller owns the gb_progress (usually on its stack).
+ */
+#ifndef GB_PROGRESS_H
+#define GB_PROGRESS_H
+
+/* Returns nonzero to ask the work to stop (the work then fails cleanly). */
+typedef int (*gb_progress_callback)(void *user, double fraction);
+
+typedef struct gb_progress {
+    const char *label;
+    int enabled;
+    double start_seconds;
+    int last_permille;
+} gb_progress;
+
+void gb_progress_begin(gb_progress *progress, const char *label, int quiet);
+int gb_progress_report(void *progress, double fraction);
+void gb_progress_end(gb_progress *progress);
+
+/* Seconds from an arbitrary start (monotonic clock). */
+double gb_seconds(void);
+
+#endif

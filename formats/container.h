@@ -1,0 +1,98 @@
+/* container.h — the one binary container every gibake file uses.
+ *
+ * A container is a magic, a file kind (four ASCII letters such as "SKEL"),
+ * the kind's format version, a table of named sections and their payloads,
+ * each with a CRC-32. formats/FORMATS.md documents every byte.
+ *
+ * Writing: create → add sections → commit → destroy.
+ *   gb_container_writer *w = gb_container_writer_create("SKEL", 1);
+ *   gb_container_add(w, "nodes", nodes, node_bytes);   // w keeps the pointer:
+ *                                                      // data must live until commit
+ *   gb_container_commit(w, "out.skel", &error);        // temp file, fsync, rename
+ *   gb_container_writer_destroy(w);
+ * A failed commit leaves nothing at the final path (and an existing file there
+ * untouched). A process killed during a commit may leave a stray
+ * "<path>.tmp.XXXXXX" beside it, never a partial file at the path.
+ *
+ * Reading: gb_container_read maps the whole file and checks the magic, the
+ * kind, every size, offset and checksum before returning; sections are then
+ * views into the mapping (16-byte aligned, so arrays can be used in place)
+ * and live until gb_container_close. gb_container_parse does the same on a
+ * caller's buffer (which the caller keeps alive), for tests and fuzzing; its
+ * views are 16-byte aligned relative to the buffer's start, so absolutely
+ * only when the buffer is. Neither trusts a byte: any input gives either a
+ * valid container or an error ("path: what is wrong"), never a crash.
+ *
+ * The container checks its own version; the kind's format version is the
+ * caller's to check, with gb_container_check_version for a uniform message.
+ */
+#ifndef GB_CONTAINER_H
+#define GB_CONTAINER_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "result.h"
+
+enum { GB_SECTION_NAME_SIZE = 24 };
+
+typedef struct gb_section {
+    char name[GB_SECTION_NAME_SIZE]; /* NUL-terminated */
+    const void *data;
+    uint64_t size;
+} gb_section;
+
+typedef struct gb_container {
+    char kind[5];              /* NUL-terminated copy of the four letters */
+    uint32_t version;          /* the kind's format version */
+    uint32_t section_count;
+    gb_section *sections;      /* owned by the container */
+    void *mapping;             /* owned: the mapped file, or NULL for parse */
+    size_t mapping_size;
+} gb_container;
+
+typedef struct gb_container_writer gb_container_writer;
+
+/* kind: four ASCII letters or digits; version: the kind's format version,
+ * at least 1. Returns NULL only when out of memory; a bad kind or version is
+ * reported by gb_container_commit. */
+gb_container_writer *gb_container_writer_create(const char *kind, uint32_t version);
+/* Adds a section; name is 1 to 23 printable ASCII bytes and unique. data is
+ * not copied (it may be NULL when size is 0). Sections are written in the
+ * order they are added. */
+gb_result gb_container_add(gb_container_writer *writer, const char *name,
+                           const void *data, uint64_t size, gb_error *error);
+/* Cancellation, in the OpenVDB habit: commit calls interrupt(user) before
+ * writing each section's payload and once more before renaming the file into
+ * place; a nonzero return cancels the commit, which removes its temporary
+ * file and returns GB_ERROR_INTERRUPTED ("path: interrupted, nothing written"). The
+ * callback may also report progress. NULL (the default) never interrupts. */
+void gb_container_writer_set_interrupt(gb_container_writer *writer,
+                                       int (*interrupt)(void *user), void *user);
+/* Writes "<path>.tmp.XXXXXX" in path's folder, fsyncs it, renames it to path
+ * and fsyncs the folder. On failure the temporary is removed, path is as it
+ * was, and the message is "path: what is wrong" (one exception: when only the
+ * last step, the folder's fsync, fails, the complete file is in place and the
+ * message says "written, but cannot sync its folder"). The writer may commit
+ * again. */
+gb_result gb_container_commit(gb_container_writer *writer, const char *path,
+                              gb_error *error);
+void gb_container_writer_destroy(gb_container_writer *writer);
+
+/* expected_kind may be NULL to accept any kind; on success *out holds the
+ * container, on failure *out is zeroed and nothing needs closing. path is used
+ * in messages. */
+gb_result gb_container_read(const char *path, const char *expected_kind,
+                            gb_container *out, gb_error *error);
+gb_result gb_container_parse(const void *bytes, size_t size, const char *path,
+                             const char *expected_kind, gb_container *out,
+                             gb_error *error);
+/* Fails with "path: format version 3 is newer than this program (2)" when the
+ * container's kind version is above newest, or when it is 0. */
+gb_result gb_container_check_version(const gb_container *container, const char *path,
+                                     uint32_t newest, gb_error *error);
+/* NULL when the container has no section of that name. */
+const gb_section *gb_container_find(const gb_container *container, const char *name);
+void gb_container_close(gb_container *container);
+
+#endif

@@ -1,0 +1,102 @@
+/* scene.h — a static triangle scene in memory: the mesh, its materials,
+ * lights and cameras, as every gibake tool and the runtime see it.
+ *
+ * gb_scene_load reads a .scene file (formats/FORMATS.md, "Scene file") or a
+ * mesh directly (.obj with its .mtl, .obj.gz, .ply, .off, .stl). Polygons are
+ * triangulated, degenerate (zero-area) triangles are dropped and counted,
+ * triangles whose material emits (Ke > 0) are the scene's area lights.
+ * Positions are indexed (shared between triangles); normals and texture
+ * coordinates, when the file has them, are stored per triangle corner.
+ *
+ * The caller owns the gb_scene and releases it with gb_scene_free (which
+ * also works on a zeroed scene and after a failed load).
+ */
+#ifndef GB_SCENE_H
+#define GB_SCENE_H
+
+#include <stdint.h>
+
+#include "result.h"
+
+typedef struct gb_texture {
+    int width, height;          /* 0 when not loaded */
+    float *rgb;                 /* width*height*3 linear RGB, row 0 at the top */
+} gb_texture;
+
+typedef struct gb_material {
+    char name[64];
+    float Kd[3];                /* diffuse reflectance */
+    float Ks[3];                /* glossy (Phong) reflectance */
+    float Ns;                   /* Phong exponent */
+    float Ke[3];                /* emitted radiance */
+    char *map_Kd;               /* resolved path of the diffuse texture, or NULL */
+    gb_texture texture;         /* its pixels, if the options asked for them */
+} gb_material;
+
+typedef enum gb_light_type {
+    GB_LIGHT_POINT,
+    GB_LIGHT_SPOT,
+    GB_LIGHT_DIRECTIONAL,
+} gb_light_type;
+
+typedef struct gb_light {
+    gb_light_type type;
+    float position[3];          /* point, spot */
+    float direction[3];         /* spot, directional: the way light travels, unit */
+    float intensity[3];         /* point, spot: W/sr; directional: irradiance W/m^2 */
+    float cone_angle;           /* spot: half-angle of the cone, degrees */
+    float falloff_angle;        /* spot: half-angle where falloff starts, degrees */
+} gb_light;
+
+typedef struct gb_camera {
+    float position[3];
+    float target[3];
+    float up[3];
+    float fov_y;                /* vertical field of view, degrees */
+    int width, height;          /* image resolution, pixels */
+} gb_camera;
+
+typedef struct gb_scene {
+    uint32_t vertex_count;
+    float *positions;           /* vertex_count * 3 */
+    uint32_t triangle_count;
+    uint32_t *indices;          /* triangle_count * 3, into positions */
+    uint32_t *triangle_material;/* triangle_count, into materials */
+    float *corner_normals;      /* triangle_count * 9, or NULL */
+    float *corner_texcoords;    /* triangle_count * 6, or NULL */
+
+    uint32_t material_count;
+    gb_material *materials;
+
+    uint32_t emissive_count;    /* area lights: the triangles whose Ke > 0 */
+    uint32_t *emissive_triangles;
+
+    uint32_t light_count;       /* point, spot and directional lights */
+    gb_light *lights;
+    uint32_t camera_count;      /* at least 1: a default is derived from the bounds */
+    gb_camera *cameras;
+    float environment[3];       /* radiance of the background */
+
+    float bounds_min[3], bounds_max[3];
+    uint64_t hash;              /* content hash: geometry, materials, lights */
+    uint32_t dropped_triangle_count; /* degenerate triangles dropped at load */
+    char *path;                 /* the file loaded */
+} gb_scene;
+
+typedef struct gb_scene_options {
+    int load_textures;          /* 0 (default): check map_Kd exists, do not decode */
+} gb_scene_options;
+
+/* options may be NULL for the defaults. */
+gb_result gb_scene_load(const char *path, const gb_scene_options *options,
+                        gb_scene *scene, gb_error *error);
+void gb_scene_free(gb_scene *scene);
+
+/* Area of triangle t (world units squared). */
+double gb_triangle_area(const gb_scene *scene, uint32_t t);
+
+/* Recomputes bounds, emissive triangles and hash after a caller built or
+ * changed a scene in memory (tests do this). */
+gb_result gb_scene_finish(gb_scene *scene, gb_error *error);
+
+#endif

@@ -1,0 +1,45 @@
+/* voxel_grid.h — the voxelized scene as the topological tools use it in
+ * memory, and its OpenVDB file (written by voxelize, read by thin and segment).
+ *
+ * In memory the grid is dense over the padded scene bounds (a byte per voxel
+ * and a float per voxel, x fastest, then y, then z), which is what
+ * neighbourhood algorithms want; on disk it is sparse OpenVDB
+ * (formats/FORMATS.md, "Voxel file"). Voxel (i,j,k) covers the world box
+ * world_origin + voxel_size * [i,i+1] x [j,j+1] x [k,k+1].
+ *
+ * The caller owns the gb_voxel_grid and frees it with gb_voxel_grid_free.
+ */
+#ifndef GB_VOXEL_GRID_H
+#define GB_VOXEL_GRID_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "result.h"
+
+typedef struct gb_voxel_grid {
+    int32_t size[3];            /* voxels along x, y, z */
+    double voxel_size;          /* edge of a voxel, world units */
+    double world_origin[3];     /* world position of the corner of voxel (0,0,0) */
+    uint8_t *surface;           /* 1 where a triangle touches the voxel, else 0 */
+    float *distance;            /* empty voxels: distance to the nearest surface
+                                   voxel, world units; surface voxels: 0 */
+    uint64_t scene_hash;
+    uint32_t resolution;        /* voxels along the longest axis, as asked */
+} gb_voxel_grid;
+
+static inline size_t gb_voxel_index(const gb_voxel_grid *grid, int32_t i, int32_t j, int32_t k)
+{
+    return (size_t)i + (size_t)grid->size[0] * ((size_t)j + (size_t)grid->size[1] * (size_t)k);
+}
+
+/* Allocates surface and distance for size, zero-filled. */
+gb_result gb_voxel_grid_allocate(gb_voxel_grid *grid, const int32_t size[3], gb_error *error);
+void gb_voxel_grid_free(gb_voxel_grid *grid);
+
+/* Writes grids "surface", "empty" and "distance" with the metadata of
+ * FORMATS.md, through a temporary file and a rename. */
+gb_result gb_voxel_grid_write(const char *path, const gb_voxel_grid *grid, gb_error *error);
+gb_result gb_voxel_grid_read(const char *path, gb_voxel_grid *grid, gb_error *error);
+
+#endif
