@@ -34,7 +34,7 @@ CPPFLAGS += -Iformats -Icommon -Itests -MMD -MP -D_GNU_SOURCE
 CFLAGS += -std=c11 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS)
 CXXFLAGS += -std=c++17 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS) \
   -Wno-deprecated-declarations
-LDFLAGS += -pthread $(SANITIZE_FLAGS)
+LDFLAGS += -pthread -Wl,--as-needed $(SANITIZE_FLAGS)
 LDLIBS += -lopenvdb -ltbb -lOpenImageIO -lOpenImageIO_Util -lOpenMeshCore \
   -lembree3 -lflann -lepoxy -lglfw -lEGL -lz -lm -lstdc++
 

@@ -81,6 +81,8 @@ typedef struct gb_scene {
     uint64_t hash;              /* content hash: geometry, materials, lights */
     uint32_t dropped_triangle_count; /* degenerate triangles dropped at load */
     char *path;                 /* the file loaded */
+    uint32_t undefined_material_count; /* OBJ usemtl names that no MTL defines:
+                                          each got the default material */
 } gb_scene;
 
 typedef struct gb_scene_options {
@@ -92,11 +94,19 @@ gb_result gb_scene_load(const char *path, const gb_scene_options *options,
                         gb_scene *scene, gb_error *error);
 void gb_scene_free(gb_scene *scene);
 
+/* Sets material to the default of meshes without materials: name, Kd 0.8
+ * grey, no gloss (Ks 0, Ns 0), no emission, no texture. */
+void gb_material_set_default(gb_material *material, const char *name);
+
 /* Area of triangle t (world units squared). */
 double gb_triangle_area(const gb_scene *scene, uint32_t t);
 
 /* Recomputes bounds, emissive triangles and hash after a caller built or
- * changed a scene in memory (tests do this). */
+ * changed a scene in memory (tests do this). Also what gb_scene_load does
+ * after reading: checks indices, materials and finite positions, drops
+ * degenerate triangles (counting them), fails on an empty mesh, adds the
+ * default camera when there is none. A scene built with no materials
+ * (material_count 0, triangle_material NULL) gets the default material. */
 gb_result gb_scene_finish(gb_scene *scene, gb_error *error);
 
 #endif

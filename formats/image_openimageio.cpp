@@ -1,0 +1,199 @@
+// image_openimageio.cpp — the OpenImageIO adapter: gb_image (image.h) read
+// from and written to EXR, PNG, JPEG and the other files OpenImageIO knows.
+// The only file that includes OpenImageIO.
+
+extern "C" {
+#include "image.h"
+}
+
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <OpenImageIO/imageio.h>
+
+namespace {
+
+float srgb_to_linear(float c)
+{
+    return c <= 0.04045f ? c / 12.92f : std::pow((c + 0.055f) / 1.055f, 2.4f);
+}
+
+float linear_to_srgb(float c)
+{
+    c = c < 0 ? 0 : c > 1 ? 1 : c;
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * std::pow(c, 1 / 2.4f) - 0.055f;
+}
+
+// Integer pixels (PNG, JPEG, ...) hold sRGB values unless the file says
+// they are linear; float pixels (EXR, HDR) are linear.
+bool holds_srgb(const OIIO::ImageSpec &spec)
+{
+    OIIO::TypeDesc::BASETYPE type = static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype);
+    if (type == OIIO::TypeDesc::FLOAT || type == OIIO::TypeDesc::HALF
+        || type == OIIO::TypeDesc::DOUBLE)
+        return false;
+    std::string space = spec.get_string_attribute("oiio:ColorSpace");
+    return space != "Linear" && space != "linear";
+}
+
+std::string last_error(const std::string &own)
+{
+    std::string message = own.empty() ? OIIO::geterror() : own;
+    std::size_t newline = message.find('\n');
+    if (newline != std::string::npos)
+        message.resize(newline);
+    return message.empty() ? std::string("unknown OpenImageIO error") : message;
+}
+
+void convert_to_linear(gb_image *image, int alpha_channel)
+{
+    std::size_t pixels = static_cast<std::size_t>(image->width) * image->height;
+    for (std::size_t i = 0; i < pixels; ++i)
+        for (int c = 0; c < image->channels; ++c)
+            if (c != alpha_channel) {
+                float &value = image->pixels[i * image->channels + c];
+                value = srgb_to_linear(value);
+            }
+}
+
+gb_result read_image(const char *path, gb_image *image, gb_error *error)
+{
+    // Colours stay as stored (PNG alpha is unassociated); OpenImageIO would
+    // otherwise multiply them by alpha.
+    OIIO::ImageSpec config;
+    config.attribute("oiio:UnassociatedAlpha", 1);
+    auto input = OIIO::ImageInput::open(path, &config);
+    if (!input)
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, last_error("").c_str());
+    const OIIO::ImageSpec spec = input->spec();
+    gb_result result = gb_image_allocate(image, spec.width, spec.height, spec.nchannels, error);
+    if (result != GB_OK)
+        return result;
+    if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image->pixels)) {
+        std::string message = last_error(input->geterror());
+        gb_image_free(image);
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path, message.c_str());
+    }
+    input->close();
+    if (holds_srgb(spec))
+        convert_to_linear(image, spec.alpha_channel);
+    return GB_OK;
+}
+
+// Float formats keep the values; the others get 8-bit sRGB.
+bool writes_float(const std::string &format)
+{
+    return format == "openexr" || format == "hdr" || format == "tiff";
+}
+
+std::vector<std::uint8_t> to_srgb8(const gb_image *image)
+{
+    std::size_t values = static_cast<std::size_t>(image->width) * image->height * image->channels;
+    std::vector<std::uint8_t> bytes(values);
+    int alpha = image->channels == 4 || image->channels == 2 ? image->channels - 1 : -1;
+    for (std::size_t i = 0; i < values; ++i) {
+        float v = image->pixels[i];
+        bool is_alpha = static_cast<int>(i % image->channels) == alpha;
+        v = is_alpha ? (v < 0 ? 0 : v > 1 ? 1 : v) : linear_to_srgb(v);
+        bytes[i] = static_cast<std::uint8_t>(std::lround(v * 255.0f));
+    }
+    return bytes;
+}
+
+gb_result write_to(const char *temporary, const char *path, const gb_image *image,
+                   gb_error *error)
+{
+    auto output = OIIO::ImageOutput::create(path);
+    if (!output)
+        return gb_fail(error, GB_ERROR_UNSUPPORTED, "%s: %s", path, last_error("").c_str());
+    bool as_float = writes_float(output->format_name());
+    OIIO::ImageSpec spec(image->width, image->height, image->channels,
+                         as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+    if (image->channels == 4 || image->channels == 2) {
+        spec.alpha_channel = image->channels - 1;
+        spec.attribute("oiio:UnassociatedAlpha", 1);   // colours not multiplied by alpha
+    }
+    spec.attribute("oiio:ColorSpace", as_float ? "Linear" : "sRGB");
+    bool written = output->open(temporary, spec);
+    if (written && as_float)
+        written = output->write_image(OIIO::TypeDesc::FLOAT, image->pixels);
+    else if (written)
+        written = output->write_image(OIIO::TypeDesc::UINT8, to_srgb8(image).data());
+    written = output->close() && written;
+    if (!written)
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", path,
+                       last_error(output->geterror()).c_str());
+    return GB_OK;
+}
+
+gb_result write_image(const char *path, const gb_image *image, gb_error *error)
+{
+    if (!image->pixels || image->width <= 0 || image->height <= 0 || image->channels <= 0)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: no pixels to write", path);
+    std::string temporary = std::string(path) + ".tmp.XXXXXX";
+    int descriptor = mkstemp(&temporary[0]);
+    if (descriptor < 0)
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", temporary.c_str(), std::strerror(errno));
+    close(descriptor);
+    gb_result result = write_to(temporary.c_str(), path, image, error);
+    if (result == GB_OK && std::rename(temporary.c_str(), path) != 0)
+        result = gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
+    if (result != GB_OK)
+        unlink(temporary.c_str());
+    return result;
+}
+
+} // namespace
+
+extern "C" gb_result gb_image_allocate(gb_image *image, int width, int height, int channels,
+                                       gb_error *error)
+{
+    std::memset(image, 0, sizeof *image);
+    if (width <= 0 || height <= 0 || channels <= 0 || channels > 64
+        || static_cast<std::uint64_t>(width) * height > (std::uint64_t(1) << 32))
+        return gb_fail(error, GB_ERROR_ARGUMENT, "bad image size %d x %d x %d", width, height,
+                       channels);
+    std::size_t values = static_cast<std::size_t>(width) * height * channels;
+    image->pixels = static_cast<float *>(std::calloc(values, sizeof(float)));
+    if (!image->pixels)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory (%d x %d image)", width,
+                       height);
+    image->width = width;
+    image->height = height;
+    image->channels = channels;
+    return GB_OK;
+}
+
+extern "C" gb_result gb_image_read(const char *path, gb_image *image, gb_error *error)
+{
+    std::memset(image, 0, sizeof *image);
+    try {
+        return read_image(path, image, error);
+    } catch (const std::exception &e) {
+        gb_image_free(image);
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+    }
+}
+
+extern "C" gb_result gb_image_write(const char *path, const gb_image *image, gb_error *error)
+{
+    try {
+        return write_image(path, image, error);
+    } catch (const std::exception &e) {
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+    }
+}
+
+extern "C" void gb_image_free(gb_image *image)
+{
+    std::free(image->pixels);
+    std::memset(image, 0, sizeof *image);
+}

@@ -1,0 +1,471 @@
+#include "scene.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "image.h"
+#include "mesh_openmesh.h"
+#include "obj.h"
+#include "scene_file.h"
+#include "text.h"
+
+void gb_material_set_default(gb_material *material, const char *name)
+{
+    memset(material, 0, sizeof *material);
+    snprintf(material->name, sizeof material->name, "%s", name);
+    material->Kd[0] = material->Kd[1] = material->Kd[2] = 0.8f;
+}
+
+void gb_scene_free(gb_scene *scene)
+{
+    free(scene->positions);
+    free(scene->indices);
+    free(scene->triangle_material);
+    free(scene->corner_normals);
+    free(scene->corner_texcoords);
+    for (uint32_t i = 0; scene->materials && i < scene->material_count; ++i) {
+        free(scene->materials[i].map_Kd);
+        free(scene->materials[i].texture.rgb);
+    }
+    free(scene->materials);
+    free(scene->emissive_triangles);
+    free(scene->lights);
+    free(scene->cameras);
+    free(scene->path);
+    memset(scene, 0, sizeof *scene);
+}
+
+double gb_triangle_area(const gb_scene *scene, uint32_t t)
+{
+    const uint32_t *v = &scene->indices[3 * (size_t)t];
+    const float *a = &scene->positions[3 * (size_t)v[0]], *b = &scene->positions[3 * (size_t)v[1]],
+                *c = &scene->positions[3 * (size_t)v[2]];
+    double e1[3], e2[3];
+    for (int k = 0; k < 3; ++k) {
+        e1[k] = (double)b[k] - a[k];
+        e2[k] = (double)c[k] - a[k];
+    }
+    double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                   e1[0] * e2[1] - e1[1] * e2[0]};
+    return 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+}
+
+/* ---- checks and clean-up of gb_scene_finish ------------------------------ */
+
+static const char *scene_name(const gb_scene *scene)
+{
+    return scene->path ? scene->path : "scene";
+}
+
+static gb_result check_references(const gb_scene *scene, gb_error *error)
+{
+    if (scene->triangle_count && (!scene->indices || !scene->triangle_material))
+        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: triangles without indices or materials",
+                       scene_name(scene));
+    for (size_t i = 0; i < 3 * (size_t)scene->triangle_count; ++i)
+        if (scene->indices[i] >= scene->vertex_count)
+            return gb_fail(error, GB_ERROR_INVALID, "%s: triangle %zu: vertex index %u out of "
+                           "range (%u vertices)", scene_name(scene), i / 3,
+                           scene->indices[i], scene->vertex_count);
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        if (scene->triangle_material[t] >= scene->material_count)
+            return gb_fail(error, GB_ERROR_INVALID, "%s: triangle %u: material %u out of range "
+                           "(%u materials)", scene_name(scene), t,
+                           scene->triangle_material[t], scene->material_count);
+    return GB_OK;
+}
+
+static gb_result check_finite(const gb_scene *scene, gb_error *error)
+{
+    for (size_t i = 0; i < 3 * (size_t)scene->vertex_count; ++i)
+        if (!isfinite(scene->positions[i]))
+            return gb_fail(error, GB_ERROR_INVALID, "%s: vertex %zu: coordinate is not finite",
+                           scene_name(scene), i / 3 + 1);
+    return GB_OK;
+}
+
+static int is_degenerate(const gb_scene *scene, uint32_t t)
+{
+    const uint32_t *v = &scene->indices[3 * (size_t)t];
+    return v[0] == v[1] || v[1] == v[2] || v[0] == v[2] || gb_triangle_area(scene, t) == 0.0;
+}
+
+/* Moves triangle from to place to (from >= to), with its corner data. */
+static void move_triangle(gb_scene *scene, uint32_t from, uint32_t to)
+{
+    memmove(&scene->indices[3 * (size_t)to], &scene->indices[3 * (size_t)from],
+            3 * sizeof *scene->indices);
+    scene->triangle_material[to] = scene->triangle_material[from];
+    if (scene->corner_normals)
+        memmove(&scene->corner_normals[9 * (size_t)to], &scene->corner_normals[9 * (size_t)from],
+                9 * sizeof(float));
+    if (scene->corner_texcoords)
+        memmove(&scene->corner_texcoords[6 * (size_t)to],
+                &scene->corner_texcoords[6 * (size_t)from], 6 * sizeof(float));
+}
+
+static void drop_degenerate_triangles(gb_scene *scene)
+{
+    uint32_t kept = 0;
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        if (!is_degenerate(scene, t))
+            move_triangle(scene, t, kept++);
+    scene->dropped_triangle_count += scene->triangle_count - kept;
+    scene->triangle_count = kept;
+}
+
+static void compute_bounds(gb_scene *scene)
+{
+    for (int k = 0; k < 3; ++k) {
+        scene->bounds_min[k] = INFINITY;
+        scene->bounds_max[k] = -INFINITY;
+    }
+    for (size_t i = 0; i < 3 * (size_t)scene->triangle_count; ++i) {
+        const float *p = &scene->positions[3 * (size_t)scene->indices[i]];
+        for (int k = 0; k < 3; ++k) {
+            scene->bounds_min[k] = fminf(scene->bounds_min[k], p[k]);
+            scene->bounds_max[k] = fmaxf(scene->bounds_max[k], p[k]);
+        }
+    }
+}
+
+static int emits(const gb_material *material)
+{
+    return material->Ke[0] > 0 || material->Ke[1] > 0 || material->Ke[2] > 0;
+}
+
+static gb_result list_emissive_triangles(gb_scene *scene, gb_error *error)
+{
+    free(scene->emissive_triangles);
+    scene->emissive_triangles = NULL;
+    scene->emissive_count = 0;
+    uint32_t count = 0;
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        count += emits(&scene->materials[scene->triangle_material[t]]);
+    if (count == 0)
+        return GB_OK;
+    scene->emissive_triangles = malloc(count * sizeof *scene->emissive_triangles);
+    if (!scene->emissive_triangles)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", scene_name(scene));
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        if (emits(&scene->materials[scene->triangle_material[t]]))
+            scene->emissive_triangles[scene->emissive_count++] = t;
+    return GB_OK;
+}
+
+/* Looks at the centre of the bounds from +z, far enough for the bounding
+ * sphere to fit the 45 degree square view. */
+static gb_result add_default_camera(gb_scene *scene, gb_error *error)
+{
+    scene->cameras = calloc(1, sizeof *scene->cameras);
+    if (!scene->cameras)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", scene_name(scene));
+    scene->camera_count = 1;
+    gb_camera *camera = &scene->cameras[0];
+    double radius = 0;
+    for (int k = 0; k < 3; ++k) {
+        double half = 0.5 * ((double)scene->bounds_max[k] - scene->bounds_min[k]);
+        camera->target[k] = (float)(0.5 * ((double)scene->bounds_min[k] + scene->bounds_max[k]));
+        radius += half * half;
+    }
+    radius = radius > 0 ? sqrt(radius) : 1;
+    camera->fov_y = 45;
+    camera->width = camera->height = 512;
+    double distance = radius / sin(0.5 * camera->fov_y * M_PI / 180);
+    memcpy(camera->position, camera->target, sizeof camera->position);
+    camera->position[2] = (float)(camera->target[2] + distance);
+    camera->up[1] = 1;
+    return GB_OK;
+}
+
+/* ---- content hash: FNV-1a 64 over little-endian bytes ----------------------- */
+
+enum { FNV_OFFSET = 0, FNV_PRIME = 1 };
+static const uint64_t fnv[2] = {0xcbf29ce484222325ull, 0x100000001b3ull};
+
+static uint64_t hash_bytes(uint64_t h, const void *bytes, size_t n)
+{
+    const unsigned char *b = bytes;
+    for (size_t i = 0; i < n; ++i)
+        h = (h ^ b[i]) * fnv[FNV_PRIME];
+    return h;
+}
+
+static uint64_t hash_u32(uint64_t h, uint32_t value)
+{
+    unsigned char b[4] = {(unsigned char)value, (unsigned char)(value >> 8),
+                          (unsigned char)(value >> 16), (unsigned char)(value >> 24)};
+    return hash_bytes(h, b, 4);
+}
+
+/* The float's bits, with -0 as +0. */
+static uint64_t hash_floats(uint64_t h, const float *values, size_t n)
+{
+    for (size_t i = 0; i < n; ++i) {
+        float value = values[i] == 0 ? 0.0f : values[i];
+        uint32_t bits;
+        memcpy(&bits, &value, 4);
+        h = hash_u32(h, bits);
+    }
+    return h;
+}
+
+static uint64_t hash_u32s(uint64_t h, const uint32_t *values, size_t n)
+{
+    for (size_t i = 0; i < n; ++i)
+        h = hash_u32(h, values[i]);
+    return h;
+}
+
+/* The texture's file name (not its folder: moving the scene keeps the hash). */
+static uint64_t hash_texture_name(uint64_t h, const char *map_Kd)
+{
+    if (!map_Kd)
+        return hash_u32(h, 0);
+    const char *name = strrchr(map_Kd, '/') ? strrchr(map_Kd, '/') + 1 : map_Kd;
+    h = hash_u32(h, (uint32_t)strlen(name));
+    return hash_bytes(h, name, strlen(name));
+}
+
+static uint64_t hash_geometry(uint64_t h, const gb_scene *scene)
+{
+    h = hash_u32(h, scene->vertex_count);
+    h = hash_floats(h, scene->positions, 3 * (size_t)scene->vertex_count);
+    h = hash_u32(h, scene->triangle_count);
+    h = hash_u32s(h, scene->indices, 3 * (size_t)scene->triangle_count);
+    h = hash_u32s(h, scene->triangle_material, scene->triangle_count);
+    h = hash_u32(h, scene->corner_normals != NULL);
+    if (scene->corner_normals)
+        h = hash_floats(h, scene->corner_normals, 9 * (size_t)scene->triangle_count);
+    h = hash_u32(h, scene->corner_texcoords != NULL);
+    if (scene->corner_texcoords)
+        h = hash_floats(h, scene->corner_texcoords, 6 * (size_t)scene->triangle_count);
+    return h;
+}
+
+static uint64_t hash_materials_and_lights(uint64_t h, const gb_scene *scene)
+{
+    h = hash_u32(h, scene->material_count);
+    for (uint32_t i = 0; i < scene->material_count; ++i) {
+        const gb_material *m = &scene->materials[i];
+        h = hash_floats(h, m->Kd, 3);
+        h = hash_floats(h, m->Ks, 3);
+        h = hash_floats(h, &m->Ns, 1);
+        h = hash_floats(h, m->Ke, 3);
+        h = hash_texture_name(h, m->map_Kd);
+    }
+    h = hash_u32(h, scene->light_count);
+    for (uint32_t i = 0; i < scene->light_count; ++i) {
+        const gb_light *light = &scene->lights[i];
+        h = hash_u32(h, (uint32_t)light->type);
+        h = hash_floats(h, light->position, 3);
+        h = hash_floats(h, light->direction, 3);
+        h = hash_floats(h, light->intensity, 3);
+        h = hash_floats(h, &light->cone_angle, 1);
+        h = hash_floats(h, &light->falloff_angle, 1);
+    }
+    return hash_floats(h, scene->environment, 3);
+}
+
+static uint64_t scene_hash(const gb_scene *scene)
+{
+    static const char tag[] = "gibake scene hash 1";
+    uint64_t h = hash_bytes(fnv[FNV_OFFSET], tag, sizeof tag - 1);
+    h = hash_geometry(h, scene);
+    return hash_materials_and_lights(h, scene);
+}
+
+static gb_result give_default_material(gb_scene *scene, gb_error *error)
+{
+    scene->materials = malloc(sizeof *scene->materials);
+    scene->triangle_material = calloc((size_t)scene->triangle_count + 1, sizeof(uint32_t));
+    if (!scene->materials || !scene->triangle_material)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", scene_name(scene));
+    scene->material_count = 1;
+    gb_material_set_default(&scene->materials[0], "default");
+    return GB_OK;
+}
+
+gb_result gb_scene_finish(gb_scene *scene, gb_error *error)
+{
+    gb_result result = GB_OK;
+    if (!scene->triangle_material && scene->material_count == 0)
+        result = give_default_material(scene, error);
+    if (result == GB_OK)
+        result = check_references(scene, error);
+    if (result == GB_OK)
+        result = check_finite(scene, error);
+    if (result != GB_OK)
+        return result;
+    drop_degenerate_triangles(scene);
+    if (scene->triangle_count == 0)
+        return gb_fail(error, GB_ERROR_INVALID, "%s: no triangles (empty mesh%s)",
+                       scene_name(scene), scene->dropped_triangle_count ? ", all degenerate"
+                                                                        : "");
+    compute_bounds(scene);
+    result = list_emissive_triangles(scene, error);
+    if (result == GB_OK && scene->camera_count == 0)
+        result = add_default_camera(scene, error);
+    scene->hash = scene_hash(scene);
+    return result;
+}
+
+/* ---- loading ---------------------------------------------------------------- */
+
+static gb_result read_openmesh(const char *path, gb_scene *scene, gb_error *error)
+{
+    uint32_t skipped;
+    gb_result result = gb_openmesh_read(path, &scene->positions, &scene->vertex_count,
+                                        &scene->indices, &scene->triangle_count, &skipped,
+                                        error);
+    if (result != GB_OK)
+        return result;
+    scene->dropped_triangle_count += skipped;
+    return give_default_material(scene, error);
+}
+
+static int is_openmesh_type(const char *path)
+{
+    return gb_path_has_suffix(path, ".ply") || gb_path_has_suffix(path, ".off")
+        || gb_path_has_suffix(path, ".stl");
+}
+
+static int is_obj(const char *path)
+{
+    return gb_path_has_suffix(path, ".obj") || gb_path_has_suffix(path, ".obj.gz");
+}
+
+static gb_result load_mesh(const char *path, gb_scene *scene, gb_error *error)
+{
+    if (is_obj(path))
+        return gb_obj_read(path, scene, error);
+    if (is_openmesh_type(path))
+        return read_openmesh(path, scene, error);
+    return gb_fail(error, GB_ERROR_UNSUPPORTED, "%s: unknown file type (expected .scene, .obj, "
+                   ".obj.gz, .ply, .off or .stl)", path);
+}
+
+/* Takes the lights, cameras and environment of the scene file. */
+static void take_scene_file_parts(gb_scene_file *file, gb_scene *scene)
+{
+    scene->lights = file->lights;
+    scene->light_count = file->light_count;
+    scene->cameras = file->cameras;
+    scene->camera_count = file->camera_count;
+    memcpy(scene->environment, file->environment, sizeof scene->environment);
+    file->lights = NULL;
+    file->cameras = NULL;
+    file->light_count = file->camera_count = 0;
+}
+
+static gb_result check_mesh_exists(const char *scene_path, const gb_scene_file *file,
+                                   const char *mesh_path, gb_error *error)
+{
+    struct stat status;
+    if (stat(mesh_path, &status) != 0)
+        return gb_fail(error, GB_ERROR_IO, "%s:%d: mesh %s: %s", scene_path, file->mesh_line,
+                       mesh_path, strerror(errno));
+    if (!S_ISREG(status.st_mode))
+        return gb_fail(error, GB_ERROR_IO, "%s:%d: mesh %s: not a file", scene_path,
+                       file->mesh_line, mesh_path);
+    if (!is_obj(mesh_path) && !is_openmesh_type(mesh_path))
+        return gb_fail(error, GB_ERROR_UNSUPPORTED, "%s:%d: mesh %s: unknown file type "
+                       "(expected .obj, .obj.gz, .ply, .off or .stl)", scene_path,
+                       file->mesh_line, mesh_path);
+    return GB_OK;
+}
+
+/* Loads the mesh a scene file names, with its lights, cameras and
+ * environment; *mesh_path is the path of the mesh (malloc'ed). */
+static gb_result load_scene_file(const char *path, gb_scene *scene, char **mesh_path,
+                                 gb_error *error)
+{
+    gb_scene_file file;
+    gb_result result = gb_scene_file_read(path, &file, error);
+    char *folder = NULL;
+    if (result == GB_OK && (!(folder = gb_path_folder(path))
+                            || !(*mesh_path = gb_path_join(folder, file.mesh))))
+        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    if (result == GB_OK)
+        result = check_mesh_exists(path, &file, *mesh_path, error);
+    if (result == GB_OK)
+        result = load_mesh(*mesh_path, scene, error);
+    if (result == GB_OK)
+        take_scene_file_parts(&file, scene);
+    free(folder);
+    gb_scene_file_free(&file);
+    return result;
+}
+
+/* ---- textures ------------------------------------------------------------- */
+
+/* Keeps the first three channels (grey repeated) of an image as RGB. */
+static gb_result image_to_texture(const gb_image *image, gb_texture *texture,
+                                  const char *path, gb_error *error)
+{
+    size_t pixels = (size_t)image->width * (size_t)image->height;
+    texture->rgb = malloc(pixels * 3 * sizeof(float) + 1);
+    if (!texture->rgb)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    int grey = image->channels < 3;
+    for (size_t i = 0; i < pixels; ++i)
+        for (int k = 0; k < 3; ++k)
+            texture->rgb[3 * i + k] = image->pixels[i * (size_t)image->channels + (grey ? 0 : k)];
+    texture->width = image->width;
+    texture->height = image->height;
+    return GB_OK;
+}
+
+static gb_result load_textures(gb_scene *scene, gb_error *error)
+{
+    for (uint32_t i = 0; i < scene->material_count; ++i) {
+        gb_material *material = &scene->materials[i];
+        if (!material->map_Kd || material->texture.rgb)
+            continue;
+        gb_image image = {0};
+        gb_result result = gb_image_read(material->map_Kd, &image, error);
+        if (result == GB_OK)
+            result = image_to_texture(&image, &material->texture, material->map_Kd, error);
+        gb_image_free(&image);
+        if (result != GB_OK)
+            return result;
+    }
+    return GB_OK;
+}
+
+/* Reads the scene or mesh at path; *mesh_path is the mesh read (malloc'ed). */
+static gb_result load_parts(const char *path, gb_scene *scene, char **mesh_path,
+                            gb_error *error)
+{
+    if (gb_path_has_suffix(path, ".scene"))
+        return load_scene_file(path, scene, mesh_path, error);
+    if (!(*mesh_path = strdup(path)))
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    return load_mesh(path, scene, error);
+}
+
+gb_result gb_scene_load(const char *path, const gb_scene_options *options,
+                        gb_scene *scene, gb_error *error)
+{
+    memset(scene, 0, sizeof *scene);
+    char *mesh_path = NULL;
+    gb_result result = load_parts(path, scene, &mesh_path, error);
+    free(scene->path);
+    scene->path = mesh_path;    /* so that the messages of finish name the mesh */
+    if (result == GB_OK)
+        result = gb_scene_finish(scene, error);
+    if (result == GB_OK && strcmp(path, mesh_path) != 0) {
+        free(scene->path);
+        if (!(scene->path = strdup(path)))
+            result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    }
+    if (result == GB_OK && options && options->load_textures)
+        result = load_textures(scene, error);
+    if (result != GB_OK)
+        gb_scene_free(scene);
+    return result;
+}

@@ -1,0 +1,112 @@
+/* scene-info — loads a scene (.scene, .obj, .obj.gz, .ply, .off, .stl) and
+ * prints what gibake sees in it: counts, lights, cameras, bounds and hash. */
+
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "scene.h"
+
+static const char usage[] =
+    "usage: scene-info [--quiet] [--help] [--version] SCENE\n"
+    "Loads SCENE (.scene, .obj, .obj.gz, .ply, .off or .stl) as every gibake tool\n"
+    "does and prints a summary: triangles, vertices, materials, area lights and\n"
+    "their emissive area, other lights, cameras, bounds and the content hash.\n"
+    "Warnings (degenerate triangles dropped, undefined materials) go to stderr.\n"
+    "\n"
+    "  -q, --quiet     no warnings\n"
+    "  -h, --help      this help\n"
+    "  -V, --version   the version\n";
+
+static double emissive_area(const gb_scene *scene)
+{
+    double area = 0;
+    for (uint32_t i = 0; i < scene->emissive_count; ++i)
+        area += gb_triangle_area(scene, scene->emissive_triangles[i]);
+    return area;
+}
+
+static uint32_t emissive_materials(const gb_scene *scene)
+{
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < scene->material_count; ++i) {
+        const float *Ke = scene->materials[i].Ke;
+        count += Ke[0] > 0 || Ke[1] > 0 || Ke[2] > 0;
+    }
+    return count;
+}
+
+static uint32_t lights_of_type(const gb_scene *scene, gb_light_type type)
+{
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < scene->light_count; ++i)
+        count += scene->lights[i].type == type;
+    return count;
+}
+
+static void print_summary(const gb_scene *scene)
+{
+    printf("file            %s\n", scene->path);
+    printf("triangles       %u\n", scene->triangle_count);
+    printf("vertices        %u\n", scene->vertex_count);
+    printf("materials       %u (%u emissive)\n", scene->material_count,
+           emissive_materials(scene));
+    printf("area lights     %u triangles, emissive area %.6g\n", scene->emissive_count,
+           emissive_area(scene));
+    printf("lights          %u point, %u spot, %u directional\n",
+           lights_of_type(scene, GB_LIGHT_POINT), lights_of_type(scene, GB_LIGHT_SPOT),
+           lights_of_type(scene, GB_LIGHT_DIRECTIONAL));
+    printf("environment     %g %g %g\n", scene->environment[0], scene->environment[1],
+           scene->environment[2]);
+    printf("cameras         %u\n", scene->camera_count);
+    printf("bounds          (%g %g %g) .. (%g %g %g)\n", scene->bounds_min[0],
+           scene->bounds_min[1], scene->bounds_min[2], scene->bounds_max[0],
+           scene->bounds_max[1], scene->bounds_max[2]);
+    printf("hash            %016llx\n", (unsigned long long)scene->hash);
+}
+
+static void print_warnings(const gb_scene *scene)
+{
+    if (scene->dropped_triangle_count)
+        fprintf(stderr, "scene-info: warning: %u degenerate triangles dropped\n",
+                scene->dropped_triangle_count);
+    if (scene->undefined_material_count)
+        fprintf(stderr, "scene-info: warning: %u materials used but not defined "
+                "(given the default grey)\n", scene->undefined_material_count);
+}
+
+int main(int argc, char **argv)
+{
+    static const struct option options[] = {
+        {"quiet", no_argument, NULL, 'q'},
+        {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
+        {NULL, 0, NULL, 0},
+    };
+    int quiet = 0, option;
+    while ((option = getopt_long(argc, argv, "qhV", options, NULL)) != -1) {
+        if (option == 'q')
+            quiet = 1;
+        else if (option == 'h')
+            return fputs(usage, stdout) == EOF;
+        else if (option == 'V')
+            return puts("scene-info (gibake) 0.1") == EOF;
+        else
+            return fputs(usage, stderr), 2;
+    }
+    if (optind != argc - 1) {
+        fprintf(stderr, "scene-info: expected one SCENE\n%s", usage);
+        return 2;
+    }
+    gb_scene scene;
+    gb_error error;
+    if (gb_scene_load(argv[optind], NULL, &scene, &error) != GB_OK) {
+        fprintf(stderr, "scene-info: %s\n", error.message);
+        return 1;
+    }
+    print_summary(&scene);
+    if (!quiet)
+        print_warnings(&scene);
+    gb_scene_free(&scene);
+    return fflush(stdout) == 0 ? 0 : 1;
+}
