@@ -27,7 +27,7 @@ FUZZ_SECONDS ?= 20
 DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
   libopenvdb-dev libtbb-dev libembree-dev libflann-dev liblz4-dev libcgal-dev \
   libopenmesh-dev libopenimageio-dev libepoxy-dev libglfw3-dev libegl-dev \
-  libegl-mesa0 libgl1-mesa-dri
+  libegl-mesa0 libgl1-mesa-dri xvfb xauth
 
 SANITIZE_FLAGS = $(if $(SANITIZE),-fsanitize=$(SANITIZE) -fno-sanitize-recover=all -fno-omit-frame-pointer)
 CPPFLAGS += -Iformats -Icommon -Itests -MMD -MP -D_GNU_SOURCE
@@ -98,9 +98,16 @@ check: all unit-tests
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  GB_ROOT=$(CURDIR) prove --exec '' $(UNIT_TESTS:$(BUILD)/%=build/asan/%)
 
+# The demo: summarise the Cornell box, bake it, render it headless to demo/,
+# and open the window when there is a display.
 demo: deps
 	$(MAKE) all
 	$(BIN)/scene-info scenes/cornell/cornell.scene
+	$(MAKE) bake SCENE=scenes/cornell/cornell.scene
+	@mkdir -p demo
+	$(BIN)/gbview scenes/cornell/cornell.scene --headless --supersample 2 --bake $(BAKE) -o demo/cornell-direct.png
+	@echo "demo: wrote demo/cornell-direct.png"
+	@if [ -n "$$DISPLAY" ]; then $(BIN)/gbview scenes/cornell/cornell.scene --bake $(BAKE); fi
 
 # Baking: one pattern rule per tool; each later tool adds its own.
 BAKE ?= bake
@@ -136,6 +143,6 @@ install: all
 	install -m 755 $(PROGRAMS:%=$(BIN)/%) $(DESTDIR)$(PREFIX)/bin
 
 clean:
-	rm -rf build bake
+	rm -rf build bake demo
 
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)

@@ -1,0 +1,152 @@
+#include "gl_util.h"
+
+#include <stdio.h>
+#include <string.h>
+
+static void GLAPIENTRY collect_message(GLenum source, GLenum type, GLuint id, GLenum severity,
+                                       GLsizei length, const GLchar *message,
+                                       const void *user)
+{
+    (void)source, (void)id, (void)length;
+    if (type != GL_DEBUG_TYPE_ERROR && severity != GL_DEBUG_SEVERITY_HIGH)
+        return;
+    gb_gl_errors *errors = (gb_gl_errors *)user;
+    if (errors->count++ == 0)
+        snprintf(errors->first, sizeof errors->first, "%s", message);
+}
+
+void gb_gl_errors_install(gb_gl_errors *errors)
+{
+    errors->count = 0;
+    errors->first[0] = '\0';
+    glEnable(GL_DEBUG_OUTPUT);
+#ifndef NDEBUG
+    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+#endif
+    glDebugMessageCallback(collect_message, errors);
+}
+
+static const char *error_name(GLenum code)
+{
+    switch (code) {
+    case GL_INVALID_ENUM: return "invalid enum";
+    case GL_INVALID_VALUE: return "invalid value";
+    case GL_INVALID_OPERATION: return "invalid operation";
+    case GL_INVALID_FRAMEBUFFER_OPERATION: return "invalid framebuffer operation";
+    case GL_OUT_OF_MEMORY: return "out of memory";
+    default: return "error";
+    }
+}
+
+/* Clears glGetError's flags; counts them only when the callback saw
+ * nothing (each error reaches both). */
+static void drain_get_error(gb_gl_errors *errors)
+{
+    int seen_by_callback = errors->count > 0;
+    for (GLenum code; (code = glGetError()) != GL_NO_ERROR;)
+        if (!seen_by_callback && errors->count++ == 0)
+            snprintf(errors->first, sizeof errors->first, "%s (0x%04x)", error_name(code),
+                     code);
+}
+
+gb_result gb_gl_check(gb_gl_errors *errors, const char *where, gb_error *error)
+{
+    drain_get_error(errors);
+    if (errors->count == 0)
+        return GB_OK;
+    unsigned more = errors->count - 1;
+    errors->count = 0;
+    if (more)
+        return gb_fail(error, GB_ERROR_INVALID, "OpenGL: %s: %s (and %u more)", where,
+                       errors->first, more);
+    return gb_fail(error, GB_ERROR_INVALID, "OpenGL: %s: %s", where, errors->first);
+}
+
+gb_result gb_gl_require_45(gb_error *error)
+{
+    int version = epoxy_gl_version();
+    if (version < 45)
+        return gb_fail(error, GB_ERROR_UNSUPPORTED,
+                       "OpenGL 4.5 core is needed, the driver gives %d.%d (%s)", version / 10,
+                       version % 10, (const char *)glGetString(GL_RENDERER));
+    return GB_OK;
+}
+
+static gb_result compile(const char *name, GLenum stage, const char *source, GLuint *shader,
+                         gb_error *error)
+{
+    *shader = glCreateShader(stage);
+    glShaderSource(*shader, 1, &source, NULL);
+    glCompileShader(*shader);
+    GLint ok = GL_FALSE;
+    glGetShaderiv(*shader, GL_COMPILE_STATUS, &ok);
+    if (ok)
+        return GB_OK;
+    char log[768];
+    glGetShaderInfoLog(*shader, sizeof log, NULL, log);
+    glDeleteShader(*shader);
+    *shader = 0;
+    return gb_fail(error, GB_ERROR_INVALID, "shader %s (%s): %s", name,
+                   stage == GL_VERTEX_SHADER ? "vertex" : "fragment", log);
+}
+
+static gb_result link(const char *name, GLuint program, gb_error *error)
+{
+    glLinkProgram(program);
+    GLint ok = GL_FALSE;
+    glGetProgramiv(program, GL_LINK_STATUS, &ok);
+    if (ok)
+        return GB_OK;
+    char log[768];
+    glGetProgramInfoLog(program, sizeof log, NULL, log);
+    return gb_fail(error, GB_ERROR_INVALID, "program %s: %s", name, log);
+}
+
+gb_result gb_gl_program(const char *name, const char *vertex, const char *fragment,
+                        GLuint *program, gb_error *error)
+{
+    GLuint shaders[2] = {0, 0};
+    *program = 0;
+    gb_result result = compile(name, GL_VERTEX_SHADER, vertex, &shaders[0], error);
+    if (result == GB_OK)
+        result = compile(name, GL_FRAGMENT_SHADER, fragment, &shaders[1], error);
+    if (result == GB_OK) {
+        *program = glCreateProgram();
+        glAttachShader(*program, shaders[0]);
+        glAttachShader(*program, shaders[1]);
+        result = link(name, *program, error);
+    }
+    glDeleteShader(shaders[0]);
+    glDeleteShader(shaders[1]);
+    if (result != GB_OK && *program) {
+        glDeleteProgram(*program);
+        *program = 0;
+    }
+    return result;
+}
+
+GLuint gb_gl_texture_2d(GLenum internal_format, int width, int height)
+{
+    GLuint texture;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, internal_format, width, height);
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return texture;
+}
+
+/* One triangle covering the screen: (-1,-1), (3,-1), (-1,3). */
+const char gb_gl_fullscreen_vertex_shader[] =
+    "#version 450 core\n"
+    "void main() {\n"
+    "    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);\n"
+    "    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);\n"
+    "}\n";
+
+void gb_gl_draw_fullscreen(GLuint empty_vertex_array)
+{
+    glBindVertexArray(empty_vertex_array);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+}

@@ -1,0 +1,49 @@
+/* gl_util.h — what every GPU pass of the runtime shares: the one place GL
+ * errors are collected, shader programs built from C string literals, and
+ * textures and the empty vertex array of full-screen passes.
+ *
+ * Errors: gb_gl_errors_install turns on KHR_debug output (core since 4.3)
+ * with a callback that keeps the first error message and counts them; it is
+ * synchronous in debug builds (without NDEBUG), so a debugger stops on the
+ * faulty call. Passes do not check after each call: the renderer calls
+ * gb_gl_check once per frame (and after setup), which also drains
+ * glGetError, and turns whatever was collected into a gb_error.
+ *
+ * The caller owns the gb_gl_errors (the context keeps it) and every GL
+ * object made here.
+ */
+#ifndef GB_GL_UTIL_H
+#define GB_GL_UTIL_H
+
+#include <epoxy/gl.h>
+
+#include "result.h"
+
+typedef struct gb_gl_errors {
+    unsigned count;             /* errors since the last gb_gl_check */
+    char first[512];            /* the first one's message */
+} gb_gl_errors;
+
+/* Needs a current context; errors must stay at the same address while it is. */
+void gb_gl_errors_install(gb_gl_errors *errors);
+/* GB_OK when no error was collected since the last call; otherwise
+ * GB_ERROR_INVALID with "OpenGL: <where>: <first message> (and N more)". */
+gb_result gb_gl_check(gb_gl_errors *errors, const char *where, gb_error *error);
+
+/* Fails (GB_ERROR_UNSUPPORTED) below OpenGL 4.5. */
+gb_result gb_gl_require_45(gb_error *error);
+
+/* A program from GLSL sources (the "#version 450 core" line included);
+ * name is used in messages, which carry the compiler's log. */
+gb_result gb_gl_program(const char *name, const char *vertex, const char *fragment,
+                        GLuint *program, gb_error *error);
+
+/* A 2-D texture of internal format, one level, nearest filtering, clamped. */
+GLuint gb_gl_texture_2d(GLenum internal_format, int width, int height);
+
+/* The full-screen triangle: a vertex shader that needs no attribute; draw
+ * with gb_gl_draw_fullscreen and an empty vertex array. */
+extern const char gb_gl_fullscreen_vertex_shader[];
+void gb_gl_draw_fullscreen(GLuint empty_vertex_array);
+
+#endif

@@ -1,0 +1,284 @@
+/* gbview — the runtime: shows a scene and its baked global illumination in
+ * a window, or renders it headless into an image (the headers in runtime/). This file
+ * only parses options. */
+
+#include <errno.h>
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bake_files.h"
+#include "headless.h"
+#include "image.h"
+#include "methods.h"
+#include "scene.h"
+#include "timings.h"
+#include "window.h"
+
+static const char usage[] =
+    "usage: gbview [options] SCENE\n"
+    "Shows SCENE (.scene or a mesh) with its global illumination in a window, or\n"
+    "with --headless renders it without a display (EGL, Mesa surfaceless) into -o.\n"
+    "\n"
+    "      --headless          render without a window; write the last frame to -o\n"
+    "  -c, --camera N          the scene's camera N, from 0 (default 0)\n"
+    "  -m, --method M          direct (default); topo, octree, flc, implicit when\n"
+    "                          this build has them\n"
+    "  -f, --frames K          frames to render (headless: default 1); in a window,\n"
+    "                          quit after K frames\n"
+    "  -o, --output FILE       the image: .exr linear (compares with `reference`),\n"
+    "                          .png sRGB; in a window, where screenshots go\n"
+    "                          (and, with --frames, the last frame)\n"
+    "  -r, --resolution WxH    frame size (default: the camera's)\n"
+    "      --timings           print per-pass GPU times (ms) on stdout\n"
+    "      --bake DIR          use the files baked for SCENE in DIR\n"
+    "                          (NAME.vdb .skel .grid.vdb .seg .lot); a missing or\n"
+    "                          bad one is reported and skipped\n"
+    "      --area-samples N    shadowed point emitters approximating the area\n"
+    "                          lights, power-weighted (default 16; 0: none)\n"
+    "      --shadow-size N     side of the 2-D shadow maps; cube faces get half\n"
+    "                          (default 1024)\n"
+    "      --supersample S     headless: S x S samples a pixel, averaged (default\n"
+    "                          1), the box filter of `reference`\n"
+    "      --no-shadows        debug: every light fully visible\n"
+    "  -q, --quiet             no warnings\n"
+    "  -h, --help              this help\n"
+    "  -V, --version           the version\n"
+    "\n"
+    "Window keys: mouse (left button held) and W A S D Q E fly, Shift faster,\n"
+    "M next method, T direct/indirect/both, C next camera, F12 or P screenshot,\n"
+    "Esc quit.\n";
+
+typedef struct arguments {
+    const char *scene_path, *output, *bake;
+    gb_method method;
+    gb_renderer_options renderer;
+    long camera, frames, supersample;
+    int headless, timings, quiet;
+} arguments;
+
+enum {
+    OPTION_HEADLESS = 256,
+    OPTION_TIMINGS,
+    OPTION_BAKE,
+    OPTION_AREA_SAMPLES,
+    OPTION_SHADOW_SIZE,
+    OPTION_NO_SHADOWS,
+    OPTION_SUPERSAMPLE,
+};
+
+static int parse_long(const char *text, long low, long high, long *value)
+{
+    char *end;
+    errno = 0;
+    long parsed = strtol(text, &end, 10);
+    if (errno || end == text || *end || parsed < low || parsed > high)
+        return 0;
+    *value = parsed;
+    return 1;
+}
+
+static int parse_resolution(const char *text, int *width, int *height)
+{
+    char *x = strchr(text, 'x');
+    long w, h;
+    if (!x || x - text > 15)
+        return 0;
+    char first[16];
+    memcpy(first, text, (size_t)(x - text));
+    first[x - text] = '\0';
+    if (!parse_long(first, 1, 16384, &w) || !parse_long(x + 1, 1, 16384, &h))
+        return 0;
+    *width = (int)w;
+    *height = (int)h;
+    return 1;
+}
+
+static int bad_value(const char *option, const char *value)
+{
+    fprintf(stderr, "gbview: %s: bad value \"%s\"\n", option, value);
+    return 2;
+}
+
+/* 0 when the options are parsed, else the exit status (2 usage, 0 help). */
+static int parse_option(int option, const char *value, arguments *a)
+{
+    long number;
+    gb_error error;
+    switch (option) {
+    case OPTION_HEADLESS: a->headless = 1; return 0;
+    case OPTION_TIMINGS: a->timings = 1; return 0;
+    case OPTION_BAKE: a->bake = value; return 0;
+    case OPTION_NO_SHADOWS: a->renderer.no_shadows = 1; return 0;
+    case 'o': a->output = value; return 0;
+    case OPTION_SUPERSAMPLE:
+        return parse_long(value, 1, 16, &a->supersample) ? 0 : bad_value("--supersample", value);
+    case 'q': a->quiet = 1; return 0;
+    case 'c': return parse_long(value, 0, 1L << 30, &a->camera) ? 0 : bad_value("--camera", value);
+    case 'f': return parse_long(value, 1, 1L << 30, &a->frames) ? 0 : bad_value("--frames", value);
+    case 'r':
+        return parse_resolution(value, &a->renderer.width, &a->renderer.height)
+                   ? 0 : bad_value("--resolution", value);
+    case OPTION_AREA_SAMPLES:
+        if (!parse_long(value, 0, 4096, &number))
+            return bad_value("--area-samples", value);
+        a->renderer.shadow.area_samples = number ? (int)number : -1;
+        return 0;
+    case OPTION_SHADOW_SIZE:
+        if (!parse_long(value, 16, 16384, &number))
+            return bad_value("--shadow-size", value);
+        a->renderer.shadow.size = (int)number;
+        return 0;
+    case 'm':
+        if (gb_method_parse(value, &a->method, &error) == GB_OK)
+            return 0;
+        fprintf(stderr, "gbview: %s\n", error.message);
+        return 2;
+    case 'h': fputs(usage, stdout); return -1;
+    case 'V': puts("gbview (gibake) 0.1"); return -1;
+    default: fputs(usage, stderr); return 2;
+    }
+}
+
+static int parse_arguments(int argc, char **argv, arguments *a)
+{
+    static const struct option options[] = {
+        {"headless", no_argument, NULL, OPTION_HEADLESS},
+        {"camera", required_argument, NULL, 'c'},
+        {"method", required_argument, NULL, 'm'},
+        {"frames", required_argument, NULL, 'f'},
+        {"output", required_argument, NULL, 'o'},
+        {"resolution", required_argument, NULL, 'r'},
+        {"timings", no_argument, NULL, OPTION_TIMINGS},
+        {"bake", required_argument, NULL, OPTION_BAKE},
+        {"area-samples", required_argument, NULL, OPTION_AREA_SAMPLES},
+        {"shadow-size", required_argument, NULL, OPTION_SHADOW_SIZE},
+        {"no-shadows", no_argument, NULL, OPTION_NO_SHADOWS},
+        {"supersample", required_argument, NULL, OPTION_SUPERSAMPLE},
+        {"quiet", no_argument, NULL, 'q'},
+        {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
+        {NULL, 0, NULL, 0},
+    };
+    int option;
+    while ((option = getopt_long(argc, argv, "c:m:f:o:r:qhV", options, NULL)) != -1) {
+        int status = parse_option(option, optarg, a);
+        if (status)
+            return status;
+    }
+    if (optind != argc - 1) {
+        fprintf(stderr, "gbview: expected one SCENE\n%s", usage);
+        return 2;
+    }
+    a->scene_path = argv[optind];
+    return 0;
+}
+
+static void print_scene_warnings(const gb_scene *scene)
+{
+    if (scene->dropped_triangle_count)
+        fprintf(stderr, "gbview: warning: %u degenerate triangles dropped\n",
+                scene->dropped_triangle_count);
+    if (scene->undefined_material_count)
+        fprintf(stderr, "gbview: warning: %u materials used but not defined "
+                "(given the default grey)\n", scene->undefined_material_count);
+}
+
+/* One message per missing or bad baked file; never fatal. */
+static int check_bake(const gb_scene *scene, const arguments *a)
+{
+    gb_bake_files files;
+    gb_error error;
+    if (gb_bake_files_check(scene, a->scene_path, a->bake, &files, &error) != GB_OK) {
+        fprintf(stderr, "gbview: %s\n", error.message);
+        return 1;
+    }
+    for (int kind = 0; kind < GB_BAKE_KIND_COUNT; ++kind)
+        if (files.has_problem[kind])
+            fprintf(stderr, "gbview: warning: skipped: %s\n", files.problems[kind].message);
+    return 0;
+}
+
+static void report(void *user, const char *message)
+{
+    (void)user;
+    printf("gbview: %s\n", message);
+    fflush(stdout);
+}
+
+static gb_result run_headless(const gb_scene *scene, const arguments *a, gb_timings *timings,
+                              gb_error *error)
+{
+    gb_headless_options options = {
+        .renderer = a->renderer,
+        .camera = (uint32_t)a->camera,
+        .frames = (int)a->frames,
+        .supersample = (int)a->supersample,
+    };
+    gb_image image;
+    gb_result result = gb_render_headless(scene, &options, &image, timings, error);
+    if (result == GB_OK && a->output)
+        result = gb_image_write(a->output, &image, error);
+    gb_image_free(&image);
+    return result;
+}
+
+static gb_result run_window(const gb_scene *scene, const arguments *a, gb_timings *timings,
+                            gb_error *error)
+{
+    const char *name = strrchr(a->scene_path, '/');
+    gb_window_options options = {
+        .renderer = a->renderer,
+        .camera = (uint32_t)a->camera,
+        .frames = (int)a->frames,
+        .screenshot_path = a->output,
+        .title = name ? name + 1 : a->scene_path,
+        .report = report,
+    };
+    return gb_run_window(scene, &options, timings, error);
+}
+
+static int run(const gb_scene *scene, const arguments *a)
+{
+    gb_timings timings;
+    gb_error error;
+    memset(&timings, 0, sizeof timings);
+    gb_result result = a->headless ? run_headless(scene, a, &timings, &error)
+                                   : run_window(scene, a, &timings, &error);
+    if (result != GB_OK) {
+        fprintf(stderr, "gbview: %s\n", error.message);
+        return 1;
+    }
+    if (a->timings)
+        gb_timings_print(&timings, stdout);
+    return fflush(stdout) == 0 ? 0 : 1;
+}
+
+int main(int argc, char **argv)
+{
+    arguments a;
+    memset(&a, 0, sizeof a);
+    int status = parse_arguments(argc, argv, &a);
+    if (status)
+        return status < 0 ? 0 : status;
+    gb_error error;
+    a.renderer.method = a.method;
+    if (gb_method_check(a.method, &error) != GB_OK) {
+        fprintf(stderr, "gbview: %s\n", error.message);
+        return 2;
+    }
+    gb_scene scene;
+    gb_scene_options scene_options = {.load_textures = 1};
+    if (gb_scene_load(a.scene_path, &scene_options, &scene, &error) != GB_OK) {
+        fprintf(stderr, "gbview: %s\n", error.message);
+        return 1;
+    }
+    if (!a.quiet)
+        print_scene_warnings(&scene);
+    status = a.bake ? check_bake(&scene, &a) : 0;
+    if (status == 0)
+        status = run(&scene, &a);
+    gb_scene_free(&scene);
+    return status;
+}

@@ -1,0 +1,65 @@
+#include "methods.h"
+
+#include <string.h>
+
+static const char *const method_names[GB_METHOD_COUNT] = {
+    "direct", "topo", "octree", "flc", "implicit",
+};
+
+const char *gb_method_name(gb_method method)
+{
+    return method >= 0 && method < GB_METHOD_COUNT ? method_names[method] : "?";
+}
+
+gb_result gb_method_parse(const char *name, gb_method *method, gb_error *error)
+{
+    for (int m = 0; m < GB_METHOD_COUNT; ++m)
+        if (strcmp(name, method_names[m]) == 0) {
+            *method = (gb_method)m;
+            return GB_OK;
+        }
+    return gb_fail(error, GB_ERROR_ARGUMENT,
+                   "unknown method '%s' (methods: direct, topo, octree, flc, implicit)", name);
+}
+
+int gb_method_implemented(gb_method method)
+{
+    return method == GB_METHOD_DIRECT;
+}
+
+gb_result gb_method_check(gb_method method, gb_error *error)
+{
+    if (gb_method_implemented(method))
+        return GB_OK;
+    char list[128] = "";
+    for (int m = 0; m < GB_METHOD_COUNT; ++m)
+        if (gb_method_implemented((gb_method)m)) {
+            if (list[0])
+                strncat(list, ", ", sizeof list - strlen(list) - 1);
+            strncat(list, method_names[m], sizeof list - strlen(list) - 1);
+        }
+    return gb_fail(error, GB_ERROR_UNSUPPORTED,
+                   "method '%s' is not available in this build (available: %s)",
+                   gb_method_name(method), list);
+}
+
+gb_method gb_method_next(gb_method method)
+{
+    for (int step = 1; step <= GB_METHOD_COUNT; ++step) {
+        gb_method next = (gb_method)((method + step) % GB_METHOD_COUNT);
+        if (gb_method_implemented(next))
+            return next;
+    }
+    return method;
+}
+
+const char *gb_terms_name(gb_terms terms)
+{
+    switch (terms) {
+    case GB_TERMS_BOTH: return "direct+indirect";
+    case GB_TERMS_DIRECT: return "direct";
+    case GB_TERMS_INDIRECT: return "indirect";
+    case GB_TERMS_COUNT: break;
+    }
+    return "?";
+}

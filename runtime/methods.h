@@ -1,0 +1,46 @@
+/* methods.h — the names of the runtime's GI methods (--method, the window's
+ * M key) and of the light terms it shows (direct, indirect or both: the
+ * window's T key).
+ *
+ *   direct    direct light only (this file's issue: no indirect term)
+ *   topo      Noël & Biri 2014, visibility clusters and gates
+ *   octree    the light octree of virtual directional lights (2007)
+ *   flc       Forward Light Cuts (Laurent 2016)
+ *   implicit  implicit visibility (Dong 2007)
+ * Each GI method lands in its own file under runtime/ and then reports
+ * itself implemented here.
+ */
+#ifndef GB_METHODS_H
+#define GB_METHODS_H
+
+#include "result.h"
+
+typedef enum gb_method {
+    GB_METHOD_DIRECT = 0,
+    GB_METHOD_TOPO,
+    GB_METHOD_OCTREE,
+    GB_METHOD_FLC,
+    GB_METHOD_IMPLICIT,
+    GB_METHOD_COUNT,
+} gb_method;
+
+typedef enum gb_terms {
+    GB_TERMS_BOTH = 0,
+    GB_TERMS_DIRECT,
+    GB_TERMS_INDIRECT,
+    GB_TERMS_COUNT,
+} gb_terms;
+
+const char *gb_method_name(gb_method method);
+/* GB_ERROR_ARGUMENT for a name that is no method, with the list of names. */
+gb_result gb_method_parse(const char *name, gb_method *method, gb_error *error);
+/* Nonzero when this build can render method. */
+int gb_method_implemented(gb_method method);
+/* GB_ERROR_UNSUPPORTED, naming the methods that are, when it is not. */
+gb_result gb_method_check(gb_method method, gb_error *error);
+/* The next implemented method after method, cycling. */
+gb_method gb_method_next(gb_method method);
+
+const char *gb_terms_name(gb_terms terms);
+
+#endif

@@ -1,0 +1,151 @@
+#include "renderer.h"
+
+#include <string.h>
+
+#include "progress.h"
+
+static gb_result create_passes(gb_renderer *r, gb_error *error)
+{
+    int width = r->options.width, height = r->options.height;
+    gb_result result = gb_gpu_scene_create(r->scene, &r->gpu_scene, error);
+    if (result == GB_OK)
+        result = gb_gbuffer_create(width, height, &r->gbuffer, error);
+    if (result == GB_OK)
+        result = gb_shadow_maps_create(r->scene, &r->options.shadow, &r->shadows, error);
+    if (result == GB_OK)
+        result = gb_direct_light_create(&r->direct, error);
+    if (result == GB_OK)
+        result = gb_output_create(width, height, &r->output, error);
+    return result;
+}
+
+gb_result gb_renderer_create(const gb_scene *scene, const gb_renderer_options *options,
+                             gb_gl_errors *errors, gb_renderer *renderer, gb_error *error)
+{
+    memset(renderer, 0, sizeof *renderer);
+    if (options->width <= 0 || options->height <= 0 || options->width > 16384 ||
+        options->height > 16384)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "resolution %dx%d is not in 1..16384",
+                       options->width, options->height);
+    gb_result result = gb_method_check(options->method, error);
+    if (result != GB_OK)
+        return result;
+    renderer->scene = scene;
+    renderer->options = *options;
+    renderer->errors = errors;
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);   /* reversed depth (mat4.h) */
+    result = create_passes(renderer, error);
+    if (result == GB_OK)
+        result = gb_gl_check(errors, "renderer setup", error);
+    if (result != GB_OK) {
+        gb_renderer_destroy(renderer);
+        return result;
+    }
+    gb_timings_create(&renderer->timings);
+    return GB_OK;
+}
+
+gb_result gb_renderer_resize(gb_renderer *renderer, int width, int height, gb_error *error)
+{
+    if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "resolution %dx%d is not in 1..16384", width,
+                       height);
+    gb_result result = gb_gbuffer_resize(&renderer->gbuffer, width, height, error);
+    if (result == GB_OK)
+        result = gb_output_resize(&renderer->output, width, height, error);
+    if (result == GB_OK) {
+        renderer->options.width = width;
+        renderer->options.height = height;
+    }
+    return result;
+}
+
+gb_result gb_renderer_set_method(gb_renderer *renderer, gb_method method, gb_error *error)
+{
+    gb_result result = gb_method_check(method, error);
+    if (result == GB_OK)
+        renderer->options.method = method;
+    return result;
+}
+
+void gb_renderer_set_terms(gb_renderer *renderer, gb_terms terms)
+{
+    renderer->options.terms = terms;
+}
+
+static void draw_shadow_maps(gb_renderer *r)
+{
+    if (r->shadows.drawn || r->options.no_shadows)
+        return;
+    gb_timings_begin(&r->timings, GB_PASS_SHADOW_MAPS);
+    gb_shadow_maps_draw(&r->shadows, &r->gpu_scene);
+    gb_timings_end(&r->timings, GB_PASS_SHADOW_MAPS);
+}
+
+static void draw_direct_light(gb_renderer *r, const gb_view *view)
+{
+    gb_direct_inputs inputs = {
+        .gbuffer = &r->gbuffer,
+        .shadows = &r->shadows,
+        .view = view,
+        .shadows_enabled = !r->options.no_shadows,
+    };
+    memcpy(inputs.environment, r->scene->environment, sizeof inputs.environment);
+    gb_timings_begin(&r->timings, GB_PASS_DIRECT_LIGHT);
+    gb_direct_light_draw(&r->direct, &inputs);
+    gb_timings_end(&r->timings, GB_PASS_DIRECT_LIGHT);
+}
+
+void gb_renderer_draw(gb_renderer *r, const gb_view *view)
+{
+    r->frame_start = gb_seconds();
+    draw_shadow_maps(r);
+    gb_mat4 view_matrix = gb_view_matrix(view);
+    gb_mat4 projection = gb_view_projection(view, r->options.width, r->options.height);
+    gb_timings_begin(&r->timings, GB_PASS_GBUFFER);
+    gb_gbuffer_draw(&r->gbuffer, &r->gpu_scene, &view_matrix, &projection);
+    gb_timings_end(&r->timings, GB_PASS_GBUFFER);
+    gb_output_bind(&r->output);
+    if (r->options.terms == GB_TERMS_INDIRECT)
+        gb_output_clear(&r->output);
+    else
+        draw_direct_light(r, view);
+    /* GI methods add their indirect light here (GB_PASS_INDIRECT_LIGHT),
+       with additive blending, when options.terms is not GB_TERMS_DIRECT. */
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void gb_renderer_present(gb_renderer *renderer, int width, int height)
+{
+    gb_timings_begin(&renderer->timings, GB_PASS_PRESENT);
+    gb_output_present(&renderer->output, width, height);
+    gb_timings_end(&renderer->timings, GB_PASS_PRESENT);
+}
+
+gb_result gb_renderer_finish_frame(gb_renderer *renderer, gb_error *error)
+{
+    glFinish();
+    gb_timings_end_frame(&renderer->timings, 1e3 * (gb_seconds() - renderer->frame_start));
+    return gb_gl_check(renderer->errors, "frame", error);
+}
+
+gb_result gb_renderer_read(gb_renderer *renderer, gb_image *image, gb_error *error)
+{
+    gb_result result = gb_output_read(&renderer->output, image, error);
+    if (result == GB_OK)
+        result = gb_gl_check(renderer->errors, "reading the frame back", error);
+    if (result != GB_OK)
+        gb_image_free(image);
+    return result;
+}
+
+void gb_renderer_destroy(gb_renderer *renderer)
+{
+    gb_timings_destroy(&renderer->timings);
+    gb_output_destroy(&renderer->output);
+    gb_direct_light_destroy(&renderer->direct);
+    gb_shadow_maps_destroy(&renderer->shadows);
+    gb_gbuffer_destroy(&renderer->gbuffer);
+    gb_gpu_scene_destroy(&renderer->gpu_scene);
+    memset(renderer, 0, sizeof *renderer);
+}

@@ -1,0 +1,364 @@
+#include "shadow_maps.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_util.h"
+
+#include "area_lights.h"
+#include "mat4.h"
+
+enum { POINT_FLOATS = 12, PLANE_FLOATS = 32 };
+
+static const char cube_vertex_shader[] =
+    "#version 450 core\n"
+    "layout(location = 0) in vec3 position;\n"
+    "uniform mat4 view_projection;\n"
+    "out vec3 v_world;\n"
+    "void main() {\n"
+    "    v_world = position;\n"
+    "    gl_Position = view_projection * vec4(position, 1.0);\n"
+    "}\n";
+
+/* The distance to the light, over its range: what the lighting pass compares. */
+static const char cube_fragment_shader[] =
+    "#version 450 core\n"
+    "uniform vec3 light_position;\n"
+    "uniform float range;\n"
+    "in vec3 v_world;\n"
+    "void main() {\n"
+    "    gl_FragDepth = length(v_world - light_position) / range;\n"
+    "}\n";
+
+static const char plane_vertex_shader[] =
+    "#version 450 core\n"
+    "layout(location = 0) in vec3 position;\n"
+    "uniform mat4 view_projection;\n"
+    "void main() {\n"
+    "    gl_Position = view_projection * vec4(position, 1.0);\n"
+    "}\n";
+
+static const char plane_fragment_shader[] =
+    "#version 450 core\n"
+    "void main() {\n"
+    "}\n";
+
+/* The faces of a cube map as OpenGL samples them: forward and up of each. */
+static const float cube_faces[6][2][3] = {
+    {{1, 0, 0}, {0, -1, 0}}, {{-1, 0, 0}, {0, -1, 0}}, {{0, 1, 0}, {0, 0, 1}},
+    {{0, -1, 0}, {0, 0, -1}}, {{0, 0, 1}, {0, -1, 0}}, {{0, 0, -1}, {0, -1, 0}},
+};
+
+static gb_float3 bounds_corner(const gb_scene *scene, int k)
+{
+    return gb_float3_make(k & 1 ? scene->bounds_max[0] : scene->bounds_min[0],
+                          k & 2 ? scene->bounds_max[1] : scene->bounds_min[1],
+                          k & 4 ? scene->bounds_max[2] : scene->bounds_min[2]);
+}
+
+static float scene_diagonal(const gb_scene *scene)
+{
+    return gb_float3_length(gb_float3_sub(bounds_corner(scene, 7), bounds_corner(scene, 0)));
+}
+
+/* The distance from p to the farthest corner of the bounds, a little more. */
+static float range_from(const gb_scene *scene, gb_float3 p)
+{
+    float range = 0.0f;
+    for (int k = 0; k < 8; ++k)
+        range = fmaxf(range, gb_float3_length(gb_float3_sub(bounds_corner(scene, k), p)));
+    return 1.01f * range + 1e-3f * scene_diagonal(scene) + 1e-20f;
+}
+
+static void put3(float *out, const float *v)
+{
+    out[0] = v[0], out[1] = v[1], out[2] = v[2];
+}
+
+static void put_point(const gb_scene *scene, const float position[3], const float intensity[3],
+                      const float *normal, float *out)
+{
+    put3(out, position);
+    out[3] = range_from(scene, gb_float3_load(position));
+    put3(out + 4, intensity);
+    out[7] = normal ? 1.0f : 0.0f;
+    if (normal)
+        put3(out + 8, normal);
+}
+
+/* An axis far from forward: the up of a light's view. */
+static gb_float3 some_up(gb_float3 forward)
+{
+    return fabsf(forward.y) < 0.9f ? gb_float3_make(0, 1, 0) : gb_float3_make(1, 0, 0);
+}
+
+typedef struct light_frame {
+    gb_float3 position, forward, right, up;
+} light_frame;
+
+static light_frame make_frame(gb_float3 position, gb_float3 forward, gb_float3 up_hint)
+{
+    light_frame f = {position, gb_float3_normalize(forward), {0, 0, 0}, {0, 0, 0}};
+    f.right = gb_float3_normalize(gb_float3_cross(f.forward, up_hint));
+    f.up = gb_float3_cross(f.right, f.forward);
+    return f;
+}
+
+static gb_mat4 frame_view(const light_frame *f)
+{
+    return gb_mat4_view(f->position, f->forward, f->right, f->up);
+}
+
+/* Orthographic over the scene's bounds seen along direction. */
+static gb_mat4 directional_matrix(const gb_scene *scene, gb_float3 direction, int size,
+                                  float *texel)
+{
+    float diagonal = scene_diagonal(scene);
+    gb_float3 centre = gb_float3_scale(gb_float3_add(bounds_corner(scene, 0),
+                                                     bounds_corner(scene, 7)), 0.5f);
+    gb_float3 forward = gb_float3_normalize(direction);
+    light_frame f = make_frame(gb_float3_sub(centre, gb_float3_scale(forward, diagonal)),
+                               forward, some_up(forward));
+    gb_mat4 view = frame_view(&f);
+    gb_float3 low = {INFINITY, INFINITY, INFINITY}, high = {-INFINITY, -INFINITY, -INFINITY};
+    for (int k = 0; k < 8; ++k) {
+        gb_float3 p = gb_mat4_transform_point(&view, bounds_corner(scene, k));
+        low = gb_float3_make(fminf(low.x, p.x), fminf(low.y, p.y), fminf(low.z, p.z));
+        high = gb_float3_make(fmaxf(high.x, p.x), fmaxf(high.y, p.y), fmaxf(high.z, p.z));
+    }
+    float margin = 1e-3f * diagonal + 1e-20f;
+    gb_mat4 projection = gb_mat4_orthographic(low.x - margin, high.x + margin, low.y - margin,
+                                              high.y + margin, -high.z - margin,
+                                              -low.z + margin);
+    *texel = fmaxf(high.x - low.x, high.y - low.y) / (float)size;
+    return gb_mat4_multiply(&projection, &view);
+}
+
+/* Perspective over the spot's cone. */
+static gb_mat4 spot_matrix(const gb_scene *scene, const gb_light *light, int size, float *texel)
+{
+    gb_float3 position = gb_float3_load(light->position);
+    gb_float3 forward = gb_float3_normalize(gb_float3_load(light->direction));
+    light_frame f = make_frame(position, forward, some_up(forward));
+    gb_mat4 view = frame_view(&f);
+    float fov = fminf(2.0f * fmaxf(light->cone_angle, light->falloff_angle) + 2.0f, 170.0f);
+    float range = range_from(scene, position);
+    gb_mat4 projection = gb_mat4_perspective(fov, 1.0f, 1e-4f * range, range);
+    *texel = 2.0f * tanf(0.5f * fov * 3.14159265358979f / 180.0f) / (float)size;
+    return gb_mat4_multiply(&projection, &view);
+}
+
+static void put_plane(const gb_scene *scene, const gb_light *light, int size, float *out)
+{
+    float texel = 0.0f;
+    gb_mat4 matrix = light->type == GB_LIGHT_DIRECTIONAL
+                         ? directional_matrix(scene, gb_float3_load(light->direction), size, &texel)
+                         : spot_matrix(scene, light, size, &texel);
+    memcpy(out, matrix.m, sizeof matrix.m);
+    put3(out + 16, light->position);
+    out[19] = light->type == GB_LIGHT_DIRECTIONAL ? 1.0f : 0.0f;
+    gb_float3 direction = gb_float3_normalize(gb_float3_load(light->direction));
+    out[20] = direction.x, out[21] = direction.y, out[22] = direction.z;
+    out[23] = texel;
+    put3(out + 24, light->intensity);
+    out[28] = light->cone_angle;
+    out[29] = light->falloff_angle;
+}
+
+static gb_result fill_lights(const gb_scene *scene, const gb_shadow_options *options,
+                             gb_shadow_maps *maps, gb_error *error)
+{
+    gb_point_emitter *emitters = NULL;
+    uint32_t emitter_count = 0;
+    int samples = options && options->area_samples ? options->area_samples
+                                                   : GB_DEFAULT_AREA_SAMPLES;
+    gb_result result = gb_area_light_sample(scene, samples > 0 ? (uint32_t)samples : 0,
+                                            &emitters, &emitter_count, error);
+    if (result != GB_OK)
+        return result;
+    uint32_t points = emitter_count, planes = 0;
+    for (uint32_t i = 0; i < scene->light_count; ++i)
+        scene->lights[i].type == GB_LIGHT_POINT ? ++points : ++planes;
+    maps->point_data = calloc((size_t)points * POINT_FLOATS + 1, sizeof(float));
+    maps->plane_data = calloc((size_t)planes * PLANE_FLOATS + 1, sizeof(float));
+    if (!maps->point_data || !maps->plane_data) {
+        free(emitters);
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "shadow maps: out of memory");
+    }
+    for (uint32_t i = 0; i < scene->light_count; ++i) {
+        const gb_light *light = &scene->lights[i];
+        if (light->type == GB_LIGHT_POINT)
+            put_point(scene, light->position, light->intensity, NULL,
+                      &maps->point_data[POINT_FLOATS * maps->point_count++]);
+        else
+            put_plane(scene, light, maps->plane_size,
+                      &maps->plane_data[PLANE_FLOATS * maps->plane_count++]);
+    }
+    float lift = 1e-5f * scene_diagonal(scene);
+    for (uint32_t i = 0; i < emitter_count; ++i) {
+        const gb_point_emitter *e = &emitters[i];
+        float p[3];
+        for (int c = 0; c < 3; ++c)
+            p[c] = e->position[c] + lift * e->normal[c];
+        put_point(scene, p, e->intensity, e->normal,
+                  &maps->point_data[POINT_FLOATS * maps->point_count++]);
+    }
+    free(emitters);
+    return GB_OK;
+}
+
+static GLuint make_buffer(const float *data, size_t floats)
+{
+    GLuint buffer;
+    glCreateBuffers(1, &buffer);
+    /* an empty list still gets a (zeroed) buffer to bind */
+    glNamedBufferStorage(buffer, (GLsizeiptr)((floats ? floats : 4) * sizeof(float)),
+                         floats ? data : NULL, 0);
+    return buffer;
+}
+
+static GLuint make_depth_array(GLenum target, int size, int layers, GLenum compare)
+{
+    GLuint texture;
+    glCreateTextures(target, 1, &texture);
+    glTextureStorage3D(texture, 1, GL_DEPTH_COMPONENT32F, size, size, layers);
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTextureParameteri(texture, GL_TEXTURE_COMPARE_FUNC, compare);
+    return texture;
+}
+
+static gb_result make_gpu_objects(gb_shadow_maps *maps, gb_error *error)
+{
+    maps->point_buffer = make_buffer(maps->point_data, (size_t)maps->point_count * POINT_FLOATS);
+    maps->plane_buffer = make_buffer(maps->plane_data, (size_t)maps->plane_count * PLANE_FLOATS);
+    /* An empty light list still gets one layer: samplers need a texture. */
+    int cubes = maps->point_count ? (int)maps->point_count : 1;
+    int planes = maps->plane_count ? (int)maps->plane_count : 1;
+    maps->cube_array = make_depth_array(GL_TEXTURE_CUBE_MAP_ARRAY, maps->cube_size, 6 * cubes,
+                                        GL_LEQUAL);
+    maps->plane_array = make_depth_array(GL_TEXTURE_2D_ARRAY, maps->plane_size, planes,
+                                         GL_GEQUAL);
+    glCreateFramebuffers(1, &maps->framebuffer);
+    glNamedFramebufferDrawBuffer(maps->framebuffer, GL_NONE);
+    glNamedFramebufferReadBuffer(maps->framebuffer, GL_NONE);
+    gb_result result = gb_gl_program("cube shadow map", cube_vertex_shader,
+                                     cube_fragment_shader, &maps->cube_program, error);
+    if (result == GB_OK)
+        result = gb_gl_program("2-D shadow map", plane_vertex_shader, plane_fragment_shader,
+                               &maps->plane_program, error);
+    return result;
+}
+
+gb_result gb_shadow_maps_create(const gb_scene *scene, const gb_shadow_options *options,
+                                gb_shadow_maps *maps, gb_error *error)
+{
+    memset(maps, 0, sizeof *maps);
+    int size = options && options->size > 0 ? options->size : GB_DEFAULT_SHADOW_SIZE;
+    maps->plane_size = size;
+    maps->cube_size = size / 2 > 16 ? size / 2 : 16;
+    gb_result result = fill_lights(scene, options, maps, error);
+    if (result == GB_OK)
+        result = make_gpu_objects(maps, error);
+    if (result != GB_OK)
+        gb_shadow_maps_destroy(maps);
+    return result;
+}
+
+static void set_matrix(GLuint program, const char *name, const gb_mat4 *m)
+{
+    glProgramUniformMatrix4fv(program, glGetUniformLocation(program, name), 1, GL_FALSE, m->m);
+}
+
+static void draw_cube(gb_shadow_maps *maps, const gb_gpu_scene *scene, uint32_t light)
+{
+    const float *data = &maps->point_data[POINT_FLOATS * light];
+    gb_float3 position = gb_float3_load(data);
+    float range = data[3];
+    gb_mat4 projection = gb_mat4_perspective(90.0f, 1.0f, 1e-4f * range, range);
+    GLuint program = maps->cube_program;
+    glProgramUniform3f(program, glGetUniformLocation(program, "light_position"), position.x,
+                       position.y, position.z);
+    glProgramUniform1f(program, glGetUniformLocation(program, "range"), range);
+    for (int face = 0; face < 6; ++face) {
+        light_frame f = make_frame(position, gb_float3_load(cube_faces[face][0]),
+                                   gb_float3_load(cube_faces[face][1]));
+        gb_mat4 view = frame_view(&f);
+        gb_mat4 view_projection = gb_mat4_multiply(&projection, &view);
+        set_matrix(program, "view_projection", &view_projection);
+        glNamedFramebufferTextureLayer(maps->framebuffer, GL_DEPTH_ATTACHMENT,
+                                       maps->cube_array, 0, (GLint)(6 * light + face));
+        static const float far = 1.0f;
+        glClearNamedFramebufferfv(maps->framebuffer, GL_DEPTH, 0, &far);
+        gb_gpu_scene_draw(scene, 0);
+    }
+}
+
+static void draw_plane(gb_shadow_maps *maps, const gb_gpu_scene *scene, uint32_t light)
+{
+    gb_mat4 matrix;
+    memcpy(matrix.m, &maps->plane_data[PLANE_FLOATS * light], sizeof matrix.m);
+    set_matrix(maps->plane_program, "view_projection", &matrix);
+    glNamedFramebufferTextureLayer(maps->framebuffer, GL_DEPTH_ATTACHMENT, maps->plane_array,
+                                   0, (GLint)light);
+    static const float far = 0.0f;   /* reversed depth */
+    glClearNamedFramebufferfv(maps->framebuffer, GL_DEPTH, 0, &far);
+    gb_gpu_scene_draw(scene, 0);
+}
+
+void gb_shadow_maps_draw(gb_shadow_maps *maps, const gb_gpu_scene *scene)
+{
+    if (maps->drawn)
+        return;
+    glBindFramebuffer(GL_FRAMEBUFFER, maps->framebuffer);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glViewport(0, 0, maps->cube_size, maps->cube_size);
+    glDepthFunc(GL_LESS);
+    glUseProgram(maps->cube_program);
+    for (uint32_t i = 0; i < maps->point_count; ++i)
+        draw_cube(maps, scene, i);
+    glViewport(0, 0, maps->plane_size, maps->plane_size);
+    glDepthFunc(GL_GREATER);
+    glUseProgram(maps->plane_program);
+    for (uint32_t i = 0; i < maps->plane_count; ++i)
+        draw_plane(maps, scene, i);
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    maps->drawn = 1;
+}
+
+void gb_shadow_maps_bind(const gb_shadow_maps *maps)
+{
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GB_SSBO_POINT_LIGHTS, maps->point_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GB_SSBO_PLANE_LIGHTS, maps->plane_buffer);
+    glBindTextureUnit(GB_UNIT_SHADOW_CUBES, maps->cube_array);
+    glBindTextureUnit(GB_UNIT_SHADOW_PLANES, maps->plane_array);
+}
+
+void gb_shadow_maps_destroy(gb_shadow_maps *maps)
+{
+    GLuint buffers[] = {maps->point_buffer, maps->plane_buffer};
+    GLuint textures[] = {maps->cube_array, maps->plane_array};
+    for (int i = 0; i < 2; ++i) {
+        if (buffers[i])
+            glDeleteBuffers(1, &buffers[i]);
+        if (textures[i])
+            glDeleteTextures(1, &textures[i]);
+    }
+    if (maps->framebuffer)
+        glDeleteFramebuffers(1, &maps->framebuffer);
+    if (maps->cube_program)
+        glDeleteProgram(maps->cube_program);
+    if (maps->plane_program)
+        glDeleteProgram(maps->plane_program);
+    free(maps->point_data);
+    free(maps->plane_data);
+    memset(maps, 0, sizeof *maps);
+}

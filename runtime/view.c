@@ -1,0 +1,87 @@
+#include "view.h"
+
+#include <math.h>
+
+static void set_basis(gb_view *view, gb_float3 forward)
+{
+    view->forward = gb_float3_normalize(forward);
+    view->right = gb_float3_normalize(gb_float3_cross(view->forward, view->world_up));
+    view->up = gb_float3_cross(view->right, view->forward);
+}
+
+gb_result gb_view_from_camera(const gb_camera *camera, float scene_size, gb_view *view,
+                              gb_error *error)
+{
+    gb_float3 position = gb_float3_load(camera->position);
+    gb_float3 forward = gb_float3_sub(gb_float3_load(camera->target), position);
+    gb_float3 up = gb_float3_normalize(gb_float3_load(camera->up));
+    gb_float3 right = gb_float3_normalize(gb_float3_cross(gb_float3_normalize(forward), up));
+    if (gb_float3_length(right) == 0.0f || !isfinite(right.x + right.y + right.z))
+        return gb_fail(error, GB_ERROR_INVALID,
+                       "camera: the target is on the position or up is along the view");
+    if (!(camera->fov_y > 0.0f && camera->fov_y < 180.0f))
+        return gb_fail(error, GB_ERROR_INVALID, "camera: field of view %g is not in (0, 180)",
+                       (double)camera->fov_y);
+    view->position = position;
+    view->world_up = up;
+    set_basis(view, forward);
+    view->fov_y = camera->fov_y;
+    view->near = scene_size > 0.0f && isfinite(scene_size) ? 1e-4f * scene_size : 1e-3f;
+    return GB_OK;
+}
+
+gb_mat4 gb_view_matrix(const gb_view *view)
+{
+    return gb_mat4_view(view->position, view->forward, view->right, view->up);
+}
+
+gb_mat4 gb_view_inverse_matrix(const gb_view *view)
+{
+    return gb_mat4_view_inverse(view->position, view->forward, view->right, view->up);
+}
+
+gb_mat4 gb_view_projection(const gb_view *view, int width, int height)
+{
+    return gb_mat4_perspective_infinite(view->fov_y, (float)width / (float)height, view->near);
+}
+
+void gb_view_move(gb_view *view, float forward, float right, float up)
+{
+    view->position = gb_float3_add(view->position, gb_float3_scale(view->forward, forward));
+    view->position = gb_float3_add(view->position, gb_float3_scale(view->right, right));
+    view->position = gb_float3_add(view->position, gb_float3_scale(view->world_up, up));
+}
+
+/* Rodrigues: v turned by angle about the unit axis. */
+static gb_float3 rotate(gb_float3 v, gb_float3 axis, float angle)
+{
+    float c = cosf(angle), s = sinf(angle);
+    gb_float3 r = gb_float3_scale(v, c);
+    r = gb_float3_add(r, gb_float3_scale(gb_float3_cross(axis, v), s));
+    return gb_float3_add(r, gb_float3_scale(axis, gb_float3_dot(axis, v) * (1.0f - c)));
+}
+
+void gb_view_turn(gb_view *view, float yaw, float pitch)
+{
+    gb_float3 forward = rotate(view->forward, view->world_up, yaw);
+    gb_float3 pitched = rotate(forward, gb_float3_normalize(gb_float3_cross(forward,
+                                                                             view->world_up)),
+                               pitch);
+    if (fabsf(gb_float3_dot(pitched, view->world_up)) < 0.99f)
+        forward = pitched;
+    set_basis(view, forward);
+}
+
+gb_result gb_scene_view(const gb_scene *scene, uint32_t camera, gb_view *view,
+                        gb_error *error)
+{
+    if (camera >= scene->camera_count)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "camera %u: the scene has %u camera%s", camera,
+                       scene->camera_count, scene->camera_count == 1 ? "" : "s");
+    float diagonal = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+        float d = scene->bounds_max[c] - scene->bounds_min[c];
+        diagonal += d * d;
+    }
+    return gb_view_from_camera(&scene->cameras[camera], sqrtf(diagonal), view, error);
+}

@@ -1,0 +1,41 @@
+/* view.h — the eye the runtime renders from: a pinhole camera as
+ * tools/reference sees it (right = cross(forward, up), fov_y spans the image
+ * height whatever its width, pixel (0, 0) at the top left of the written
+ * image), plus the fly-camera moves of the window.
+ */
+#ifndef GB_VIEW_H
+#define GB_VIEW_H
+
+#include "mat4.h"
+#include "result.h"
+#include "scene.h"
+
+typedef struct gb_view {
+    gb_float3 position;
+    gb_float3 forward, right, up;   /* unit, orthogonal */
+    gb_float3 world_up;             /* the camera's up: yaw turns about it */
+    float fov_y;                    /* degrees */
+    float near;                     /* near plane, world units */
+} gb_view;
+
+/* The view of camera; scene_size (the diagonal of the scene's bounds) sets
+ * the near plane. GB_ERROR_INVALID for a camera that defines no view. */
+gb_result gb_view_from_camera(const gb_camera *camera, float scene_size, gb_view *view,
+                              gb_error *error);
+
+gb_mat4 gb_view_matrix(const gb_view *view);           /* world to view */
+gb_mat4 gb_view_inverse_matrix(const gb_view *view);   /* view to world */
+/* Reversed depth, infinite far plane (mat4.h). */
+gb_mat4 gb_view_projection(const gb_view *view, int width, int height);
+
+/* The view of camera index of scene (GB_ERROR_ARGUMENT for a bad index). */
+gb_result gb_scene_view(const gb_scene *scene, uint32_t camera, gb_view *view,
+                        gb_error *error);
+
+/* Fly camera: moves along forward, right and world up (in world units). */
+void gb_view_move(gb_view *view, float forward, float right, float up);
+/* Turns by yaw about world up and pitch about right (radians), keeping the
+ * view away from the poles. */
+void gb_view_turn(gb_view *view, float yaw, float pitch);
+
+#endif

@@ -1,0 +1,156 @@
+#!/bin/sh
+# gbview.t — the runtime as a user types it, headless on llvmpipe (and in a
+# window under Xvfb when xvfb-run is there): images written, direct light
+# close to `reference --mode direct` (and not without shadows), the same
+# image twice, sizes and cameras, baked files that are bad reported and
+# skipped, errors as a Unix tool reports them.
+# Prints TAP.
+#
+# GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
+
+GB_ROOT=${GB_ROOT:-.}
+GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+tool=$GB_BIN/gbview
+reference=$GB_BIN/reference
+imgdiff=$GB_BIN/imgdiff
+scene=$GB_ROOT/scenes/cornell/cornell.scene
+dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-gbview.XXXXXX") || exit 1
+trap 'rm -rf "$dir"' EXIT INT TERM
+count=0
+failed=0
+
+ok() {
+    count=$((count + 1))
+    if [ "$1" = 0 ]; then
+        echo "ok $count - $2"
+    else
+        failed=$((failed + 1))
+        echo "not ok $count - $2"
+    fi
+}
+
+skip() {
+    count=$((count + 1))
+    echo "ok $count # skip $1"
+}
+
+value() {
+    sed -n "s/^$1 //p" "$2"
+}
+
+# awk: is the number $1 below $2?
+below() {
+    awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a + 0 < b + 0) }'
+}
+
+if [ ! -x "$tool" ] || [ ! -x "$imgdiff" ]; then
+    echo "Bail out! $tool or $imgdiff not built"
+    exit 1
+fi
+
+small="--headless --resolution 64x64 --quiet"
+
+"$tool" $small "$scene" -o "$dir/a.exr" >"$dir/out" 2>"$dir/err"
+ok $? "headless render of the Cornell box: exit status 0"
+ok "$([ -s "$dir/a.exr" ] && [ ! -s "$dir/out" ] && [ ! -s "$dir/err" ]; echo $?)" \
+    "writes OUT.exr, --quiet prints nothing"
+"$tool" $small "$scene" -o "$dir/a.png"
+ok "$([ -s "$dir/a.png" ]; echo $?)" "writes OUT.png"
+
+"$tool" $small "$scene" -o "$dir/b.exr"
+"$imgdiff" "$dir/a.exr" "$dir/b.exr" >"$dir/same"
+ok "$([ "$(value max_error "$dir/same")" = 0 ]; echo $?)" "rendering twice: identical images"
+
+"$tool" --headless --resolution 40x30 "$scene" -o "$dir/c.exr" &&
+    "$tool" --headless --resolution 40x30 --frames 3 "$scene" -o "$dir/d.exr"
+"$imgdiff" "$dir/c.exr" "$dir/d.exr" >"$dir/same" 2>&1
+ok "$([ "$(value pixels "$dir/same")" = 1200 ]; echo $?)" "--resolution 40x30 gives 40x30 pixels"
+ok "$([ "$(value max_error "$dir/same")" = 0 ]; echo $?)" "--frames 3: the same last frame"
+
+# A second camera (the first one moved) in a copy of the scene file.
+sed "s|^mesh .*|mesh $(cd "$GB_ROOT/scenes/cornell" && pwd)/cornell.obj|" "$scene" >"$dir/two.scene"
+echo "camera position 400 273 -800 target 278 273 0 up 0 1 0 fov 39.3077 resolution 64 64" \
+    >>"$dir/two.scene"
+"$tool" $small --camera 1 "$dir/two.scene" -o "$dir/camera1.exr"
+ok $? "--camera 1 of a scene with two cameras"
+"$tool" $small --camera 0 "$dir/two.scene" -o "$dir/camera0.exr"
+"$imgdiff" "$dir/camera0.exr" "$dir/a.exr" >"$dir/same"
+ok "$([ "$(value max_error "$dir/same")" = 0 ]; echo $?)" "camera 0 is the Cornell box's camera"
+"$imgdiff" "$dir/camera0.exr" "$dir/camera1.exr" >"$dir/diff"
+ok "$([ "$(value max_error "$dir/diff")" != 0 ]; echo $?)" "camera 1 sees another image"
+
+"$tool" $small --timings "$scene" --frames 2 >"$dir/out"
+ok "$(grep -q "^g-buffer" "$dir/out" && grep -q "^direct light" "$dir/out" &&
+    grep -q "^frame (gpu)" "$dir/out"; echo $?)" "--timings prints the passes' times"
+
+# Direct light against the reference (the unit test states the figures).
+if [ -x "$reference" ]; then
+    "$reference" --mode direct --resolution 128x128 --quiet "$scene" -o "$dir/ref.exr"
+    "$tool" --headless --resolution 128x128 --supersample 4 --quiet "$scene" -o "$dir/direct.exr"
+    "$tool" --headless --resolution 128x128 --supersample 4 --no-shadows --quiet "$scene" \
+        -o "$dir/unshadowed.exr"
+    "$imgdiff" "$dir/direct.exr" "$dir/ref.exr" >"$dir/error"
+    "$imgdiff" "$dir/unshadowed.exr" "$dir/ref.exr" >"$dir/error-unshadowed"
+    shadowed=$(value relative_mse "$dir/error")
+    unshadowed=$(value relative_mse "$dir/error-unshadowed")
+    echo "# relative MSE to reference --mode direct: $shadowed; without shadows: $unshadowed"
+    ok "$(below "$shadowed" 0.004; echo $?)" "direct light: relative MSE below 0.004"
+    ok "$(below "$unshadowed" 0.004 && echo 1 || echo 0)" "--no-shadows: not below 0.004"
+else
+    skip "$reference not built"
+    skip "$reference not built"
+fi
+
+# Baked files: a corrupt one and missing ones are reported, one line each.
+mkdir "$dir/bake"
+echo "not a skeleton" >"$dir/bake/cornell.skel"
+"$tool" --headless --resolution 16x16 --bake "$dir/bake" "$scene" -o "$dir/bake.png" \
+    >"$dir/out" 2>"$dir/err"
+ok $? "--bake with a corrupt file: exit status 0"
+ok "$(grep -q "cornell.skel" "$dir/err"; echo $?)" "the corrupt .skel is reported on stderr"
+ok "$([ "$(grep -c "skipped" "$dir/err")" = 5 ]; echo $?)" "one message per missing or bad file"
+ok "$([ -s "$dir/bake.png" ]; echo $?)" "and the image is still rendered"
+
+expect_failure() { # WHAT STATUS PATTERN ARGS...
+    what=$1 want=$2 pattern=$3
+    shift 3
+    "$tool" "$@" >"$dir/out" 2>"$dir/err"
+    status=$?
+    ok "$([ $status = "$want" ]; echo $?)" "$what: exit status $want (got $status)"
+    ok "$(grep -q "$pattern" "$dir/err"; echo $?)" "$what: says '$pattern' on stderr"
+}
+
+expect_failure "a missing scene" 1 "^gbview: .*missing.scene" \
+    --headless "$dir/missing.scene" -o "$dir/missing.png"
+ok "$([ ! -e "$dir/missing.png" ]; echo $?)" "a failed run writes no image"
+expect_failure "an unknown method" 2 "unknown method 'radiosity'" \
+    --headless --method radiosity "$scene"
+expect_failure "a method this build lacks" 2 "method 'topo' is not available" \
+    --headless --method topo "$scene"
+expect_failure "a camera the scene lacks" 1 "^gbview: camera 3" \
+    --headless --camera 3 "$scene"
+expect_failure "a bad resolution" 2 "bad value \"0x5\"" \
+    --headless --resolution 0x5 "$scene"
+
+"$tool" --help >"$dir/out"
+ok "$([ $? = 0 ] && grep -q "^usage: gbview" "$dir/out"; echo $?)" "--help on stdout, status 0"
+"$tool" --version >"$dir/out"
+ok "$([ $? = 0 ] && grep -q "gbview (gibake)" "$dir/out"; echo $?)" "--version"
+
+# The window, on a virtual X server.
+if command -v xvfb-run >/dev/null 2>&1; then
+    xvfb-run -a "$tool" --frames 3 --resolution 64x64 --timings "$scene" \
+        -o "$dir/window.exr" >"$dir/out" 2>"$dir/err"
+    status=$?
+    [ $status = 0 ] || sed 's/^/# /' "$dir/err"
+    ok $status "window mode under Xvfb: draws --frames 3 and exits 0"
+    ok "$(grep -q "^present" "$dir/out"; echo $?)" "the window presents its frames"
+    "$imgdiff" "$dir/window.exr" "$dir/a.exr" >"$dir/same" 2>&1
+    ok "$([ "$(value max_error "$dir/same")" = 0 ]; echo $?)" \
+        "with -o, its last frame is saved: the headless image"
+else
+    for i in 1 2 3; do skip "xvfb-run not installed (Debian package xvfb)"; done
+fi
+
+echo "1..$count"
+[ $failed = 0 ]
