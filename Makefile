@@ -120,6 +120,18 @@ $(BAKE)/%.vdb: %.scene $(BIN)/voxelize
 	@mkdir -p $(@D)
 	$(BIN)/voxelize $< -o $@
 
+# Reference images of SCENE, one per mode: make reference [SCENE=...] [REFERENCE_SPP=256]
+#   -> bake/NAME.{direct,indirect1,indirect1-unshadowed,full}.exr (+ .png)
+REFERENCE_MODES ?= direct indirect1 indirect1-unshadowed full
+REFERENCE_SPP ?= 256
+REFERENCE_FLAGS ?=
+REFERENCE_IMAGES := $(REFERENCE_MODES:%=$(BAKE)/$(SCENE_NAME).%.exr)
+.PHONY: reference
+reference: $(REFERENCE_IMAGES)
+$(REFERENCE_IMAGES): $(BAKE)/$(SCENE_NAME).%.exr: $(SCENE) $(BIN)/reference
+	@mkdir -p $(@D)
+	$(BIN)/reference --mode $* --spp $(REFERENCE_SPP) $(REFERENCE_FLAGS) --png $(SCENE) -o $@
+
 bench: all
 	@for b in bench/*.sh; do [ -f "$$b" ] && GB_BIN=$(abspath $(BIN)) sh $$b; done; true
 

@@ -122,6 +122,7 @@ gb_result write_to(const char *temporary, const char *path, const gb_image *imag
         spec.attribute("oiio:UnassociatedAlpha", 1);   // colours not multiplied by alpha
     }
     spec.attribute("oiio:ColorSpace", as_float ? "Linear" : "sRGB");
+    spec.attribute("DateTime", "1970:01:01 00:00:00");  // same pixels, same bytes
     bool written = output->open(temporary, spec);
     if (written && as_float)
         written = output->write_image(OIIO::TypeDesc::FLOAT, image->pixels);

@@ -1,0 +1,81 @@
+#!/bin/sh
+# imgdiff.t — imgdiff as a user types it: known numbers on tiny PPM images
+# written here (8-bit sRGB, so mse_srgb8 is exact), masks, heatmaps, errors.
+# Prints TAP.
+#
+# GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
+
+GB_ROOT=${GB_ROOT:-.}
+GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+tool=$GB_BIN/imgdiff
+dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-imgdiff.XXXXXX") || exit 1
+trap 'rm -rf "$dir"' EXIT INT TERM
+count=0
+failed=0
+
+ok() {
+    count=$((count + 1))
+    if [ "$1" = 0 ]; then
+        echo "ok $count - $2"
+    else
+        failed=$((failed + 1))
+        echo "not ok $count - $2"
+    fi
+}
+
+# value KEY FILE: the value printed for KEY in FILE
+value() {
+    sed -n "s/^$1 //p" "$2"
+}
+
+if [ ! -x "$tool" ]; then
+    echo "Bail out! $tool not built"
+    exit 1
+fi
+
+printf 'P3\n2 1\n255\n100 100 100 0 0 0\n' >"$dir/a.ppm"
+printf 'P3\n2 1\n255\n110 110 110 0 0 0\n' >"$dir/b.ppm"
+printf 'P3\n2 1\n255\n0 0 0 255 255 255\n' >"$dir/mask.ppm"
+printf 'P3\n1 1\n255\n0 0 0\n' >"$dir/small.ppm"
+
+"$tool" "$dir/a.ppm" "$dir/b.ppm" >"$dir/out" 2>"$dir/err"
+ok $? "two 2x1 images: exit status 0"
+ok "$([ "$(value pixels "$dir/out")" = 2 ]; echo $?)" "2 pixels compared"
+ok "$([ "$(value mse_srgb8 "$dir/out")" = 50 ]; echo $?)" \
+    "mse_srgb8 = 3 * 10^2 / 6 = 50 (got $(value mse_srgb8 "$dir/out"))"
+ok "$([ "$(value psnr "$dir/out")" = 31.1411 ]; echo $?)" \
+    "psnr = 10 log10(255^2 / 50) = 31.1411 dB (got $(value psnr "$dir/out"))"
+ok "$([ ! -s "$dir/err" ]; echo $?)" "nothing on stderr"
+
+"$tool" "$dir/a.ppm" "$dir/a.ppm" >"$dir/out"
+ok "$([ "$(value mse_srgb8 "$dir/out")" = 0 ] && [ "$(value rmse "$dir/out")" = 0 ] &&
+    [ "$(value psnr "$dir/out")" = inf ]; echo $?)" "an image against itself: 0, 0, inf"
+
+"$tool" --mask "$dir/mask.ppm" "$dir/a.ppm" "$dir/b.ppm" >"$dir/out"
+ok "$([ "$(value pixels "$dir/out")" = 1 ] && [ "$(value mse_srgb8 "$dir/out")" = 0 ]; echo $?)" \
+    "--mask leaves out the black pixel, the one that differs"
+
+"$tool" --heatmap "$dir/heat.png" "$dir/a.ppm" "$dir/b.ppm" >/dev/null
+ok "$([ -s "$dir/heat.png" ]; echo $?)" "--heatmap writes a PNG"
+
+"$tool" "$dir/a.ppm" "$dir/small.ppm" >"$dir/out" 2>"$dir/err"
+status=$?
+ok "$([ $status = 1 ]; echo $?)" "images of different sizes: exit status 1 (got $status)"
+ok "$([ "$(cat "$dir/err")" = "imgdiff: images differ in size: 2x1 and 1x1" ]; echo $?)" \
+    "images of different sizes: one message on stderr"
+ok "$([ ! -s "$dir/out" ]; echo $?)" "images of different sizes: nothing on stdout"
+
+"$tool" "$dir/a.ppm" "$dir/missing.exr" >/dev/null 2>"$dir/err"
+ok "$([ $? = 1 ] && grep -q "^imgdiff: .*missing.exr" "$dir/err"; echo $?)" \
+    "a missing file: exit status 1 and a message naming it"
+
+"$tool" "$dir/a.ppm" >/dev/null 2>&1
+status=$?
+ok "$([ $status = 2 ]; echo $?)" "one image only: usage, exit status 2 (got $status)"
+"$tool" --help >"$dir/out"
+ok "$([ $? = 0 ] && grep -q "^usage: imgdiff" "$dir/out"; echo $?)" "--help on stdout, status 0"
+"$tool" --version >"$dir/out"
+ok "$([ $? = 0 ] && grep -q "imgdiff (gibake)" "$dir/out"; echo $?)" "--version"
+
+echo "1..$count"
+[ $failed = 0 ]

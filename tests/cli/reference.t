@@ -1,0 +1,89 @@
+#!/bin/sh
+# reference.t — the reference renderer as a user types it, on the Cornell box
+# at a few pixels: images written (EXR, PNG), the same bytes whatever the
+# threads, errors reported as a Unix tool should.
+# Prints TAP.
+#
+# GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
+
+GB_ROOT=${GB_ROOT:-.}
+GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+tool=$GB_BIN/reference
+imgdiff=$GB_BIN/imgdiff
+scene=$GB_ROOT/scenes/cornell/cornell.scene
+dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-reference.XXXXXX") || exit 1
+trap 'rm -rf "$dir"' EXIT INT TERM
+count=0
+failed=0
+
+ok() {
+    count=$((count + 1))
+    if [ "$1" = 0 ]; then
+        echo "ok $count - $2"
+    else
+        failed=$((failed + 1))
+        echo "not ok $count - $2"
+    fi
+}
+
+value() {
+    sed -n "s/^$1 //p" "$2"
+}
+
+if [ ! -x "$tool" ] || [ ! -x "$imgdiff" ]; then
+    echo "Bail out! $tool or $imgdiff not built"
+    exit 1
+fi
+
+small="--resolution 24x16 --spp 4 --quiet"
+
+"$tool" $small --mode direct --png "$scene" -o "$dir/direct.exr" >"$dir/out" 2>"$dir/err"
+ok $? "direct mode on the Cornell box: exit status 0"
+ok "$([ -s "$dir/direct.exr" ] && [ -s "$dir/direct.png" ]; echo $?)" \
+    "writes OUT.exr and, with --png, OUT.png"
+ok "$([ ! -s "$dir/out" ] && [ ! -s "$dir/err" ]; echo $?)" "--quiet: nothing on stdout or stderr"
+
+# (the EXR files themselves differ: the image adapter stamps a DateTime)
+"$tool" $small --threads 1 --stats "$scene" -o "$dir/one.exr" >"$dir/out"
+ok "$([ "$(value rays "$dir/out")" -gt 0 ] 2>/dev/null; echo $?)" "--stats prints the rays traced"
+"$tool" $small --threads 2 "$scene" -o "$dir/two.exr"
+"$imgdiff" "$dir/one.exr" "$dir/two.exr" >"$dir/same"
+ok "$([ "$(value max_error "$dir/same")" = 0 ] && [ "$(value psnr "$dir/same")" = inf ]; echo $?)" \
+    "the same pixels on 1 and 2 threads"
+"$tool" $small --threads 2 --seed 9 "$scene" -o "$dir/seed.exr"
+"$imgdiff" "$dir/one.exr" "$dir/seed.exr" >"$dir/diff"
+ok "$([ "$(value max_error "$dir/diff")" != 0 ]; echo $?)" "another seed, another image"
+
+"$tool" $small --mode indirect1-unshadowed --camera 0 "$scene" -o "$dir/u.exr"
+ok $? "indirect1-unshadowed mode runs"
+
+expect_failure() { # WHAT STATUS PATTERN ARGS...
+    what=$1 want=$2 pattern=$3
+    shift 3
+    "$tool" "$@" >"$dir/out" 2>"$dir/err"
+    status=$?
+    ok "$([ $status = "$want" ]; echo $?)" "$what: exit status $want (got $status)"
+    ok "$(grep -q "$pattern" "$dir/err"; echo $?)" "$what: says '$pattern' on stderr"
+}
+
+expect_failure "a missing scene" 1 "^reference: .*missing.scene" \
+    --quiet "$dir/missing.scene" -o "$dir/missing.exr"
+ok "$([ ! -e "$dir/missing.exr" ]; echo $?)" "a failed run writes no image"
+expect_failure "an unknown mode" 2 "unknown mode \"indirect2\"" \
+    --mode indirect2 "$scene" -o "$dir/x.exr"
+expect_failure "vpl mode without a VPL file" 2 "^reference: --vpl FILE goes with --mode vpl" \
+    --mode vpl "$scene" -o "$dir/x.exr"
+expect_failure "a camera the scene lacks" 1 "^reference: .*no camera 3" \
+    --quiet --camera 3 "$scene" -o "$dir/x.exr"
+expect_failure "a VPL file that is not one" 1 "^reference: .*direct.png" \
+    --quiet --vpl "$dir/direct.png" "$scene" -o "$dir/x.exr"
+expect_failure "a bad resolution" 2 "bad value \"0x5\"" \
+    --resolution 0x5 "$scene" -o "$dir/x.exr"
+
+"$tool" --help >"$dir/out"
+ok "$([ $? = 0 ] && grep -q "^usage: reference" "$dir/out"; echo $?)" "--help on stdout, status 0"
+"$tool" --version >"$dir/out"
+ok "$([ $? = 0 ] && grep -q "reference (gibake)" "$dir/out"; echo $?)" "--version"
+
+echo "1..$count"
+[ $failed = 0 ]

@@ -1,0 +1,146 @@
+/* imgdiff — how far an image is from a reference (tools/imgdiff/image_error.h). */
+
+#include <errno.h>
+#include <getopt.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "image.h"
+#include "image_error.h"
+
+static const char usage[] =
+    "usage: imgdiff [options] IMAGE REFERENCE\n"
+    "Compares IMAGE with REFERENCE (same size; the first three channels, linear\n"
+    "values as read: EXR as is, PNG/JPEG decoded from sRGB) and prints, one per line:\n"
+    "  pixels        how many pixels were compared\n"
+    "  mse_srgb8     mean squared error of the 8-bit sRGB values (0..255 scale)\n"
+    "  rmse          root mean squared error of the linear values\n"
+    "  relative_mse  mean of (a - b)^2 / (b^2 + 0.01), b the reference\n"
+    "  psnr          10 log10(255^2 / mse_srgb8) in dB (inf when equal)\n"
+    "  max_error     the largest per-pixel RMS error, linear\n"
+    "\n"
+    "  -m, --mask FILE           compare only where FILE is not black (< 0.5)\n"
+    "      --heatmap OUT.png     write the per-pixel error as colours, black (none)\n"
+    "                            to white (the 99th percentile, or --heatmap-scale)\n"
+    "      --heatmap-scale E     the linear error shown white\n"
+    "  -h, --help                this help\n"
+    "  -V, --version             the version\n";
+
+typedef struct arguments {
+    const char *image, *reference, *mask, *heatmap;
+    double heatmap_scale;
+} arguments;
+
+enum { OPTION_HEATMAP = 256, OPTION_HEATMAP_SCALE };
+
+static int parse_scale(const char *text, double *scale)
+{
+    char *end;
+    errno = 0;
+    double value = strtod(text, &end);
+    if (errno || end == text || *end || !(value > 0.0) || !isfinite(value))
+        return 0;
+    *scale = value;
+    return 1;
+}
+
+/* 0: go on; -1: done (help, version); otherwise the exit status. */
+static int parse_arguments(int argc, char **argv, arguments *a)
+{
+    static const struct option options[] = {
+        {"mask", required_argument, NULL, 'm'},
+        {"heatmap", required_argument, NULL, OPTION_HEATMAP},
+        {"heatmap-scale", required_argument, NULL, OPTION_HEATMAP_SCALE},
+        {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
+        {NULL, 0, NULL, 0},
+    };
+    int option;
+    while ((option = getopt_long(argc, argv, "m:hV", options, NULL)) != -1) {
+        if (option == 'h')
+            return fputs(usage, stdout) == EOF ? 1 : -1;
+        if (option == 'V')
+            return puts("imgdiff (gibake) 0.1") == EOF ? 1 : -1;
+        if (option == 'm')
+            a->mask = optarg;
+        else if (option == OPTION_HEATMAP)
+            a->heatmap = optarg;
+        else if (option == OPTION_HEATMAP_SCALE && parse_scale(optarg, &a->heatmap_scale))
+            continue;
+        else {
+            if (option == OPTION_HEATMAP_SCALE)
+                fprintf(stderr, "imgdiff: bad --heatmap-scale \"%s\"\n", optarg);
+            return fputs(usage, stderr), 2;
+        }
+    }
+    if (optind != argc - 2) {
+        fprintf(stderr, "imgdiff: expected IMAGE and REFERENCE\n%s", usage);
+        return 2;
+    }
+    a->image = argv[optind];
+    a->reference = argv[optind + 1];
+    return 0;
+}
+
+static void print_error(const gb_image_error *e)
+{
+    printf("pixels %llu\n", (unsigned long long)e->pixel_count);
+    printf("mse_srgb8 %.6g\n", e->mse_srgb8);
+    printf("rmse %.6g\n", e->rmse);
+    printf("relative_mse %.6g\n", e->relative_mse);
+    if (isinf(e->psnr))
+        printf("psnr inf\n");
+    else
+        printf("psnr %.4f\n", e->psnr);
+    printf("max_error %.6g\n", e->max_error);
+}
+
+static gb_result write_heatmap(const arguments *a, const gb_image *image,
+                               const gb_image *reference, const gb_image *mask,
+                               gb_error *error)
+{
+    gb_image heatmap;
+    gb_result result = gb_image_error_heatmap(image, reference, mask, a->heatmap_scale,
+                                              &heatmap, error);
+    if (result == GB_OK)
+        result = gb_image_write(a->heatmap, &heatmap, error);
+    gb_image_free(&heatmap);
+    return result;
+}
+
+static gb_result compare(const arguments *a, gb_image images[3], gb_error *error)
+{
+    gb_result result = gb_image_read(a->image, &images[0], error);
+    if (result == GB_OK)
+        result = gb_image_read(a->reference, &images[1], error);
+    if (result == GB_OK && a->mask)
+        result = gb_image_read(a->mask, &images[2], error);
+    const gb_image *mask = a->mask ? &images[2] : NULL;
+    gb_image_error measures;
+    if (result == GB_OK)
+        result = gb_image_error_compute(&images[0], &images[1], mask, &measures, error);
+    if (result == GB_OK && a->heatmap)
+        result = write_heatmap(a, &images[0], &images[1], mask, error);
+    if (result == GB_OK)
+        print_error(&measures);
+    return result;
+}
+
+int main(int argc, char **argv)
+{
+    arguments a = {0};
+    int status = parse_arguments(argc, argv, &a);
+    if (status)
+        return status < 0 ? 0 : status;
+    gb_image images[3] = {{0}, {0}, {0}};
+    gb_error error;
+    gb_result result = compare(&a, images, &error);
+    for (int i = 0; i < 3; ++i)
+        gb_image_free(&images[i]);
+    if (result != GB_OK) {
+        fprintf(stderr, "imgdiff: %s\n", error.message);
+        return 1;
+    }
+    return fflush(stdout) == 0 ? 0 : 1;
+}
