@@ -186,17 +186,16 @@ static void print_scene_warnings(const gb_scene *scene)
 }
 
 /* One message per missing or bad baked file; never fatal. */
-static int check_bake(const gb_scene *scene, const arguments *a)
+static int check_bake(const gb_scene *scene, const arguments *a, gb_bake_files *files)
 {
-    gb_bake_files files;
     gb_error error;
-    if (gb_bake_files_check(scene, a->scene_path, a->bake, &files, &error) != GB_OK) {
+    if (gb_bake_files_check(scene, a->scene_path, a->bake, files, &error) != GB_OK) {
         fprintf(stderr, "gbview: %s\n", error.message);
         return 1;
     }
     for (int kind = 0; kind < GB_BAKE_KIND_COUNT; ++kind)
-        if (files.has_problem[kind])
-            fprintf(stderr, "gbview: warning: skipped: %s\n", files.problems[kind].message);
+        if (files->has_problem[kind])
+            fprintf(stderr, "gbview: warning: skipped: %s\n", files->problems[kind].message);
     return 0;
 }
 
@@ -276,7 +275,9 @@ int main(int argc, char **argv)
     }
     if (!a.quiet)
         print_scene_warnings(&scene);
-    status = a.bake ? check_bake(&scene, &a) : 0;
+    gb_bake_files files;
+    status = a.bake ? check_bake(&scene, &a, &files) : 0;
+    a.renderer.bake = a.bake ? &files : NULL;
     if (status == 0)
         status = run(&scene, &a);
     gb_scene_free(&scene);

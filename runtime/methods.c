@@ -22,9 +22,23 @@ gb_result gb_method_parse(const char *name, gb_method *method, gb_error *error)
                    "unknown method '%s' (methods: direct, topo, octree, flc, implicit)", name);
 }
 
+/* One entry a method: its indirect light, NULL until it lands. */
+static const gb_indirect_method *const indirect_methods[GB_METHOD_COUNT] = {
+    [GB_METHOD_DIRECT] = NULL,
+    [GB_METHOD_TOPO] = NULL,
+    [GB_METHOD_OCTREE] = NULL,
+    [GB_METHOD_FLC] = NULL,
+    [GB_METHOD_IMPLICIT] = NULL,
+};
+
+const gb_indirect_method *gb_method_indirect(gb_method method)
+{
+    return method >= 0 && method < GB_METHOD_COUNT ? indirect_methods[method] : NULL;
+}
+
 int gb_method_implemented(gb_method method)
 {
-    return method == GB_METHOD_DIRECT;
+    return method == GB_METHOD_DIRECT || gb_method_indirect(method) != NULL;
 }
 
 gb_result gb_method_check(gb_method method, gb_error *error)

@@ -7,12 +7,13 @@
  *   octree    the light octree of virtual directional lights (2007)
  *   flc       Forward Light Cuts (Laurent 2016)
  *   implicit  implicit visibility (Dong 2007)
- * Each GI method lands in its own file under runtime/ and then reports
- * itself implemented here.
+ * Each GI method lands in its own file under runtime/ and lists its
+ * gb_indirect_method (indirect_method.h) in methods.c.
  */
 #ifndef GB_METHODS_H
 #define GB_METHODS_H
 
+#include "indirect_method.h"
 #include "result.h"
 
 typedef enum gb_method {
@@ -34,6 +35,9 @@ typedef enum gb_terms {
 const char *gb_method_name(gb_method method);
 /* GB_ERROR_ARGUMENT for a name that is no method, with the list of names. */
 gb_result gb_method_parse(const char *name, gb_method *method, gb_error *error);
+/* The method's indirect light, or NULL for direct and for methods this
+ * build lacks. */
+const gb_indirect_method *gb_method_indirect(gb_method method);
 /* Nonzero when this build can render method. */
 int gb_method_implemented(gb_method method);
 /* GB_ERROR_UNSUPPORTED, naming the methods that are, when it is not. */

@@ -19,6 +19,27 @@ static gb_result create_passes(gb_renderer *r, gb_error *error)
     return result;
 }
 
+/* Creates the GI method's state the first time the method is used. */
+static gb_result prepare_method(gb_renderer *r, gb_method method, gb_error *error)
+{
+    const gb_indirect_method *indirect = gb_method_indirect(method);
+    if (!indirect || r->method_state[method])
+        return GB_OK;
+    gb_indirect_setup setup = {
+        .scene = r->scene,
+        .gpu_scene = &r->gpu_scene,
+        .shadows = &r->shadows,
+        .bake = r->options.bake,
+        .parameters = &r->options.parameters,
+        .width = r->options.width,
+        .height = r->options.height,
+    };
+    gb_result result = indirect->create(&setup, &r->method_state[method], error);
+    if (result == GB_OK)
+        result = gb_gl_check(r->errors, gb_method_name(method), error);
+    return result;
+}
+
 gb_result gb_renderer_create(const gb_scene *scene, const gb_renderer_options *options,
                              gb_gl_errors *errors, gb_renderer *renderer, gb_error *error)
 {
@@ -35,6 +56,8 @@ gb_result gb_renderer_create(const gb_scene *scene, const gb_renderer_options *o
     renderer->errors = errors;
     glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);   /* reversed depth (mat4.h) */
     result = create_passes(renderer, error);
+    if (result == GB_OK)
+        result = prepare_method(renderer, options->method, error);
     if (result == GB_OK)
         result = gb_gl_check(errors, "renderer setup", error);
     if (result != GB_OK) {
@@ -63,6 +86,8 @@ gb_result gb_renderer_resize(gb_renderer *renderer, int width, int height, gb_er
 gb_result gb_renderer_set_method(gb_renderer *renderer, gb_method method, gb_error *error)
 {
     gb_result result = gb_method_check(method, error);
+    if (result == GB_OK)
+        result = prepare_method(renderer, method, error);
     if (result == GB_OK)
         renderer->options.method = method;
     return result;
@@ -96,6 +121,36 @@ static void draw_direct_light(gb_renderer *r, const gb_view *view)
     gb_timings_end(&r->timings, GB_PASS_DIRECT_LIGHT);
 }
 
+/* The GI method's indirect light, added onto the output. */
+static void draw_indirect_light(gb_renderer *r, const gb_view *view, const gb_mat4 *view_matrix,
+                                const gb_mat4 *projection)
+{
+    gb_method method = r->options.method;
+    const gb_indirect_method *indirect = gb_method_indirect(method);
+    if (!indirect || !r->method_state[method])
+        return;
+    gb_indirect_frame frame = {
+        .gbuffer = &r->gbuffer,
+        .shadows = &r->shadows,
+        .view = view,
+        .view_matrix = view_matrix,
+        .projection = projection,
+        .width = r->options.width,
+        .height = r->options.height,
+        .frame_index = r->method_frames[method]++,
+        .timings = &r->timings,
+    };
+    gb_output_bind(&r->output);
+    glDisable(GL_DEPTH_TEST);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    gb_timings_begin(&r->timings, GB_PASS_INDIRECT_LIGHT);
+    indirect->draw(r->method_state[method], &frame);
+    gb_timings_end(&r->timings, GB_PASS_INDIRECT_LIGHT);
+    gb_output_bind(&r->output);
+    glDisable(GL_BLEND);
+}
+
 void gb_renderer_draw(gb_renderer *r, const gb_view *view)
 {
     r->frame_start = gb_seconds();
@@ -110,8 +165,8 @@ void gb_renderer_draw(gb_renderer *r, const gb_view *view)
         gb_output_clear(&r->output);
     else
         draw_direct_light(r, view);
-    /* GI methods add their indirect light here (GB_PASS_INDIRECT_LIGHT),
-       with additive blending, when options.terms is not GB_TERMS_DIRECT. */
+    if (r->options.terms != GB_TERMS_DIRECT)
+        draw_indirect_light(r, view, &view_matrix, &projection);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
@@ -141,6 +196,11 @@ gb_result gb_renderer_read(gb_renderer *renderer, gb_image *image, gb_error *err
 
 void gb_renderer_destroy(gb_renderer *renderer)
 {
+    for (int m = 0; m < GB_METHOD_COUNT; ++m) {
+        const gb_indirect_method *indirect = gb_method_indirect((gb_method)m);
+        if (indirect && renderer->method_state[m])
+            indirect->destroy(renderer->method_state[m]);
+    }
     gb_timings_destroy(&renderer->timings);
     gb_output_destroy(&renderer->output);
     gb_direct_light_destroy(&renderer->direct);

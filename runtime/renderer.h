@@ -32,6 +32,8 @@ typedef struct gb_renderer_options {
     int width, height;          /* the frame's size, pixels (> 0) */
     gb_shadow_options shadow;   /* zeroed: defaults */
     int no_shadows;             /* debug: every light fully visible */
+    const gb_bake_files *bake;  /* the baked files found, or NULL; must outlive the renderer */
+    gb_method_parameters parameters;
 } gb_renderer_options;
 
 typedef struct gb_renderer {
@@ -45,13 +47,16 @@ typedef struct gb_renderer {
     gb_output output;
     gb_timings timings;
     double frame_start;         /* gb_seconds() at the last draw */
+    void *method_state[GB_METHOD_COUNT];    /* each GI method's, once created */
+    uint32_t method_frames[GB_METHOD_COUNT];/* frames drawn with each method */
 } gb_renderer;
 
 /* errors: the context's collector, checked after setup and each frame. */
 gb_result gb_renderer_create(const gb_scene *scene, const gb_renderer_options *options,
                              gb_gl_errors *errors, gb_renderer *renderer, gb_error *error);
 gb_result gb_renderer_resize(gb_renderer *renderer, int width, int height, gb_error *error);
-/* Changes the method (GB_ERROR_UNSUPPORTED when this build lacks it) or the terms. */
+/* Changes the method (GB_ERROR_UNSUPPORTED when this build lacks it, or the
+ * method's create error, e.g. a baked file it needs is missing) or the terms. */
 gb_result gb_renderer_set_method(gb_renderer *renderer, gb_method method, gb_error *error);
 void gb_renderer_set_terms(gb_renderer *renderer, gb_terms terms);
 /* Draws the frame seen from view into the output. */

@@ -1,0 +1,61 @@
+/* indirect_method.h — what a GI method gives the renderer: its indirect
+ * light, added onto the frame's direct light.
+ *
+ * Each method lives in its own file(s) under runtime/ (topo.c, octree.c,
+ * flc.c, implicit.c ...) and exports one const gb_indirect_method, listed in
+ * methods.c. The renderer calls create when the method is first used (with a
+ * current GL context), draw once a frame with the output framebuffer bound,
+ * additive blending on (glBlendFunc(GL_ONE, GL_ONE)) and depth test off, and
+ * destroy with the renderer. The state is the method's own: create allocates
+ * it, destroy frees it. Methods that keep screen-sized buffers compare
+ * frame->width/height with theirs and reallocate.
+ */
+#ifndef GB_INDIRECT_METHOD_H
+#define GB_INDIRECT_METHOD_H
+
+#include <stdint.h>
+
+#include "bake_files.h"
+#include "gbuffer.h"
+#include "gpu_scene.h"
+#include "mat4.h"
+#include "result.h"
+#include "scene.h"
+#include "shadow_maps.h"
+#include "timings.h"
+#include "view.h"
+
+/* The parameters of every method, set from gbview's options; a zero field
+ * means the method's default. Each method adds its own fields here. */
+typedef struct gb_method_parameters {
+    int vpls;                   /* topo: number of VPLs (--vpls) */
+    int bins;                   /* implicit: cube-map bins per face edge (--bins) */
+    int bounces;                /* implicit: 1 or 2 (--bounces) */
+} gb_method_parameters;
+
+typedef struct gb_indirect_setup {
+    const gb_scene *scene;
+    const gb_gpu_scene *gpu_scene;
+    const gb_shadow_maps *shadows;
+    const gb_bake_files *bake;  /* NULL when gbview was given no bake folder */
+    const gb_method_parameters *parameters;
+    int width, height;
+} gb_indirect_setup;
+
+typedef struct gb_indirect_frame {
+    const gb_gbuffer *gbuffer;
+    const gb_shadow_maps *shadows;
+    const gb_view *view;
+    const gb_mat4 *view_matrix, *projection;
+    int width, height;
+    uint32_t frame_index;       /* 0, 1, 2 ... since the method was created */
+    gb_timings *timings;
+} gb_indirect_frame;
+
+typedef struct gb_indirect_method {
+    gb_result (*create)(const gb_indirect_setup *setup, void **state, gb_error *error);
+    void (*draw)(void *state, const gb_indirect_frame *frame);
+    void (*destroy)(void *state);
+} gb_indirect_method;
+
+#endif
