@@ -114,11 +114,26 @@ BAKE ?= bake
 SCENE ?= scenes/cornell/cornell.scene
 SCENE_NAME := $(basename $(notdir $(SCENE)))
 vpath %.scene $(dir $(SCENE))
-bake: $(BAKE)/$(SCENE_NAME).vdb
+VOXELIZE_FLAGS ?=
+THIN_FLAGS ?=
+SEGMENT_FLAGS ?=
+bake: $(BAKE)/$(SCENE_NAME).seg
 
 $(BAKE)/%.vdb: %.scene $(BIN)/voxelize
 	@mkdir -p $(@D)
-	$(BIN)/voxelize $< -o $@
+	$(BIN)/voxelize $(VOXELIZE_FLAGS) $< -o $@
+
+# thin writes both the skeleton and the nearest-node grid.
+$(BAKE)/%.skel $(BAKE)/%.grid.vdb: $(BAKE)/%.vdb $(BIN)/thin
+	$(BIN)/thin $(THIN_FLAGS) $< -o $(BAKE)/$*.skel --grid $(BAKE)/$*.grid.vdb
+
+$(BAKE)/%.seg: $(BAKE)/%.skel $(BIN)/segment
+	$(BIN)/segment $(SEGMENT_FLAGS) $< -o $@
+
+PHOTONS_FLAGS ?=
+$(BAKE)/%.phot: %.scene $(BIN)/photons
+	@mkdir -p $(@D)
+	$(BIN)/photons $(PHOTONS_FLAGS) $< -o $@
 
 # Reference images of SCENE, one per mode: make reference [SCENE=...] [REFERENCE_SPP=256]
 #   -> bake/NAME.{direct,indirect1,indirect1-unshadowed,full}.exr (+ .png)
@@ -132,8 +147,16 @@ $(REFERENCE_IMAGES): $(BAKE)/$(SCENE_NAME).%.exr: $(SCENE) $(BIN)/reference
 	@mkdir -p $(@D)
 	$(BIN)/reference --mode $* --spp $(REFERENCE_SPP) $(REFERENCE_FLAGS) --png $(SCENE) -o $@
 
-bench: all
-	@for b in bench/*.sh; do [ -f "$$b" ] && GB_BIN=$(abspath $(BIN)) sh $$b; done; true
+# Benchmarks: bench/*.c and bench/*.cpp are helper programs linked against
+# the library into build/bench/; each bench/*.sh prints its table.
+BENCH_PROGRAMS := $(patsubst bench/%.c,$(BUILD)/bench/%,$(wildcard bench/*.c)) \
+  $(patsubst bench/%.cpp,$(BUILD)/bench/%,$(wildcard bench/*.cpp))
+$(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(LIBRARY)
+	@mkdir -p $(@D)
+	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
+
+bench: all $(BENCH_PROGRAMS)
+	@for b in bench/*.sh; do GB_BIN=$(abspath $(BIN)) sh $$b || exit 1; done
 
 # libFuzzer: the library is rebuilt with clang into build/fuzz.
 fuzz:

@@ -1,0 +1,477 @@
+/* photon_map.c — the photon map file (formats/photon_map.h, formats/FORMATS.md
+ * "Photon map"). The header is encoded little-endian byte by byte; the photon
+ * arrays are written and read in place, which needs a little-endian host. */
+#include "photon_map.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
+#error "photon maps are read in place: gibake needs a little-endian host"
+#endif
+
+enum {
+    HEADER_SIZE = 128,
+    ALIGNMENT = 16,
+    /* byte offsets inside the header */
+    AT_EMITTED = 0,
+    AT_FIRST = 8,
+    AT_END = 16,
+    AT_COUNT = 24,
+    AT_SCENE_HASH = 32,
+    AT_SEED = 40,
+    AT_SHARD_INDEX = 48,
+    AT_SHARD_COUNT = 52,
+    AT_BOUNCES = 56,
+    AT_STORE = 60,
+    AT_ROULETTE = 64,
+    AT_RESERVED_A = 68,
+    AT_POWER = 72,
+    AT_BOUNDS_MIN = 96,
+    AT_BOUNDS_MAX = 108,
+    AT_RESERVED_B = 120,
+};
+
+/* The most a packed vector may fall behind its surface: quantisation of the
+ * direction and the normal moves their dot product by less than 0.002. */
+#define BEHIND_TOLERANCE (-0.01f)
+
+/* ---- little-endian fields ---- */
+
+static void put_u32(unsigned char *p, uint32_t value)
+{
+    for (int i = 0; i < 4; ++i)
+        p[i] = (unsigned char)(value >> (8 * i));
+}
+
+static void put_u64(unsigned char *p, uint64_t value)
+{
+    put_u32(p, (uint32_t)value);
+    put_u32(p + 4, (uint32_t)(value >> 32));
+}
+
+static void put_f32(unsigned char *p, float value)
+{
+    uint32_t bits;
+    memcpy(&bits, &value, sizeof bits);
+    put_u32(p, bits);
+}
+
+static void put_f64(unsigned char *p, double value)
+{
+    uint64_t bits;
+    memcpy(&bits, &value, sizeof bits);
+    put_u64(p, bits);
+}
+
+static uint32_t get_u32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
+           (uint32_t)p[3] << 24;
+}
+
+static uint64_t get_u64(const unsigned char *p)
+{
+    return (uint64_t)get_u32(p) | (uint64_t)get_u32(p + 4) << 32;
+}
+
+static float get_f32(const unsigned char *p)
+{
+    uint32_t bits = get_u32(p);
+    float value;
+    memcpy(&value, &bits, sizeof value);
+    return value;
+}
+
+static double get_f64(const unsigned char *p)
+{
+    uint64_t bits = get_u64(p);
+    double value;
+    memcpy(&value, &bits, sizeof value);
+    return value;
+}
+
+/* ---- building a map ---- */
+
+static size_t aligned_size(size_t size)
+{
+    return (size + (ALIGNMENT - 1)) & ~(size_t)(ALIGNMENT - 1);
+}
+
+gb_result gb_photon_map_allocate(gb_photon_map *map, uint64_t count, gb_photon_arrays *arrays,
+                                 gb_error *error)
+{
+    *map = (gb_photon_map){0};
+    *arrays = (gb_photon_arrays){0};
+    if (count > (SIZE_MAX / 2) / GB_PHOTON_SIZE)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "photon map: %llu photons do not fit in "
+                       "memory", (unsigned long long)count);
+    size_t vectors = aligned_size((size_t)count * 3 * sizeof(float));
+    size_t words = aligned_size((size_t)count * sizeof(uint32_t));
+    unsigned char *block = aligned_alloc(ALIGNMENT, 2 * vectors + 2 * words + ALIGNMENT);
+    if (!block)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "photon map: out of memory for %llu "
+                       "photons", (unsigned long long)count);
+    arrays->positions = (float *)block;
+    arrays->powers = (float *)(block + vectors);
+    arrays->directions = (uint32_t *)(block + 2 * vectors);
+    arrays->normals = (uint32_t *)(block + 2 * vectors + words);
+    map->storage = block;
+    map->count = count;
+    map->positions = arrays->positions;
+    map->powers = arrays->powers;
+    map->directions = arrays->directions;
+    map->normals = arrays->normals;
+    return GB_OK;
+}
+
+void gb_photon_map_free(gb_photon_map *map)
+{
+    free(map->storage);
+    gb_container_close(&map->container);
+    *map = (gb_photon_map){0};
+}
+
+void gb_photon_shard_range(uint64_t emitted, uint32_t index, uint32_t count, uint64_t *first,
+                           uint64_t *end)
+{
+    uint64_t size = emitted / count, extra = emitted % count;
+    *first = size * index + (index < extra ? index : extra);
+    *end = *first + size + (index < extra ? 1 : 0);
+}
+
+/* ---- checks ---- */
+
+static int is_finite3(const float v[3])
+{
+    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+static gb_result check_shard(const gb_photon_map_header *h, const char *path, gb_error *error)
+{
+    if (h->emitted_count == 0)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: no photon emitted", path);
+    if (h->shard_count == 0 || h->shard_index >= h->shard_count)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: shard %u of %u does not exist", path,
+                       (unsigned)h->shard_index, (unsigned)h->shard_count);
+    uint64_t first, end;
+    gb_photon_shard_range(h->emitted_count, h->shard_index, h->shard_count, &first, &end);
+    if (h->first_photon != first || h->end_photon != end)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: photons %llu..%llu are not shard %u/%u of "
+                       "%llu (%llu..%llu)", path, (unsigned long long)h->first_photon,
+                       (unsigned long long)h->end_photon, (unsigned)h->shard_index,
+                       (unsigned)h->shard_count, (unsigned long long)h->emitted_count,
+                       (unsigned long long)first, (unsigned long long)end);
+    return GB_OK;
+}
+
+static gb_result check_tracing(const gb_photon_map_header *h, uint64_t count, const char *path,
+                               gb_error *error)
+{
+    if (h->bounces < 1 || h->bounces > GB_PHOTON_MAX_BOUNCES)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: bounces %u is outside 1..%d", path,
+                       (unsigned)h->bounces, GB_PHOTON_MAX_BOUNCES);
+    if (h->store != GB_PHOTON_STORE_INDIRECT && h->store != GB_PHOTON_STORE_ALL)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: unknown store mode %u", path,
+                       (unsigned)h->store);
+    if (h->roulette_start > h->bounces)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: roulette start %u is above bounces %u",
+                       path, (unsigned)h->roulette_start, (unsigned)h->bounces);
+    uint64_t paths = h->end_photon - h->first_photon;
+    if (paths > UINT64_MAX / (h->bounces + 1u) || count > paths * (h->bounces + 1u))
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: %llu photons stored from %llu paths of at "
+                       "most %u hits", path, (unsigned long long)count,
+                       (unsigned long long)paths, (unsigned)h->bounces + 1u);
+    return GB_OK;
+}
+
+static gb_result check_power_and_bounds(const gb_photon_map_header *h, const char *path,
+                                        gb_error *error)
+{
+    double largest = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        if (!isfinite(h->emitted_power[k]) || h->emitted_power[k] < 0.0)
+            return gb_fail(error, GB_ERROR_FORMAT, "%s: emitted power is not finite and "
+                           "non-negative", path);
+        largest = h->emitted_power[k] > largest ? h->emitted_power[k] : largest;
+    }
+    if (!(largest > 0.0))
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: emitted power is zero", path);
+    if (!is_finite3(h->bounds_min) || !is_finite3(h->bounds_max))
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: scene bounds are not finite", path);
+    for (int k = 0; k < 3; ++k)
+        if (h->bounds_min[k] > h->bounds_max[k])
+            return gb_fail(error, GB_ERROR_FORMAT, "%s: scene bounds are empty", path);
+    return GB_OK;
+}
+
+static gb_result check_header(const gb_photon_map *map, const char *path, gb_error *error)
+{
+    const gb_photon_map_header *h = &map->header;
+    gb_result result = check_shard(h, path, error);
+    if (result == GB_OK)
+        result = check_tracing(h, map->count, path, error);
+    if (result == GB_OK)
+        result = check_power_and_bounds(h, path, error);
+    return result;
+}
+
+/* How far outside the bounds a hit point may fall by rounding. */
+static float bounds_tolerance(const gb_photon_map_header *h)
+{
+    float magnitude = 0.0f;
+    for (int k = 0; k < 3; ++k)
+        magnitude = fmaxf(magnitude, fmaxf(fabsf(h->bounds_min[k]), fabsf(h->bounds_max[k])));
+    return magnitude * 0x1p-16f;
+}
+
+static int inside_bounds(const gb_photon_map_header *h, const float p[3], float tolerance)
+{
+    for (int k = 0; k < 3; ++k)
+        if (!(p[k] >= h->bounds_min[k] - tolerance && p[k] <= h->bounds_max[k] + tolerance))
+            return 0;
+    return 1;
+}
+
+static int valid_power(const float power[3])
+{
+    for (int k = 0; k < 3; ++k)
+        if (!isfinite(power[k]) || power[k] < 0.0f)
+            return 0;
+    return power[0] > 0.0f || power[1] > 0.0f || power[2] > 0.0f;
+}
+
+/* Every stored half of a packed vector is nonzero (FORMATS.md). */
+static int valid_packing(uint32_t direction, uint32_t normal)
+{
+    return (direction & 0xFFFFu) && (direction >> 16) && (normal & 0xFFFu) &&
+           ((normal >> 12) & 0xFFFu);
+}
+
+static gb_result check_photon(const gb_photon_map *map, uint64_t i, float tolerance,
+                              const char *path, gb_error *error)
+{
+    const gb_photon_map_header *h = &map->header;
+    const float *position = &map->positions[3 * i], *power = &map->powers[3 * i];
+    uint32_t direction = map->directions[i], normal = map->normals[i];
+    unsigned long long index = (unsigned long long)i;
+    if (!is_finite3(position) || !inside_bounds(h, position, tolerance))
+        return gb_fail(error, GB_ERROR_INVALID, "%s: photon %llu lies outside the scene", path,
+                       index);
+    if (!valid_power(power))
+        return gb_fail(error, GB_ERROR_INVALID, "%s: photon %llu: power must be finite, "
+                       "non-negative and not black", path, index);
+    if (!valid_packing(direction, normal))
+        return gb_fail(error, GB_ERROR_INVALID, "%s: photon %llu: a packed vector holds a "
+                       "zero field", path, index);
+    unsigned bounce = gb_photon_bounce(normal);
+    if (bounce > h->bounces || (h->store == GB_PHOTON_STORE_INDIRECT && bounce == 0))
+        return gb_fail(error, GB_ERROR_INVALID, "%s: photon %llu: bounce count %u outside "
+                       "%u..%u", path, index, bounce, h->store == GB_PHOTON_STORE_INDIRECT,
+                       (unsigned)h->bounces);
+    float d[3], n[3];
+    gb_photon_unpack_direction(direction, d);
+    gb_photon_unpack_normal(normal, n);
+    if (d[0] * n[0] + d[1] * n[1] + d[2] * n[2] < BEHIND_TOLERANCE)
+        return gb_fail(error, GB_ERROR_INVALID, "%s: photon %llu arrives from behind its "
+                       "surface", path, index);
+    return GB_OK;
+}
+
+gb_result gb_photon_map_check(const gb_photon_map *map, const char *path, gb_error *error)
+{
+    if (map->count && (!map->positions || !map->powers || !map->directions || !map->normals))
+        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: %llu photons without arrays", path,
+                       (unsigned long long)map->count);
+    gb_result result = check_header(map, path, error);
+    float tolerance = bounds_tolerance(&map->header);
+    for (uint64_t i = 0; result == GB_OK && i < map->count; ++i)
+        result = check_photon(map, i, tolerance, path, error);
+    return result;
+}
+
+gb_result gb_photon_map_check_scene(const gb_photon_map *map, uint64_t scene_hash,
+                                    const char *path, gb_error *error)
+{
+    if (map->header.scene_hash != scene_hash)
+        return gb_fail(error, GB_ERROR_STALE, "%s: traced in another scene (hash %016llx, the "
+                       "scene's is %016llx)", path, (unsigned long long)map->header.scene_hash,
+                       (unsigned long long)scene_hash);
+    return GB_OK;
+}
+
+/* ---- writing ---- */
+
+static void encode_header(const gb_photon_map *map, unsigned char *bytes)
+{
+    const gb_photon_map_header *h = &map->header;
+    memset(bytes, 0, HEADER_SIZE);
+    put_u64(bytes + AT_EMITTED, h->emitted_count);
+    put_u64(bytes + AT_FIRST, h->first_photon);
+    put_u64(bytes + AT_END, h->end_photon);
+    put_u64(bytes + AT_COUNT, map->count);
+    put_u64(bytes + AT_SCENE_HASH, h->scene_hash);
+    put_u64(bytes + AT_SEED, h->seed);
+    put_u32(bytes + AT_SHARD_INDEX, h->shard_index);
+    put_u32(bytes + AT_SHARD_COUNT, h->shard_count);
+    put_u32(bytes + AT_BOUNCES, h->bounces);
+    put_u32(bytes + AT_STORE, h->store);
+    put_u32(bytes + AT_ROULETTE, h->roulette_start);
+    for (int k = 0; k < 3; ++k) {
+        put_f64(bytes + AT_POWER + 8 * k, h->emitted_power[k]);
+        put_f32(bytes + AT_BOUNDS_MIN + 4 * k, h->bounds_min[k]);
+        put_f32(bytes + AT_BOUNDS_MAX + 4 * k, h->bounds_max[k]);
+    }
+}
+
+static gb_result add_sections(gb_container_writer *writer, const gb_photon_map *map,
+                              const unsigned char *header, gb_error *error)
+{
+    uint64_t vectors = map->count * 3 * sizeof(float), words = map->count * sizeof(uint32_t);
+    gb_result result = gb_container_add(writer, "header", header, HEADER_SIZE, error);
+    if (result == GB_OK)
+        result = gb_container_add(writer, "positions", map->positions, vectors, error);
+    if (result == GB_OK)
+        result = gb_container_add(writer, "powers", map->powers, vectors, error);
+    if (result == GB_OK)
+        result = gb_container_add(writer, "directions", map->directions, words, error);
+    if (result == GB_OK)
+        result = gb_container_add(writer, "normals", map->normals, words, error);
+    return result;
+}
+
+gb_result gb_photon_map_write(const char *path, const gb_photon_map *map, gb_error *error)
+{
+    gb_result result = gb_photon_map_check(map, path, error);
+    if (result != GB_OK)
+        return result;
+    unsigned char header[HEADER_SIZE];
+    encode_header(map, header);
+    gb_container_writer *writer = gb_container_writer_create("PHOT", GB_PHOTON_MAP_VERSION);
+    if (!writer)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    result = add_sections(writer, map, header, error);
+    if (result == GB_OK)
+        result = gb_container_commit(writer, path, error);
+    gb_container_writer_destroy(writer);
+    return result;
+}
+
+/* ---- reading ---- */
+
+static gb_result decode_header(const gb_container *container, const char *path,
+                               gb_photon_map *map, gb_error *error)
+{
+    const gb_section *section = gb_container_find(container, "header");
+    if (!section)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"header\" section", path);
+    if (section->size != HEADER_SIZE)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: header is %llu bytes, expected %d", path,
+                       (unsigned long long)section->size, HEADER_SIZE);
+    const unsigned char *bytes = section->data;
+    gb_photon_map_header *h = &map->header;
+    if (get_u32(bytes + AT_RESERVED_A) || get_u64(bytes + AT_RESERVED_B))
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: reserved header field is not zero", path);
+    h->emitted_count = get_u64(bytes + AT_EMITTED);
+    h->first_photon = get_u64(bytes + AT_FIRST);
+    h->end_photon = get_u64(bytes + AT_END);
+    map->count = get_u64(bytes + AT_COUNT);
+    h->scene_hash = get_u64(bytes + AT_SCENE_HASH);
+    h->seed = get_u64(bytes + AT_SEED);
+    h->shard_index = get_u32(bytes + AT_SHARD_INDEX);
+    h->shard_count = get_u32(bytes + AT_SHARD_COUNT);
+    h->bounces = get_u32(bytes + AT_BOUNCES);
+    h->store = get_u32(bytes + AT_STORE);
+    h->roulette_start = get_u32(bytes + AT_ROULETTE);
+    for (int k = 0; k < 3; ++k) {
+        h->emitted_power[k] = get_f64(bytes + AT_POWER + 8 * k);
+        h->bounds_min[k] = get_f32(bytes + AT_BOUNDS_MIN + 4 * k);
+        h->bounds_max[k] = get_f32(bytes + AT_BOUNDS_MAX + 4 * k);
+    }
+    return GB_OK;
+}
+
+/* The section `name` as an array of count elements of element_size bytes. */
+static gb_result find_array(const gb_container *container, const char *name, uint64_t count,
+                            uint64_t element_size, const char *path, const void **data,
+                            gb_error *error)
+{
+    const gb_section *section = gb_container_find(container, name);
+    if (!section)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"%s\" section", path, name);
+    if (count > UINT64_MAX / element_size || section->size != count * element_size)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: %s section is %llu bytes, expected %llu "
+                       "bytes per photon for %llu photons", path, name,
+                       (unsigned long long)section->size, (unsigned long long)element_size,
+                       (unsigned long long)count);
+    if ((uintptr_t)section->data % ALIGNMENT)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: %s section is not 16-byte aligned in "
+                       "memory", path, name);
+    *data = section->data;
+    return GB_OK;
+}
+
+static gb_result view_arrays(const gb_container *container, const char *path,
+                             gb_photon_map *map, gb_error *error)
+{
+    const void *positions = NULL, *powers = NULL, *directions = NULL, *normals = NULL;
+    uint64_t n = map->count;
+    gb_result result = find_array(container, "positions", n, 12, path, &positions, error);
+    if (result == GB_OK)
+        result = find_array(container, "powers", n, 12, path, &powers, error);
+    if (result == GB_OK)
+        result = find_array(container, "directions", n, 4, path, &directions, error);
+    if (result == GB_OK)
+        result = find_array(container, "normals", n, 4, path, &normals, error);
+    map->positions = positions;
+    map->powers = powers;
+    map->directions = directions;
+    map->normals = normals;
+    return result;
+}
+
+/* Takes the container: on success the map owns it, on failure it is closed. */
+static gb_result adopt_container(gb_container *container, const char *path,
+                                 gb_photon_map *map, gb_error *error)
+{
+    gb_result result = gb_container_check_version(container, path, GB_PHOTON_MAP_VERSION, error);
+    if (result == GB_OK && container->section_count != 5)
+        result = gb_fail(error, GB_ERROR_FORMAT, "%s: %u sections, expected 5", path,
+                         (unsigned)container->section_count);
+    if (result == GB_OK)
+        result = decode_header(container, path, map, error);
+    if (result == GB_OK)
+        result = view_arrays(container, path, map, error);
+    if (result == GB_OK)
+        result = gb_photon_map_check(map, path, error);
+    if (result != GB_OK) {
+        gb_container_close(container);
+        *map = (gb_photon_map){0};
+        return result;
+    }
+    map->container = *container;
+    return GB_OK;
+}
+
+gb_result gb_photon_map_read(const char *path, gb_photon_map *map, gb_error *error)
+{
+    *map = (gb_photon_map){0};
+    gb_container container;
+    gb_result result = gb_container_read(path, "PHOT", &container, error);
+    if (result != GB_OK)
+        return result;
+    return adopt_container(&container, path, map, error);
+}
+
+gb_result gb_photon_map_parse(const void *bytes, size_t size, const char *path,
+                              gb_photon_map *map, gb_error *error)
+{
+    *map = (gb_photon_map){0};
+    if ((uintptr_t)bytes % ALIGNMENT)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: buffer is not 16-byte aligned", path);
+    gb_container container;
+    gb_result result = gb_container_parse(bytes, size, path, "PHOT", &container, error);
+    if (result != GB_OK)
+        return result;
+    return adopt_container(&container, path, map, error);
+}

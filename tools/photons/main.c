@@ -1,0 +1,285 @@
+/* photons — traces the photon map of a scene with Embree (photons.h), or
+ * merges the shards of a run. */
+
+#include <errno.h>
+#include <getopt.h>
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "photon_map.h"
+#include "photons.h"
+#include "progress.h"
+#include "scene.h"
+
+static const char usage[] =
+    "usage: photons [options] SCENE -o OUT.phot\n"
+    "       photons --merge A.phot B.phot ... -o OUT.phot\n"
+    "Traces photons from every light of SCENE with Embree and writes the photon\n"
+    "map (formats/FORMATS.md, \"Photon map\"). The map depends on the seed, never\n"
+    "on --threads.\n"
+    "\n"
+    "  -o, --output FILE       the photon map to write\n"
+    "  -n, --count N           photons emitted (default 1000000)\n"
+    "  -b, --bounces N         most reflections of a path, 1..255 (default 16;\n"
+    "                          Russian roulette after 2)\n"
+    "      --store WHAT        indirect (default): photons that were reflected at\n"
+    "                          least once; all: every hit, direct light included\n"
+    "      --seed N            random seed (default 0)\n"
+    "  -t, --threads N         threads (default: every core)\n"
+    "      --shard I/N         trace only part I of N (from 0/N to N-1/N) of the\n"
+    "                          photons; --merge joins the N parts into the map of\n"
+    "                          the whole run, byte for byte\n"
+    "      --merge             join the shards given as arguments\n"
+    "      --stats             print photons, rays and seconds on stdout\n"
+    "  -q, --quiet             no progress bar\n"
+    "  -h, --help              this help\n"
+    "  -V, --version           the version\n";
+
+typedef struct arguments {
+    gb_photons_options trace;
+    const char *output;
+    char **inputs;
+    int input_count;
+    int merge, stats, quiet;
+} arguments;
+
+enum { OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS };
+
+static int parse_unsigned(const char *text, uint64_t low, uint64_t high, uint64_t *value)
+{
+    char *end;
+    errno = 0;
+    unsigned long long parsed = strtoull(text, &end, 10);
+    if (errno || end == text || *end || text[0] == '-' || parsed < low || parsed > high)
+        return 0;
+    *value = parsed;
+    return 1;
+}
+
+static int parse_shard(const char *text, gb_photons_options *o)
+{
+    unsigned index, count;
+    int consumed = 0;
+    if (text[0] == '-' || sscanf(text, "%u/%u%n", &index, &count, &consumed) != 2 ||
+        text[consumed] || count < 1 || index >= count || strchr(text, '-'))
+        return 0;
+    o->shard_index = index;
+    o->shard_count = count;
+    return 1;
+}
+
+static int parse_store(const char *text, gb_photons_options *o)
+{
+    if (strcmp(text, "indirect") == 0)
+        o->store = GB_PHOTON_STORE_INDIRECT;
+    else if (strcmp(text, "all") == 0)
+        o->store = GB_PHOTON_STORE_ALL;
+    else
+        return 0;
+    return 1;
+}
+
+/* Stores one option with a value; returns 0 when the value is bad. */
+static int parse_value(int option, const char *text, arguments *a)
+{
+    uint64_t value;
+    switch (option) {
+    case 'o':
+        a->output = text;
+        return 1;
+    case 'n':
+        return parse_unsigned(text, 1, GB_PHOTONS_MAX_COUNT, &a->trace.count);
+    case 'b':
+        return parse_unsigned(text, 1, GB_PHOTON_MAX_BOUNCES, &value) &&
+               (a->trace.bounces = (unsigned)value, 1);
+    case 't':
+        return parse_unsigned(text, 1, 256, &value) && (a->trace.threads = (int)value, 1);
+    case OPTION_SEED:
+        return parse_unsigned(text, 0, UINT64_MAX, &a->trace.seed);
+    case OPTION_STORE:
+        return parse_store(text, &a->trace);
+    case OPTION_SHARD:
+        return parse_shard(text, &a->trace);
+    }
+    return 0;
+}
+
+static int parse_option(int option, const char *text, arguments *a, const char *name)
+{
+    switch (option) {
+    case OPTION_MERGE:
+        a->merge = 1;
+        return 1;
+    case OPTION_STATS:
+        a->stats = 1;
+        return 1;
+    case 'q':
+        a->quiet = 1;
+        return 1;
+    }
+    if (parse_value(option, text, a))
+        return 1;
+    fprintf(stderr, "photons: bad value \"%s\" for option %s\n", text ? text : "", name);
+    return 0;
+}
+
+/* 0: go on; otherwise the exit status. */
+static int check_arguments(arguments *a, int argc, char **argv)
+{
+    a->inputs = argv + optind;
+    a->input_count = argc - optind;
+    if (!a->output || a->input_count < 1 || (!a->merge && a->input_count != 1)) {
+        fprintf(stderr, "photons: expected %s and -o OUT\n%s",
+                a->merge ? "the shards to merge" : "one SCENE", usage);
+        return 2;
+    }
+    return 0;
+}
+
+/* The long name of an option, for messages. */
+static const char *option_name(const struct option *options, int option)
+{
+    static char short_name[3] = "-?";
+    for (const struct option *o = options; o->name; ++o)
+        if (o->val == option)
+            return o->name;
+    short_name[1] = (char)option;
+    return short_name;
+}
+
+static int parse_arguments(int argc, char **argv, arguments *a)
+{
+    static const struct option options[] = {
+        {"output", required_argument, NULL, 'o'},
+        {"count", required_argument, NULL, 'n'},
+        {"bounces", required_argument, NULL, 'b'},
+        {"store", required_argument, NULL, OPTION_STORE},
+        {"seed", required_argument, NULL, OPTION_SEED},
+        {"threads", required_argument, NULL, 't'},
+        {"shard", required_argument, NULL, OPTION_SHARD},
+        {"merge", no_argument, NULL, OPTION_MERGE},
+        {"stats", no_argument, NULL, OPTION_STATS},
+        {"quiet", no_argument, NULL, 'q'},
+        {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
+        {NULL, 0, NULL, 0},
+    };
+    int option;
+    while ((option = getopt_long(argc, argv, "o:n:b:t:qhV", options, NULL)) != -1) {
+        if (option == 'h')
+            return fputs(usage, stdout) == EOF ? 1 : -1;
+        if (option == 'V')
+            return puts("photons (gibake) 0.1") == EOF ? 1 : -1;
+        if (option == '?' || !parse_option(option, optarg, a, option_name(options, option)))
+            return fputs(usage, stderr), 2;
+    }
+    return check_arguments(a, argc, argv);
+}
+
+/* ---- tracing ---- */
+
+/* The progress bar, its label showing the photons traced per second. */
+typedef struct rate_progress {
+    gb_progress bar;
+    char label[64];
+    uint64_t photons;
+} rate_progress;
+
+static int report_rate(void *user, double fraction)
+{
+    rate_progress *p = user;
+    double elapsed = gb_seconds() - p->bar.start_seconds;
+    if (elapsed > 0.0)
+        snprintf(p->label, sizeof p->label, "photons %.2f M/s",
+                 1e-6 * fraction * (double)p->photons / elapsed);
+    return gb_progress_report(&p->bar, fraction);
+}
+
+static void print_stats(const gb_photons_stats *s, const gb_photon_map *map)
+{
+    double seconds = s->seconds > 0.0 ? s->seconds : 1e-9;
+    printf("photons %" PRIu64 "\nstored %" PRIu64 "\nrays %" PRIu64 "\nescaped %" PRIu64
+           "\nnonfinite %" PRIu64 "\nthreads %d\n", s->paths, map->count, s->rays, s->escaped,
+           s->nonfinite, s->threads);
+    printf("seconds %.3f\ncpu_seconds %.3f\nbuild_seconds %.3f\nphotons_per_second %.0f\n"
+           "mrays_per_second %.3f\nbytes_per_photon %d\n", s->seconds, s->cpu_seconds,
+           s->build_seconds, (double)s->paths / seconds, 1e-6 * (double)s->rays / seconds,
+           GB_PHOTON_SIZE);
+}
+
+static gb_result trace(arguments *a, const gb_scene *scene, gb_error *error)
+{
+    rate_progress progress = {.photons = a->trace.count ? a->trace.count
+                                                        : GB_PHOTONS_DEFAULT_COUNT};
+    snprintf(progress.label, sizeof progress.label, "photons");
+    gb_progress_begin(&progress.bar, progress.label, a->quiet);
+    a->trace.progress = report_rate;
+    a->trace.progress_user = &progress;
+    gb_photon_map map;
+    gb_photons_stats stats;
+    gb_result result = gb_photons_trace(scene, &a->trace, &map, &stats, error);
+    snprintf(progress.label, sizeof progress.label, "photons");
+    gb_progress_end(&progress.bar);
+    if (result == GB_OK)
+        result = gb_photon_map_write(a->output, &map, error);
+    if (result == GB_OK && a->stats)
+        print_stats(&stats, &map);
+    gb_photon_map_free(&map);
+    return result;
+}
+
+static gb_result run_trace(arguments *a, gb_error *error)
+{
+    gb_scene scene;
+    gb_scene_options scene_options = {.load_textures = 1};
+    gb_result result = gb_scene_load(a->inputs[0], &scene_options, &scene, error);
+    if (result == GB_OK)
+        result = trace(a, &scene, error);
+    gb_scene_free(&scene);
+    return result;
+}
+
+/* ---- merging ---- */
+
+static gb_result merge_maps(arguments *a, gb_photon_map *shards, gb_error *error)
+{
+    gb_photon_map merged;
+    gb_result result = gb_photons_merge(shards, (uint32_t)a->input_count,
+                                        (const char *const *)a->inputs, &merged, error);
+    if (result == GB_OK)
+        result = gb_photon_map_write(a->output, &merged, error);
+    gb_photon_map_free(&merged);
+    return result;
+}
+
+static gb_result run_merge(arguments *a, gb_error *error)
+{
+    gb_photon_map *shards = calloc((size_t)a->input_count, sizeof *shards);
+    if (!shards)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory");
+    gb_result result = GB_OK;
+    for (int i = 0; i < a->input_count && result == GB_OK; ++i)
+        result = gb_photon_map_read(a->inputs[i], &shards[i], error);
+    if (result == GB_OK)
+        result = merge_maps(a, shards, error);
+    for (int i = 0; i < a->input_count; ++i)
+        gb_photon_map_free(&shards[i]);
+    free(shards);
+    return result;
+}
+
+int main(int argc, char **argv)
+{
+    arguments a = {0};
+    int status = parse_arguments(argc, argv, &a);
+    if (status)
+        return status < 0 ? 0 : status;
+    gb_error error;
+    if ((a.merge ? run_merge(&a, &error) : run_trace(&a, &error)) != GB_OK) {
+        fprintf(stderr, "photons: %s\n", error.message);
+        return 1;
+    }
+    return fflush(stdout) == 0 ? 0 : 1;
+}

@@ -1,0 +1,341 @@
+/* photon_run.c — gb_photons_trace: the photons of a run (or of one shard),
+ * traced on threads in chunks of consecutive photon indices. Each chunk
+ * keeps its own photons; once every path is done the chunks are joined in
+ * index order, so the map is the same whatever thread traced which chunk. */
+#include <math.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <time.h>
+#include <unistd.h>
+#if defined(__SSE__)
+#include <pmmintrin.h>
+#include <xmmintrin.h>
+#endif
+
+#include "emission.h"
+#include "photons.h"
+#include "trace.h"
+
+enum { CHUNK_PHOTONS = 4096, MAX_THREADS = 256 };
+enum { RUNNING = 0, INTERRUPTED, OUT_OF_MEMORY };
+
+typedef struct run_job {
+    const gb_photons_tracer *tracer;
+    const gb_photon_emission *emission;
+    uint64_t emitted_count;     /* of the whole run: the powers' share */
+    uint64_t seed;
+    uint64_t first, end;        /* this shard's photon indices */
+    uint64_t chunk_count;
+    gb_photons_sink *chunks;    /* chunk_count */
+    atomic_uint_fast64_t next_chunk;
+    atomic_uint_fast64_t chunks_done;
+    atomic_int state;
+    atomic_uint_fast64_t rays, stored, escaped, nonfinite;
+} run_job;
+
+/* Flush denormals to zero, as Embree advises for speed; the same in every
+ * thread, so it changes no result between thread counts. */
+static unsigned flush_denormals(void)
+{
+#if defined(__SSE__)
+    unsigned saved = _mm_getcsr();
+    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
+    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
+    return saved;
+#else
+    return 0;
+#endif
+}
+
+static void restore_denormals(unsigned saved)
+{
+#if defined(__SSE__)
+    _mm_setcsr(saved);
+#else
+    (void)saved;
+#endif
+}
+
+static void add_counters(run_job *job, const gb_photons_counters *c)
+{
+    atomic_fetch_add(&job->rays, c->rays);
+    atomic_fetch_add(&job->stored, c->stored);
+    atomic_fetch_add(&job->escaped, c->escaped);
+    atomic_fetch_add(&job->nonfinite, c->nonfinite);
+}
+
+/* Photon i draws from stream i of the seed: the thread does not matter. */
+static void trace_chunk(run_job *job, uint64_t chunk)
+{
+    uint64_t begin = job->first + chunk * CHUNK_PHOTONS;
+    uint64_t end = job->end - begin > CHUNK_PHOTONS ? begin + CHUNK_PHOTONS : job->end;
+    gb_photons_counters counters = {0};
+    for (uint64_t i = begin; i < end; ++i) {
+        gb_random rng = gb_random_make(job->seed, i);
+        gb_photon_ray ray;
+        gb_photon_emission_sample(job->emission, job->emitted_count, &rng, &ray);
+        if (!gb_photons_trace_path(job->tracer, &ray, &rng, &job->chunks[chunk], &counters)) {
+            atomic_store(&job->state, OUT_OF_MEMORY);
+            break;
+        }
+    }
+    add_counters(job, &counters);
+}
+
+/* Traces the next chunk; 0 when none is left or the run stops. */
+static int trace_next_chunk(run_job *job)
+{
+    if (atomic_load(&job->state) != RUNNING)
+        return 0;
+    uint64_t chunk = atomic_fetch_add(&job->next_chunk, 1);
+    if (chunk >= job->chunk_count)
+        return 0;
+    trace_chunk(job, chunk);
+    atomic_fetch_add(&job->chunks_done, 1);
+    return 1;
+}
+
+static void *worker(void *user)
+{
+    unsigned saved = flush_denormals();
+    while (trace_next_chunk(user))
+        ;
+    restore_denormals(saved);
+    return NULL;
+}
+
+/* The calling thread traces too, and reports progress between its chunks. */
+static void trace_and_report(run_job *job, const gb_photons_options *options)
+{
+    unsigned saved = flush_denormals();
+    while (trace_next_chunk(job)) {
+        double done = job->chunk_count ? (double)atomic_load(&job->chunks_done) /
+                                             (double)job->chunk_count
+                                       : 1.0;
+        if (options->progress && options->progress(options->progress_user, done))
+            atomic_store(&job->state, INTERRUPTED);
+    }
+    restore_denormals(saved);
+}
+
+static int thread_count(const gb_photons_options *options, uint64_t chunk_count)
+{
+    long threads = options->threads > 0 ? options->threads : sysconf(_SC_NPROCESSORS_ONLN);
+    if (threads < 1)
+        threads = 1;
+    if (threads > MAX_THREADS)
+        threads = MAX_THREADS;
+    return (uint64_t)threads < chunk_count ? (int)threads : (chunk_count ? (int)chunk_count : 1);
+}
+
+static gb_result run_threads(run_job *job, const gb_photons_options *options, int *used,
+                             gb_error *error)
+{
+    pthread_t threads[MAX_THREADS];
+    int count = thread_count(options, job->chunk_count), started = 0;
+    gb_result result = GB_OK;
+    for (; started < count - 1; ++started)
+        if (pthread_create(&threads[started], NULL, worker, job) != 0) {
+            result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "photons: cannot start a thread");
+            atomic_store(&job->state, INTERRUPTED);
+            break;
+        }
+    if (result == GB_OK)
+        trace_and_report(job, options);
+    for (int i = 0; i < started; ++i)
+        pthread_join(threads[i], NULL);
+    *used = started + 1;
+    if (result != GB_OK)
+        return result;
+    switch (atomic_load(&job->state)) {
+    case INTERRUPTED:
+        return gb_fail(error, GB_ERROR_INTERRUPTED, "photons: interrupted");
+    case OUT_OF_MEMORY:
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "photons: out of memory for the photons");
+    }
+    return GB_OK;
+}
+
+/* ---- the map ---- */
+
+static void fill_header(const gb_scene *scene, const gb_photons_options *options,
+                        const gb_photons_tracer *tracer, const run_job *job,
+                        gb_photon_map_header *h)
+{
+    h->emitted_count = job->emitted_count;
+    h->first_photon = job->first;
+    h->end_photon = job->end;
+    h->scene_hash = scene->hash;
+    h->seed = options->seed;
+    h->shard_index = options->shard_index;
+    h->shard_count = options->shard_count ? options->shard_count : 1;
+    h->bounces = tracer->bounces;
+    h->store = tracer->store;
+    h->roulette_start = tracer->roulette_start;
+    for (int k = 0; k < 3; ++k) {
+        h->emitted_power[k] = job->emission->power[k];
+        h->bounds_min[k] = scene->bounds_min[k];
+        h->bounds_max[k] = scene->bounds_max[k];
+    }
+}
+
+static void copy_record(const gb_photons_record *r, gb_photon_arrays *a, uint64_t i)
+{
+    for (int k = 0; k < 3; ++k) {
+        a->positions[3 * i + k] = r->position[k];
+        a->powers[3 * i + k] = r->power[k];
+    }
+    a->directions[i] = r->direction;
+    a->normals[i] = r->normal;
+}
+
+/* Joins the chunks in index order into the map, freeing each once copied. */
+static gb_result join_chunks(run_job *job, gb_photon_map *map, gb_error *error)
+{
+    uint64_t total = 0;
+    for (uint64_t c = 0; c < job->chunk_count; ++c)
+        total += job->chunks[c].count;
+    gb_photon_arrays arrays;
+    gb_result result = gb_photon_map_allocate(map, total, &arrays, error);
+    if (result != GB_OK)
+        return result;
+    uint64_t i = 0;
+    for (uint64_t c = 0; c < job->chunk_count; ++c) {
+        for (size_t j = 0; j < job->chunks[c].count; ++j)
+            copy_record(&job->chunks[c].records[j], &arrays, i++);
+        gb_photons_sink_free(&job->chunks[c]);
+    }
+    return GB_OK;
+}
+
+/* ---- options and set-up ---- */
+
+static gb_result check_options(const gb_photons_options *o, gb_error *error)
+{
+    uint32_t shards = o->shard_count ? o->shard_count : 1;
+    if (o->count > GB_PHOTONS_MAX_COUNT)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "photons: %llu photons is more than %llu",
+                       (unsigned long long)o->count, (unsigned long long)GB_PHOTONS_MAX_COUNT);
+    if (o->bounces > GB_PHOTON_MAX_BOUNCES)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "photons: bounces %u is more than %d",
+                       o->bounces, GB_PHOTON_MAX_BOUNCES);
+    if (o->store != GB_PHOTON_STORE_INDIRECT && o->store != GB_PHOTON_STORE_ALL)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "photons: unknown store mode %d",
+                       (int)o->store);
+    if (o->shard_index >= shards)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "photons: shard %u of %u does not exist "
+                       "(shards count from 0)", (unsigned)o->shard_index, (unsigned)shards);
+    return GB_OK;
+}
+
+static void make_tracer(const gb_photons_options *o, gb_photons_tracer *tracer)
+{
+    tracer->bounces = o->bounces ? o->bounces : GB_PHOTONS_DEFAULT_BOUNCES;
+    tracer->roulette_start = GB_PHOTONS_ROULETTE_START < tracer->bounces
+                                 ? GB_PHOTONS_ROULETTE_START
+                                 : tracer->bounces;
+    tracer->store = o->store;
+}
+
+typedef struct run_tables {
+    gb_photon_emission emission;
+    gb_surface_table surfaces;
+    gb_embree_scene *rays;
+} run_tables;
+
+static void free_tables(run_tables *t)
+{
+    gb_embree_scene_destroy(t->rays);
+    if (t->surfaces.records)
+        gb_surface_table_free(&t->surfaces);
+    gb_photon_emission_free(&t->emission);
+}
+
+/* The lights before the BVH: a scene with none fails before the build. */
+static gb_result build_tables(const gb_scene *scene, const gb_photons_options *options,
+                              run_tables *t, gb_error *error)
+{
+    *t = (run_tables){0};
+    gb_result result = gb_surface_table_build(scene, &t->surfaces, error);
+    if (result == GB_OK)
+        result = gb_photon_emission_build(scene, &t->surfaces, &t->emission, error);
+    if (result == GB_OK)
+        result = gb_embree_scene_create(scene, options->threads, &t->rays, error);
+    if (result != GB_OK)
+        free_tables(t);
+    return result;
+}
+
+static double process_cpu_seconds(void)
+{
+    struct timespec now;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
+    return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
+}
+
+typedef struct run_times {
+    double seconds, cpu_seconds, build_seconds;
+} run_times;
+
+static void fill_stats(const run_job *job, const run_times *times, int threads,
+                       gb_photons_stats *stats)
+{
+    if (!stats)
+        return;
+    stats->paths = job->end - job->first;
+    stats->rays = atomic_load(&job->rays);
+    stats->stored = atomic_load(&job->stored);
+    stats->escaped = atomic_load(&job->escaped);
+    stats->nonfinite = atomic_load(&job->nonfinite);
+    stats->seconds = times->seconds;
+    stats->cpu_seconds = times->cpu_seconds;
+    stats->build_seconds = times->build_seconds;
+    stats->threads = threads;
+}
+
+static gb_result trace_job(run_job *job, const gb_photons_options *options, int *threads,
+                           gb_photon_map *map, gb_error *error)
+{
+    job->chunk_count = (job->end - job->first + CHUNK_PHOTONS - 1) / CHUNK_PHOTONS;
+    job->chunks = calloc(job->chunk_count ? job->chunk_count : 1, sizeof *job->chunks);
+    if (!job->chunks)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "photons: out of memory");
+    gb_result result = run_threads(job, options, threads, error);
+    if (result == GB_OK)
+        result = join_chunks(job, map, error);
+    for (uint64_t c = 0; c < job->chunk_count; ++c)
+        gb_photons_sink_free(&job->chunks[c]);
+    free(job->chunks);
+    return result;
+}
+
+gb_result gb_photons_trace(const gb_scene *scene, const gb_photons_options *options,
+                           gb_photon_map *map, gb_photons_stats *stats, gb_error *error)
+{
+    *map = (gb_photon_map){0};
+    gb_result result = check_options(options, error);
+    if (result != GB_OK)
+        return result;
+    double start = gb_seconds();
+    run_tables tables;
+    result = build_tables(scene, options, &tables, error);
+    if (result != GB_OK)
+        return result;
+    gb_photons_tracer tracer = {.rays = tables.rays, .surfaces = &tables.surfaces};
+    make_tracer(options, &tracer);
+    run_job job = {.tracer = &tracer, .emission = &tables.emission, .seed = options->seed};
+    job.emitted_count = options->count ? options->count : GB_PHOTONS_DEFAULT_COUNT;
+    gb_photon_shard_range(job.emitted_count, options->shard_index,
+                          options->shard_count ? options->shard_count : 1, &job.first,
+                          &job.end);
+    double traced = gb_seconds(), cpu = process_cpu_seconds();
+    int threads = 1;
+    result = trace_job(&job, options, &threads, map, error);
+    run_times times = {gb_seconds() - traced, process_cpu_seconds() - cpu, traced - start};
+    fill_stats(&job, &times, threads, stats);
+    if (result == GB_OK)
+        fill_header(scene, options, &tracer, &job, &map->header);
+    free_tables(&tables);
+    return result;
+}
