@@ -42,4 +42,22 @@ void gb_voxel_grid_free(gb_voxel_grid *grid);
 gb_result gb_voxel_grid_write(const char *path, const gb_voxel_grid *grid, gb_error *error);
 gb_result gb_voxel_grid_read(const char *path, gb_voxel_grid *grid, gb_error *error);
 
+/* gb_voxel_grid_write then gb_voxel_grid_free, giving the dense arrays'
+ * memory back while the sparse grids are built: peak memory is about the
+ * larger of the two instead of their sum. grid is freed whatever the
+ * result. */
+gb_result gb_voxel_grid_write_and_free(const char *path, gb_voxel_grid *grid,
+                                       gb_error *error);
+
+/* An int32 grid named name in the frame (size, voxel size, origin, hash) of
+ * grid, e.g. thin's "nearest_node"; voxels whose value is negative are
+ * inactive (not stored). values has one entry per voxel of the frame. Read
+ * fills frame (without surface/distance arrays) and a malloc'ed *values. */
+gb_result gb_voxel_grid_write_int32(const char *path, const gb_voxel_grid *frame,
+                                    const char *name, const int32_t *values,
+                                    gb_error *error);
+gb_result gb_voxel_grid_read_int32(const char *path, const char *name,
+                                   gb_voxel_grid *frame, int32_t **values,
+                                   gb_error *error);
+
 #endif

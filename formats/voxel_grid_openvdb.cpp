@@ -1,0 +1,801 @@
+// voxel_grid_openvdb.cpp — the one OpenVDB adapter of gibake: the voxel file
+// (grids "surface", "empty", "distance") and int32 grids such as thin's
+// "nearest_node", in the frame of a gb_voxel_grid (formats/FORMATS.md,
+// "Voxel file"). The C++ stays in this file; the rest of the project sees
+// formats/voxel_grid.h.
+//
+// Index space: voxel (i,j,k) of the dense frame is OpenVDB coordinate
+// (i,j,k); its centre is at world_origin + voxel_size * (i+1/2, j+1/2, k+1/2),
+// which is what the grids' linear transform says.
+
+extern "C" {
+#include "voxel_grid.h"
+}
+
+// Half-float conversions by arithmetic, not by Imath's table: the table lives
+// in libImath, which the link line does not name.
+#define IMATH_HALF_NO_LOOKUP_TABLE
+#include <openvdb/openvdb.h>
+#include <openvdb/io/File.h>
+#include <openvdb/tools/Prune.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <exception>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+namespace {
+
+const char *const VOXELIZE_CREATOR = "gibake-voxelize 0.1";
+const char *const INT32_CREATOR = "gibake 0.1";
+const int32_t FORMAT_VERSION = 1;
+const int32_t MAX_SIDE = 1 << 20;
+
+void initialize_openvdb()
+{
+    static std::once_flag once;
+    std::call_once(once, [] { openvdb::initialize(); });
+}
+
+// ---------------------------------------------------------------- the frame
+
+bool frame_is_valid(const gb_voxel_grid *frame)
+{
+    for (int axis = 0; axis < 3; ++axis)
+        if (frame->size[axis] <= 0 || frame->size[axis] > MAX_SIDE
+            || !std::isfinite(frame->world_origin[axis]))
+            return false;
+    return std::isfinite(frame->voxel_size) && frame->voxel_size > 0;
+}
+
+size_t frame_voxel_count(const gb_voxel_grid *frame)
+{
+    return (size_t)frame->size[0] * (size_t)frame->size[1] * (size_t)frame->size[2];
+}
+
+openvdb::math::Transform::Ptr frame_transform(const gb_voxel_grid *frame)
+{
+    double h = frame->voxel_size;
+    auto transform = openvdb::math::Transform::createLinearTransform(h);
+    transform->postTranslate(openvdb::Vec3d(frame->world_origin[0] + 0.5 * h,
+                                            frame->world_origin[1] + 0.5 * h,
+                                            frame->world_origin[2] + 0.5 * h));
+    return transform;
+}
+
+std::string hash_to_hex(uint64_t hash)
+{
+    char text[17];
+    std::snprintf(text, sizeof text, "%016" PRIx64, hash);
+    return text;
+}
+
+bool hex_to_hash(const std::string &text, uint64_t *hash)
+{
+    if (text.size() != 16)
+        return false;
+    uint64_t value = 0;
+    for (char c : text) {
+        int digit = c >= '0' && c <= '9' ? c - '0' : c >= 'a' && c <= 'f' ? c - 'a' + 10 : -1;
+        if (digit < 0)
+            return false;
+        value = value << 4 | (uint64_t)digit;
+    }
+    *hash = value;
+    return true;
+}
+
+void attach_frame(openvdb::GridBase &grid, const gb_voxel_grid *frame, const char *name,
+                  const char *creator)
+{
+    grid.setName(name);
+    grid.setCreator(creator);
+    grid.setTransform(frame_transform(frame));
+    grid.insertMeta("gibake_format", openvdb::Int32Metadata(FORMAT_VERSION));
+    grid.insertMeta("voxel_size", openvdb::DoubleMetadata(frame->voxel_size));
+    grid.insertMeta("world_origin", openvdb::Vec3DMetadata(openvdb::Vec3d(
+        frame->world_origin[0], frame->world_origin[1], frame->world_origin[2])));
+    grid.insertMeta("grid_size", openvdb::Vec3IMetadata(openvdb::Vec3i(
+        frame->size[0], frame->size[1], frame->size[2])));
+    grid.insertMeta("scene_hash", openvdb::StringMetadata(hash_to_hex(frame->scene_hash)));
+    grid.insertMeta("resolution", openvdb::Int32Metadata((int32_t)frame->resolution));
+}
+
+template <typename T>
+bool find_meta(const openvdb::GridBase &grid, const char *key, T *value)
+{
+    auto meta = grid.getMetadata<openvdb::TypedMetadata<T>>(key);
+    if (!meta)
+        return false;
+    *value = meta->value();
+    return true;
+}
+
+// Reads the frame metadata of grid into frame (size, voxel size, origin,
+// hash, resolution) and checks it against the grid's transform.
+gb_result read_frame(const char *path, const openvdb::GridBase &grid, gb_voxel_grid *frame,
+                     gb_error *error)
+{
+    const std::string grid_name = grid.getName();
+    const char *name = grid_name.c_str();
+    int32_t version = 0, resolution = 0;
+    double voxel_size = 0;
+    openvdb::Vec3d origin;
+    openvdb::Vec3i size;
+    std::string hash_text;
+    const char *missing = !find_meta(grid, "gibake_format", &version) ? "gibake_format (int32)"
+        : !find_meta(grid, "voxel_size", &voxel_size) ? "voxel_size (double)"
+        : !find_meta(grid, "world_origin", &origin) ? "world_origin (vec3d)"
+        : !find_meta(grid, "grid_size", &size) ? "grid_size (vec3i)"
+        : !find_meta(grid, "scene_hash", &hash_text) ? "scene_hash (string)"
+        : !find_meta(grid, "resolution", &resolution) ? "resolution (int32)"
+        : nullptr;
+    if (missing)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: grid '%s' has no metadata %s", path, name,
+                       missing);
+    if (version != FORMAT_VERSION)
+        return gb_fail(error, GB_ERROR_FORMAT,
+                       "%s: grid '%s' has gibake_format %d, this program reads %d", path,
+                       name, (int)version, (int)FORMAT_VERSION);
+    uint64_t hash = 0;
+    if (!hex_to_hash(hash_text, &hash))
+        return gb_fail(error, GB_ERROR_FORMAT,
+                       "%s: grid '%s': scene_hash '%.40s' is not 16 lowercase hex digits",
+                       path, name, hash_text.c_str());
+    if (resolution < 0)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: grid '%s': negative resolution %d", path,
+                       name, (int)resolution);
+    gb_voxel_grid read = {};
+    read.voxel_size = voxel_size;
+    for (int axis = 0; axis < 3; ++axis) {
+        read.size[axis] = size[axis];
+        read.world_origin[axis] = origin[axis];
+    }
+    read.scene_hash = hash;
+    read.resolution = (uint32_t)resolution;
+    if (!frame_is_valid(&read))
+        return gb_fail(error, GB_ERROR_FORMAT,
+                       "%s: grid '%s': bad frame (grid_size %d x %d x %d, voxel_size %g)", path,
+                       name, (int)size[0], (int)size[1], (int)size[2], voxel_size);
+    const openvdb::math::Transform &transform = grid.transform();
+    openvdb::Vec3d centre = transform.indexToWorld(openvdb::Vec3d(0, 0, 0));
+    openvdb::Vec3d step = transform.indexToWorld(openvdb::Vec3d(1, 1, 1)) - centre;
+    double tolerance = 1e-9 * voxel_size;
+    bool matches = transform.isLinear() && transform.hasUniformScale();
+    for (int axis = 0; axis < 3 && matches; ++axis)
+        matches = std::fabs(step[axis] - voxel_size) <= tolerance
+                  && std::fabs(centre[axis] - (origin[axis] + 0.5 * voxel_size))
+                         <= tolerance + 1e-12 * std::fabs(origin[axis]);
+    if (!matches)
+        return gb_fail(error, GB_ERROR_FORMAT,
+                       "%s: grid '%s': transform does not match voxel_size and world_origin",
+                       path, name);
+    *frame = read;
+    return GB_OK;
+}
+
+bool same_frame(const gb_voxel_grid *a, const gb_voxel_grid *b)
+{
+    return a->size[0] == b->size[0] && a->size[1] == b->size[1] && a->size[2] == b->size[2]
+           && a->voxel_size == b->voxel_size && a->world_origin[0] == b->world_origin[0]
+           && a->world_origin[1] == b->world_origin[1]
+           && a->world_origin[2] == b->world_origin[2] && a->scene_hash == b->scene_hash
+           && a->resolution == b->resolution;
+}
+
+// ------------------------------------------------------- dense to sparse
+
+// Calls visit(leaf, offset, index) for every voxel of the frame in the
+// leaf-sized block at block_origin, where index is the dense index.
+template <typename Visit>
+void for_each_block_voxel(const gb_voxel_grid *frame, const openvdb::Coord &block_origin,
+                          Visit visit)
+{
+    const int dim = 8;
+    int i_end = std::min(block_origin.x() + dim, frame->size[0]);
+    int j_end = std::min(block_origin.y() + dim, frame->size[1]);
+    int k_end = std::min(block_origin.z() + dim, frame->size[2]);
+    for (int k = block_origin.z(); k < k_end; ++k)
+        for (int j = block_origin.y(); j < j_end; ++j)
+            for (int i = block_origin.x(); i < i_end; ++i) {
+                // LeafNode offsets run z fastest: ((x & 7) << 6) | ((y & 7) << 3) | (z & 7).
+                openvdb::Index offset = (openvdb::Index)(((i & 7) << 6) | ((j & 7) << 3) | (k & 7));
+                visit(offset, gb_voxel_index(frame, i, j, k));
+            }
+}
+
+// Builds a tree whose active voxels are those where active(index) holds,
+// with value(index); blocks with no active voxel get no leaf. Leaves are
+// filled in parallel, then added in order (the tree does not depend on it).
+template <typename GridType, typename Active, typename Value>
+typename GridType::Ptr dense_to_grid(const gb_voxel_grid *frame,
+                                     typename GridType::ValueType background, Active active,
+                                     Value value)
+{
+    using LeafType = typename GridType::TreeType::LeafNodeType;
+    const int blocks[3] = {(frame->size[0] + 7) / 8, (frame->size[1] + 7) / 8,
+                           (frame->size[2] + 7) / 8};
+    size_t block_count = (size_t)blocks[0] * blocks[1] * blocks[2];
+    std::vector<LeafType *> leaves(block_count, nullptr);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, block_count), [&](const tbb::blocked_range<size_t> &range) {
+        for (size_t b = range.begin(); b != range.end(); ++b) {
+            openvdb::Coord origin((int)(b % blocks[0]) * 8, (int)(b / blocks[0] % blocks[1]) * 8,
+                                  (int)(b / blocks[0] / blocks[1]) * 8);
+            LeafType *leaf = nullptr;
+            for_each_block_voxel(frame, origin, [&](openvdb::Index offset, size_t index) {
+                if (active(index)) {
+                    if (!leaf)
+                        leaf = new LeafType(origin, background, false);
+                    leaf->setValueOn(offset, value(index));
+                }
+            });
+            leaves[b] = leaf;
+        }
+    });
+    auto grid = GridType::create(background);
+    auto &tree = grid->tree();
+    for (LeafType *leaf : leaves)
+        if (leaf)
+            tree.addLeaf(leaf);
+    openvdb::tools::prune(tree);
+    return grid;
+}
+
+// The three grids of the voxel file.
+struct VoxelGrids {
+    openvdb::BoolGrid::Ptr surface;
+    openvdb::MaskGrid::Ptr empty;
+    openvdb::FloatGrid::Ptr distance;
+};
+
+// The leaves of one 8^3 block of the three grids (null where a grid has no
+// active voxel in the block).
+struct BlockLeaves {
+    openvdb::BoolGrid::TreeType::LeafNodeType *surface = nullptr;
+    openvdb::MaskGrid::TreeType::LeafNodeType *empty = nullptr;
+    openvdb::FloatGrid::TreeType::LeafNodeType *distance = nullptr;
+};
+
+BlockLeaves make_block_leaves(const gb_voxel_grid *grid, const openvdb::Coord &origin)
+{
+    using FloatLeaf = openvdb::FloatGrid::TreeType::LeafNodeType;
+    openvdb::util::NodeMask<3> surface_mask, empty_mask;
+    float values[FloatLeaf::SIZE] = {0};
+    for_each_block_voxel(grid, origin, [&](openvdb::Index offset, size_t index) {
+        if (grid->surface[index]) {
+            surface_mask.setOn(offset);
+        } else {
+            empty_mask.setOn(offset);
+            values[offset] = grid->distance[index];
+        }
+    });
+    BlockLeaves leaves;
+    if (!surface_mask.isOff()) {
+        leaves.surface = new openvdb::BoolGrid::TreeType::LeafNodeType(origin, false, false);
+        for (auto on = surface_mask.beginOn(); on; ++on)
+            leaves.surface->setValueOn(on.pos(), true);
+    }
+    if (!empty_mask.isOff()) {
+        leaves.empty = new openvdb::MaskGrid::TreeType::LeafNodeType(origin, false, false);
+        leaves.empty->setValueMask(empty_mask);
+        // Partial: the buffer is allocated by data(), not filled twice.
+        leaves.distance = new FloatLeaf(openvdb::PartialCreate(), origin, 0.0f, false);
+        std::memcpy(leaves.distance->buffer().data(), values, sizeof values);
+        leaves.distance->setValueMask(empty_mask);
+    }
+    return leaves;
+}
+
+// Gives the whole memory pages inside [begin, end) back to the system: they
+// read as zeros afterwards. Used only on arrays about to be freed, never on
+// bytes outside them (so not on an allocator's own headers).
+void release_pages(const void *begin, const void *end)
+{
+    uintptr_t page = (uintptr_t)sysconf(_SC_PAGESIZE);
+    uintptr_t first = ((uintptr_t)begin + page - 1) / page * page;
+    uintptr_t last = (uintptr_t)end / page * page;
+    if (first < last)
+        madvise((void *)first, last - first, MADV_DONTNEED);
+}
+
+// The grids "surface", "empty" and "distance" of grid in one pass over its
+// voxels, slab of 8 layers by slab: leaves filled in parallel, then added in
+// order (the trees do not depend on it); fully active leaves of the bool and
+// mask trees become tiles. With release, the dense arrays' pages of each slab
+// are given back once its leaves are built, so that the sparse grids replace
+// the dense ones in memory instead of adding to them.
+VoxelGrids build_voxel_grids(const gb_voxel_grid *grid, bool release)
+{
+    const int blocks_x = (grid->size[0] + 7) / 8, blocks_y = (grid->size[1] + 7) / 8;
+    const size_t slab_blocks = (size_t)blocks_x * blocks_y;
+    const size_t layer = (size_t)grid->size[0] * grid->size[1];
+    VoxelGrids grids{openvdb::BoolGrid::create(false), openvdb::MaskGrid::create(false),
+                     openvdb::FloatGrid::create(0.0f)};
+    std::vector<BlockLeaves> leaves(slab_blocks);
+    for (int z = 0; z < grid->size[2]; z += 8) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, slab_blocks),
+                          [&](const tbb::blocked_range<size_t> &range) {
+            for (size_t b = range.begin(); b != range.end(); ++b)
+                leaves[b] = make_block_leaves(grid, openvdb::Coord((int)(b % blocks_x) * 8,
+                                                                   (int)(b / blocks_x) * 8, z));
+        });
+        for (const BlockLeaves &block : leaves) {
+            if (block.surface)
+                grids.surface->tree().addLeaf(block.surface);
+            if (block.empty)
+                grids.empty->tree().addLeaf(block.empty);
+            if (block.distance)
+                grids.distance->tree().addLeaf(block.distance);
+        }
+        if (release) {
+            size_t begin = layer * z, end = layer * std::min(z + 8, grid->size[2]);
+            release_pages(grid->surface + begin, grid->surface + end);
+            release_pages(grid->distance + begin, grid->distance + end);
+        }
+    }
+    openvdb::tools::prune(grids.surface->tree());
+    openvdb::tools::prune(grids.empty->tree());
+    return grids;
+}
+
+// ------------------------------------------------------- sparse to dense
+
+// Calls visit(index, value) for every active voxel and every voxel of every
+// active tile; returns false (without visiting further) at the first one
+// outside the frame.
+template <typename GridType, typename Visit>
+bool for_each_active_voxel(const GridType &grid, const gb_voxel_grid *frame, Visit visit)
+{
+    openvdb::CoordBBox frame_box(openvdb::Coord(0, 0, 0),
+                                 openvdb::Coord(frame->size[0] - 1, frame->size[1] - 1,
+                                                frame->size[2] - 1));
+    for (auto it = grid.cbeginValueOn(); it; ++it) {
+        openvdb::CoordBBox box;
+        it.getBoundingBox(box);
+        if (!frame_box.isInside(box))
+            return false;
+        for (int k = box.min().z(); k <= box.max().z(); ++k)
+            for (int j = box.min().y(); j <= box.max().y(); ++j)
+                for (int i = box.min().x(); i <= box.max().x(); ++i)
+                    visit(gb_voxel_index(frame, i, j, k), *it);
+    }
+    return true;
+}
+
+// ------------------------------------------------------- files
+
+// The temporary name beside path: "path.tmp.XXXXXX", created empty.
+gb_result create_temporary(const char *path, std::string *temporary, gb_error *error)
+{
+    std::string name = std::string(path) + ".tmp.XXXXXX";
+    int fd = mkstemp(&name[0]);
+    if (fd < 0)
+        return gb_fail(error, GB_ERROR_IO, "%s: cannot create a temporary file: %s", path,
+                       std::strerror(errno));
+    mode_t mask = umask(0);
+    umask(mask);
+    if (fchmod(fd, 0666 & ~mask) != 0) {
+        int saved = errno;
+        close(fd);
+        unlink(name.c_str());
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", name.c_str(), std::strerror(saved));
+    }
+    close(fd);
+    *temporary = name;
+    return GB_OK;
+}
+
+gb_result sync_file(const std::string &name, gb_error *error)
+{
+    int fd = open(name.c_str(), O_RDONLY);
+    if (fd < 0 || fsync(fd) != 0) {
+        int saved = errno;
+        if (fd >= 0)
+            close(fd);
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", name.c_str(), std::strerror(saved));
+    }
+    close(fd);
+    return GB_OK;
+}
+
+// Blosc (fast, and OpenVDB's own default) when this OpenVDB has it, else zip.
+uint32_t compression()
+{
+    return openvdb::io::COMPRESS_ACTIVE_MASK
+           | (openvdb::io::Archive::hasBloscCompression() ? openvdb::io::COMPRESS_BLOSC
+                                                          : openvdb::io::COMPRESS_ZIP);
+}
+
+// OpenVDB writes a random UUID in the file header (36 ASCII characters after
+// the magic, the file and library versions and the grid-offsets flag).
+// gibake replaces it with one made from a hash of the rest of the file: the
+// same grids then give the same bytes, and the UUID is the checksum that
+// readers verify before OpenVDB parses anything.
+const long UUID_OFFSET = 8 + 4 + 4 + 4 + 1;
+const int UUID_LENGTH = 36;
+
+bool looks_like_uuid(const char *text)
+{
+    for (int i = 0; i < UUID_LENGTH; ++i) {
+        bool dash = i == 8 || i == 13 || i == 18 || i == 23;
+        if (dash ? text[i] != '-' : !std::isxdigit((unsigned char)text[i]))
+            return false;
+    }
+    return true;
+}
+
+// The UUID (version 4 layout) made of two 64-bit lanes of a multiply-xorshift
+// hash over the rest of file, read from its current position.
+std::string content_uuid(FILE *file)
+{
+    uint64_t lane[2] = {0x9e3779b97f4a7c15ull, 0xc2b2ae3d27d4eb4full};
+    std::vector<unsigned char> buffer(1 << 20);
+    size_t got;
+    while ((got = std::fread(buffer.data(), 1, buffer.size(), file)) > 0)
+        for (size_t i = 0; i < got; i += 8) {
+            uint64_t word = 0;
+            std::memcpy(&word, &buffer[i], std::min<size_t>(8, got - i));
+            for (int l = 0; l < 2; ++l) {
+                lane[l] = (lane[l] ^ word) * (l ? 0xff51afd7ed558ccdull : 0xc4ceb9fe1a85ec53ull);
+                lane[l] ^= lane[l] >> 29;
+            }
+        }
+    char uuid[UUID_LENGTH + 1];
+    std::snprintf(uuid, sizeof uuid, "%08x-%04x-%04x-%04x-%012llx", (unsigned)(lane[0] >> 32),
+                  (unsigned)(lane[0] >> 16 & 0xffff), (unsigned)(0x4000 | (lane[0] & 0x0fff)),
+                  (unsigned)(0x8000 | (lane[1] >> 48 & 0x3fff)),
+                  (unsigned long long)(lane[1] & 0xffffffffffffull));
+    return uuid;
+}
+
+// Reads the header of file; false if it has no UUID where OpenVDB puts it.
+bool read_header(FILE *file, char header[UUID_OFFSET + UUID_LENGTH])
+{
+    return std::fread(header, 1, UUID_OFFSET + UUID_LENGTH, file)
+               == (size_t)(UUID_OFFSET + UUID_LENGTH)
+           && looks_like_uuid(header + UUID_OFFSET);
+}
+
+bool write_content_uuid(const std::string &name)
+{
+    FILE *file = std::fopen(name.c_str(), "r+b");
+    if (!file)
+        return false;
+    char header[UUID_OFFSET + UUID_LENGTH];
+    bool done = false;
+    if (read_header(file, header)) {
+        std::string uuid = content_uuid(file);
+        done = std::fseek(file, UUID_OFFSET, SEEK_SET) == 0
+               && std::fwrite(uuid.data(), 1, UUID_LENGTH, file) == (size_t)UUID_LENGTH;
+    }
+    return (std::fclose(file) == 0) && done;
+}
+
+// Checks the magic, then the content UUID, of path.
+gb_result check_file(const char *path, gb_error *error)
+{
+    FILE *file = std::fopen(path, "rb");
+    if (!file)
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
+    char header[UUID_OFFSET + UUID_LENGTH];
+    size_t got = std::fread(header, 1, sizeof header, file);
+    // OPENVDB_MAGIC as a little-endian int64.
+    const char magic[8] = {0x20, 0x42, 0x44, 0x56, 0, 0, 0, 0};
+    gb_result result = GB_OK;
+    if (got < sizeof magic || std::memcmp(header, magic, sizeof magic) != 0)
+        result = gb_fail(error, GB_ERROR_FORMAT, "%s: not an OpenVDB file", path);
+    else if (got != sizeof header || !looks_like_uuid(header + UUID_OFFSET)
+             || content_uuid(file) != std::string(header + UUID_OFFSET, UUID_LENGTH))
+        result = gb_fail(error, GB_ERROR_CHECKSUM,
+                         "%s: checksum does not match: the file is damaged or was not "
+                         "written by gibake",
+                         path);
+    std::fclose(file);
+    return result;
+}
+
+// Writes grids to path through a temporary file and a rename: on failure
+// nothing is left at path (or beside it) and an older file there is kept.
+gb_result write_grids(const char *path, const openvdb::GridPtrVec &grids, gb_error *error)
+{
+    std::string temporary;
+    gb_result result = create_temporary(path, &temporary, error);
+    if (result != GB_OK)
+        return result;
+    try {
+        openvdb::io::File file(temporary);
+        file.setCompression(compression());
+        file.write(grids);
+        file.close();
+    } catch (const std::exception &e) {
+        unlink(temporary.c_str());
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+    }
+    if (!write_content_uuid(temporary)) {
+        unlink(temporary.c_str());
+        return gb_fail(error, GB_ERROR_IO, "%s: cannot rewrite the OpenVDB header", path);
+    }
+    result = sync_file(temporary, error);
+    if (result == GB_OK && std::rename(temporary.c_str(), path) != 0)
+        result = gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
+    if (result != GB_OK)
+        unlink(temporary.c_str());
+    return result;
+}
+
+// An open OpenVDB file, from which grids are read by name and type.
+struct Reader {
+    const char *path;
+    openvdb::io::File file;
+
+    explicit Reader(const char *path_) : path(path_), file(path_) {}
+
+    gb_result open(gb_error *error)
+    {
+        gb_result result = check_file(path, error);
+        if (result != GB_OK)
+            return result;
+        try {
+            file.open(false);
+        } catch (const std::exception &e) {
+            return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
+        }
+        return GB_OK;
+    }
+
+    template <typename GridType>
+    gb_result read(const char *name, const char *type_name, typename GridType::Ptr *grid,
+                   gb_error *error)
+    {
+        try {
+            if (!file.hasGrid(name))
+                return gb_fail(error, GB_ERROR_FORMAT, "%s: no grid '%s'", path, name);
+            *grid = openvdb::gridPtrCast<GridType>(file.readGrid(name));
+        } catch (const std::exception &e) {
+            return gb_fail(error, GB_ERROR_FORMAT, "%s: grid '%s': %s", path, name, e.what());
+        }
+        if (!*grid)
+            return gb_fail(error, GB_ERROR_FORMAT, "%s: grid '%s' is not a %s grid", path, name,
+                           type_name);
+        return GB_OK;
+    }
+
+    ~Reader()
+    {
+        try {
+            if (file.isOpen())
+                file.close();
+        } catch (...) {
+        }
+    }
+};
+
+gb_result check_same_frame(const char *path, const openvdb::GridBase &grid,
+                           const gb_voxel_grid *expected, gb_error *error)
+{
+    gb_voxel_grid frame;
+    gb_result result = read_frame(path, grid, &frame, error);
+    if (result == GB_OK && !same_frame(&frame, expected))
+        result = gb_fail(error, GB_ERROR_FORMAT,
+                         "%s: grid '%s' has another frame than grid 'surface'", path,
+                         grid.getName().c_str());
+    return result;
+}
+
+gb_result outside_frame(const char *path, const char *name, gb_error *error)
+{
+    return gb_fail(error, GB_ERROR_FORMAT, "%s: grid '%s' has voxels outside its grid_size",
+                   path, name);
+}
+
+// Fills grid->surface from the "surface" grid, then checks that "empty" is
+// its complement and that "distance" is active exactly on "empty", finite and
+// non-negative, and fills grid->distance from it.
+gb_result read_voxel_grids(const char *path, Reader &reader, gb_voxel_grid *grid,
+                           gb_error *error)
+{
+    openvdb::BoolGrid::Ptr surface;
+    openvdb::MaskGrid::Ptr empty;
+    openvdb::FloatGrid::Ptr distance;
+    gb_result result = reader.read<openvdb::BoolGrid>("surface", "bool", &surface, error);
+    if (result == GB_OK)
+        result = reader.read<openvdb::MaskGrid>("empty", "mask", &empty, error);
+    if (result == GB_OK)
+        result = reader.read<openvdb::FloatGrid>("distance", "float", &distance, error);
+    gb_voxel_grid frame;
+    if (result == GB_OK)
+        result = read_frame(path, *surface, &frame, error);
+    if (result == GB_OK)
+        result = check_same_frame(path, *empty, &frame, error);
+    if (result == GB_OK)
+        result = check_same_frame(path, *distance, &frame, error);
+    if (result == GB_OK) {
+        int32_t size[3] = {frame.size[0], frame.size[1], frame.size[2]};
+        result = gb_voxel_grid_allocate(&frame, size, error);
+    }
+    if (result != GB_OK)
+        return result;
+
+    uint8_t *occupied = frame.surface;
+    float *value = frame.distance;
+    size_t surface_count = 0, empty_count = 0, distance_count = 0;
+    bool inside = for_each_active_voxel(*surface, &frame, [&](size_t index, bool) {
+        surface_count += !occupied[index];
+        occupied[index] = 1;
+    });
+    if (!inside) {
+        gb_voxel_grid_free(&frame);
+        return outside_frame(path, "surface", error);
+    }
+    bool disjoint = true, finite = true;
+    inside = for_each_active_voxel(*empty, &frame, [&](size_t index, bool) {
+        disjoint &= !occupied[index];
+        ++empty_count;
+    });
+    inside = inside && for_each_active_voxel(*distance, &frame, [&](size_t index, float d) {
+        disjoint &= !occupied[index];
+        finite &= std::isfinite(d) && d >= 0;
+        value[index] = d;
+        ++distance_count;
+    });
+    size_t total = frame_voxel_count(&frame);
+    if (!inside)
+        result = outside_frame(path, "empty or distance", error);
+    else if (!disjoint || surface_count + empty_count != total || empty_count != distance_count)
+        result = gb_fail(error, GB_ERROR_FORMAT,
+                         "%s: grids 'empty' and 'distance' are not the complement of 'surface'",
+                         path);
+    else if (!finite)
+        result = gb_fail(error, GB_ERROR_FORMAT,
+                         "%s: grid 'distance' has a negative or non-finite value", path);
+    if (result != GB_OK) {
+        gb_voxel_grid_free(&frame);
+        return result;
+    }
+    *grid = frame;
+    return GB_OK;
+}
+
+} // namespace
+
+namespace {
+
+gb_result write_voxel_grids(const char *path, const gb_voxel_grid *grid, bool release,
+                            gb_error *error)
+{
+    if (!path || !grid || !grid->surface || !grid->distance || !frame_is_valid(grid))
+        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: voxel grid to write is not valid",
+                       path ? path : "(null)");
+    try {
+        initialize_openvdb();
+        VoxelGrids built = build_voxel_grids(grid, release);
+        attach_frame(*built.surface, grid, "surface", VOXELIZE_CREATOR);
+        attach_frame(*built.empty, grid, "empty", VOXELIZE_CREATOR);
+        attach_frame(*built.distance, grid, "distance", VOXELIZE_CREATOR);
+        built.distance->setGridClass(openvdb::GRID_UNKNOWN);
+        built.distance->setSaveFloatAsHalf(false);
+        openvdb::GridPtrVec grids{built.surface, built.empty, built.distance};
+        return write_grids(path, grids, error);
+    } catch (const std::bad_alloc &) {
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    } catch (const std::exception &e) {
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+    }
+}
+
+} // namespace
+
+extern "C" gb_result gb_voxel_grid_write(const char *path, const gb_voxel_grid *grid,
+                                         gb_error *error)
+{
+    return write_voxel_grids(path, grid, false, error);
+}
+
+extern "C" gb_result gb_voxel_grid_write_and_free(const char *path, gb_voxel_grid *grid,
+                                                  gb_error *error)
+{
+    gb_result result = write_voxel_grids(path, grid, true, error);
+    gb_voxel_grid_free(grid);
+    return result;
+}
+
+extern "C" gb_result gb_voxel_grid_read(const char *path, gb_voxel_grid *grid, gb_error *error)
+{
+    if (!path || !grid)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "voxel grid read: no path or no grid");
+    try {
+        initialize_openvdb();
+        Reader reader(path);
+        gb_result result = reader.open(error);
+        if (result != GB_OK)
+            return result;
+        return read_voxel_grids(path, reader, grid, error);
+    } catch (const std::bad_alloc &) {
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    } catch (const std::exception &e) {
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
+    }
+}
+
+extern "C" gb_result gb_voxel_grid_write_int32(const char *path, const gb_voxel_grid *frame,
+                                               const char *name, const int32_t *values,
+                                               gb_error *error)
+{
+    if (!path || !frame || !name || !*name || !values || !frame_is_valid(frame))
+        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: int32 grid to write is not valid",
+                       path ? path : "(null)");
+    try {
+        initialize_openvdb();
+        auto grid = dense_to_grid<openvdb::Int32Grid>(
+            frame, -1, [=](size_t index) { return values[index] >= 0; },
+            [=](size_t index) { return values[index]; });
+        attach_frame(*grid, frame, name, INT32_CREATOR);
+        openvdb::GridPtrVec grids{grid};
+        return write_grids(path, grids, error);
+    } catch (const std::bad_alloc &) {
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    } catch (const std::exception &e) {
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+    }
+}
+
+extern "C" gb_result gb_voxel_grid_read_int32(const char *path, const char *name,
+                                              gb_voxel_grid *frame, int32_t **values,
+                                              gb_error *error)
+{
+    if (!path || !name || !frame || !values)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "int32 grid read: missing argument");
+    try {
+        initialize_openvdb();
+        Reader reader(path);
+        openvdb::Int32Grid::Ptr grid;
+        gb_voxel_grid read;
+        gb_result result = reader.open(error);
+        if (result == GB_OK)
+            result = reader.read<openvdb::Int32Grid>(name, "int32", &grid, error);
+        if (result == GB_OK)
+            result = read_frame(path, *grid, &read, error);
+        if (result != GB_OK)
+            return result;
+        size_t count = frame_voxel_count(&read);
+        int32_t *dense = (int32_t *)std::malloc(count * sizeof *dense);
+        if (!dense)
+            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory for %zu voxels",
+                           path, count);
+        for (size_t index = 0; index < count; ++index)
+            dense[index] = -1;
+        bool negative = false;
+        bool inside = for_each_active_voxel(*grid, &read, [&](size_t index, int32_t value) {
+            negative |= value < 0;
+            dense[index] = value;
+        });
+        if (!inside || negative) {
+            std::free(dense);
+            return inside ? gb_fail(error, GB_ERROR_FORMAT,
+                                    "%s: grid '%s' has a negative active value", path, name)
+                          : outside_frame(path, name, error);
+        }
+        *frame = read;
+        *values = dense;
+        return GB_OK;
+    } catch (const std::bad_alloc &) {
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    } catch (const std::exception &e) {
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
+    }
+}

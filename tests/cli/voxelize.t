@@ -1,0 +1,144 @@
+#!/bin/sh
+# voxelize.t — voxelize as a user types it: a box room written here as an
+# OBJ, the OpenVDB file it gives (read back with vdb_print when installed),
+# options, errors, atomic output, byte-identical output on 1 and 2 threads.
+# Prints TAP.
+#
+# GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
+
+GB_ROOT=${GB_ROOT:-.}
+GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+tool=$GB_BIN/voxelize
+dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-voxelize.XXXXXX") || exit 1
+trap 'rm -rf "$dir"' EXIT INT TERM
+count=0
+failed=0
+
+ok() {
+    count=$((count + 1))
+    if [ "$1" = 0 ]; then
+        echo "ok $count - $2"
+    else
+        failed=$((failed + 1))
+        echo "not ok $count - $2"
+    fi
+}
+
+skip() {
+    count=$((count + 1))
+    echo "ok $count # SKIP $1"
+}
+
+# active NAME FILE: the number of active voxels vdb_print reports for grid NAME
+active() {
+    vdb_print -l "$2" 2>/dev/null | awk -v name="$1" '
+        /^Name:/ { grid = $2 }
+        grid == name && /Number of active voxels/ { gsub(",", "", $NF); print $NF; exit }'
+}
+
+if [ ! -x "$tool" ]; then
+    echo "Bail out! $tool not built"
+    exit 1
+fi
+
+# A closed box room 0..16 x 0..16 x 0..16 (6 quads): at resolution 16 its
+# walls lie on voxel faces and each marks the two layers around it.
+cat >"$dir/room.obj" <<'EOF'
+v 0 0 0
+v 16 0 0
+v 16 16 0
+v 0 16 0
+v 0 0 16
+v 16 0 16
+v 16 16 16
+v 0 16 16
+f 1 2 3 4
+f 5 8 7 6
+f 1 5 6 2
+f 2 6 7 3
+f 3 7 8 4
+f 4 8 5 1
+EOF
+
+"$tool" --help >"$dir/out" 2>"$dir/err"
+ok "$([ $? = 0 ] && grep -q '^usage: voxelize' "$dir/out" && [ ! -s "$dir/err" ]; echo $?)" \
+    "--help: usage on stdout, exit 0"
+ok "$([ "$("$tool" --version)" = "voxelize (gibake) 0.1" ]; echo $?)" "--version"
+
+"$tool" -r 16 "$dir/room.obj" -o "$dir/room.vdb" >"$dir/out" 2>"$dir/err"
+ok $? "voxelize -r 16 room.obj -o room.vdb: exit 0"
+ok "$([ -s "$dir/room.vdb" ] && [ ! -s "$dir/out" ] && [ ! -s "$dir/err" ]; echo $?)" \
+    "the file is written, nothing printed (stderr is not a terminal)"
+ok "$([ "$(ls "$dir" | grep -c tmp)" = 0 ]; echo $?)" "no temporary file left"
+ok "$([ "$(head -c 4 "$dir/room.vdb" | od -An -tx1 | tr -d ' \n')" = 20424456 ]; echo $?)" \
+    "it starts with the OpenVDB magic"
+
+if command -v vdb_print >/dev/null 2>&1; then
+    vdb_print -l -m "$dir/room.vdb" >"$dir/print" 2>&1
+    ok $? "vdb_print reads it"
+    ok "$(grep -q 'creator: gibake-voxelize 0.1' "$dir/print" &&
+        grep -q 'resolution: 16' "$dir/print" && grep -q 'voxel_size: 1$' "$dir/print" &&
+        grep -q 'grid_size: \[20, 20, 20\]' "$dir/print" &&
+        grep -q 'world_origin: \[-2, -2, -2\]' "$dir/print" &&
+        grep -Eq 'scene_hash: [0-9a-f]{16}$' "$dir/print"; echo $?)" \
+        "metadata: creator, resolution, voxel size, grid size, origin, scene hash"
+    # The shell [1,18]^3 minus [3,16]^3: 18^3 - 14^3 = 3088 surface voxels.
+    ok "$([ "$(active surface "$dir/room.vdb")" = 3088 ]; echo $?)" \
+        "surface: 3088 voxels, two layers per wall (got $(active surface "$dir/room.vdb"))"
+    ok "$([ "$(active empty "$dir/room.vdb")" = $((8000 - 3088)) ]; echo $?)" \
+        "empty: the other 4912 voxels"
+    ok "$([ "$(active distance "$dir/room.vdb")" = $((8000 - 3088)) ]; echo $?)" \
+        "distance: one value per empty voxel"
+    # Inside, the farthest voxel from the walls is 7 voxels from them.
+    ok "$(vdb_print -l "$dir/room.vdb" | awk '/^Name: distance/ { d = 1 }
+        d && /Max value/ { exit !($3 == 7) }'; echo $?)" \
+        "the largest distance is 7 voxels (the middle of the room)"
+else
+    for i in 1 2 3 4 5 6; do skip "vdb_print not installed (package libopenvdb-tools)"; done
+fi
+
+"$tool" -q -r 16 -j 1 "$dir/room.obj" -o "$dir/one.vdb" &&
+    "$tool" -q -r 16 -j 2 "$dir/room.obj" -o "$dir/two.vdb"
+ok "$(cmp -s "$dir/one.vdb" "$dir/two.vdb" && cmp -s "$dir/one.vdb" "$dir/room.vdb"; echo $?)" \
+    "byte-identical files on 1 and 2 threads and across runs"
+
+"$tool" -r 8 --pad 0 "$dir/room.obj" -o "$dir/bare.vdb"
+ok $? "--pad 0 is accepted"
+if command -v vdb_print >/dev/null 2>&1; then
+    ok "$(vdb_print -l -m "$dir/bare.vdb" | grep -q 'grid_size: \[8, 8, 8\]'; echo $?)" \
+        "--pad 0 -r 8: an 8^3 grid"
+fi
+
+# Errors: nothing written, the older file kept.
+cp "$dir/room.vdb" "$dir/kept.vdb"
+"$tool" "$dir/missing.obj" -o "$dir/kept.vdb" 2>"$dir/err"
+status=$?
+ok "$([ $status = 1 ] && grep -q "^voxelize: .*missing.obj" "$dir/err"; echo $?)" \
+    "missing scene: exit 1, 'voxelize: FILE: ...' (got $status: $(head -1 "$dir/err"))"
+ok "$(cmp -s "$dir/room.vdb" "$dir/kept.vdb"; echo $?)" "... and the older output is kept"
+
+"$tool" "$dir/room.obj" -o "$dir/no/such/folder/x.vdb" 2>"$dir/err"
+status=$?
+ok "$([ $status = 1 ] && grep -q "^voxelize: .*x.vdb" "$dir/err" &&
+    [ ! -e "$dir/no" ]; echo $?)" "output in a missing folder: exit 1, message names it"
+
+printf 'this is not a mesh\n' >"$dir/bad.obj"
+"$tool" "$dir/bad.obj" -o "$dir/bad.vdb" 2>"$dir/err"
+status=$?
+ok "$([ $status = 1 ] && grep -q "^voxelize: .*bad.obj" "$dir/err" && [ ! -e "$dir/bad.vdb" ]; echo $?)" \
+    "a file with no triangles: exit 1, no output (got $status: $(head -1 "$dir/err"))"
+
+for arguments in "-r 0" "-r 2049" "-r 12x" "--pad 65" "--pad -1" "-j 0"; do
+    # shellcheck disable=SC2086
+    "$tool" $arguments "$dir/room.obj" -o "$dir/arg.vdb" 2>"$dir/err"
+    status=$?
+    ok "$([ $status = 2 ] && grep -q "^voxelize: " "$dir/err" && [ ! -e "$dir/arg.vdb" ]; echo $?)" \
+        "bad option '$arguments': exit 2 with a message, no output"
+done
+"$tool" "$dir/room.obj" 2>"$dir/err"
+ok "$([ $? = 2 ] && grep -q "no output file" "$dir/err"; echo $?)" "no -o: exit 2"
+"$tool" -o "$dir/x.vdb" 2>"$dir/err"
+ok "$([ $? = 2 ] && grep -q "expected one SCENE" "$dir/err"; echo $?)" "no SCENE: exit 2"
+
+echo "1..$count"
+[ "$failed" = 0 ]

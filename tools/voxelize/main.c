@@ -1,0 +1,153 @@
+/* voxelize — scene to the OpenVDB file of its surfaces, empty space and
+ * distances (noel-biri-2014, section IV.A; formats/FORMATS.md, "Voxel
+ * file"). Parses the command line and calls tools/voxelize/voxelize.h. */
+
+#include <errno.h>
+#include <getopt.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "progress.h"
+#include "scene.h"
+#include "voxel_grid.h"
+#include "voxelize.h"
+
+static const char usage[] =
+    "usage: voxelize [options] SCENE -o OUT.vdb\n"
+    "Voxelizes SCENE (.scene, .obj, .obj.gz, .ply, .off or .stl) into OUT.vdb: the\n"
+    "voxels every triangle touches (grid 'surface'), the others ('empty') and the\n"
+    "distance of each empty voxel to the nearest surface voxel ('distance').\n"
+    "\n"
+    "  -o, --output FILE      the OpenVDB file to write (required)\n"
+    "  -r, --resolution N     voxels along the longest side of the scene (default 256,\n"
+    "                         at most 2048); voxels are cubes\n"
+    "      --pad N            empty voxels around the scene (default 2, at most 64)\n"
+    "  -j, --threads N        threads (default 2)\n"
+    "  -q, --quiet            no progress bar\n"
+    "  -h, --help             this help\n"
+    "  -V, --version          the version\n";
+
+enum { OPTION_PAD = 256 };
+
+typedef struct arguments {
+    const char *scene, *output;
+    long resolution, pad, threads;
+    int quiet;
+} arguments;
+
+/* Strict decimal integer in low..high, or -1 after printing the error. */
+static long parse_count(const char *text, const char *name, long low, long high)
+{
+    char *end;
+    errno = 0;
+    long value = strtol(text, &end, 10);
+    if (errno || end == text || *end || value < low || value > high) {
+        fprintf(stderr, "voxelize: %s: '%s' is not an integer in %ld..%ld\n", name, text, low,
+                high);
+        return -1;
+    }
+    return value;
+}
+
+/* Returns 0 to go on, else the exit status (after --help and --version: 0,
+ * written as -1). */
+static int parse_arguments(int argc, char **argv, arguments *parsed)
+{
+    static const struct option options[] = {
+        {"output", required_argument, NULL, 'o'},
+        {"resolution", required_argument, NULL, 'r'},
+        {"pad", required_argument, NULL, OPTION_PAD},
+        {"threads", required_argument, NULL, 'j'},
+        {"quiet", no_argument, NULL, 'q'},
+        {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
+        {NULL, 0, NULL, 0},
+    };
+    *parsed = (arguments){NULL, NULL, GB_VOXELIZE_DEFAULT_RESOLUTION, GB_VOXELIZE_DEFAULT_PAD,
+                          GB_VOXELIZE_DEFAULT_THREADS, 0};
+    int option;
+    while ((option = getopt_long(argc, argv, "o:r:j:qhV", options, NULL)) != -1) {
+        switch (option) {
+        case 'o': parsed->output = optarg; break;
+        case 'r':
+            parsed->resolution = parse_count(optarg, "--resolution", 1,
+                                             GB_VOXELIZE_MAX_RESOLUTION);
+            if (parsed->resolution < 0)
+                return 2;
+            break;
+        case OPTION_PAD:
+            parsed->pad = parse_count(optarg, "--pad", 0, GB_VOXELIZE_MAX_PAD);
+            if (parsed->pad < 0)
+                return 2;
+            break;
+        case 'j':
+            parsed->threads = parse_count(optarg, "--threads", 1, 64);
+            if (parsed->threads < 0)
+                return 2;
+            break;
+        case 'q': parsed->quiet = 1; break;
+        case 'h': return fputs(usage, stdout) == EOF ? 1 : -1;
+        case 'V': return puts("voxelize (gibake) 0.1") == EOF ? 1 : -1;
+        default: fputs(usage, stderr); return 2;
+        }
+    }
+    if (optind != argc - 1) {
+        fprintf(stderr, "voxelize: expected one SCENE\n%s", usage);
+        return 2;
+    }
+    if (!parsed->output) {
+        fprintf(stderr, "voxelize: no output file: give -o OUT.vdb\n");
+        return 2;
+    }
+    parsed->scene = argv[optind];
+    return 0;
+}
+
+/* The bar shows voxelizing as 90 % of the work and writing as the rest. */
+static int report_voxelizing(void *bar, double fraction)
+{
+    return gb_progress_report(bar, 0.9 * fraction);
+}
+
+static int voxelize_file(const arguments *parsed)
+{
+    gb_scene scene;
+    gb_voxel_grid grid = {0};
+    gb_error error;
+    gb_progress bar;
+    gb_progress_begin(&bar, "voxelize", parsed->quiet);
+    gb_voxelize_options options = {
+        .resolution = (uint32_t)parsed->resolution,
+        .pad = parsed->pad == 0 ? GB_VOXELIZE_NO_PAD : (int32_t)parsed->pad,
+        .thread_count = (int32_t)parsed->threads,
+        .progress = report_voxelizing,
+        .progress_user = &bar,
+    };
+    gb_result result = gb_scene_load(parsed->scene, NULL, &scene, &error);
+    if (result != GB_OK) {
+        fprintf(stderr, "voxelize: %s\n", error.message);
+        gb_scene_free(&scene);
+        return 1;
+    }
+    result = gb_voxelize_scene(&scene, &options, &grid, &error);
+    if (result != GB_OK)
+        fprintf(stderr, "voxelize: %s: %s\n", parsed->scene, error.message);
+    else if ((result = gb_voxel_grid_write_and_free(parsed->output, &grid, &error)) != GB_OK)
+        fprintf(stderr, "voxelize: %s\n", error.message);
+    else
+        gb_progress_report(&bar, 1.0);
+    gb_progress_end(&bar);
+    gb_voxel_grid_free(&grid);
+    gb_scene_free(&scene);
+    return result == GB_OK ? 0 : 1;
+}
+
+int main(int argc, char **argv)
+{
+    arguments parsed;
+    int status = parse_arguments(argc, argv, &parsed);
+    if (status != 0)
+        return status < 0 ? 0 : status;
+    return voxelize_file(&parsed);
+}
