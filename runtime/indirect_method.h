@@ -29,8 +29,16 @@
  * means the method's default. Each method adds its own fields here. */
 typedef struct gb_method_parameters {
     int vpls;                   /* topo: number of VPLs (--vpls) */
+    const char *write_vpls;     /* topo: write the VPL set here (--write-vpls) */
+    int topo_visibility;        /* topo: gb_topo_visibility, full (0), clusters, none */
     int bins;                   /* implicit: cube-map bins per face edge (--bins) */
     int bounces;                /* implicit: 1 or 2 (--bounces) */
+    float flc_mu;               /* flc: mu > 1 of S_k = S0 mu^k, Eq. 17 (--mu; 2) */
+    float flc_n_avg;            /* flc: N_avg of Eq. 1 (--navg; 256) */
+    float flc_epsilon;          /* flc: the distance clamp epsilon, world units
+                                   (--epsilon; 0.01 x the scene's radius) */
+    int flc_tiling;             /* flc: 4^tiling interleaved tiles (--tiling; 0) */
+    int flc_levels;             /* flc: N + 1, the number of levels (--levels; 6) */
 } gb_method_parameters;
 
 typedef struct gb_indirect_setup {

@@ -42,6 +42,19 @@ static const char usage[] =
     "      --supersample S     headless: S x S samples a pixel, averaged (default\n"
     "                          1), the box filter of `reference`\n"
     "      --no-shadows        debug: every light fully visible\n"
+    "      --terms T           both (default), direct or indirect: the light drawn\n"
+    "      --vpls N            topo: VPLs traced from the lights (default 1024)\n"
+    "      --write-vpls FILE   topo: write the VPL set (for reference --vpl FILE)\n"
+    "      --topo-visibility V topo: full (clusters and gates, default), clusters\n"
+    "                          (gates off) or none (no shadows on indirect)\n"
+    "      --navg N            flc: N_avg, VPLs lighting a pixel (Eq. 1; default 256)\n"
+    "      --mu M              flc: level growth, S_k = S0 M^k (Eq. 17; default 2)\n"
+    "      --levels L          flc: N + 1 levels of VPLs (default 6, at most 16)\n"
+    "      --epsilon E         flc: distance clamp, world units (default 1% of the\n"
+    "                          scene's radius)\n"
+    "      --tiling T          flc: splat into 4^T interleaved tiles (default 0)\n"
+    "      --bins N            implicit: 6 x N x N cube-map bins (8, 12 default, 16)\n"
+    "      --bounces N         implicit: bounces of indirect light (1 default, 2)\n"
     "  -q, --quiet             no warnings\n"
     "  -h, --help              this help\n"
     "  -V, --version           the version\n"
@@ -66,6 +79,17 @@ enum {
     OPTION_SHADOW_SIZE,
     OPTION_NO_SHADOWS,
     OPTION_SUPERSAMPLE,
+    OPTION_FLC_NAVG,
+    OPTION_FLC_MU,
+    OPTION_FLC_LEVELS,
+    OPTION_FLC_EPSILON,
+    OPTION_FLC_TILING,
+    OPTION_VPLS,
+    OPTION_TERMS,
+    OPTION_WRITE_VPLS,
+    OPTION_TOPO_VISIBILITY,
+    OPTION_BINS,
+    OPTION_BOUNCES,
 };
 
 static int parse_long(const char *text, long low, long high, long *value)
@@ -101,11 +125,50 @@ static int bad_value(const char *option, const char *value)
     return 2;
 }
 
+static int parse_float(const char *text, double low, double high, float *value)
+{
+    char *end;
+    errno = 0;
+    double parsed = strtod(text, &end);
+    if (errno || end == text || *end || !(parsed >= low && parsed <= high))
+        return 0;
+    *value = (float)parsed;
+    return 1;
+}
+
+/* The options of flc (runtime/flc.h). */
+static int parse_flc_option(int option, const char *value, arguments *a)
+{
+    gb_method_parameters *p = &a->renderer.parameters;
+    long number;
+    switch (option) {
+    case OPTION_FLC_NAVG:
+        return parse_float(value, 1.0, 1e6, &p->flc_n_avg) ? 0 : bad_value("--navg", value);
+    case OPTION_FLC_MU:
+        return parse_float(value, 1.01, 1e3, &p->flc_mu) ? 0 : bad_value("--mu", value);
+    case OPTION_FLC_EPSILON:
+        return parse_float(value, 1e-30, 1e30, &p->flc_epsilon) ? 0
+                                                                 : bad_value("--epsilon", value);
+    case OPTION_FLC_LEVELS:
+        if (!parse_long(value, 1, 16, &number))
+            return bad_value("--levels", value);
+        p->flc_levels = (int)number;
+        return 0;
+    default:
+        if (!parse_long(value, 0, 4, &number))
+            return bad_value("--tiling", value);
+        p->flc_tiling = (int)number;
+        return 0;
+    }
+}
+
 /* 0 when the options are parsed, else the exit status (2 usage, 0 help). */
 static int parse_option(int option, const char *value, arguments *a)
 {
     long number;
     gb_error error;
+    if (option >= OPTION_FLC_NAVG && option <= OPTION_FLC_TILING)
+        return parse_flc_option(option, value, a);
     switch (option) {
     case OPTION_HEADLESS: a->headless = 1; return 0;
     case OPTION_TIMINGS: a->timings = 1; return 0;
@@ -135,6 +198,38 @@ static int parse_option(int option, const char *value, arguments *a)
             return 0;
         fprintf(stderr, "gbview: %s\n", error.message);
         return 2;
+    case OPTION_VPLS:
+        if (!parse_long(value, 1, 1L << 24, &number))
+            return bad_value("--vpls", value);
+        a->renderer.parameters.vpls = (int)number;
+        return 0;
+    case OPTION_TERMS:
+        for (int t = 0; t < GB_TERMS_COUNT; ++t)
+            if (strcmp(value, t == GB_TERMS_BOTH ? "both" : gb_terms_name((gb_terms)t)) == 0) {
+                a->renderer.terms = (gb_terms)t;
+                return 0;
+            }
+        return bad_value("--terms", value);
+    case OPTION_WRITE_VPLS: a->renderer.parameters.write_vpls = value; return 0;
+    case OPTION_BINS:
+        if (!parse_long(value, 1, 64, &number))
+            return bad_value("--bins", value);
+        a->renderer.parameters.bins = (int)number;
+        return 0;
+    case OPTION_BOUNCES:
+        if (!parse_long(value, 1, 8, &number))
+            return bad_value("--bounces", value);
+        a->renderer.parameters.bounces = (int)number;
+        return 0;
+    case OPTION_TOPO_VISIBILITY: {
+        static const char *const modes[] = {"full", "clusters", "none"};
+        for (int m = 0; m < 3; ++m)
+            if (strcmp(value, modes[m]) == 0) {
+                a->renderer.parameters.topo_visibility = m;
+                return 0;
+            }
+        return bad_value("--topo-visibility", value);
+    }
     case 'h': fputs(usage, stdout); return -1;
     case 'V': puts("gbview (gibake) 0.1"); return -1;
     default: fputs(usage, stderr); return 2;
@@ -156,6 +251,17 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"shadow-size", required_argument, NULL, OPTION_SHADOW_SIZE},
         {"no-shadows", no_argument, NULL, OPTION_NO_SHADOWS},
         {"supersample", required_argument, NULL, OPTION_SUPERSAMPLE},
+        {"navg", required_argument, NULL, OPTION_FLC_NAVG},
+        {"mu", required_argument, NULL, OPTION_FLC_MU},
+        {"levels", required_argument, NULL, OPTION_FLC_LEVELS},
+        {"epsilon", required_argument, NULL, OPTION_FLC_EPSILON},
+        {"tiling", required_argument, NULL, OPTION_FLC_TILING},
+        {"vpls", required_argument, NULL, OPTION_VPLS},
+        {"terms", required_argument, NULL, OPTION_TERMS},
+        {"write-vpls", required_argument, NULL, OPTION_WRITE_VPLS},
+        {"topo-visibility", required_argument, NULL, OPTION_TOPO_VISIBILITY},
+        {"bins", required_argument, NULL, OPTION_BINS},
+        {"bounces", required_argument, NULL, OPTION_BOUNCES},
         {"quiet", no_argument, NULL, 'q'},
         {"help", no_argument, NULL, 'h'},
         {"version", no_argument, NULL, 'V'},

@@ -1,4 +1,7 @@
 #include "methods.h"
+#include "flc.h"
+#include "implicit.h"
+#include "topo.h"
 
 #include <string.h>
 
@@ -25,10 +28,10 @@ gb_result gb_method_parse(const char *name, gb_method *method, gb_error *error)
 /* One entry a method: its indirect light, NULL until it lands. */
 static const gb_indirect_method *const indirect_methods[GB_METHOD_COUNT] = {
     [GB_METHOD_DIRECT] = NULL,
-    [GB_METHOD_TOPO] = NULL,
+    [GB_METHOD_TOPO] = &gb_topo_method,
     [GB_METHOD_OCTREE] = NULL,
-    [GB_METHOD_FLC] = NULL,
-    [GB_METHOD_IMPLICIT] = NULL,
+    [GB_METHOD_FLC] = &gb_flc_method,
+    [GB_METHOD_IMPLICIT] = &gb_implicit_method,
 };
 
 const gb_indirect_method *gb_method_indirect(gb_method method)

@@ -125,8 +125,8 @@ expect_failure "a missing scene" 1 "^gbview: .*missing.scene" \
 ok "$([ ! -e "$dir/missing.png" ]; echo $?)" "a failed run writes no image"
 expect_failure "an unknown method" 2 "unknown method 'radiosity'" \
     --headless --method radiosity "$scene"
-expect_failure "a method this build lacks" 2 "method 'topo' is not available" \
-    --headless --method topo "$scene"
+expect_failure "a method this build lacks" 2 "method 'octree' is not available" \
+    --headless --method octree "$scene"
 expect_failure "a camera the scene lacks" 1 "^gbview: camera 3" \
     --headless --camera 3 "$scene"
 expect_failure "a bad resolution" 2 "bad value \"0x5\"" \

@@ -1,0 +1,76 @@
+/* topo_passes.c — Table I of Noël & Biri 2014 on this machine: ms per pass
+ * of the topological method (GP = G-buffer + visibility clusters, IUGC, LA,
+ * IL) and the frame, headless, means over the frames after the first.
+ *
+ *   topo_passes SCENE BAKE_DIR WIDTHxHEIGHT FRAMES VPLS...
+ * prints one line per VPL count: vpls gp iugc la il total (ms).
+ */
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "../runtime/context.h"
+#include "../runtime/renderer.h"
+#include "../runtime/topo.h"
+
+static gb_result measure(const gb_scene *scene, const gb_bake_files *bake, int width,
+                         int height, int frames, int vpls, gb_error *error)
+{
+    gb_view view;
+    gb_result result = gb_scene_view(scene, 0, &view, error);
+    gb_context context;
+    if (result == GB_OK)
+        result = gb_context_create_headless(&context, error);
+    if (result != GB_OK)
+        return result;
+    gb_renderer_options options = {.width = width, .height = height, .method = GB_METHOD_TOPO,
+                                   .bake = bake, .parameters = {.vpls = vpls}};
+    gb_renderer renderer;
+    result = gb_renderer_create(scene, &options, &context.errors, &renderer, error);
+    gb_topo_pass_times first = {0}, all = {0};
+    for (int i = 0; i < frames && result == GB_OK; ++i) {
+        gb_renderer_draw(&renderer, &view);
+        result = gb_renderer_finish_frame(&renderer, error);
+        if (i == 0)
+            gb_topo_times(renderer.method_state[GB_METHOD_TOPO], &first);
+    }
+    if (result == GB_OK) {
+        gb_topo_times(renderer.method_state[GB_METHOD_TOPO], &all);
+        double n = all.frames - first.frames > 0 ? all.frames - first.frames : 1;
+        double gp = gb_timings_mean_ms(&renderer.timings, GB_PASS_GBUFFER) +
+                    (all.clusters_ms - first.clusters_ms) / n;
+        double iugc = (all.iugc_ms - first.iugc_ms) / n, la = (all.la_ms - first.la_ms) / n;
+        double il = (all.il_ms - first.il_ms) / n;
+        double total = gb_timings_mean_ms(&renderer.timings, GB_PASS_COUNT);
+        printf("%5d %9.1f %9.1f %9.1f %9.1f %9.1f\n", vpls, gp, iugc, la, il, total);
+        gb_renderer_destroy(&renderer);
+    }
+    gb_context_destroy(&context);
+    return result;
+}
+
+int main(int argc, char **argv)
+{
+    int width, height;
+    if (argc < 6 || sscanf(argv[3], "%dx%d", &width, &height) != 2) {
+        fprintf(stderr, "usage: topo_passes SCENE BAKE_DIR WxH FRAMES VPLS...\n");
+        return 2;
+    }
+    gb_error error;
+    gb_scene scene;
+    gb_bake_files bake;
+    if (gb_scene_load(argv[1], NULL, &scene, &error) != GB_OK ||
+        gb_bake_files_check(&scene, argv[1], argv[2], &bake, &error) != GB_OK) {
+        fprintf(stderr, "topo_passes: %s\n", error.message);
+        return 1;
+    }
+    printf(" vpls     GP ms   IUGC ms     LA ms     IL ms  total ms   (%dx%d)\n", width, height);
+    int status = 0;
+    for (int i = 5; i < argc && !status; ++i)
+        if (measure(&scene, &bake, width, height, atoi(argv[4]), atoi(argv[i]), &error) !=
+            GB_OK) {
+            fprintf(stderr, "topo_passes: %s\n", error.message);
+            status = 1;
+        }
+    gb_scene_free(&scene);
+    return status;
+}

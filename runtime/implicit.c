@@ -1,0 +1,237 @@
+/* implicit.c — implicit visibility (Dong 2007) as a GI method of the
+ * runtime (indirect_method.h).
+ *
+ * create  Algorithm 1 steps 1-7 once (the scene is static): elements,
+ *         hierarchy, links in bins (implicit.h); the finer mesh to the GPU.
+ * draw    steps 8-11 each frame on the CPU (the light could change), the
+ *         elements' indirect incident radiance E / pi uploaded as a vertex
+ *         attribute and interpolated over the finer mesh's triangles (the
+ *         paper's display, 4.3.1) into the method's own target with its own
+ *         depth test; then a full-screen pass adds Kd (the G-buffer's,
+ *         texture included) times it onto the output.
+ */
+#include "implicit.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_util.h"
+#include "indirect_method.h"
+
+enum { UNIT_INCIDENT = 10, DEFAULT_BINS = 12, DEFAULT_BOUNCES = 1 };
+
+typedef struct implicit_state {
+    const gb_scene *scene;
+    gb_implicit_model model;
+    gb_implicit_bins bins;
+    gb_implicit_links links;
+    gb_implicit_solution solution;
+    int bounces;
+    GLuint position_buffer, incident_buffer, index_buffer, vertex_array;
+    GLuint mesh_program, compose_program, empty_vertex_array;
+    GLuint framebuffer, incident_texture, depth_texture;
+    int width, height;
+} implicit_state;
+
+static const char mesh_vertex_shader[] =
+    "#version 450 core\n"
+    "layout(location = 0) in vec3 position;\n"
+    "layout(location = 1) in vec3 incident;\n"
+    "uniform mat4 view;\n"
+    "uniform mat4 projection;\n"
+    "out vec3 vertex_incident;\n"
+    "void main() {\n"
+    "    vertex_incident = incident;\n"
+    "    gl_Position = projection * (view * vec4(position, 1.0));\n"
+    "}\n";
+
+static const char mesh_fragment_shader[] =
+    "#version 450 core\n"
+    "in vec3 vertex_incident;\n"
+    "out vec4 incident;\n"
+    "void main() { incident = vec4(vertex_incident, 1.0); }\n";
+
+static const char compose_fragment_shader[] =
+    "#version 450 core\n"
+    "layout(binding = 2) uniform sampler2D gbuffer_depth;\n"
+    "layout(binding = 3) uniform sampler2D gbuffer_diffuse;\n"
+    "layout(binding = 10) uniform sampler2D incident;\n"
+    "out vec4 radiance;\n"
+    "void main() {\n"
+    "    ivec2 pixel = ivec2(gl_FragCoord.xy);\n"
+    "    if (texelFetch(gbuffer_depth, pixel, 0).r <= 0.0) {\n"
+    "        radiance = vec4(0.0);\n"
+    "        return;\n"
+    "    }\n"
+    "    vec3 Kd = texelFetch(gbuffer_diffuse, pixel, 0).rgb;\n"
+    "    radiance = vec4(Kd * texelFetch(incident, pixel, 0).rgb, 0.0);\n"
+    "}\n";
+
+static void make_target(implicit_state *s, int width, int height)
+{
+    if (s->framebuffer && s->width == width && s->height == height)
+        return;
+    if (s->framebuffer) {
+        glDeleteFramebuffers(1, &s->framebuffer);
+        glDeleteTextures(1, &s->incident_texture);
+        glDeleteTextures(1, &s->depth_texture);
+    }
+    s->width = width;
+    s->height = height;
+    s->incident_texture = gb_gl_texture_2d(GL_RGBA32F, width, height);
+    s->depth_texture = gb_gl_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
+    glCreateFramebuffers(1, &s->framebuffer);
+    glNamedFramebufferTexture(s->framebuffer, GL_COLOR_ATTACHMENT0, s->incident_texture, 0);
+    glNamedFramebufferTexture(s->framebuffer, GL_DEPTH_ATTACHMENT, s->depth_texture, 0);
+}
+
+static void make_mesh(implicit_state *s)
+{
+    const gb_implicit_model *m = &s->model;
+    glCreateBuffers(1, &s->position_buffer);
+    glNamedBufferStorage(s->position_buffer, 3 * (GLsizeiptr)m->element_count * sizeof(float),
+                         m->vertices, 0);
+    glCreateBuffers(1, &s->incident_buffer);
+    glNamedBufferStorage(s->incident_buffer, 3 * (GLsizeiptr)m->element_count * sizeof(float),
+                         NULL, GL_DYNAMIC_STORAGE_BIT);
+    glCreateBuffers(1, &s->index_buffer);
+    glNamedBufferStorage(s->index_buffer, 3 * (GLsizeiptr)m->triangle_count * sizeof(uint32_t),
+                         m->triangles, 0);
+    glCreateVertexArrays(1, &s->vertex_array);
+    GLuint buffers[2] = {s->position_buffer, s->incident_buffer};
+    for (GLuint i = 0; i < 2; ++i) {
+        glVertexArrayVertexBuffer(s->vertex_array, i, buffers[i], 0, 3 * sizeof(float));
+        glEnableVertexArrayAttrib(s->vertex_array, i);
+        glVertexArrayAttribFormat(s->vertex_array, i, 3, GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(s->vertex_array, i, i);
+    }
+    glVertexArrayElementBuffer(s->vertex_array, s->index_buffer);
+}
+
+static void implicit_destroy(void *state)
+{
+    implicit_state *s = state;
+    if (!s)
+        return;
+    GLuint buffers[3] = {s->position_buffer, s->incident_buffer, s->index_buffer};
+    glDeleteBuffers(3, buffers);
+    GLuint arrays[2] = {s->vertex_array, s->empty_vertex_array};
+    glDeleteVertexArrays(2, arrays);
+    if (s->mesh_program)
+        glDeleteProgram(s->mesh_program);
+    if (s->compose_program)
+        glDeleteProgram(s->compose_program);
+    if (s->framebuffer)
+        glDeleteFramebuffers(1, &s->framebuffer);
+    GLuint textures[2] = {s->incident_texture, s->depth_texture};
+    glDeleteTextures(2, textures);
+    gb_implicit_solution_free(&s->solution);
+    gb_implicit_links_free(&s->links);
+    gb_implicit_bins_free(&s->bins);
+    gb_implicit_model_free(&s->model);
+    free(s);
+}
+
+static gb_result check_parameters(const gb_method_parameters *p, int *bins, int *bounces,
+                                  gb_error *error)
+{
+    *bins = p && p->bins ? p->bins : DEFAULT_BINS;
+    *bounces = p && p->bounces ? p->bounces : DEFAULT_BOUNCES;
+    if (*bins < 1 || *bins > 64)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "implicit: bins %d is not in 1..64", *bins);
+    if (*bounces < 1 || *bounces > 8)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "implicit: bounces %d is not in 1..8", *bounces);
+    return GB_OK;
+}
+
+static gb_result build(implicit_state *s, int bins, gb_error *error)
+{
+    gb_implicit_link_options options = {.hierarchical = 1, .lights = s->scene};
+    gb_result result = gb_implicit_model_create(s->scene, 0.0f, &s->model, error);
+    if (result == GB_OK)
+        result = gb_implicit_bins_create(bins, &s->bins, error);
+    if (result == GB_OK)
+        result = gb_implicit_create_links(&s->model, &s->bins, &options, &s->links, NULL, error);
+    if (result == GB_OK)
+        result = gb_implicit_solution_create(&s->model, &s->solution, error);
+    return result;
+}
+
+static gb_result implicit_create(const gb_indirect_setup *setup, void **state, gb_error *error)
+{
+    *state = NULL;
+    int bins, bounces;
+    gb_result result = check_parameters(setup->parameters, &bins, &bounces, error);
+    if (result != GB_OK)
+        return result;
+    implicit_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    s->scene = setup->scene;
+    s->bounces = bounces;
+    result = build(s, bins, error);
+    if (result == GB_OK)
+        result = gb_gl_program("implicit mesh", mesh_vertex_shader, mesh_fragment_shader,
+                               &s->mesh_program, error);
+    if (result == GB_OK)
+        result = gb_gl_program("implicit compose", gb_gl_fullscreen_vertex_shader,
+                               compose_fragment_shader, &s->compose_program, error);
+    if (result != GB_OK) {
+        implicit_destroy(s);
+        return result;
+    }
+    make_mesh(s);
+    glCreateVertexArrays(1, &s->empty_vertex_array);
+    make_target(s, setup->width, setup->height);
+    *state = s;
+    return GB_OK;
+}
+
+/* The finer mesh, its incident radiance interpolated, into the own target. */
+static void draw_incident(implicit_state *s, const gb_indirect_frame *frame)
+{
+    make_target(s, frame->width, frame->height);
+    const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(s->framebuffer, GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(s->framebuffer, GL_DEPTH, 0, zero);  /* reversed: 0 is far */
+    glBindFramebuffer(GL_FRAMEBUFFER, s->framebuffer);
+    glViewport(0, 0, frame->width, frame->height);
+    glDisable(GL_BLEND);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
+    glUseProgram(s->mesh_program);
+    glProgramUniformMatrix4fv(s->mesh_program, glGetUniformLocation(s->mesh_program, "view"), 1,
+                              GL_FALSE, frame->view_matrix->m);
+    glProgramUniformMatrix4fv(s->mesh_program, glGetUniformLocation(s->mesh_program, "projection"),
+                              1, GL_FALSE, frame->projection->m);
+    glBindVertexArray(s->vertex_array);
+    glDrawElements(GL_TRIANGLES, (GLsizei)(3 * s->model.triangle_count), GL_UNSIGNED_INT, NULL);
+    glDisable(GL_DEPTH_TEST);
+}
+
+static void implicit_draw(void *state, const gb_indirect_frame *frame)
+{
+    implicit_state *s = state;
+    GLint output = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
+    gb_implicit_illuminate(s->scene, &s->model, &s->links, s->bounces, &s->solution);
+    glNamedBufferSubData(s->incident_buffer, 0,
+                         3 * (GLsizeiptr)s->model.element_count * sizeof(float),
+                         s->solution.display);
+    draw_incident(s, frame);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
+    glViewport(0, 0, frame->width, frame->height);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glUseProgram(s->compose_program);
+    gb_gbuffer_bind(frame->gbuffer);
+    glBindTextureUnit(UNIT_INCIDENT, s->incident_texture);
+    gb_gl_draw_fullscreen(s->empty_vertex_array);
+}
+
+const gb_indirect_method gb_implicit_method = {
+    .create = implicit_create,
+    .draw = implicit_draw,
+    .destroy = implicit_destroy,
+};

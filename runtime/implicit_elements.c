@@ -1,0 +1,259 @@
+/* implicit_elements.c — CreateSurfels (Dong 2007, 4.1): oriented discs at
+ * the vertices, their area one third of the triangles around them. The
+ * vertices are those of a finer mesh (implicit.h): each triangle cut into
+ * n x n, the corners welded within a segment by position (quantised to
+ * 1/64 of the element size). Also the model's create and free. */
+#include "implicit.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct corner {
+    uint32_t segment;
+    int64_t q[3];               /* quantised position */
+    float position[3];
+    uint32_t slot;              /* index before sorting */
+} corner;
+
+static int compare_corners(const void *x, const void *y)
+{
+    const corner *p = x, *q = y;
+    if (p->segment != q->segment)
+        return p->segment < q->segment ? -1 : 1;
+    for (int k = 0; k < 3; ++k)
+        if (p->q[k] != q->q[k])
+            return p->q[k] < q->q[k] ? -1 : 1;
+    return p->slot < q->slot ? -1 : p->slot > q->slot;
+}
+
+static const float *vertex(const gb_scene *scene, uint32_t t, int k)
+{
+    return &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + k]];
+}
+
+/* n: the triangle's cuts a side so that no edge exceeds the element size. */
+static uint32_t cuts(const gb_scene *scene, uint32_t t, float size)
+{
+    float longest = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+        const float *a = vertex(scene, t, k), *b = vertex(scene, t, (k + 1) % 3);
+        float d = sqrtf((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                        (a[2] - b[2]) * (a[2] - b[2]));
+        longest = fmaxf(longest, d);
+    }
+    float n = ceilf(longest / size);
+    return n < 1.0f ? 1u : n > 128.0f ? 128u : (uint32_t)n;
+}
+
+static size_t corner_index(uint32_t n, uint32_t i, uint32_t j)
+{
+    return (size_t)i * (n + 1) - (size_t)i * (i - 1) / 2 + j;
+}
+
+static void fill_corners(const gb_scene *scene, const gb_implicit_model *model, uint32_t t,
+                         uint32_t n, float quantum, corner *out, size_t base)
+{
+    const float *a = vertex(scene, t, 0), *b = vertex(scene, t, 1), *c = vertex(scene, t, 2);
+    for (uint32_t i = 0; i <= n; ++i)
+        for (uint32_t j = 0; i + j <= n; ++j) {
+            corner *x = &out[base + corner_index(n, i, j)];
+            x->segment = model->triangle_segment[t];
+            x->slot = (uint32_t)(base + corner_index(n, i, j));
+            for (int k = 0; k < 3; ++k) {
+                double p = a[k] + ((double)b[k] - a[k]) * i / n + ((double)c[k] - a[k]) * j / n;
+                x->position[k] = (float)p;
+                x->q[k] = llround(p / quantum);
+            }
+        }
+}
+
+/* Adds a third of the finer triangle (e0, e1, e2)'s area, its area-weighted
+ * normal and the centroid of the corner's third, (22 a + 7 b + 7 c) / 36, to
+ * each corner's element. sums: normal xyz, centroid xyz times area. */
+static void add_triangle(gb_implicit_model *model, const uint32_t e[3], double *sums)
+{
+    const float *p[3];
+    for (int k = 0; k < 3; ++k)
+        p[k] = &model->vertices[3 * (size_t)e[k]];
+    double u[3], v[3], n[3];
+    for (int k = 0; k < 3; ++k) {
+        u[k] = (double)p[1][k] - p[0][k];
+        v[k] = (double)p[2][k] - p[0][k];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+    double area = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int k = 0; k < 3; ++k) {
+        model->nodes[e[k]].area += (float)(area / 3.0);
+        double *sum = &sums[6 * (size_t)e[k]];
+        for (int c = 0; c < 3; ++c) {
+            sum[c] += 0.5 * n[c];
+            double centroid = (22.0 * p[k][c] + 7.0 * p[(k + 1) % 3][c] +
+                               7.0 * p[(k + 2) % 3][c]) / 36.0;
+            sum[3 + c] += area / 3.0 * centroid;
+        }
+    }
+}
+
+static void emit_triangles(const gb_scene *scene, gb_implicit_model *model,
+                           const uint32_t *element_of, const size_t *base, double *sums)
+{
+    uint32_t out = 0;
+    for (uint32_t t = 0; t < scene->triangle_count; ++t) {
+        uint32_t n = cuts(scene, t, model->element_size);
+        const uint32_t *of = element_of + base[t];
+        for (uint32_t i = 0; i < n; ++i)
+            for (uint32_t j = 0; i + j < n; ++j) {
+                uint32_t up[3] = {of[corner_index(n, i, j)], of[corner_index(n, i + 1, j)],
+                                  of[corner_index(n, i, j + 1)]};
+                memcpy(&model->triangles[3 * (size_t)out++], up, sizeof up);
+                add_triangle(model, up, sums);
+                if (i + j + 1 < n) {
+                    uint32_t down[3] = {of[corner_index(n, i + 1, j)],
+                                        of[corner_index(n, i + 1, j + 1)],
+                                        of[corner_index(n, i, j + 1)]};
+                    memcpy(&model->triangles[3 * (size_t)out++], down, sizeof down);
+                    add_triangle(model, down, sums);
+                }
+            }
+    }
+}
+
+static int same_place(const corner *a, const corner *b)
+{
+    return a->segment == b->segment && a->q[0] == b->q[0] && a->q[1] == b->q[1] &&
+           a->q[2] == b->q[2];
+}
+
+/* Welds the sorted corners into elements: element_of[slot]. */
+static uint32_t weld(const corner *corners, size_t count, uint32_t *element_of,
+                     gb_implicit_model *model)
+{
+    uint32_t elements = 0;
+    for (size_t i = 0; i < count; ++i) {
+        const corner *c = &corners[i];
+        if (i == 0 || !same_place(c, &corners[i - 1])) {
+            memcpy(&model->vertices[3 * (size_t)elements], c->position, sizeof c->position);
+            gb_implicit_node *node = &model->nodes[elements++];
+            memset(node, 0, sizeof *node);
+            memcpy(node->position, c->position, sizeof node->position);
+            node->segment = c->segment;
+        }
+        element_of[c->slot] = elements - 1;
+    }
+    return elements;
+}
+
+static void finish_elements(const gb_scene *scene, gb_implicit_model *model,
+                            const double *sums, const uint32_t *segment_material)
+{
+    for (uint32_t e = 0; e < model->element_count; ++e) {
+        gb_implicit_node *node = &model->nodes[e];
+        const double *n = &sums[6 * (size_t)e];
+        double length = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        for (int k = 0; k < 3; ++k) {
+            node->normal[k] = length > 0.0 ? (float)(n[k] / length) : 0.0f;
+            if (node->area > 0.0f)
+                node->position[k] = (float)(n[3 + k] / node->area);
+            node->box_min[k] = node->box_max[k] = node->position[k];
+        }
+        const gb_material *m = &scene->materials[segment_material[node->segment]];
+        memcpy(&model->Kd[3 * (size_t)e], m->Kd, 3 * sizeof(float));
+        memcpy(&model->Le[3 * (size_t)e], m->Ke, 3 * sizeof(float));
+    }
+}
+
+static float default_element_size(const gb_scene *scene)
+{
+    float d2 = 0.0f;
+    for (int k = 0; k < 3; ++k)
+        d2 += (scene->bounds_max[k] - scene->bounds_min[k]) *
+              (scene->bounds_max[k] - scene->bounds_min[k]);
+    float size = sqrtf(d2) / GB_IMPLICIT_ELEMENTS_PER_DIAGONAL;
+    return size > 0.0f ? size : 1.0f;
+}
+
+gb_result gb_implicit_create_surfels(const gb_scene *scene, gb_implicit_model *model,
+                                     gb_error *error)
+{
+    size_t *base = malloc(((size_t)scene->triangle_count + 1) * sizeof *base);
+    uint32_t *segment_material = malloc(((size_t)model->segment_count + 1) * sizeof(uint32_t));
+    if (!base || !segment_material) {
+        free(base);
+        free(segment_material);
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    }
+    size_t count = 0, triangles = 0;
+    for (uint32_t t = 0; t < scene->triangle_count; ++t) {
+        uint32_t n = cuts(scene, t, model->element_size);
+        base[t] = count;
+        count += (size_t)(n + 1) * (n + 2) / 2;
+        triangles += (size_t)n * n;
+        segment_material[model->triangle_segment[t]] = scene->triangle_material[t];
+    }
+    corner *corners = malloc(count * sizeof *corners + 1);
+    uint32_t *element_of = malloc(count * sizeof *element_of + 1);
+    double *sums = NULL;
+    model->nodes = malloc(count * sizeof *model->nodes + 1);
+    model->triangles = malloc(3 * triangles * sizeof *model->triangles + 1);
+    model->vertices = malloc(3 * count * sizeof *model->vertices + 1);
+    gb_result result = GB_OK;
+    if (!corners || !element_of || !model->nodes || !model->triangles || !model->vertices ||
+        count > UINT32_MAX / 4)
+        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    if (result == GB_OK) {
+        for (uint32_t t = 0; t < scene->triangle_count; ++t)
+            fill_corners(scene, model, t, cuts(scene, t, model->element_size),
+                         model->element_size / 64.0f, corners, base[t]);
+        qsort(corners, count, sizeof *corners, compare_corners);
+        model->element_count = weld(corners, count, element_of, model);
+        model->triangle_count = (uint32_t)triangles;
+        sums = calloc(6 * (size_t)model->element_count + 1, sizeof *sums);
+        model->Kd = malloc(3 * (size_t)model->element_count * sizeof(float) + 1);
+        model->Le = malloc(3 * (size_t)model->element_count * sizeof(float) + 1);
+        if (!sums || !model->Kd || !model->Le)
+            result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    }
+    if (result == GB_OK) {
+        emit_triangles(scene, model, element_of, base, sums);
+        finish_elements(scene, model, sums, segment_material);
+    }
+    free(sums);
+    free(corners);
+    free(element_of);
+    free(base);
+    free(segment_material);
+    return result;
+}
+
+gb_result gb_implicit_model_create(const gb_scene *scene, float element_size,
+                                   gb_implicit_model *model, gb_error *error)
+{
+    memset(model, 0, sizeof *model);
+    if (scene->triangle_count == 0)
+        return gb_fail(error, GB_ERROR_INVALID, "implicit: the scene has no triangle");
+    model->element_size = element_size > 0.0f ? element_size : default_element_size(scene);
+    gb_result result = gb_implicit_segment_faces(scene, model, error);
+    if (result == GB_OK)
+        result = gb_implicit_create_surfels(scene, model, error);
+    if (result == GB_OK)
+        result = gb_implicit_create_geometric_hierarchy(model, error);
+    if (result != GB_OK)
+        gb_implicit_model_free(model);
+    return result;
+}
+
+void gb_implicit_model_free(gb_implicit_model *model)
+{
+    free(model->triangle_segment);
+    free(model->nodes);
+    free(model->children);
+    free(model->roots);
+    free(model->Kd);
+    free(model->Le);
+    free(model->triangles);
+    free(model->vertices);
+    memset(model, 0, sizeof *model);
+}

@@ -1,0 +1,204 @@
+/* topo.h — the passes of the topological GI method (Noël & Biri 2014, §V),
+ * one file each, and the data they hand on. gb_topo_method (topo.c) runs
+ * them each frame:
+ *
+ *   VPLs      topo_vpls.c               paths from the primary lights (Embree, once)
+ *   GP        gbuffer.c + topo_clusters.c  the visibility cluster of each fragment (GPU)
+ *   IUGC      topo_geometry_clusters.c  geometry clusters (Olsson et al. 2012) that
+ *                                       never straddle two visibility clusters
+ *   LA        topo_assignment_gpu.c     VPLs per geometry cluster, with their gate
+ *             (topo_assignment.c: the same on the CPU, the tests' oracle)
+ *   IL        topo_gather.c             per fragment, the assigned VPLs, cone test;
+ *                                       a fragment with no visibility cluster
+ *                                       gathers every VPL, unshadowed
+ *
+ * The CPU parts (VPLs, IUGC, CPU LA) are plain C on plain arrays, so the
+ * unit tests run them without a GL context.
+ */
+#ifndef GB_TOPO_H
+#define GB_TOPO_H
+
+#include <epoxy/gl.h>
+#include <stdint.h>
+
+#include "indirect_method.h"
+#include "result.h"
+#include "scene.h"
+#include "segmentation.h"
+#include "vpl.h"
+
+extern const gb_indirect_method gb_topo_method;
+
+/* Wall-clock ms of the method's passes, summed over its frames (glFinish
+ * after each): the visibility clusters (GPU), IUGC (CPU, with the G-buffer
+ * read back and the geometry clusters sent back), LA (GPU), IL (GPU). */
+typedef struct gb_topo_pass_times {
+    double clusters_ms, iugc_ms, la_ms, il_ms;
+    uint32_t frames;
+} gb_topo_pass_times;
+
+/* The times of a state gb_topo_method.create made. */
+void gb_topo_times(const void *state, gb_topo_pass_times *times);
+
+/* How the indirect light is shadowed (gbview --topo-visibility). */
+typedef enum gb_topo_visibility {
+    GB_TOPO_FULL = 0,           /* own cluster, plus gates' cones (the paper) */
+    GB_TOPO_CLUSTERS,           /* own cluster only: gates off */
+    GB_TOPO_NONE,               /* every VPL everywhere: no shadows on indirect */
+} gb_topo_visibility;
+
+enum { GB_TOPO_NO_GATE = 0xffffffffu };
+
+/* ---- VPLs (topo_vpls.c) ------------------------------------------------
+ * count VPLs from paths traced from the primary lights: a path starts on a
+ * light with power Phi / paths and leaves a VPL at each diffuse hit, of
+ * power (incoming flux) * Kd; it goes on in a cosine direction with
+ * probability max(Kd) (Russian roulette, flux divided by it). Paths are
+ * started until count VPLs exist; every power is divided by the number of
+ * paths started. Deterministic for a seed. */
+gb_result gb_topo_vpls_generate(const gb_scene *scene, uint32_t count, uint64_t seed,
+                                gb_vpl_set *set, gb_error *error);
+
+/* ---- visibility clusters (topo_clusters.c) ----------------------------- */
+/* The cluster of each voxel of the nearest-node grid (-1: none): what the
+ * GPU looks a fragment up in. malloc'ed, NULL when out of memory. */
+int32_t *gb_topo_voxel_clusters(const gb_segmentation *segmentation, const int32_t *nearest);
+
+/* The cluster of a surface point x of geometric normal ng: x moved into the
+ * empty side by 1, 2, 3 voxels until one has a cluster. -1: none. The CPU
+ * twin of the GPU lookup. */
+int32_t gb_topo_surface_cluster(const gb_segmentation *segmentation, const int32_t *voxel_clusters,
+                                const float x[3], const float ng[3]);
+
+/* GPU: the compute program that fills the G-buffer's clusters.x. */
+typedef struct gb_topo_cluster_pass {
+    GLuint program;
+    GLuint voxel_clusters;      /* 3-D R32I texture */
+} gb_topo_cluster_pass;
+
+gb_result gb_topo_cluster_pass_create(const gb_segmentation *segmentation,
+                                      const int32_t *voxel_clusters, gb_topo_cluster_pass *pass,
+                                      gb_error *error);
+/* view_to_world: column-major; tan_half_fov x, y. Writes clusters (RG32UI)
+ * x = visibility cluster, y = GB_NO_CLUSTER. */
+void gb_topo_cluster_pass_run(const gb_topo_cluster_pass *pass, GLuint depth, GLuint normal,
+                              GLuint clusters, int width, int height, const float view_to_world[16],
+                              const float tan_half_fov[2], float near);
+void gb_topo_cluster_pass_destroy(gb_topo_cluster_pass *pass);
+
+/* ---- IUGC (topo_geometry_clusters.c) ----------------------------------- */
+typedef struct gb_geometry_cluster {
+    uint32_t visibility_cluster;
+    float box_min[3], box_max[3];
+    float centre[3], radius;    /* bounding sphere of the box */
+} gb_geometry_cluster;
+
+typedef struct gb_topo_frame_input {
+    int width, height;
+    const float *depth;         /* width * height, reversed (0: nothing) */
+    uint32_t *clusters;         /* width * height * 2: in x, out y = geometry cluster */
+    float view_to_world[16];
+    float tan_half_fov[2];
+    float near;
+} gb_topo_frame_input;
+
+typedef struct gb_geometry_clusters {
+    uint32_t count, capacity;
+    gb_geometry_cluster *clusters;
+} gb_geometry_clusters;
+
+/* Tiles of GB_TOPO_TILE^2 pixels, depth slices as Olsson et al. (k =
+ * floor(log(-z / near) / log(1 + 2 tan(fov_y / 2) / tiles_y))); in each
+ * tile the keys (slice, visibility cluster) are sorted locally and each
+ * distinct key is one geometry cluster. Fragments without a visibility
+ * cluster get GB_NO_CLUSTER. Fills clusters[2 i + 1]. */
+enum { GB_TOPO_TILE = 32 };
+gb_result gb_topo_geometry_clusters_build(const gb_topo_frame_input *frame,
+                                          gb_geometry_clusters *out, gb_error *error);
+void gb_geometry_clusters_free(gb_geometry_clusters *clusters);
+
+/* World position of pixel (x, y) at reversed depth d. */
+void gb_topo_pixel_position(const gb_topo_frame_input *frame, int x, int y, float d, float out[3]);
+
+/* ---- LA (topo_assignment.c) -------------------------------------------- */
+typedef struct gb_topo_gates {
+    uint32_t cluster_count;
+    uint32_t *offsets;          /* cluster_count + 1, into gates */
+    uint32_t *gates;            /* the gates of each cluster */
+} gb_topo_gates;
+
+gb_result gb_topo_gates_build(const gb_segmentation *segmentation, gb_topo_gates *gates,
+                              gb_error *error);
+void gb_topo_gates_free(gb_topo_gates *gates);
+
+/* A VPL assigned to a geometry cluster, with the gate its light goes
+ * through (GB_TOPO_NO_GATE: same visibility cluster). */
+typedef struct gb_topo_entry {
+    uint32_t vpl, gate;
+} gb_topo_entry;
+
+typedef struct gb_topo_assignment {
+    uint32_t cluster_count, entry_count, entry_capacity;
+    uint32_t *ranges;           /* cluster_count * 2: offset, count */
+    gb_topo_entry *entries;
+} gb_topo_assignment;
+
+/* The cone of a VPL at p through a gate: apex p, axis toward the gate's
+ * centre, half-angle atan(radius / distance). */
+int gb_topo_cone_hits_sphere(const float p[3], const gb_visibility_gate *gate,
+                             const float centre[3], float radius);
+int gb_topo_cone_contains(const float p[3], const gb_visibility_gate *gate, const float x[3]);
+
+/* LA (§V.C): for each geometry cluster, the VPLs of its own visibility
+ * cluster, then (GB_TOPO_FULL) every other VPL once per gate of the VPL's
+ * cluster whose cone meets the cluster's bounding sphere. vpl_cluster[i]:
+ * the visibility cluster of VPL i (-1: none; such a VPL lights nothing). */
+gb_result gb_topo_assign(const gb_geometry_clusters *clusters, const gb_vpl_set *vpls,
+                         const int32_t *vpl_cluster, const gb_segmentation *segmentation,
+                         const gb_topo_gates *gates, gb_topo_visibility visibility,
+                         gb_topo_assignment *out, gb_error *error);
+void gb_topo_assignment_free(gb_topo_assignment *assignment);
+
+/* A compute program from one GLSL source; name for messages. */
+gb_result gb_topo_compute_program(const char *name, const char *source, GLuint *program,
+                                  gb_error *error);
+
+/* ---- IL (topo_gather.c) ------------------------------------------------ */
+typedef struct gb_topo_gather_pass {
+    GLuint program, empty_vertex_array;
+    GLuint vpl_buffer, gate_buffer, range_buffer, entry_buffer;
+    GLsizeiptr range_size, entry_size;
+    uint32_t vpl_count;
+    float clamp_distance;
+} gb_topo_gather_pass;
+
+/* clamp_distance: the geometric term's 1/r^2 uses max(r, clamp_distance). */
+gb_result gb_topo_gather_create(const gb_vpl_set *vpls, const gb_segmentation *segmentation,
+                                float clamp_distance, gb_topo_gather_pass *pass, gb_error *error);
+/* Draws the indirect light into the bound framebuffer (additive blending
+ * set by the renderer); every_vpl: GB_TOPO_NONE. */
+void gb_topo_gather_draw(const gb_topo_gather_pass *pass, const float view_to_world[16],
+                         const float tan_half_fov[2], float near, int every_vpl);
+void gb_topo_gather_destroy(gb_topo_gather_pass *pass);
+
+/* ---- LA on the GPU (topo_assignment_gpu.c) ------------------------------
+ * The same lists as gb_topo_assign, made by compute shaders straight into
+ * the gather pass's range and entry buffers; out gets the ranges and the
+ * entry count (gb_topo_la_gpu_read copies the entries back, for tests). */
+typedef struct gb_topo_la_gpu {
+    GLuint count_program, write_program;
+    GLuint vpl_cluster, gate_offsets, gate_lists, clusters;
+    GLsizeiptr clusters_size;
+    uint32_t vpl_count;
+} gb_topo_la_gpu;
+
+gb_result gb_topo_la_gpu_create(const gb_vpl_set *vpls, const int32_t *vpl_cluster,
+                                const gb_topo_gates *gates, gb_topo_la_gpu *la, gb_error *error);
+gb_result gb_topo_la_gpu_run(gb_topo_la_gpu *la, const gb_geometry_clusters *clusters,
+                             gb_topo_visibility visibility, gb_topo_gather_pass *gather,
+                             gb_topo_assignment *out, gb_error *error);
+gb_result gb_topo_la_gpu_read(const gb_topo_gather_pass *gather, gb_topo_assignment *out,
+                              gb_error *error);
+void gb_topo_la_gpu_destroy(gb_topo_la_gpu *la);
+
+#endif

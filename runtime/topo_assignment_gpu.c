@@ -1,0 +1,217 @@
+/* topo_assignment_gpu.c — LA (Noël & Biri 2014, §V.C) in compute shaders,
+ * the twin of gb_topo_assign (topo_assignment.c): one invocation per
+ * geometry cluster walks the VPLs in order, first counting its entries,
+ * then (after a prefix sum of the counts on the CPU) writing them, so that
+ * each cluster's list is the CPU's, in the same order. */
+#include <stdlib.h>
+#include <string.h>
+
+#include "topo.h"
+
+#define GLSL_LA_COMMON                                                              \
+    "#version 450 core\n"                                                          \
+    "layout(local_size_x = 64) in;\n"                                              \
+    "struct VPL { vec4 position; vec4 normal; vec4 power; };\n"                    \
+    "struct GeometryCluster { vec4 sphere; uvec4 info; };\n"                        \
+    "layout(std430, binding = 3) readonly buffer VPLs { VPL vpls[]; };\n"          \
+    "layout(std430, binding = 4) readonly buffer Gates { vec4 gates[]; };\n"        \
+    "layout(std430, binding = 5) buffer Ranges { uvec2 ranges[]; };\n"              \
+    "layout(std430, binding = 6) writeonly buffer Entries { uvec2 entries[]; };\n"  \
+    "layout(std430, binding = 7) readonly buffer Clusters { GeometryCluster clusters[]; };\n" \
+    "layout(std430, binding = 8) readonly buffer VPLClusters { int vpl_cluster[]; };\n" \
+    "layout(std430, binding = 9) readonly buffer GateOffsets { uint gate_offsets[]; };\n" \
+    "layout(std430, binding = 10) readonly buffer GateLists { uint gate_list[]; };\n" \
+    "uniform uint cluster_count;\n"                                                \
+    "uniform uint vpl_count;\n"                                                    \
+    "uniform bool gates_on;\n"                                                     \
+    "const uint NO = 0xffffffffu;\n"                                               \
+    /* gb_topo_cone_hits_sphere, operation for operation */                        \
+    "bool cone_hits_sphere(vec3 p, vec4 gate, vec3 centre, float radius) {\n"       \
+    "    vec3 axis = gate.xyz - p;\n"                                               \
+    "    float d2 = axis.x * axis.x + axis.y * axis.y + axis.z * axis.z;\n"         \
+    "    float d = sqrt(d2);\n"                                                     \
+    "    if (!(d > gate.w))\n"                                                      \
+    "        return true;\n"                                                        \
+    "    axis /= d;\n"                                                              \
+    "    float h = sqrt(d2 + gate.w * gate.w);\n"                                   \
+    "    float cos_half = d / h, sin_half = gate.w / h;\n"                          \
+    "    vec3 v = centre - p;\n"                                                    \
+    "    float l2 = v.x * v.x + v.y * v.y + v.z * v.z;\n"                           \
+    "    float along = v.x * axis.x + v.y * axis.y + v.z * axis.z;\n"               \
+    "    float l = sqrt(l2);\n"                                                     \
+    "    if (l <= radius)\n"                                                        \
+    "        return true;\n"                                                        \
+    "    float cos_v = along / l;\n"                                                \
+    "    float sin_s = radius / l, cos_s = sqrt(max(0.0, 1.0 - sin_s * sin_s));\n"  \
+    "    float cos_limit = cos_half * cos_s - sin_half * sin_s;\n"                  \
+    "    float sin_limit = sin_half * cos_s + cos_half * sin_s;\n"                  \
+    "    if (sin_limit < 0.0)\n"                                                    \
+    "        return true;\n"                                                        \
+    "    return cos_v >= cos_limit;\n"                                              \
+    "}\n"                                                                          \
+    "void emit(uint g, inout uint n, uint vpl, uint gate);\n"                       \
+    "void main() {\n"                                                              \
+    "    uint g = gl_GlobalInvocationID.x;\n"                                       \
+    "    if (g >= cluster_count)\n"                                                 \
+    "        return;\n"                                                             \
+    "    GeometryCluster gc = clusters[g];\n"                                       \
+    "    uint n = 0u;\n"                                                            \
+    "    for (uint v = 0u; v < vpl_count; ++v) {\n"                                 \
+    "        int c = vpl_cluster[v];\n"                                             \
+    "        if (c < 0)\n"                                                          \
+    "            continue;\n"                                                       \
+    "        if (uint(c) == gc.info.x) {\n"                                         \
+    "            emit(g, n, v, NO);\n"                                              \
+    "            continue;\n"                                                       \
+    "        }\n"                                                                   \
+    "        if (!gates_on)\n"                                                      \
+    "            continue;\n"                                                       \
+    "        for (uint k = gate_offsets[c]; k < gate_offsets[c + 1]; ++k)\n"        \
+    "            if (cone_hits_sphere(vpls[v].position.xyz, gates[gate_list[k]],\n" \
+    "                                 gc.sphere.xyz, gc.sphere.w))\n"               \
+    "                emit(g, n, v, gate_list[k]);\n"                                \
+    "    }\n"                                                                       \
+    "    ranges[g].y = n;\n"                                                        \
+    "}\n"
+
+static const char count_shader[] =
+    GLSL_LA_COMMON
+    "void emit(uint g, inout uint n, uint vpl, uint gate) { ++n; }\n";
+
+static const char write_shader[] =
+    GLSL_LA_COMMON
+    "void emit(uint g, inout uint n, uint vpl, uint gate) {\n"
+    "    entries[ranges[g].x + n] = uvec2(vpl, gate);\n"
+    "    ++n;\n"
+    "}\n";
+
+static GLuint buffer_of(const void *data, GLsizeiptr size)
+{
+    GLuint buffer;
+    glCreateBuffers(1, &buffer);
+    glNamedBufferData(buffer, size > 0 ? size : 16, data, GL_DYNAMIC_DRAW);
+    return buffer;
+}
+
+gb_result gb_topo_la_gpu_create(const gb_vpl_set *vpls, const int32_t *vpl_cluster,
+                                const gb_topo_gates *gates, gb_topo_la_gpu *la, gb_error *error)
+{
+    memset(la, 0, sizeof *la);
+    gb_result result = gb_topo_compute_program("LA count", count_shader, &la->count_program,
+                                               error);
+    if (result == GB_OK)
+        result = gb_topo_compute_program("LA write", write_shader, &la->write_program, error);
+    if (result != GB_OK)
+        return result;
+    la->vpl_count = vpls->count;
+    la->vpl_cluster = buffer_of(vpl_cluster, (GLsizeiptr)(vpls->count * sizeof(int32_t)));
+    la->gate_offsets = buffer_of(gates->offsets,
+                                 (GLsizeiptr)((gates->cluster_count + 1) * sizeof(uint32_t)));
+    la->gate_lists = buffer_of(gates->gates, (GLsizeiptr)(gates->offsets[gates->cluster_count] *
+                                                          sizeof(uint32_t)));
+    la->clusters = buffer_of(NULL, 16);
+    return GB_OK;
+}
+
+static void grow(GLuint buffer, GLsizeiptr *capacity, GLsizeiptr size)
+{
+    if (size > *capacity) {
+        *capacity = size + size / 2;
+        glNamedBufferData(buffer, *capacity, NULL, GL_DYNAMIC_DRAW);
+    }
+}
+
+static void dispatch(GLuint program, const gb_topo_la_gpu *la, uint32_t count, int gates_on)
+{
+    glUseProgram(program);
+    glProgramUniform1ui(program, glGetUniformLocation(program, "cluster_count"), count);
+    glProgramUniform1ui(program, glGetUniformLocation(program, "vpl_count"), la->vpl_count);
+    glProgramUniform1i(program, glGetUniformLocation(program, "gates_on"), gates_on);
+    glDispatchCompute((count + 63) / 64, 1, 1);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT);
+}
+
+/* Geometry clusters as the shader reads them: sphere, then the visibility
+ * cluster. */
+static float *pack_clusters(const gb_geometry_clusters *clusters)
+{
+    float *data = calloc((size_t)clusters->count * 8 + 8, sizeof *data);
+    if (!data)
+        return NULL;
+    for (uint32_t i = 0; i < clusters->count; ++i) {
+        memcpy(&data[8 * i], clusters->clusters[i].centre, 3 * sizeof(float));
+        data[8 * i + 3] = clusters->clusters[i].radius;
+        memcpy(&data[8 * i + 4], &clusters->clusters[i].visibility_cluster, sizeof(uint32_t));
+    }
+    return data;
+}
+
+gb_result gb_topo_la_gpu_run(gb_topo_la_gpu *la, const gb_geometry_clusters *clusters,
+                             gb_topo_visibility visibility, gb_topo_gather_pass *gather,
+                             gb_topo_assignment *out, gb_error *error)
+{
+    uint32_t n = clusters->count;
+    float *packed = pack_clusters(clusters);
+    uint32_t *ranges = realloc(out->ranges, ((size_t)n + 1) * 2 * sizeof *ranges);
+    if (!packed || !ranges) {
+        free(packed);
+        if (ranges)
+            out->ranges = ranges;
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "LA: out of memory");
+    }
+    out->ranges = ranges;
+    out->cluster_count = n;
+    grow(la->clusters, &la->clusters_size, (GLsizeiptr)n * 8 * (GLsizeiptr)sizeof(float));
+    glNamedBufferSubData(la->clusters, 0, (GLsizeiptr)n * 8 * (GLsizeiptr)sizeof(float), packed);
+    free(packed);
+    grow(gather->range_buffer, &gather->range_size, (GLsizeiptr)(n + 1) * 8);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gather->vpl_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gather->gate_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, gather->range_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, la->clusters);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, la->vpl_cluster);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, la->gate_offsets);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, la->gate_lists);
+    int gates_on = visibility == GB_TOPO_FULL;
+    if (n)
+        dispatch(la->count_program, la, n, gates_on);
+    glGetNamedBufferSubData(gather->range_buffer, 0, (GLsizeiptr)n * 8, ranges);
+    uint32_t total = 0;
+    for (uint32_t i = 0; i < n; ++i) {     /* exclusive prefix sum of the counts */
+        ranges[2 * i] = total;
+        total += ranges[2 * i + 1];
+    }
+    out->entry_count = total;
+    glNamedBufferSubData(gather->range_buffer, 0, (GLsizeiptr)n * 8, ranges);
+    grow(gather->entry_buffer, &gather->entry_size, (GLsizeiptr)(total + 1) * 8);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, gather->entry_buffer);
+    if (n)
+        dispatch(la->write_program, la, n, gates_on);
+    return GB_OK;
+}
+
+gb_result gb_topo_la_gpu_read(const gb_topo_gather_pass *gather, gb_topo_assignment *out,
+                              gb_error *error)
+{
+    gb_topo_entry *entries = realloc(out->entries, (out->entry_count + 1u) * sizeof *entries);
+    if (!entries)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "LA: out of memory");
+    out->entries = entries;
+    out->entry_capacity = out->entry_count + 1u;
+    glGetNamedBufferSubData(gather->entry_buffer, 0,
+                            (GLsizeiptr)out->entry_count * (GLsizeiptr)sizeof *entries, entries);
+    return GB_OK;
+}
+
+void gb_topo_la_gpu_destroy(gb_topo_la_gpu *la)
+{
+    if (la->count_program)
+        glDeleteProgram(la->count_program);
+    if (la->write_program)
+        glDeleteProgram(la->write_program);
+    GLuint buffers[] = {la->vpl_cluster, la->gate_offsets, la->gate_lists, la->clusters};
+    for (int i = 0; i < 4; ++i)
+        if (buffers[i])
+            glDeleteBuffers(1, &buffers[i]);
+    memset(la, 0, sizeof *la);
+}

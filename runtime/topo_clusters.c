@@ -1,0 +1,180 @@
+/* topo_clusters.c — the visibility cluster of each fragment (Noël & Biri
+ * 2014, §V.A): the fragment's position moved along its geometric normal
+ * into the empty side → voxel → nearest skeleton node (thin's grid) →
+ * segmented node → cluster. The three last steps are folded on the CPU, once,
+ * into one cluster per voxel (a 3-D texture); a compute shader does the rest
+ * each frame and writes the G-buffer's clusters.x. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gbuffer.h"
+#include "topo.h"
+
+/* The fragment moves 1, 2, then 3 voxels off its surface: its own voxel is a
+ * surface voxel, which has no nearest node. */
+enum { MAX_OFFSET_VOXELS = 3, UNIT_VOXEL_CLUSTERS = 12 };
+
+int32_t *gb_topo_voxel_clusters(const gb_segmentation *s, const int32_t *nearest)
+{
+    size_t n = (size_t)s->grid_size[0] * (size_t)s->grid_size[1] * (size_t)s->grid_size[2];
+    int32_t *clusters = malloc((n ? n : 1) * sizeof *clusters);
+    if (!clusters)
+        return NULL;
+    for (size_t i = 0; i < n; ++i) {
+        int32_t node = nearest[i];
+        clusters[i] = node >= 0 && (uint32_t)node < s->skeleton_node_count
+                          ? (int32_t)s->cluster[s->node_map[node]]
+                          : -1;
+    }
+    return clusters;
+}
+
+static int32_t voxel_cluster(const gb_segmentation *s, const int32_t *voxel_clusters,
+                             const float p[3])
+{
+    size_t index = 0, stride = 1;
+    for (int a = 0; a < 3; ++a) {
+        float v = floorf((p[a] - (float)s->world_origin[a]) / (float)s->voxel_size);
+        if (!(v >= 0.0f && v < (float)s->grid_size[a]))
+            return -1;
+        index += (size_t)v * stride;
+        stride *= (size_t)s->grid_size[a];
+    }
+    return voxel_clusters[index];
+}
+
+int32_t gb_topo_surface_cluster(const gb_segmentation *s, const int32_t *voxel_clusters,
+                                const float x[3], const float ng[3])
+{
+    for (int step = 1; step <= MAX_OFFSET_VOXELS; ++step) {
+        float p[3];
+        for (int a = 0; a < 3; ++a)
+            p[a] = x[a] + ng[a] * (float)step * (float)s->voxel_size;
+        int32_t c = voxel_cluster(s, voxel_clusters, p);
+        if (c >= 0)
+            return c;
+    }
+    return -1;
+}
+
+static const char compute_shader[] =
+    "#version 450 core\n"
+    "layout(local_size_x = 8, local_size_y = 8) in;\n"
+    "layout(binding = 1) uniform sampler2D gbuffer_normal;\n"
+    "layout(binding = 2) uniform sampler2D gbuffer_depth;\n"
+    "layout(binding = 12) uniform isampler3D voxel_clusters;\n"
+    "layout(rg32ui, binding = 0) writeonly uniform uimage2D clusters;\n"
+    "uniform mat4 view_to_world;\n"
+    "uniform vec2 tan_half_fov;\n"
+    "uniform float near;\n"
+    "uniform vec3 grid_origin;\n"
+    "uniform float voxel_size;\n"
+    "uniform ivec3 grid_size;\n"
+    "const uint NO_CLUSTER = 0xffffffffu;\n"
+    GB_GLSL_OCTAHEDRAL
+    "int voxel_cluster(vec3 p) {\n"
+    "    ivec3 v = ivec3(floor((p - grid_origin) / voxel_size));\n"
+    "    if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, grid_size)))\n"
+    "        return -1;\n"
+    "    return texelFetch(voxel_clusters, v, 0).r;\n"
+    "}\n"
+    "void main() {\n"
+    "    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);\n"
+    "    ivec2 size = imageSize(clusters);\n"
+    "    if (pixel.x >= size.x || pixel.y >= size.y)\n"
+    "        return;\n"
+    "    float depth = texelFetch(gbuffer_depth, pixel, 0).r;\n"
+    "    int c = -1;\n"
+    "    if (depth > 0.0) {\n"
+    "        vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(size) - 1.0;\n"
+    "        float z = -near / depth;\n"
+    "        vec3 x = (view_to_world * vec4(ndc * tan_half_fov * -z, z, 1.0)).xyz;\n"
+    "        vec3 ng = normalize(mat3(view_to_world) *\n"
+    "                            oct_decode(texelFetch(gbuffer_normal, pixel, 0).zw));\n"
+    "        for (int step = 1; step <= 3 && c < 0; ++step)\n"
+    "            c = voxel_cluster(x + ng * (float(step) * voxel_size));\n"
+    "    }\n"
+    "    imageStore(clusters, pixel, uvec4(c >= 0 ? uint(c) : NO_CLUSTER, NO_CLUSTER, 0u, 0u));\n"
+    "}\n";
+
+gb_result gb_topo_compute_program(const char *name, const char *source, GLuint *program,
+                                  gb_error *error)
+{
+    GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
+    glShaderSource(shader, 1, &source, NULL);
+    glCompileShader(shader);
+    GLint ok = 0;
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    char log[1024] = "";
+    if (!ok) {
+        glGetShaderInfoLog(shader, sizeof log, NULL, log);
+        glDeleteShader(shader);
+        return gb_fail(error, GB_ERROR_INVALID, "%s: compute shader: %s", name, log);
+    }
+    *program = glCreateProgram();
+    glAttachShader(*program, shader);
+    glLinkProgram(*program);
+    glDeleteShader(shader);
+    glGetProgramiv(*program, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        glGetProgramInfoLog(*program, sizeof log, NULL, log);
+        glDeleteProgram(*program);
+        *program = 0;
+        return gb_fail(error, GB_ERROR_INVALID, "%s: link: %s", name, log);
+    }
+    return GB_OK;
+}
+
+gb_result gb_topo_cluster_pass_create(const gb_segmentation *s, const int32_t *voxel_clusters,
+                                      gb_topo_cluster_pass *pass, gb_error *error)
+{
+    memset(pass, 0, sizeof *pass);
+    gb_result result = gb_topo_compute_program("visibility clusters", compute_shader,
+                                               &pass->program, error);
+    if (result != GB_OK)
+        return result;
+    const int32_t *n = s->grid_size;
+    glCreateTextures(GL_TEXTURE_3D, 1, &pass->voxel_clusters);
+    glTextureStorage3D(pass->voxel_clusters, 1, GL_R32I, n[0], n[1], n[2]);
+    glTextureSubImage3D(pass->voxel_clusters, 0, 0, 0, 0, n[0], n[1], n[2], GL_RED_INTEGER,
+                        GL_INT, voxel_clusters);
+    glTextureParameteri(pass->voxel_clusters, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTextureParameteri(pass->voxel_clusters, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    GLuint p = pass->program;
+    glProgramUniform3f(p, glGetUniformLocation(p, "grid_origin"), (float)s->world_origin[0],
+                       (float)s->world_origin[1], (float)s->world_origin[2]);
+    glProgramUniform1f(p, glGetUniformLocation(p, "voxel_size"), (float)s->voxel_size);
+    glProgramUniform3i(p, glGetUniformLocation(p, "grid_size"), n[0], n[1], n[2]);
+    return GB_OK;
+}
+
+void gb_topo_cluster_pass_run(const gb_topo_cluster_pass *pass, GLuint depth, GLuint normal,
+                              GLuint clusters, int width, int height,
+                              const float view_to_world[16], const float tan_half_fov[2],
+                              float near)
+{
+    GLuint p = pass->program;
+    glUseProgram(p);
+    glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "view_to_world"), 1, GL_FALSE,
+                              view_to_world);
+    glProgramUniform2f(p, glGetUniformLocation(p, "tan_half_fov"), tan_half_fov[0],
+                       tan_half_fov[1]);
+    glProgramUniform1f(p, glGetUniformLocation(p, "near"), near);
+    glBindTextureUnit(GB_UNIT_GBUFFER_NORMAL, normal);
+    glBindTextureUnit(GB_UNIT_GBUFFER_DEPTH, depth);
+    glBindTextureUnit(UNIT_VOXEL_CLUSTERS, pass->voxel_clusters);
+    glBindImageTexture(0, clusters, 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RG32UI);
+    glDispatchCompute((GLuint)(width + 7) / 8, (GLuint)(height + 7) / 8, 1);
+    glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT | GL_TEXTURE_FETCH_BARRIER_BIT);
+}
+
+void gb_topo_cluster_pass_destroy(gb_topo_cluster_pass *pass)
+{
+    if (pass->program)
+        glDeleteProgram(pass->program);
+    if (pass->voxel_clusters)
+        glDeleteTextures(1, &pass->voxel_clusters);
+    memset(pass, 0, sizeof *pass);
+}

@@ -1,0 +1,209 @@
+/* topo_gather.c — IL (Noël & Biri 2014, §V.D): each fragment gathers the
+ * VPLs LA assigned to its geometry cluster (G-buffer clusters.y). A VPL
+ * stored with a gate lights the fragment only when the fragment lies in the
+ * cone from the VPL through the gate's disk: the implicit shadow.
+ *
+ * The geometric term G = cos(VPL) cos(x) / r^2 is bounded as in instant
+ * radiosity with bounded contributions (Kollig & Keller 2004, the paper's
+ * [Keller 1997] follow-up): 1/r^2 becomes 1/max(r, r_clamp)^2, r_clamp one
+ * voxel of the bake, which removes the bright spots near VPLs (and the
+ * energy within r_clamp of each, which the reference keeps). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gbuffer.h"
+#include "gl_util.h"
+#include "topo.h"
+
+/* runtime/brdf.h's BRDF in GLSL (as direct_light.c has it). */
+#define GLSL_BRDF                                                                  \
+    "const float PI = 3.14159265358979323846;\n"                                   \
+    "vec3 brdf_eval(vec3 Kd, vec3 Ks, float Ns, float n_dot_wo, float n_dot_wi,\n"  \
+    "               float wo_dot_wi) {\n"                                          \
+    "    if (n_dot_wo <= 0.0 || n_dot_wi <= 0.0)\n"                                \
+    "        return vec3(0.0);\n"                                                  \
+    "    float cos_mirror = 2.0 * n_dot_wo * n_dot_wi - wo_dot_wi;\n"              \
+    "    float lobe = cos_mirror > 0.0 ? (Ns + 2.0) / (2.0 * PI) * pow(cos_mirror, Ns) : 0.0;\n" \
+    "    return Kd / PI + Ks * lobe;\n"                                            \
+    "}\n"
+
+static const char fragment_shader[] =
+    "#version 450 core\n"
+    "struct VPL { vec4 position; vec4 normal; vec4 power; };\n"
+    "layout(std430, binding = 3) readonly buffer VPLs { VPL vpls[]; };\n"
+    "layout(std430, binding = 4) readonly buffer Gates { vec4 gates[]; };\n"
+    "layout(std430, binding = 5) readonly buffer Ranges { uvec2 ranges[]; };\n"
+    "layout(std430, binding = 6) readonly buffer Entries { uvec2 entries[]; };\n"
+    "layout(binding = 1) uniform sampler2D gbuffer_normal;\n"
+    "layout(binding = 2) uniform sampler2D gbuffer_depth;\n"
+    "layout(binding = 3) uniform sampler2D gbuffer_diffuse;\n"
+    "layout(binding = 4) uniform sampler2D gbuffer_glossy;\n"
+    "layout(binding = 5) uniform usampler2D gbuffer_clusters;\n"
+    "uniform mat4 view_to_world;\n"
+    "uniform vec2 tan_half_fov;\n"
+    "uniform float near;\n"
+    "uniform float clamp_distance2;\n"
+    "uniform int vpl_count;\n"
+    "uniform bool every_vpl;\n"
+    "out vec4 radiance;\n"
+    "const uint NO = 0xffffffffu;\n"
+    GB_GLSL_OCTAHEDRAL
+    GLSL_BRDF
+    "struct Surface { vec3 position, n, ng, wo, Kd, Ks; float Ns; };\n"
+    "Surface surface_at(ivec2 pixel, float depth) {\n"
+    "    vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(textureSize(gbuffer_depth, 0)) - 1.0;\n"
+    "    float z = -near / depth;\n"
+    "    vec3 view_position = vec3(ndc * tan_half_fov * -z, z);\n"
+    "    vec4 normals = texelFetch(gbuffer_normal, pixel, 0);\n"
+    "    mat3 rotation = mat3(view_to_world);\n"
+    "    Surface s;\n"
+    "    s.position = (view_to_world * vec4(view_position, 1.0)).xyz;\n"
+    "    s.n = normalize(rotation * oct_decode(normals.xy));\n"
+    "    s.ng = normalize(rotation * oct_decode(normals.zw));\n"
+    "    s.wo = normalize(rotation * -view_position);\n"
+    "    s.Kd = texelFetch(gbuffer_diffuse, pixel, 0).rgb;\n"
+    "    vec4 glossy = texelFetch(gbuffer_glossy, pixel, 0);\n"
+    "    s.Ks = glossy.rgb;\n"
+    "    s.Ns = glossy.a;\n"
+    "    return s;\n"
+    "}\n"
+    /* The cone from p through the gate's disk (topo_assignment.c). */
+    "bool in_gate_cone(vec3 p, uint gate, vec3 x) {\n"
+    "    vec4 g = gates[gate];\n"
+    "    vec3 axis = g.xyz - p;\n"
+    "    float d = length(axis);\n"
+    "    if (d <= g.w)\n"
+    "        return true;\n"
+    "    float cos_half = d / sqrt(d * d + g.w * g.w);\n"
+    "    vec3 v = x - p;\n"
+    "    return dot(v, axis / d) >= cos_half * length(v);\n"
+    "}\n"
+    "vec3 vpl_light(uint i, Surface s) {\n"
+    "    VPL l = vpls[i];\n"
+    "    vec3 to_vpl = l.position.xyz - s.position;\n"
+    "    float d2 = dot(to_vpl, to_vpl);\n"
+    "    if (d2 <= 0.0)\n"
+    "        return vec3(0.0);\n"
+    "    vec3 wi = to_vpl * inversesqrt(d2);\n"
+    "    float emission = max(0.0, -dot(l.normal.xyz, wi)) / PI;\n"
+    "    float n_dot_wi = dot(s.n, wi);\n"
+    "    if (emission <= 0.0 || dot(s.ng, wi) <= 0.0)\n"
+    "        return vec3(0.0);\n"
+    "    vec3 f = brdf_eval(s.Kd, s.Ks, s.Ns, dot(s.n, s.wo), n_dot_wi, dot(s.wo, wi));\n"
+    "    return f * l.power.rgb * (emission * n_dot_wi / max(d2, clamp_distance2));\n"
+    "}\n"
+    "void main() {\n"
+    "    ivec2 pixel = ivec2(gl_FragCoord.xy);\n"
+    "    float depth = texelFetch(gbuffer_depth, pixel, 0).r;\n"
+    "    radiance = vec4(0.0, 0.0, 0.0, 1.0);\n"
+    "    if (depth <= 0.0)\n"
+    "        return;\n"
+    "    Surface s = surface_at(pixel, depth);\n"
+    "    uint g = texelFetch(gbuffer_clusters, pixel, 0).y;\n"
+    "    vec3 L = vec3(0.0);\n"
+    "    if (every_vpl || g == NO) {\n"
+    "        for (int i = 0; i < vpl_count; ++i)\n"
+    "            L += vpl_light(uint(i), s);\n"
+    "    } else {\n"
+    "        uvec2 range = ranges[g];\n"
+    "        for (uint k = range.x; k < range.x + range.y; ++k) {\n"
+    "            uvec2 e = entries[k];\n"
+    "            if (e.y == NO || in_gate_cone(vpls[e.x].position.xyz, e.y, s.position))\n"
+    "                L += vpl_light(e.x, s);\n"
+    "        }\n"
+    "    }\n"
+    "    radiance = vec4(L, 1.0);\n"
+    "}\n";
+
+static GLuint buffer_of(const void *data, GLsizeiptr size)
+{
+    GLuint buffer;
+    glCreateBuffers(1, &buffer);
+    glNamedBufferData(buffer, size > 0 ? size : 16, data, GL_DYNAMIC_DRAW);
+    return buffer;
+}
+
+static GLuint vpl_buffer(const gb_vpl_set *vpls)
+{
+    float *data = calloc((size_t)vpls->count * 12 + 12, sizeof *data);
+    if (!data)
+        return 0;
+    for (uint32_t i = 0; i < vpls->count; ++i) {
+        memcpy(&data[12 * i], vpls->vpls[i].position, 3 * sizeof(float));
+        memcpy(&data[12 * i + 4], vpls->vpls[i].normal, 3 * sizeof(float));
+        memcpy(&data[12 * i + 8], vpls->vpls[i].power, 3 * sizeof(float));
+    }
+    GLuint buffer = buffer_of(data, (GLsizeiptr)(vpls->count * 12 * sizeof *data));
+    free(data);
+    return buffer;
+}
+
+static GLuint gate_buffer(const gb_segmentation *s)
+{
+    float *data = calloc((size_t)s->gate_count * 4 + 4, sizeof *data);
+    if (!data)
+        return 0;
+    for (uint32_t i = 0; i < s->gate_count; ++i) {
+        memcpy(&data[4 * i], s->gates[i].centre, 3 * sizeof(float));
+        data[4 * i + 3] = s->gates[i].radius;
+    }
+    GLuint buffer = buffer_of(data, (GLsizeiptr)(s->gate_count * 4 * sizeof *data));
+    free(data);
+    return buffer;
+}
+
+gb_result gb_topo_gather_create(const gb_vpl_set *vpls, const gb_segmentation *s,
+                                float clamp_distance, gb_topo_gather_pass *pass, gb_error *error)
+{
+    memset(pass, 0, sizeof *pass);
+    gb_result result = gb_gl_program("topo IL", gb_gl_fullscreen_vertex_shader, fragment_shader,
+                                     &pass->program, error);
+    if (result != GB_OK)
+        return result;
+    glCreateVertexArrays(1, &pass->empty_vertex_array);
+    pass->vpl_buffer = vpl_buffer(vpls);
+    pass->gate_buffer = gate_buffer(s);
+    pass->range_buffer = buffer_of(NULL, 16);
+    pass->entry_buffer = buffer_of(NULL, 16);
+    if (!pass->vpl_buffer || !pass->gate_buffer)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "IL: out of memory");
+    pass->vpl_count = vpls->count;
+    pass->clamp_distance = clamp_distance;
+    return GB_OK;
+}
+
+void gb_topo_gather_draw(const gb_topo_gather_pass *pass, const float view_to_world[16],
+                         const float tan_half_fov[2], float near, int every_vpl)
+{
+    GLuint p = pass->program;
+    glUseProgram(p);
+    glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "view_to_world"), 1, GL_FALSE,
+                              view_to_world);
+    glProgramUniform2f(p, glGetUniformLocation(p, "tan_half_fov"), tan_half_fov[0],
+                       tan_half_fov[1]);
+    glProgramUniform1f(p, glGetUniformLocation(p, "near"), near);
+    glProgramUniform1f(p, glGetUniformLocation(p, "clamp_distance2"),
+                       pass->clamp_distance * pass->clamp_distance);
+    glProgramUniform1i(p, glGetUniformLocation(p, "vpl_count"), (GLint)pass->vpl_count);
+    glProgramUniform1i(p, glGetUniformLocation(p, "every_vpl"), every_vpl);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, pass->vpl_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, pass->gate_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, pass->range_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, pass->entry_buffer);
+    gb_gl_draw_fullscreen(pass->empty_vertex_array);
+}
+
+void gb_topo_gather_destroy(gb_topo_gather_pass *pass)
+{
+    if (pass->program)
+        glDeleteProgram(pass->program);
+    if (pass->empty_vertex_array)
+        glDeleteVertexArrays(1, &pass->empty_vertex_array);
+    GLuint buffers[] = {pass->vpl_buffer, pass->gate_buffer, pass->range_buffer,
+                        pass->entry_buffer};
+    for (int i = 0; i < 4; ++i)
+        if (buffers[i])
+            glDeleteBuffers(1, &buffers[i]);
+    memset(pass, 0, sizeof *pass);
+}

@@ -1,0 +1,104 @@
+#!/bin/sh
+# topo.t — gbview's topological method (Noël & Biri 2014) as a user runs it:
+# bake the Cornell box at 48 voxels (voxelize, thin --grid, segment), render
+# headless with --method topo, write its VPLs and render the same VPLs with
+# `reference --vpl`; exit codes, determinism, the variants, and the error
+# of the indirect light against the reference. Prints TAP.
+#
+# GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
+
+GB_ROOT=${GB_ROOT:-.}
+GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+scene=$GB_ROOT/scenes/cornell/cornell.scene
+dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-topo.XXXXXX") || exit 1
+trap 'rm -rf "$dir"' EXIT INT TERM
+count=0
+failed=0
+
+ok() {
+    count=$((count + 1))
+    if [ "$1" = 0 ]; then
+        echo "ok $count - $2"
+    else
+        failed=$((failed + 1))
+        echo "not ok $count - $2"
+    fi
+}
+
+value() {
+    sed -n "s/^$1 //p" "$2"
+}
+
+# awk: is the number $1 below $2?
+below() {
+    awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && b != "" && a + 0 < b + 0) }'
+}
+
+for tool in voxelize thin segment gbview reference imgdiff; do
+    if [ ! -x "$GB_BIN/$tool" ]; then
+        echo "1..0 # SKIP $GB_BIN/$tool not built"
+        exit 0
+    fi
+done
+
+bake=$dir/bake
+mkdir "$bake"
+"$GB_BIN/voxelize" -q -r 48 "$scene" -o "$bake/cornell.vdb" &&
+    "$GB_BIN/thin" -q "$bake/cornell.vdb" -o "$bake/cornell.skel" --grid "$bake/cornell.grid.vdb" &&
+    "$GB_BIN/segment" -q "$bake/cornell.skel" -o "$bake/cornell.seg"
+ok $? "bake: voxelize -r 48, thin --grid, segment"
+
+small="--headless --resolution 96x96 --quiet --method topo --vpls 256"
+
+"$GB_BIN/gbview" $small "$scene" -o "$dir/none.exr" >"$dir/out" 2>"$dir/err"
+status=$?
+ok "$([ "$status" != 0 ] && grep -q 'topo needs.*--bake' "$dir/err"; echo $?)" \
+    "no --bake: refused with a clear message"
+sed 's/^/#   /' "$dir/err"
+
+mkdir "$dir/half"
+cp "$bake/cornell.vdb" "$bake/cornell.skel" "$bake/cornell.grid.vdb" "$dir/half/"
+"$GB_BIN/gbview" $small --bake "$dir/half" "$scene" -o "$dir/none.exr" >"$dir/out" 2>"$dir/err"
+status=$?
+ok "$([ "$status" != 0 ] && grep -q 'cornell.seg' "$dir/err"; echo $?)" \
+    "bake without .seg: refused, naming the file"
+
+"$GB_BIN/gbview" $small --bake "$bake" --write-vpls "$dir/c.vpls" --terms indirect "$scene" \
+    -o "$dir/topo.exr"
+ok $? "--method topo: renders the Cornell box"
+ok "$([ -s "$dir/c.vpls" ]; echo $?)" "--write-vpls: writes the VPL set"
+"$GB_BIN/gbview" $small --bake "$bake" --terms indirect "$scene" -o "$dir/again.exr"
+"$GB_BIN/imgdiff" "$dir/topo.exr" "$dir/again.exr" >"$dir/same"
+ok "$([ "$(value max_error "$dir/same")" = 0 ]; echo $?)" "rendering twice: identical images"
+
+for v in clusters none; do
+    "$GB_BIN/gbview" $small --bake "$bake" --topo-visibility $v --terms indirect "$scene" \
+        -o "$dir/$v.exr"
+    ok $? "--topo-visibility $v: renders"
+done
+"$GB_BIN/gbview" $small --bake "$bake" --topo-visibility sometimes "$scene" -o "$dir/x.exr" \
+    2>"$dir/err"
+ok "$([ $? = 2 ] && grep -q 'topo-visibility' "$dir/err"; echo $?)" \
+    "--topo-visibility sometimes: usage error"
+"$GB_BIN/gbview" --headless --resolution 96x96 --quiet --terms indirect "$scene" \
+    -o "$dir/black.exr"
+
+"$GB_BIN/reference" -q --vpl "$dir/c.vpls" --spp 4 -r 96x96 "$scene" -o "$dir/ref.exr"
+ok $? "reference --vpl: renders the same VPLs with shadow rays"
+
+for v in black none clusters topo; do
+    "$GB_BIN/imgdiff" "$dir/$v.exr" "$dir/ref.exr" >"$dir/$v.diff"
+done
+mse_black=$(value mse_srgb8 "$dir/black.diff")
+mse_none=$(value mse_srgb8 "$dir/none.diff")
+mse_clusters=$(value mse_srgb8 "$dir/clusters.diff")
+mse_topo=$(value mse_srgb8 "$dir/topo.diff")
+echo "# indirect light vs reference --vpl, 8-bit MSE: no indirect $mse_black," \
+    "no visibility $mse_none, clusters only $mse_clusters, clusters and gates $mse_topo"
+below "$mse_topo" "$mse_black"
+ok $? "topo's indirect light: MSE below no indirect light at all"
+below "$mse_topo" "$(awk -v a="$mse_clusters" 'BEGIN { print a * 1.001 }')"
+ok $? "gates add light the clusters alone miss: MSE at most that of clusters only"
+
+echo "1..$count"
+[ "$failed" = 0 ]

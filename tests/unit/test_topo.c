@@ -1,0 +1,448 @@
+/* test_topo.c — the CPU passes of the topological method (runtime/topo.h):
+ * VPLs traced from the lights (count, validity, determinism, energy), the
+ * gate cone tests, IUGC (one visibility cluster per geometry cluster, the
+ * spheres bound their fragments) and LA on two rooms joined by a door: a
+ * VPL in room A reaches room B only inside the cone through the door gate;
+ * LA on the GPU gives the CPU's lists, and the GPU's visibility cluster of
+ * each fragment is the CPU's (headless GL, skipped without it). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../../runtime/context.h"
+#include "../../runtime/gbuffer.h"
+#include "../../runtime/view.h"
+#include "../../runtime/topo.h"
+#include "scene_builder.h"
+#include "tap.h"
+
+static void test_vpls_cornell(void)
+{
+    gb_scene scene = {0};
+    build_cornell_box(&scene, 32, 32);
+    gb_error error;
+    gb_vpl_set a, b;
+    CHECK(gb_topo_vpls_generate(&scene, 300, 7, &a, &error) == GB_OK, "VPLs: Cornell box traced");
+    CHECK(gb_topo_vpls_generate(&scene, 300, 7, &b, &error) == GB_OK, "VPLs: traced again");
+    CHECK_EQ_INT(a.count, 300, "VPLs: exactly the count asked");
+    CHECK(a.count == b.count && memcmp(a.vpls, b.vpls, a.count * sizeof *a.vpls) == 0,
+          "VPLs: same seed, same bytes");
+    CHECK(gb_vpl_check(&a, "cornell", &error) == GB_OK, "VPLs: a valid VPL set");
+    CHECK(a.scene_hash == scene.hash, "VPLs: the scene's hash");
+    int inside = 1;
+    for (uint32_t i = 0; i < a.count; ++i)
+        for (int c = 0; c < 3; ++c)
+            inside &= a.vpls[i].position[c] >= scene.bounds_min[c] - 1e-3f &&
+                      a.vpls[i].position[c] <= scene.bounds_max[c] + 1e-3f;
+    CHECK(inside, "VPLs: on the scene's surfaces (within its bounds)");
+    gb_vpl_free(&b);
+    CHECK(gb_topo_vpls_generate(&scene, 0, 7, &b, &error) == GB_ERROR_ARGUMENT,
+          "VPLs: 0 refused");
+    gb_vpl_free(&a);
+    gb_vpl_free(&b);
+    gb_scene_free(&scene);
+}
+
+/* A closed grey box of albedo 1/2 around a point light: the VPLs' power sums
+ * to Phi (a + a^2 + ...) = Phi in expectation. */
+static void test_vpls_energy(void)
+{
+    gb_scene scene = {0};
+    uint32_t grey = add_grey(&scene, 0.5f, 0.0f);
+    add_box(&scene, (float[3]){-1, -1, -1}, (float[3]){1, 1, 1}, 1, grey);
+    add_point_light(&scene, GB_LIGHT_POINT, (float[3]){0.1f, 0.2f, 0.3f},
+                    (float[3]){0, 0, -1}, (float[3]){2, 2, 2});
+    set_camera(&scene, (float[3]){0, 0, 0.9f}, (float[3]){0, 0, 0}, 60.0f, 16, 16);
+    scene_done(&scene);
+    gb_error error;
+    gb_vpl_set set;
+    CHECK(gb_topo_vpls_generate(&scene, 20000, 1, &set, &error) == GB_OK, "energy: traced");
+    double sum = 0.0;
+    for (uint32_t i = 0; i < set.count; ++i)
+        sum += set.vpls[i].power[0];
+    CHECK_NEAR(sum, 4.0 * M_PI * 2.0, 0.06 * 4.0 * M_PI * 2.0,
+               "energy: VPL powers sum to the light's power (albedo 1/2, closed box)");
+    gb_vpl_free(&set);
+    gb_scene_free(&scene);
+}
+
+/* A grey floor of 10 x 10 under a sun of irradiance 3 straight down: the
+ * VPLs (first bounces; later ones escape upward) carry 3 x 100 x 1/2. */
+static void test_vpls_sun(void)
+{
+    gb_scene scene = {0};
+    uint32_t grey = add_grey(&scene, 0.5f, 0.0f);
+    const float floor[4][3] = {{-5, 0, -5}, {5, 0, -5}, {5, 0, 5}, {-5, 0, 5}};
+    add_quad_facing(&scene, floor, (float[3]){0, 1, 0}, grey);
+    add_point_light(&scene, GB_LIGHT_DIRECTIONAL, (float[3]){0, 0, 0}, (float[3]){0, -1, 0},
+                    (float[3]){3, 3, 3});
+    set_camera(&scene, (float[3]){0, 5, 8}, (float[3]){0, 0, 0}, 60.0f, 16, 16);
+    scene_done(&scene);
+    gb_error error;
+    gb_vpl_set set;
+    CHECK(gb_topo_vpls_generate(&scene, 8000, 2, &set, &error) == GB_OK, "sun: traced");
+    double sum = 0.0;
+    for (uint32_t i = 0; i < set.count; ++i)
+        sum += set.vpls[i].power[1];
+    CHECK_NEAR(sum, 150.0, 0.05 * 150.0, "sun: VPL powers sum to E x area x albedo");
+    gb_vpl_free(&set);
+    gb_scene_free(&scene);
+}
+
+/* Two rooms along x joined by a door at x = 0: cluster 0 (x < 0), cluster
+ * 1 (x > 0), one gate of radius 0.5 at the origin. */
+static gb_visibility_gate door = {{0, 0, 0}, {1, 0, 0}, 0.5f, {0, 1}, 0};
+
+static void two_rooms(gb_segmentation *s)
+{
+    memset(s, 0, sizeof *s);
+    s->cluster_count = 2;
+    s->gate_count = 1;
+    s->gates = &door;
+}
+
+static void test_cones(void)
+{
+    float p[3] = {-2, 0, 0};
+    CHECK(gb_topo_cone_contains(p, &door, (float[3]){3, 1, 0}), "cone: point in the door's cone");
+    CHECK(!gb_topo_cone_contains(p, &door, (float[3]){3, 1.5f, 0}),
+          "cone: point beside it (cone radius 1.25 at x = 3)");
+    CHECK(!gb_topo_cone_contains(p, &door, (float[3]){-3, 0, 0}), "cone: point behind the VPL");
+    CHECK(gb_topo_cone_hits_sphere(p, &door, (float[3]){3, 1.5f, 0}, 0.3f),
+          "cone: sphere overlapping its side");
+    CHECK(!gb_topo_cone_hits_sphere(p, &door, (float[3]){3, 4, 0}, 0.3f),
+          "cone: sphere away from it");
+    CHECK(gb_topo_cone_hits_sphere(p, &door, (float[3]){-2, 0.1f, 0}, 0.3f),
+          "cone: sphere around the apex");
+}
+
+static gb_geometry_cluster sphere_cluster(uint32_t visibility, float x, float y, float r)
+{
+    gb_geometry_cluster g = {.visibility_cluster = visibility, .centre = {x, y, 0}, .radius = r};
+    return g;
+}
+
+static void test_two_rooms_assignment(void)
+{
+    gb_segmentation s;
+    two_rooms(&s);
+    gb_topo_gates gates;
+    gb_error error;
+    CHECK(gb_topo_gates_build(&s, &gates, &error) == GB_OK, "LA: gates per cluster");
+    gb_geometry_cluster list[3] = {sphere_cluster(1, 3, 0, 0.2f), sphere_cluster(1, 3, 4, 0.2f),
+                                   sphere_cluster(0, -3, 3, 0.2f)};
+    gb_geometry_clusters clusters = {3, 3, list};
+    gb_vpl vpl = {{-2, 0, 0}, {1, 0, 0}, {1, 1, 1}};
+    gb_vpl_set vpls = {0, 1, &vpl};
+    int32_t vpl_cluster = 0;
+    gb_topo_assignment a = {0};
+    CHECK(gb_topo_assign(&clusters, &vpls, &vpl_cluster, &s, &gates, GB_TOPO_FULL, &a, &error) ==
+              GB_OK, "LA: two rooms assigned");
+    CHECK(a.ranges[1] == 1 && a.entries[a.ranges[0]].vpl == 0 &&
+              a.entries[a.ranges[0]].gate == 0,
+          "LA: room B in the door's cone gets the VPL with the door gate");
+    CHECK_EQ_INT(a.ranges[3], 0, "LA: room B outside the cone gets nothing");
+    CHECK(a.ranges[5] == 1 && a.entries[a.ranges[4]].gate == GB_TOPO_NO_GATE,
+          "LA: room A gets its own VPL without a gate");
+    CHECK(gb_topo_assign(&clusters, &vpls, &vpl_cluster, &s, &gates, GB_TOPO_CLUSTERS, &a,
+                         &error) == GB_OK && a.ranges[1] == 0 && a.ranges[5] == 1,
+          "LA, gates off: room B gets nothing, room A its VPL");
+    gb_topo_assignment_free(&a);
+    gb_topo_gates_free(&gates);
+}
+
+/* 64 x 40 pixels, camera at the origin looking down -z: columns < 20 see
+ * visibility cluster 3 at depth 1, 20..31 cluster 7 at depth 1, the right
+ * half cluster 7 at depth 2; pixel (5, 5) sees nothing. */
+static void test_iugc(void)
+{
+    enum { W = 64, H = 40 };
+    static float depth[W * H];
+    static uint32_t ids[2 * W * H];
+    for (int y = 0; y < H; ++y)
+        for (int x = 0; x < W; ++x) {
+            depth[y * W + x] = x < 32 ? 0.1f : 0.05f;
+            ids[2 * (y * W + x)] = x < 20 ? 3u : 7u;
+        }
+    depth[5 * W + 5] = 0.0f;
+    gb_topo_frame_input frame = {W, H, depth, ids, {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1},
+                                 {0.8f, 0.5f}, 0.1f};
+    gb_geometry_clusters clusters = {0};
+    gb_error error;
+    CHECK(gb_topo_geometry_clusters_build(&frame, &clusters, &error) == GB_OK, "IUGC: built");
+    CHECK_EQ_INT(clusters.count, 6, "IUGC: 2 + 1 geometry clusters in each row of tiles");
+    int one_visibility = 1, bounded = 1;
+    for (int i = 0; i < W * H; ++i) {
+        uint32_t g = ids[2 * i + 1];
+        if (depth[i] == 0.0f) {
+            one_visibility &= g == GB_NO_CLUSTER;
+            continue;
+        }
+        if (g >= clusters.count) {
+            one_visibility = 0;
+            continue;
+        }
+        const gb_geometry_cluster *c = &clusters.clusters[g];
+        one_visibility &= c->visibility_cluster == ids[2 * i];
+        float p[3], d2 = 0.0f;
+        gb_topo_pixel_position(&frame, i % W, i / W, depth[i], p);
+        for (int a = 0; a < 3; ++a)
+            d2 += (p[a] - c->centre[a]) * (p[a] - c->centre[a]);
+        bounded &= sqrtf(d2) <= c->radius * 1.0001f + 1e-6f;
+    }
+    CHECK(one_visibility, "IUGC: each geometry cluster has one visibility cluster; none "
+                          "where nothing is seen");
+    CHECK(bounded, "IUGC: bounding spheres contain their fragments");
+    gb_geometry_clusters_free(&clusters);
+}
+
+/* The Cornell box cut into four visibility clusters (quadrants of x and z)
+ * with a gate in the middle of each inner wall; geometry clusters on a grid. */
+typedef struct quadrants {
+    float mid[3], size[3];
+    gb_visibility_gate gates[4];
+    gb_segmentation s;
+} quadrants;
+
+static int32_t quadrant_of(const quadrants *q, const float p[3])
+{
+    return (p[0] >= q->mid[0]) + 2 * (p[2] >= q->mid[2]);
+}
+
+static void make_quadrants(const gb_scene *scene, quadrants *q)
+{
+    memset(q, 0, sizeof *q);
+    for (int a = 0; a < 3; ++a) {
+        q->mid[a] = 0.5f * (scene->bounds_min[a] + scene->bounds_max[a]);
+        q->size[a] = scene->bounds_max[a] - scene->bounds_min[a];
+    }
+    const uint32_t pairs[4][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}};
+    for (int i = 0; i < 4; ++i) {
+        int along_x = i < 2;   /* gates between 0|1 and 2|3 face x */
+        float *c = q->gates[i].centre;
+        memcpy(c, q->mid, sizeof q->mid);
+        if (along_x)
+            c[2] += (i == 0 ? -0.25f : 0.25f) * q->size[2];
+        else
+            c[0] += (i == 2 ? -0.25f : 0.25f) * q->size[0];
+        q->gates[i].normal[along_x ? 0 : 2] = 1.0f;
+        q->gates[i].radius = 0.1f * q->size[0];
+        q->gates[i].clusters[0] = pairs[i][0];
+        q->gates[i].clusters[1] = pairs[i][1];
+        q->gates[i].edge = (uint32_t)i;
+    }
+    q->s.cluster_count = 4;
+    q->s.gate_count = 4;
+    q->s.gates = q->gates;
+}
+
+static void grid_clusters(const gb_scene *scene, const quadrants *q, gb_geometry_clusters *out)
+{
+    enum { N = 12 };
+    out->count = out->capacity = N * N * N;
+    out->clusters = calloc(out->count, sizeof *out->clusters);
+    for (uint32_t i = 0; i < out->count; ++i) {
+        gb_geometry_cluster *g = &out->clusters[i];
+        uint32_t index[3] = {i % N, (i / N) % N, i / (N * N)};
+        for (int a = 0; a < 3; ++a)
+            g->centre[a] = scene->bounds_min[a] + ((float)index[a] + 0.5f) / N * q->size[a];
+        g->radius = 0.02f * q->size[0] * (float)(1 + i % 3);
+        g->visibility_cluster = (uint32_t)quadrant_of(q, g->centre);
+    }
+}
+
+static void test_la_cpu_equals_gpu(void)
+{
+    gb_error error;
+    gb_context context;
+    if (gb_context_create_headless(&context, &error) != GB_OK) {
+        printf("ok %d # skip LA on the GPU: %s\n", ++tap_count, error.message);
+        return;
+    }
+    gb_scene scene = {0};
+    build_cornell_box(&scene, 32, 32);
+    gb_vpl_set vpls;
+    gb_topo_vpls_generate(&scene, 512, 3, &vpls, &error);
+    quadrants q;
+    make_quadrants(&scene, &q);
+    int32_t *vpl_cluster = malloc(vpls.count * sizeof *vpl_cluster);
+    for (uint32_t i = 0; i < vpls.count; ++i)
+        vpl_cluster[i] = quadrant_of(&q, vpls.vpls[i].position);
+    gb_geometry_clusters clusters;
+    grid_clusters(&scene, &q, &clusters);
+    gb_topo_gates gates;
+    gb_topo_gates_build(&q.s, &gates, &error);
+    gb_topo_assignment cpu = {0}, gpu = {0};
+    CHECK(gb_topo_assign(&clusters, &vpls, vpl_cluster, &q.s, &gates, GB_TOPO_FULL, &cpu,
+                         &error) == GB_OK, "LA on the CPU: Cornell box VPLs, 4 clusters");
+    gb_topo_gather_pass gather;
+    gb_topo_la_gpu la;
+    gb_result result = gb_topo_gather_create(&vpls, &q.s, 1.0f, &gather, &error);
+    if (result == GB_OK)
+        result = gb_topo_la_gpu_create(&vpls, vpl_cluster, &gates, &la, &error);
+    if (result == GB_OK)
+        result = gb_topo_la_gpu_run(&la, &clusters, GB_TOPO_FULL, &gather, &gpu, &error);
+    if (result == GB_OK)
+        result = gb_topo_la_gpu_read(&gather, &gpu, &error);
+    if (result != GB_OK)
+        printf("#   %s\n", error.message);
+    CHECK(result == GB_OK, "LA on the GPU: ran");
+    CHECK(cpu.entry_count > clusters.count && cpu.entry_count < clusters.count * vpls.count,
+          "LA: some VPLs assigned, not every one everywhere");
+    int gated = 0;
+    for (uint32_t i = 0; i < cpu.entry_count; ++i)
+        gated += cpu.entries[i].gate != GB_TOPO_NO_GATE;
+    CHECK(gated > 0, "LA: some VPLs assigned through a gate");
+    CHECK(result == GB_OK && gpu.entry_count == cpu.entry_count &&
+              memcmp(gpu.ranges, cpu.ranges, 2 * cpu.cluster_count * sizeof *cpu.ranges) == 0 &&
+              memcmp(gpu.entries, cpu.entries, cpu.entry_count * sizeof *cpu.entries) == 0,
+          "LA: the GPU's VPL lists are the CPU's, entry for entry");
+    printf("# LA: %u geometry clusters, %u entries (%d through a gate), GPU %u entries\n",
+           clusters.count, cpu.entry_count, gated, gpu.entry_count);
+    gb_topo_la_gpu_destroy(&la);
+    gb_topo_gather_destroy(&gather);
+    gb_topo_assignment_free(&cpu);
+    gb_topo_assignment_free(&gpu);
+    gb_topo_gates_free(&gates);
+    gb_geometry_clusters_free(&clusters);
+    free(vpl_cluster);
+    gb_vpl_free(&vpls);
+    gb_scene_free(&scene);
+    gb_context_destroy(&context);
+}
+
+static void oct_decode(float x, float y, float n[3])
+{
+    n[0] = x;
+    n[1] = y;
+    n[2] = 1.0f - fabsf(x) - fabsf(y);
+    if (n[2] < 0.0f) {
+        n[0] = (1.0f - fabsf(y)) * (x >= 0.0f ? 1.0f : -1.0f);
+        n[1] = (1.0f - fabsf(x)) * (y >= 0.0f ? 1.0f : -1.0f);
+    }
+    float l = sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    for (int a = 0; a < 3; ++a)
+        n[a] /= l;
+}
+
+/* A voxel grid over the Cornell box whose clusters are its four quadrants
+ * in x and z (and -1 in the top layer of voxels, as if it had no node). */
+static int32_t *quadrant_voxels(const gb_scene *scene, gb_segmentation *s)
+{
+    memset(s, 0, sizeof *s);
+    s->voxel_size = 20.0;
+    for (int a = 0; a < 3; ++a) {
+        s->world_origin[a] = scene->bounds_min[a] - 2.0 * s->voxel_size;
+        s->grid_size[a] = (int32_t)ceil((scene->bounds_max[a] - scene->bounds_min[a]) /
+                                        s->voxel_size) + 4;
+    }
+    const int32_t *n = s->grid_size;
+    int32_t *clusters = malloc((size_t)n[0] * n[1] * n[2] * sizeof *clusters);
+    for (int32_t k = 0; k < n[2]; ++k)
+        for (int32_t j = 0; j < n[1]; ++j)
+            for (int32_t i = 0; i < n[0]; ++i)
+                clusters[i + n[0] * (j + n[1] * k)] =
+                    j == n[1] - 3 ? -1 : (i >= n[0] / 2) + 2 * (k >= n[2] / 2);
+    return clusters;
+}
+
+/* Compares the GPU's cluster of each fragment with gb_topo_surface_cluster
+ * on the fragment read back; returns how many differ, *seen the fragments. */
+static int compare_cluster_lookup(const gb_gbuffer *gbuffer, const gb_segmentation *s,
+                                  const int32_t *voxels, const gb_topo_frame_input *frame,
+                                  int *seen, unsigned *kinds)
+{
+    int w = frame->width, h = frame->height, differ = 0;
+    float *depth = malloc((size_t)w * h * sizeof *depth);
+    float *normal = malloc((size_t)w * h * 4 * sizeof *normal);
+    uint32_t *ids = malloc((size_t)w * h * 2 * sizeof *ids);
+    glGetTextureImage(gbuffer->depth, 0, GL_DEPTH_COMPONENT, GL_FLOAT, w * h * 4, depth);
+    glGetTextureImage(gbuffer->normal, 0, GL_RGBA, GL_FLOAT, w * h * 16, normal);
+    glGetTextureImage(gbuffer->clusters, 0, GL_RG_INTEGER, GL_UNSIGNED_INT, w * h * 8, ids);
+    *seen = 0;
+    *kinds = 0;
+    for (int i = 0; i < w * h; ++i) {
+        if (!(depth[i] > 0.0f))
+            continue;
+        ++*seen;
+        float x[3], ng_view[3], ng[3] = {0, 0, 0};
+        gb_topo_pixel_position(frame, i % w, i / w, depth[i], x);
+        oct_decode(normal[4 * i + 2], normal[4 * i + 3], ng_view);
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c)
+                ng[r] += frame->view_to_world[4 * c + r] * ng_view[c];
+        int32_t cpu = gb_topo_surface_cluster(s, voxels, x, ng);
+        differ += (cpu < 0 ? GB_NO_CLUSTER : (uint32_t)cpu) != ids[2 * i];
+        *kinds |= 1u << (ids[2 * i] < 4 ? ids[2 * i] : 4);
+    }
+    free(depth);
+    free(normal);
+    free(ids);
+    return differ;
+}
+
+static void test_cluster_lookup_gpu(void)
+{
+    gb_error error;
+    gb_context context;
+    if (gb_context_create_headless(&context, &error) != GB_OK) {
+        printf("ok %d # skip cluster lookup on the GPU: %s\n", ++tap_count, error.message);
+        return;
+    }
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    enum { W = 96, H = 80 };
+    gb_scene scene = {0};
+    build_cornell_box(&scene, W, H);
+    gb_segmentation s;
+    int32_t *voxels = quadrant_voxels(&scene, &s);
+    gb_gpu_scene gpu = {0};
+    gb_gbuffer gbuffer = {0};
+    gb_topo_cluster_pass pass = {0};
+    gb_view view;
+    gb_result result = gb_gpu_scene_create(&scene, &gpu, &error);
+    if (result == GB_OK)
+        result = gb_gbuffer_create(W, H, &gbuffer, &error);
+    if (result == GB_OK)
+        result = gb_topo_cluster_pass_create(&s, voxels, &pass, &error);
+    if (result == GB_OK)
+        result = gb_scene_view(&scene, 0, &view, &error);
+    CHECK(result == GB_OK, "GP: G-buffer and cluster pass made");
+    if (result == GB_OK) {
+        gb_mat4 world_to_view = gb_view_matrix(&view), inverse = gb_view_inverse_matrix(&view);
+        gb_mat4 projection = gb_view_projection(&view, W, H);
+        gb_gbuffer_draw(&gbuffer, &gpu, &world_to_view, &projection);
+        float tan_y = tanf(0.5f * view.fov_y * (float)M_PI / 180.0f);
+        gb_topo_frame_input frame = {.width = W, .height = H, .near = view.near,
+                                     .tan_half_fov = {tan_y * W / H, tan_y}};
+        memcpy(frame.view_to_world, inverse.m, sizeof frame.view_to_world);
+        gb_topo_cluster_pass_run(&pass, gbuffer.depth, gbuffer.normal, gbuffer.clusters, W, H,
+                                 frame.view_to_world, frame.tan_half_fov, frame.near);
+        int seen;
+        unsigned kinds;
+        int differ = compare_cluster_lookup(&gbuffer, &s, voxels, &frame, &seen, &kinds);
+        CHECK(kinds == 0x1f, "GP: fragments in all four clusters, and some in none");
+        printf("# GP: %d of %d fragments differ from the CPU lookup\n", differ, seen);
+        CHECK(seen > W * H / 2 && differ <= seen / 200,
+              "GP: the GPU's visibility cluster of each fragment is the CPU's (but at most "
+              "0.5 %, on voxel borders)");
+    }
+    gb_topo_cluster_pass_destroy(&pass);
+    gb_gbuffer_destroy(&gbuffer);
+    gb_gpu_scene_destroy(&gpu);
+    free(voxels);
+    gb_scene_free(&scene);
+    gb_context_destroy(&context);
+}
+
+int main(void)
+{
+    test_vpls_cornell();
+    test_vpls_energy();
+    test_vpls_sun();
+    test_cones();
+    test_two_rooms_assignment();
+    test_iugc();
+    test_la_cpu_equals_gpu();
+    test_cluster_lookup_gpu();
+    return tap_done();
+}
