@@ -117,7 +117,7 @@ vpath %.scene $(dir $(SCENE))
 VOXELIZE_FLAGS ?=
 THIN_FLAGS ?=
 SEGMENT_FLAGS ?=
-bake: $(BAKE)/$(SCENE_NAME).seg
+bake: $(BAKE)/$(SCENE_NAME).seg $(BAKE)/$(SCENE_NAME).lot
 
 $(BAKE)/%.vdb: %.scene $(BIN)/voxelize
 	@mkdir -p $(@D)
@@ -134,6 +134,10 @@ PHOTONS_FLAGS ?=
 $(BAKE)/%.phot: %.scene $(BIN)/photons
 	@mkdir -p $(@D)
 	$(BIN)/photons $(PHOTONS_FLAGS) $< -o $@
+
+CLUSTER_FLAGS ?=
+$(BAKE)/%.lot: %.scene $(BAKE)/%.phot $(BIN)/cluster
+	$(BIN)/cluster $(CLUSTER_FLAGS) $< $(BAKE)/$*.phot -o $@
 
 # Reference images of SCENE, one per mode: make reference [SCENE=...] [REFERENCE_SPP=256]
 #   -> bake/NAME.{direct,indirect1,indirect1-unshadowed,full}.exr (+ .png)

@@ -7,7 +7,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
-#include "container.h"
+#include "light_octree.h"
 #include "segmentation.h"
 #include "skeleton.h"
 #include "voxel_grid.h"
@@ -87,12 +87,14 @@ static gb_result check_segments(const char *path, const gb_scene *scene, gb_erro
     return result;
 }
 
-static gb_result check_container(const char *path, gb_error *error)
+static gb_result check_light_octree(const char *path, const gb_scene *scene, gb_error *error)
 {
-    gb_container container;
-    gb_result result = gb_container_read(path, NULL, &container, error);
+    gb_light_octree octree;
+    memset(&octree, 0, sizeof octree);
+    gb_result result = gb_light_octree_read(path, &octree, error);
     if (result == GB_OK)
-        gb_container_close(&container);
+        result = check_hash(path, octree.header.scene_hash, scene, error);
+    gb_light_octree_free(&octree);
     return result;
 }
 
@@ -107,7 +109,7 @@ static gb_result check_file(gb_bake_kind kind, const char *path, const gb_scene 
     case GB_BAKE_SKELETON: return check_skeleton(path, scene, error);
     case GB_BAKE_NEAREST_NODE: return check_nearest_node(path, scene, error);
     case GB_BAKE_SEGMENTS: return check_segments(path, scene, error);
-    case GB_BAKE_LIGHT_OCTREE: return check_container(path, error);
+    case GB_BAKE_LIGHT_OCTREE: return check_light_octree(path, scene, error);
     case GB_BAKE_KIND_COUNT: break;
     }
     return gb_fail(error, GB_ERROR_ARGUMENT, "%s: unknown kind of baked file", path);

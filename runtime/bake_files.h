@@ -9,7 +9,7 @@
  * made from this scene (the scene hash); a file that is missing, corrupt or
  * stale gets one message in problems[] and is left out (usable[] 0). It
  * never fails on a file: the runtime goes on with the methods it can still
- * run. (.lot is checked as a gibake container until its reader lands.)
+ * run.
  */
 #ifndef GB_BAKE_FILES_H
 #define GB_BAKE_FILES_H

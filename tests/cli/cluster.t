@@ -1,0 +1,83 @@
+#!/bin/sh
+# cluster.t — the light octree tool as a user types it, on the Cornell box
+# with a few thousand photons: a valid octree written, the same bytes
+# whatever the threads, errors reported as a Unix tool should and nothing
+# left behind. Prints TAP.
+#
+# GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
+
+GB_ROOT=${GB_ROOT:-.}
+GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+tool=$GB_BIN/cluster
+scene=$GB_ROOT/scenes/cornell/cornell.scene
+dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-cluster.XXXXXX") || exit 1
+trap 'rm -rf "$dir"' EXIT INT TERM
+count=0
+failed=0
+
+ok() {
+    count=$((count + 1))
+    if [ "$1" = 0 ]; then
+        echo "ok $count - $2"
+    else
+        failed=$((failed + 1))
+        echo "not ok $count - $2"
+    fi
+}
+
+if [ ! -x "$tool" ] || [ ! -x "$GB_BIN/photons" ]; then
+    echo "Bail out! $tool or photons not built"
+    exit 1
+fi
+
+"$GB_BIN/photons" --count 5000 --quiet "$scene" -o "$dir/in.phot" 2>"$dir/err"
+ok $? "photons for the Cornell box"
+
+small="--depth 4 --knn 50 --quiet"
+"$tool" $small --threads 1 "$scene" "$dir/in.phot" -o "$dir/one.lot" >"$dir/out" 2>"$dir/err"
+ok $? "cluster: exit status 0"
+[ -s "$dir/one.lot" ] && [ ! -s "$dir/err" ]
+ok $? "... writes the octree, nothing on stderr"
+head -c 16 "$dir/one.lot" | tr -d '\000' | grep -a -q LOCT
+ok $? "... a gibake container of kind LOCT"
+
+"$tool" $small --threads 2 "$scene" "$dir/in.phot" -o "$dir/two.lot" 2>"$dir/err"
+cmp -s "$dir/one.lot" "$dir/two.lot"
+ok $? "the same bytes with 1 and 2 threads"
+
+"$tool" $small --stats "$scene" "$dir/in.phot" -o "$dir/stats.lot" >"$dir/stats" 2>"$dir/err"
+grep -q '^leaves [1-9]' "$dir/stats" && grep -q '^vdls [1-9]' "$dir/stats"
+ok $? "--stats prints leaves and VDLs"
+
+"$tool" --help >"$dir/help"
+[ $? = 0 ] && grep -q -- '--max-spread' "$dir/help"
+ok $? "--help: exit 0, lists the options"
+"$tool" --version >/dev/null
+ok $? "--version: exit 0"
+
+"$tool" $small "$scene" "$dir/in.phot" 2>"$dir/err"
+[ $? = 2 ] && grep -q '^cluster: ' "$dir/err"
+ok $? "no -o: exit 2 with a message"
+"$tool" $small --depth 11 "$scene" "$dir/in.phot" -o "$dir/bad.lot" 2>"$dir/err"
+[ $? = 2 ] && [ ! -e "$dir/bad.lot" ]
+ok $? "--depth 11: exit 2, nothing written"
+
+"$tool" $small "$scene" "$dir/missing.phot" -o "$dir/bad.lot" 2>"$dir/err"
+[ $? = 1 ] && grep -q 'missing.phot' "$dir/err" && [ ! -e "$dir/bad.lot" ]
+ok $? "a missing photon map: exit 1, names the file, nothing written"
+
+head -c 200 "$dir/in.phot" >"$dir/cut.phot"
+"$tool" $small "$scene" "$dir/cut.phot" -o "$dir/bad.lot" 2>"$dir/err"
+[ $? = 1 ] && grep -q 'cut.phot' "$dir/err" && [ ! -e "$dir/bad.lot" ]
+ok $? "a truncated photon map: exit 1, nothing written"
+
+# the same box with another environment: another scene hash
+sed 's/^environment 0 0 0/environment 0.5 0.5 0.5/; s|^mesh |mesh '"$GB_ROOT"'/scenes/cornell/|' \
+    "$scene" >"$dir/other.scene"
+"$tool" $small "$dir/other.scene" "$dir/in.phot" -o "$dir/bad.lot" 2>"$dir/err"
+status=$?
+[ $status = 1 ] && grep -q 'another scene' "$dir/err" && [ ! -e "$dir/bad.lot" ]
+ok $? "photons of another scene: exit 1, stale, nothing written"
+
+echo "1..$count"
+[ $failed = 0 ]

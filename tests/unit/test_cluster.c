@@ -1,0 +1,589 @@
+/* test_cluster.c — the light octree (tools/cluster, formats/light_octree):
+ * leaves only where geometry is and their normals; chord-length k-means on
+ * synthetic directions (bundles, degenerate input, irradiance conserved);
+ * VDL count chosen by spread; photons of one and two suns on a plane
+ * clustered into VDLs of the analytic direction and irradiance; bytes the
+ * same whatever the threads; bad inputs and corrupt files refused. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "../../tools/cluster/cluster.h"
+#include "../../tools/cluster/kmeans.h"
+#include "../../tools/cluster/octree.h"
+#include "../../tools/cluster/vdl.h"
+#include "../../tools/photons/photons.h"
+#include "../../tools/voxelize/triangle_box_overlap.h"
+#include "light_octree.h"
+#include "scene_builder.h"
+#include "tap.h"
+
+#define PI 3.14159265358979323846
+
+static double angle_degrees(const float a[3], const float b[3])
+{
+    double dot = (double)a[0] * b[0] + (double)a[1] * b[1] + (double)a[2] * b[2];
+    return acos(fmax(-1.0, fmin(1.0, dot))) * 180.0 / PI;
+}
+
+static void normalize3(float v[3])
+{
+    float l = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    v[0] /= l, v[1] /= l, v[2] /= l;
+}
+
+/* ---- octree ---------------------------------------------------------------- */
+
+static void build_one_triangle(gb_scene *scene)
+{
+    memset(scene, 0, sizeof *scene);
+    uint32_t grey = add_grey(scene, 0.5f, 0.0f);
+    const float p[3][3] = {{0.1f, 0.2f, 0.3f}, {0.9f, 0.3f, 0.5f}, {0.3f, 0.8f, 0.7f}};
+    scene->vertex_count = 3;
+    scene->positions = builder_grow(NULL, 9, sizeof(float));
+    memcpy(scene->positions, p, sizeof p);
+    add_triangle(scene, 0, 1, 2, grey);
+    scene_done(scene);
+}
+
+/* Every cell of the grid that the triangle touches is a leaf, and no other. */
+static void test_octree_single_triangle(void)
+{
+    gb_scene scene;
+    build_one_triangle(&scene);
+    gb_octree_leaves leaves;
+    gb_error error;
+    CHECK(gb_octree_build(&scene, 4, &leaves, &error) == GB_OK, "octree of one triangle");
+    double vertex[3][3], edge = gb_octree_leaf_edge(&leaves), half[3];
+    for (int v = 0; v < 3; ++v)
+        for (int k = 0; k < 3; ++k)
+            vertex[v][k] = scene.positions[3 * v + k];
+    half[0] = half[1] = half[2] = 0.5 * edge;
+    uint32_t expected = 0, matched = 0;
+    for (uint32_t z = 0; z < 16; ++z)
+        for (uint32_t y = 0; y < 16; ++y)
+            for (uint32_t x = 0; x < 16; ++x) {
+                double c[3] = {leaves.origin[0] + (x + 0.5) * edge,
+                               leaves.origin[1] + (y + 0.5) * edge,
+                               leaves.origin[2] + (z + 0.5) * edge};
+                expected += gb_triangle_box_overlap((const double(*)[3])vertex, c, half);
+            }
+    int normals_ok = 1, touching = 1;
+    float n[3] = {-0.08f, -0.28f, 0.46f}; /* (p1 - p0) x (p2 - p0) */
+    normalize3(n);
+    for (uint32_t i = 0; i < leaves.count; ++i) {
+        uint32_t cell[3];
+        gb_octree_leaf_cell(&leaves, i, cell);
+        double cd[3];
+        for (int k = 0; k < 3; ++k)
+            cd[k] = leaves.origin[k] + (cell[k] + 0.5) * edge;
+        touching &= gb_triangle_box_overlap((const double(*)[3])vertex, cd, half);
+        matched += 1;
+        normals_ok &= angle_degrees(&leaves.normals[3 * i], n) < 1e-3;
+    }
+    CHECK(expected > 0 && leaves.count < 16 * 16 * 16 / 4, "a triangle touches a few cells");
+    CHECK_EQ_INT(matched, expected, "leaves are exactly the cells the triangle touches");
+    CHECK(touching, "every leaf touches the triangle");
+    CHECK(normals_ok, "every leaf's normal is the triangle's");
+    int increasing = 1;
+    for (uint32_t i = 1; i < leaves.count; ++i)
+        increasing &= leaves.keys[i] > leaves.keys[i - 1];
+    CHECK(increasing, "leaves in increasing Morton order");
+    gb_octree_leaves_free(&leaves);
+    gb_scene_free(&scene);
+}
+
+/* Two faces of a box meeting in a cell: the normal leans to the larger one. */
+static void test_octree_area_weighted_normal(void)
+{
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    uint32_t grey = add_grey(&scene, 0.5f, 0.0f);
+    /* floor 0..1 x 0..1 at y = 0 facing +y, wall at x = 0, y 0..0.5, facing +x */
+    const float floor[4][3] = {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}};
+    const float wall[4][3] = {{0, 0, 0}, {0, 0.5f, 0}, {0, 0.5f, 1}, {0, 0, 1}};
+    const float above[3] = {0.5f, 1.0f, 0.5f}, right[3] = {1.0f, 0.25f, 0.5f};
+    add_quad_facing(&scene, floor, above, grey);
+    add_quad_facing(&scene, wall, right, grey);
+    scene_done(&scene);
+    gb_octree_leaves leaves;
+    gb_error error;
+    CHECK(gb_octree_build(&scene, 1, &leaves, &error) == GB_OK, "octree of floor and wall");
+    /* depth 1: the cell at the corner holds the whole floor (area 1) and wall (0.5) */
+    float expected[3] = {0.5f, 1.0f, 0.0f};
+    normalize3(expected);
+    CHECK(leaves.count >= 1 && angle_degrees(&leaves.normals[0], expected) < 0.1,
+          "leaf normal is the area-weighted average (floor 1, wall 0.5)");
+    gb_octree_leaves_free(&leaves);
+    gb_scene_free(&scene);
+}
+
+/* The six faces of a box: leaves on its shell only, none inside. */
+static void test_octree_box_shell(void)
+{
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    add_box(&scene, lo, hi, 1, add_grey(&scene, 0.5f, 0.0f));
+    scene_done(&scene);
+    gb_octree_leaves leaves;
+    gb_error error;
+    CHECK(gb_octree_build(&scene, 3, &leaves, &error) == GB_OK, "octree of a box");
+    int shell = 1;
+    for (uint32_t i = 0; i < leaves.count; ++i) {
+        uint32_t c[3];
+        gb_octree_leaf_cell(&leaves, i, c);
+        shell &= c[0] == 0 || c[0] == 7 || c[1] == 0 || c[1] == 7 || c[2] == 0 || c[2] == 7;
+    }
+    CHECK_EQ_INT(leaves.count, 8 * 8 * 8 - 6 * 6 * 6, "a box at depth 3: the 296 shell cells");
+    CHECK(shell, "... and no cell inside");
+    gb_octree_leaves_free(&leaves);
+    gb_scene_free(&scene);
+}
+
+/* ---- k-means and VDLs ---------------------------------------------------- */
+
+/* n directions within `noise` (radians, roughly) of d, power p each. */
+static void add_bundle(gb_vdl_workspace *w, const float d[3], uint32_t n, float noise,
+                       const float power[3], gb_random *rng)
+{
+    for (uint32_t i = 0; i < n; ++i) {
+        float *v = &w->directions[3 * (size_t)w->count];
+        for (int k = 0; k < 3; ++k)
+            v[k] = d[k] + noise * (2.0f * gb_random_float(rng) - 1.0f);
+        normalize3(v);
+        memcpy(&w->powers[3 * (size_t)w->count], power, 3 * sizeof(float));
+        w->weights[w->count++] = power[0] + power[1] + power[2];
+    }
+}
+
+static void test_two_bundles(void)
+{
+    gb_vdl_workspace w;
+    gb_error error;
+    CHECK(gb_vdl_workspace_create(&w, 300, 8, &error) == GB_OK, "workspace");
+    gb_random rng = gb_random_make(7, 0);
+    float a[3] = {0.0f, 1.0f, 0.0f}, b[3] = {0.7f, 0.7f, 0.1f};
+    normalize3(b);
+    const float pa[3] = {1.0f, 0.5f, 0.25f}, pb[3] = {0.2f, 0.2f, 0.4f};
+    w.count = 0;
+    add_bundle(&w, a, 200, 0.01f, pa, &rng);
+    add_bundle(&w, b, 100, 0.01f, pb, &rng);
+    gb_light_octree_vdl vdls[8];
+    double spread;
+    gb_random seed = gb_random_make(1, 2);
+    uint32_t n = gb_vdls_from_photons(&w, 0.5f, 5.0f, &seed, vdls, &spread);
+    CHECK_EQ_INT(n, 2, "two tight bundles: two VDLs");
+    float da[3], db[3];
+    gb_photon_unpack_direction(vdls[0].direction, da);
+    gb_photon_unpack_direction(vdls[n > 1].direction, db);
+    CHECK(angle_degrees(da, a) < 1.0 && angle_degrees(db, b) < 1.0,
+          "... brightest first, each along its bundle (within 1 degree)");
+    double area = PI * 0.25;
+    CHECK_NEAR(vdls[0].irradiance[0], 200.0 * 1.0 / area, 1e-3, "... irradiance of bundle A: "
+               "sum of its powers / (pi r^2)");
+    double total[3] = {0, 0, 0};
+    for (uint32_t i = 0; i < n; ++i)
+        for (int k = 0; k < 3; ++k)
+            total[k] += vdls[i].irradiance[k];
+    CHECK(fabs(total[0] - 220.0 / area) < 1e-3 && fabs(total[2] - 90.0 / area) < 1e-3,
+          "... irradiance summed over VDLs is the density estimate: conserved");
+    CHECK(spread < 5.0, "... spread under the threshold");
+    gb_vdl_workspace_free(&w);
+}
+
+static void test_identical_directions(void)
+{
+    gb_vdl_workspace w;
+    gb_error error;
+    gb_vdl_workspace_create(&w, 300, 8, &error);
+    gb_random rng = gb_random_make(7, 1);
+    const float d[3] = {0.0f, 0.0f, 1.0f}, p[3] = {1.0f, 1.0f, 1.0f};
+    w.count = 0;
+    add_bundle(&w, d, 300, 0.0f, p, &rng);
+    gb_light_octree_vdl vdls[8];
+    double spread;
+    gb_random seed = gb_random_make(1, 3);
+    uint32_t n = gb_vdls_from_photons(&w, 1.0f, -1.0f, &seed, vdls, &spread);
+    float v[3];
+    gb_photon_unpack_direction(vdls[0].direction, v);
+    CHECK_EQ_INT(n, 1, "identical directions, K_max asked: one VDL");
+    CHECK(isfinite(vdls[0].irradiance[0]) && isfinite(spread) && spread == 0.0 &&
+              angle_degrees(v, d) < 0.01,
+          "... finite, along the direction, spread 0 (no NaN)");
+    CHECK_NEAR(vdls[0].irradiance[1], 300.0 / PI, 1e-3, "... irradiance sum / (pi r^2)");
+    w.count = 0;
+    CHECK_EQ_INT(gb_vdls_from_photons(&w, 1.0f, 15.0f, &seed, vdls, &spread), 0,
+                 "no photon: no VDL");
+    gb_vdl_workspace_free(&w);
+}
+
+/* Four bundles 90 degrees apart with 3-degree noise: the spread of one cluster
+ * is far above 10 degrees, of four well below; so 10 degrees picks four. */
+static void test_count_by_spread(void)
+{
+    gb_vdl_workspace w;
+    gb_error error;
+    gb_vdl_workspace_create(&w, 400, 8, &error);
+    gb_random rng = gb_random_make(9, 0);
+    const float d[4][3] = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, 0, 1}}, p[3] = {1, 1, 1};
+    w.count = 0;
+    for (int i = 0; i < 4; ++i)
+        add_bundle(&w, d[i], 100, 0.05f, p, &rng);
+    gb_light_octree_vdl vdls[8];
+    double spread;
+    gb_random seed = gb_random_make(3, 0);
+    CHECK_EQ_INT(gb_vdls_from_photons(&w, 1.0f, 10.0f, &seed, vdls, &spread), 4,
+                 "four bundles, spread <= 10 degrees: four VDLs");
+    CHECK(spread <= 10.0, "... whose spread is under 10 degrees");
+    seed = gb_random_make(3, 0);
+    CHECK_EQ_INT(gb_vdls_from_photons(&w, 1.0f, 179.0f, &seed, vdls, &spread), 1,
+                 "spread <= 179 degrees: one VDL is enough");
+    uint32_t assignment[400];
+    float centroids[9];
+    double scratch[400];
+    seed = gb_random_make(3, 0);
+    uint32_t made = gb_kmeans_directions(w.directions, w.weights, w.count, 3, &seed, centroids,
+                                         assignment, scratch);
+    CHECK(made == 3 && gb_kmeans_spread(w.directions, w.weights, w.count, centroids,
+                                        assignment) > 10.0,
+          "... and three clusters spread more than 10 degrees");
+    gb_vdl_workspace_free(&w);
+}
+
+/* ---- photons of suns on a plane -------------------------------------------- */
+
+/* A black 2 x 2 plane at y = 0 facing +y, lit by `suns` suns of irradiance 1
+ * from directions (+-0.6, -0.8, 0): each brings E cos(theta) = 0.8. */
+static void build_sunny_plane(gb_scene *scene, int suns)
+{
+    memset(scene, 0, sizeof *scene);
+    uint32_t black = add_grey(scene, 0.0f, 0.0f);
+    const float plane[4][3] = {{-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}};
+    const float above[3] = {0, 1, 0}, one[3] = {1, 1, 1};
+    add_quad_facing(scene, plane, above, black);
+    const float from_right[3] = {-0.6f, -0.8f, 0.0f}, from_left[3] = {0.6f, -0.8f, 0.0f};
+    add_point_light(scene, GB_LIGHT_DIRECTIONAL, NULL, from_left, one);
+    if (suns == 2)
+        add_point_light(scene, GB_LIGHT_DIRECTIONAL, NULL, from_right, one);
+    scene_done(scene);
+}
+
+static gb_photon_map trace_plane(const gb_scene *scene, uint64_t count)
+{
+    gb_photons_options o = {.count = count, .bounces = 1, .store = GB_PHOTON_STORE_ALL,
+                            .seed = 5, .threads = 2};
+    gb_photon_map map;
+    gb_error error;
+    if (gb_photons_trace(scene, &o, &map, NULL, &error) != GB_OK) {
+        printf("Bail out! photons: %s\n", error.message);
+        exit(1);
+    }
+    return map;
+}
+
+static int interior(const gb_light_octree *octree, const gb_light_octree_leaf *leaf)
+{
+    const gb_light_octree_header *h = &octree->header;
+    float edge = h->size / (float)(1u << h->depth);
+    float x = h->origin[0] + (leaf->cell[0] + 0.5f) * edge;
+    float z = h->origin[2] + (leaf->cell[2] + 0.5f) * edge;
+    return fabsf(x) < 0.55f && fabsf(z) < 0.55f;
+}
+
+/* The relation checked: on a plane lit by suns, a leaf's VDLs point to the
+ * suns and their irradiances sum to the analytic E cos(theta) per sun (the
+ * density estimate is unbiased on a plane away from its edges): mean within
+ * 3 %, every leaf within 30 % (K = 300: 1/sqrt(K) = 6 % noise). */
+static void check_suns(const gb_light_octree *octree, int suns, const char *what)
+{
+    const float toward[2][3] = {{-0.6f, 0.8f, 0.0f}, {0.6f, 0.8f, 0.0f}};
+    uint32_t counted = 0, right_count = 0, right_direction = 0, within = 0;
+    double mean = 0.0;
+    for (uint32_t i = 0; i < octree->header.leaf_count; ++i) {
+        const gb_light_octree_leaf *leaf = &octree->leaves[i];
+        if (!interior(octree, leaf))
+            continue;
+        ++counted;
+        right_count += leaf->vdl_count == (uint32_t)suns;
+        double sum = 0.0;
+        int directions_ok = 1;
+        for (uint32_t j = 0; j < leaf->vdl_count; ++j) {
+            const gb_light_octree_vdl *v = &octree->vdls[leaf->first_vdl + j];
+            float d[3];
+            gb_photon_unpack_direction(v->direction, d);
+            double best = 180.0;
+            for (int s = 0; s < suns; ++s)
+                best = fmin(best, angle_degrees(d, toward[s]));
+            directions_ok &= best < 0.1;
+            sum += v->irradiance[0];
+        }
+        right_direction += directions_ok;
+        within += fabs(sum - 0.8 * suns) < 0.3 * 0.8 * suns;
+        mean += sum;
+    }
+    char text[160];
+    snprintf(text, sizeof text, "%s: every interior leaf has %d VDL(s)", what, suns);
+    CHECK(counted > 0 && right_count == counted, text);
+    snprintf(text, sizeof text, "%s: ... pointing to the suns (within 0.1 degree)", what);
+    CHECK(right_direction == counted, text);
+    snprintf(text, sizeof text, "%s: mean irradiance is %d x E cos(theta) = %.1f", what, suns,
+             0.8 * suns);
+    CHECK_NEAR(mean / (counted ? counted : 1), 0.8 * suns, 0.03 * 0.8 * suns, text);
+    snprintf(text, sizeof text, "%s: every leaf within 30 %%", what);
+    CHECK(within == counted, text);
+}
+
+static gb_light_octree cluster_plane(const gb_scene *scene, const gb_photon_map *map,
+                                     int threads)
+{
+    gb_cluster_options o = {.depth = 4, .threads = threads, .seed = 11};
+    gb_light_octree octree;
+    gb_error error;
+    if (gb_cluster_build(scene, map, &o, &octree, NULL, &error) != GB_OK) {
+        printf("Bail out! cluster: %s\n", error.message);
+        exit(1);
+    }
+    return octree;
+}
+
+static void test_one_sun(void)
+{
+    gb_scene scene;
+    build_sunny_plane(&scene, 1);
+    gb_photon_map map = trace_plane(&scene, 40000);
+    gb_light_octree octree = cluster_plane(&scene, &map, 2);
+    check_suns(&octree, 1, "one sun");
+    gb_light_octree_free(&octree);
+    gb_photon_map_free(&map);
+    gb_scene_free(&scene);
+}
+
+static int write_and_load(const gb_light_octree *octree, const char *path, unsigned char **bytes,
+                          long *size)
+{
+    gb_error error;
+    if (gb_light_octree_write(path, octree, &error) != GB_OK)
+        return 0;
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        return 0;
+    fseek(file, 0, SEEK_END);
+    *size = ftell(file);
+    fseek(file, 0, SEEK_SET);
+    *bytes = aligned_alloc(16, ((size_t)*size + 15) / 16 * 16);
+    int ok = *bytes && fread(*bytes, 1, (size_t)*size, file) == (size_t)*size;
+    fclose(file);
+    return ok;
+}
+
+/* Corruptions of a valid octree that the checker must refuse. */
+static void test_corrupt(const gb_light_octree *good)
+{
+    const gb_light_octree_header *h = &good->header;
+    size_t node_bytes = h->node_count * sizeof(gb_light_octree_node);
+    size_t leaf_bytes = h->leaf_count * sizeof(gb_light_octree_leaf);
+    size_t vdl_bytes = h->vdl_count * sizeof(gb_light_octree_vdl);
+    gb_light_octree_node *nodes = malloc(node_bytes);
+    gb_light_octree_leaf *leaves = malloc(leaf_bytes);
+    gb_light_octree_vdl *vdls = malloc(vdl_bytes);
+    gb_light_octree bad = {.header = *h, .nodes = nodes, .leaves = leaves, .vdls = vdls};
+    gb_error error;
+#define RESET() (memcpy(nodes, good->nodes, node_bytes), memcpy(leaves, good->leaves, leaf_bytes), \
+                 memcpy(vdls, good->vdls, vdl_bytes), bad.header = *h)
+    RESET();
+    CHECK(gb_light_octree_check(&bad, "copy", &error) == GB_OK, "a copy checks");
+    uint32_t c = 0;
+    while (nodes[0].child[c] == GB_LIGHT_OCTREE_NONE)
+        ++c;
+    nodes[0].child[c] = h->node_count;
+    CHECK(gb_light_octree_check(&bad, "x", &error) == GB_ERROR_FORMAT,
+          "child index out of range refused");
+    RESET();
+    for (uint32_t k = 0; k < 8; ++k)
+        if (nodes[0].child[k] == GB_LIGHT_OCTREE_NONE) {
+            nodes[0].child[k] = nodes[0].child[c];
+            break;
+        }
+    CHECK(gb_light_octree_check(&bad, "x", &error) == GB_ERROR_FORMAT,
+          "a node reached twice refused");
+    RESET();
+    leaves[0].vdl_count += 1;
+    CHECK(gb_light_octree_check(&bad, "x", &error) == GB_ERROR_FORMAT,
+          "VDL ranges that do not follow each other refused");
+    RESET();
+    vdls[0].irradiance[1] = NAN;
+    CHECK(gb_light_octree_check(&bad, "x", &error) == GB_ERROR_FORMAT, "NaN irradiance refused");
+    RESET();
+    leaves[0].normal[0] += 0.5f;
+    CHECK(gb_light_octree_check(&bad, "x", &error) == GB_ERROR_FORMAT, "non-unit normal refused");
+    RESET();
+    bad.header.depth = 11;
+    CHECK(gb_light_octree_check(&bad, "x", &error) == GB_ERROR_FORMAT, "depth 11 refused");
+    RESET();
+    leaves[1].cell[0] ^= 1;
+    CHECK(gb_light_octree_check(&bad, "x", &error) == GB_ERROR_FORMAT,
+          "a leaf naming another cell refused");
+#undef RESET
+    free(nodes);
+    free(leaves);
+    free(vdls);
+}
+
+static void test_file_corruption(const unsigned char *bytes, long size)
+{
+    gb_light_octree octree;
+    gb_error error;
+    CHECK(gb_light_octree_parse(bytes, (size_t)size, "good", &octree, &error) == GB_OK,
+          "the file parses");
+    gb_light_octree_free(&octree);
+    unsigned char *copy = aligned_alloc(16, ((size_t)size + 15) / 16 * 16);
+    memcpy(copy, bytes, (size_t)size);
+    copy[size / 2] ^= 0x40;
+    CHECK(gb_light_octree_parse(copy, (size_t)size, "flip", &octree, &error) != GB_OK,
+          "a flipped byte refused");
+    CHECK(gb_light_octree_parse(bytes, (size_t)size - 8, "cut", &octree, &error) != GB_OK,
+          "a truncated file refused");
+    free(copy);
+}
+
+/* Two suns; bytes with 1 and 2 threads; then the corruptions. */
+static void test_two_suns_and_determinism(void)
+{
+    gb_scene scene;
+    build_sunny_plane(&scene, 2);
+    gb_photon_map map = trace_plane(&scene, 60000);
+    gb_light_octree two = cluster_plane(&scene, &map, 2);
+    gb_light_octree one = cluster_plane(&scene, &map, 1);
+    check_suns(&two, 2, "two suns");
+    char path_one[64], path_two[64];
+    snprintf(path_one, sizeof path_one, "/tmp/test_cluster_%d_1.lot", (int)getpid());
+    snprintf(path_two, sizeof path_two, "/tmp/test_cluster_%d_2.lot", (int)getpid());
+    unsigned char *bytes_one = NULL, *bytes_two = NULL;
+    long size_one = 0, size_two = 0;
+    int written = write_and_load(&one, path_one, &bytes_one, &size_one) &&
+                  write_and_load(&two, path_two, &bytes_two, &size_two);
+    CHECK(written && size_one == size_two && memcmp(bytes_one, bytes_two, (size_t)size_one) == 0,
+          "the same file bytes with 1 and 2 threads");
+    gb_light_octree read;
+    gb_error error;
+    CHECK(gb_light_octree_read(path_two, &read, &error) == GB_OK &&
+              gb_light_octree_check_scene(&read, scene.hash, path_two, &error) == GB_OK,
+          "the file reads back, made from this scene");
+    CHECK_EQ_INT(gb_light_octree_check_scene(&read, scene.hash ^ 1, path_two, &error),
+                 GB_ERROR_STALE, "... and is stale for another scene");
+    const float centre[3] = {0.01f, 0.0f, 0.01f}, outside[3] = {5.0f, 0.0f, 0.0f};
+    uint32_t leaf = gb_light_octree_find_leaf(&read, centre);
+    CHECK(leaf != GB_LIGHT_OCTREE_NONE && read.leaves[leaf].vdl_count == 2 &&
+              gb_light_octree_find_leaf(&read, outside) == GB_LIGHT_OCTREE_NONE,
+          "find_leaf walks depth nodes to the leaf of a point on the plane");
+    gb_light_octree_free(&read);
+    if (written)
+        test_file_corruption(bytes_two, size_two);
+    test_corrupt(&two);
+    remove(path_one);
+    remove(path_two);
+    free(bytes_one);
+    free(bytes_two);
+    gb_light_octree_free(&one);
+    gb_light_octree_free(&two);
+    gb_photon_map_free(&map);
+    gb_scene_free(&scene);
+}
+
+/* The Cornell box with indirect photons only: every leaf that gathers gets
+ * 1..K_max VDLs, all finite; the walls near the light are lit. */
+static void test_cornell_box(void)
+{
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    build_cornell_box(&scene, 64, 64);
+    gb_photons_options po = {.count = 20000, .seed = 3, .threads = 2};
+    gb_photon_map map;
+    gb_error error;
+    CHECK(gb_photons_trace(&scene, &po, &map, NULL, &error) == GB_OK, "Cornell box photons");
+    gb_cluster_options o = {.depth = 4, .threads = 2, .knn = 100};
+    gb_light_octree octree;
+    gb_cluster_stats stats;
+    CHECK(gb_cluster_build(&scene, &map, &o, &octree, &stats, &error) == GB_OK,
+          "Cornell box clustered");
+    uint32_t lit = 0, bounded = 1;
+    for (uint32_t i = 0; i < octree.header.leaf_count; ++i) {
+        lit += octree.leaves[i].vdl_count > 0;
+        bounded &= octree.leaves[i].vdl_count <= 8;
+    }
+    CHECK(lit > 0.9 * octree.header.leaf_count && bounded,
+          "more than 90 % of the leaves lit, none with more than K_max VDLs");
+    CHECK(gb_light_octree_check(&octree, "cornell", &error) == GB_OK, "... a valid octree");
+    CHECK_EQ_INT(stats.leaves, octree.header.leaf_count, "... stats count the leaves");
+    gb_light_octree_free(&octree);
+    gb_photon_map_free(&map);
+    gb_scene_free(&scene);
+}
+
+/* A map of another scene, or with a NaN, is refused; K above the photons and
+ * leaves without photons are fine. */
+static void test_bad_inputs(void)
+{
+    gb_scene scene;
+    build_sunny_plane(&scene, 1);
+    gb_photon_map map = trace_plane(&scene, 200);
+    gb_light_octree octree;
+    gb_error error;
+    gb_cluster_options o = {.depth = 3, .knn = 100000, .threads = 2};
+    CHECK(gb_cluster_build(&scene, &map, &o, &octree, NULL, &error) == GB_OK,
+          "K above the photon count works");
+    uint32_t empty = 0;
+    for (uint32_t i = 0; i < octree.header.leaf_count; ++i)
+        empty += octree.leaves[i].vdl_count == 0;
+    CHECK(octree.header.vdl_count > 0, "... and gives VDLs");
+    gb_light_octree_free(&octree);
+    o.radius = 0.01f;
+    o.knn = 300;
+    CHECK(gb_cluster_build(&scene, &map, &o, &octree, NULL, &error) == GB_OK,
+          "a tiny radius works");
+    empty = 0;
+    for (uint32_t i = 0; i < octree.header.leaf_count; ++i)
+        empty += octree.leaves[i].vdl_count == 0;
+    CHECK(empty > 0, "... leaves with no photon have no VDL");
+    gb_light_octree_free(&octree);
+    o.radius = 0.0f;
+    map.header.scene_hash ^= 1;
+    CHECK_EQ_INT(gb_cluster_build(&scene, &map, &o, &octree, NULL, &error), GB_ERROR_STALE,
+                 "a map of another scene refused");
+    map.header.scene_hash ^= 1;
+    gb_photon_map nan_map;
+    gb_photon_arrays a;
+    gb_photon_map_allocate(&nan_map, map.count, &a, &error);
+    nan_map.header = map.header;
+    memcpy(a.positions, map.positions, map.count * 12);
+    memcpy(a.powers, map.powers, map.count * 12);
+    memcpy(a.directions, map.directions, map.count * 4);
+    memcpy(a.normals, map.normals, map.count * 4);
+    a.positions[4] = NAN;
+    CHECK(gb_cluster_build(&scene, &nan_map, &o, &octree, NULL, &error) != GB_OK,
+          "a NaN photon position refused");
+    o.depth = 11;
+    CHECK_EQ_INT(gb_cluster_build(&scene, &map, &o, &octree, NULL, &error), GB_ERROR_ARGUMENT,
+                 "depth 11 refused");
+    gb_photon_map_free(&nan_map);
+    gb_photon_map_free(&map);
+    gb_scene_free(&scene);
+}
+
+int main(void)
+{
+    test_octree_single_triangle();
+    test_octree_area_weighted_normal();
+    test_octree_box_shell();
+    test_two_bundles();
+    test_identical_directions();
+    test_count_by_spread();
+    test_one_sun();
+    test_two_suns_and_determinism();
+    test_bad_inputs();
+    test_cornell_box();
+    return tap_done();
+}
