@@ -24,17 +24,10 @@ threads_list=${REFERENCE_THREADS:-"1 2"}
 rounds=${REFERENCE_ROUNDS:-3}
 build=$(dirname "$GB_BIN")
 helper=$build/bench/reference_rate
-LIBS="-lopenvdb -ltbb -lOpenImageIO -lOpenImageIO_Util -lOpenMeshCore -lembree3 -lflann \
--lepoxy -lglfw -lEGL -lz -lm -lstdc++"
-
-# The helper is bench code, built here against the project's library.
-if [ ! -x "$helper" ] || [ "$root/bench/reference_rate.c" -nt "$helper" ] ||
-    [ "$build/libgibake.a" -nt "$helper" ]; then
-    mkdir -p "$build/bench"
-    # shellcheck disable=SC2086
-    ${CC:-cc} -std=c11 -O2 -pthread -Wall -Wextra -D_GNU_SOURCE \
-        -I"$root/formats" -I"$root/common" "$root/bench/reference_rate.c" \
-        "$build/libgibake.a" $LIBS -o "$helper" || exit 1
+# The helper is bench code that `make bench` builds into build/bench/.
+if [ ! -x "$helper" ]; then
+    echo "reference.sh: $helper not built: run make bench" >&2
+    exit 1
 fi
 
 echo "reference renderer against raw rtcIntersect1 (Mrays/s); $(nproc) cores; $(date -u +%Y-%m-%d)"

@@ -22,9 +22,6 @@ build=$(dirname "$GB_BIN")
 helper=$build/bench/topo_passes
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-topo.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-LIBS="-lopenvdb -ltbb -lOpenImageIO -lOpenImageIO_Util -lOpenMeshCore -lembree3 -lflann \
--lepoxy -lglfw -lEGL -lz -lm -lstdc++"
-
 for tool in voxelize thin segment gbview reference imgdiff; do
     if [ ! -x "$GB_BIN/$tool" ]; then
         echo "topo.sh: $GB_BIN/$tool not built"
@@ -32,14 +29,10 @@ for tool in voxelize thin segment gbview reference imgdiff; do
     fi
 done
 
-# The helper is bench code, built here against the project's library.
-if [ ! -x "$helper" ] || [ "$root/bench/topo_passes.c" -nt "$helper" ] ||
-    [ "$build/libgibake.a" -nt "$helper" ]; then
-    mkdir -p "$build/bench"
-    # shellcheck disable=SC2086
-    ${CC:-cc} -std=c11 -O2 -pthread -Wall -Wextra -D_GNU_SOURCE -I"$root/formats" \
-        -I"$root/common" "$root/bench/topo_passes.c" "$build/libgibake.a" $LIBS \
-        -o "$helper" || exit 1
+# The helper is bench code that `make bench` builds into build/bench/.
+if [ ! -x "$helper" ]; then
+    echo "topo.sh: $helper not built: run make bench" >&2
+    exit 1
 fi
 
 mse() {

@@ -25,17 +25,10 @@ helper=$build/bench/voxelize_bench
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-voxelize.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
 
-LIBS="-lopenvdb -ltbb -lOpenImageIO -lOpenImageIO_Util -lOpenMeshCore -lembree3 -lflann \
--lepoxy -lglfw -lEGL -lz -lm -lstdc++"
-
-# The helper is bench code, built here against the project's library.
-if [ ! -x "$helper" ] || [ "$root/bench/voxelize_bench.cpp" -nt "$helper" ] ||
-    [ "$build/libgibake.a" -nt "$helper" ]; then
-    mkdir -p "$build/bench"
-    # shellcheck disable=SC2086
-    ${CXX:-g++} -std=c++17 -O2 -pthread -Wall -Wextra -Wno-deprecated-declarations \
-        -I"$root/formats" -I"$root/common" -I"$root/tools/voxelize" \
-        "$root/bench/voxelize_bench.cpp" "$build/libgibake.a" $LIBS -o "$helper" || exit 1
+# The helper is bench code that `make bench` builds into build/bench/.
+if [ ! -x "$helper" ]; then
+    echo "voxelize.sh: $helper not built: run make bench" >&2
+    exit 1
 fi
 if [ ! -x /usr/bin/time ]; then
     echo "voxelize.sh: /usr/bin/time is needed for peak memory (package time)" >&2

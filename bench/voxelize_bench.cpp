@@ -11,11 +11,11 @@
 // Prints one line of key=value pairs. Bench code: C++ only to call OpenVDB.
 
 extern "C" {
-#include "distance.h"
+#include "../tools/voxelize/distance.h"
 #include "progress.h"
 #include "scene.h"
 #include "voxel_grid.h"
-#include "voxelize.h"
+#include "../tools/voxelize/voxelize.h"
 }
 
 #define IMATH_HALF_NO_LOOKUP_TABLE
