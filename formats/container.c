@@ -12,6 +12,7 @@
  * file or the complete new one, never a part.
  */
 #include "container.h"
+#include "little_endian.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -46,29 +47,6 @@ static const unsigned char MAGIC[8] = {0xAB, 'G', 'B', 'K', 0x0D, 0x0A, 0x1A, 0x
 static const uint32_t ENDIAN_MARK = 0x01020304u;
 
 /* ---- little-endian fields, independent of the host's byte order ---- */
-
-static uint32_t get_u32(const unsigned char *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
-           (uint32_t)p[3] << 24;
-}
-
-static uint64_t get_u64(const unsigned char *p)
-{
-    return (uint64_t)get_u32(p) | (uint64_t)get_u32(p + 4) << 32;
-}
-
-static void put_u32(unsigned char *p, uint32_t value)
-{
-    for (int i = 0; i < 4; ++i)
-        p[i] = (unsigned char)(value >> (8 * i));
-}
-
-static void put_u64(unsigned char *p, uint64_t value)
-{
-    put_u32(p, (uint32_t)value);
-    put_u32(p + 4, (uint32_t)(value >> 32));
-}
 
 /* zlib's crc32 takes an unsigned int length: feed large payloads in chunks. */
 static uint32_t crc_update(uint32_t crc, const void *data, uint64_t size)
@@ -177,9 +155,9 @@ static gb_result check_magic(const unsigned char *bytes, size_t size, const char
 static gb_result check_header_fields(const unsigned char *bytes, size_t size,
                                      const char *path, gb_error *error)
 {
-    uint32_t container_version = get_u32(bytes + AT_CONTAINER_VERSION);
-    uint32_t mark = get_u32(bytes + AT_ENDIAN_MARK);
-    uint64_t count = get_u32(bytes + AT_SECTION_COUNT);
+    uint32_t container_version = gb_get_u32(bytes + AT_CONTAINER_VERSION);
+    uint32_t mark = gb_get_u32(bytes + AT_ENDIAN_MARK);
+    uint64_t count = gb_get_u32(bytes + AT_SECTION_COUNT);
     if (container_version == 0)
         return gb_fail(error, GB_ERROR_FORMAT, "%s: bad container version 0", path);
     if (container_version > CONTAINER_VERSION)
@@ -226,8 +204,8 @@ static gb_result check_header(const unsigned char *bytes, size_t size, const cha
         result = check_header_fields(bytes, size, path, error);
     if (result != GB_OK)
         return result;
-    uint64_t table_size = (uint64_t)get_u32(bytes + AT_SECTION_COUNT) * ENTRY_SIZE;
-    if (header_crc(bytes, bytes + HEADER_SIZE, table_size) != get_u32(bytes + AT_HEADER_CRC))
+    uint64_t table_size = (uint64_t)gb_get_u32(bytes + AT_SECTION_COUNT) * ENTRY_SIZE;
+    if (header_crc(bytes, bytes + HEADER_SIZE, table_size) != gb_get_u32(bytes + AT_HEADER_CRC))
         return gb_fail(error, GB_ERROR_CHECKSUM, "%s: header checksum mismatch", path);
     return check_kind(bytes, path, expected_kind, error);
 }
@@ -285,11 +263,11 @@ static gb_result read_entry(const unsigned char *bytes, size_t size, uint32_t in
     gb_result result = read_name(entry, index, path, section->name, error);
     if (result != GB_OK)
         return result;
-    if (get_u32(entry + AT_RESERVED) != 0)
+    if (gb_get_u32(entry + AT_RESERVED) != 0)
         return gb_fail(error, GB_ERROR_FORMAT,
                        "%s: section '%s' has a nonzero reserved field", path, section->name);
-    uint64_t offset = get_u64(entry + AT_OFFSET);
-    uint64_t length = get_u64(entry + AT_SIZE);
+    uint64_t offset = gb_get_u64(entry + AT_OFFSET);
+    uint64_t length = gb_get_u64(entry + AT_SIZE);
     result = check_placement(bytes, size, *end, offset, length, section->name, path, error);
     if (result != GB_OK)
         return result;
@@ -330,7 +308,7 @@ static gb_result check_payload_crcs(const unsigned char *bytes, const gb_section
 {
     for (uint32_t i = 0; i < count; ++i) {
         const unsigned char *entry = bytes + HEADER_SIZE + (size_t)i * ENTRY_SIZE;
-        if (crc_of(sections[i].data, sections[i].size) != get_u32(entry + AT_PAYLOAD_CRC))
+        if (crc_of(sections[i].data, sections[i].size) != gb_get_u32(entry + AT_PAYLOAD_CRC))
             return gb_fail(error, GB_ERROR_CHECKSUM, "%s: section '%s' checksum mismatch",
                            path, sections[i].name);
     }
@@ -376,7 +354,7 @@ gb_result gb_container_parse(const void *bytes, size_t size, const char *path,
     gb_result result = check_header(b, size, path, expected_kind, error);
     if (result != GB_OK)
         return result;
-    uint32_t count = get_u32(b + AT_SECTION_COUNT);
+    uint32_t count = gb_get_u32(b + AT_SECTION_COUNT);
     gb_section *sections = count ? calloc(count, sizeof *sections) : NULL;
     if (count && !sections)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
@@ -386,7 +364,7 @@ gb_result gb_container_parse(const void *bytes, size_t size, const char *path,
         return result;
     }
     memcpy(out->kind, b + AT_KIND, 4);
-    out->version = get_u32(b + AT_VERSION);
+    out->version = gb_get_u32(b + AT_VERSION);
     out->section_count = count;
     out->sections = sections;
     return GB_OK;
@@ -569,10 +547,10 @@ static gb_result fill_entry(unsigned char *entry, const pending_section *section
     if (!align_up(*end, &offset) || section->size > UINT64_MAX - offset)
         return gb_fail(error, GB_ERROR_INVALID, "%s: sections too large for a file", path);
     memcpy(entry, section->name, GB_SECTION_NAME_SIZE);
-    put_u64(entry + AT_OFFSET, offset);
-    put_u64(entry + AT_SIZE, section->size);
-    put_u32(entry + AT_PAYLOAD_CRC, crc_of(section->data, section->size));
-    put_u32(entry + AT_RESERVED, 0);
+    gb_put_u64(entry + AT_OFFSET, offset);
+    gb_put_u64(entry + AT_SIZE, section->size);
+    gb_put_u32(entry + AT_PAYLOAD_CRC, crc_of(section->data, section->size));
+    gb_put_u32(entry + AT_RESERVED, 0);
     *end = offset + section->size;
     return GB_OK;
 }
@@ -596,11 +574,11 @@ static gb_result build_head(const gb_container_writer *writer, const char *path,
     }
     memcpy(bytes, MAGIC, sizeof MAGIC);
     memcpy(bytes + AT_KIND, writer->kind, 4);
-    put_u32(bytes + AT_VERSION, writer->version);
-    put_u32(bytes + AT_CONTAINER_VERSION, CONTAINER_VERSION);
-    put_u32(bytes + AT_ENDIAN_MARK, ENDIAN_MARK);
-    put_u32(bytes + AT_SECTION_COUNT, writer->count);
-    put_u32(bytes + AT_HEADER_CRC, header_crc(bytes, bytes + HEADER_SIZE, size - HEADER_SIZE));
+    gb_put_u32(bytes + AT_VERSION, writer->version);
+    gb_put_u32(bytes + AT_CONTAINER_VERSION, CONTAINER_VERSION);
+    gb_put_u32(bytes + AT_ENDIAN_MARK, ENDIAN_MARK);
+    gb_put_u32(bytes + AT_SECTION_COUNT, writer->count);
+    gb_put_u32(bytes + AT_HEADER_CRC, header_crc(bytes, bytes + HEADER_SIZE, size - HEADER_SIZE));
     *head = bytes;
     *head_size = size;
     return GB_OK;
@@ -642,7 +620,7 @@ static gb_result write_contents(const gb_container_writer *writer, int fd,
     gb_result result = write_all(fd, head, head_size, path, error);
     uint64_t position = head_size;
     for (uint32_t i = 0; i < writer->count && result == GB_OK; ++i) {
-        uint64_t offset = get_u64(head + HEADER_SIZE + (size_t)i * ENTRY_SIZE + AT_OFFSET);
+        uint64_t offset = gb_get_u64(head + HEADER_SIZE + (size_t)i * ENTRY_SIZE + AT_OFFSET);
         result = check_interrupt(writer, path, error);
         if (result == GB_OK)
             result = write_all(fd, zeros, offset - position, path, error);

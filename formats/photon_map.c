@@ -2,6 +2,7 @@
  * "Photon map"). The header is encoded little-endian byte by byte; the photon
  * arrays are written and read in place, which needs a little-endian host. */
 #include "photon_map.h"
+#include "little_endian.h"
 
 #include <stdlib.h>
 #include <string.h>
@@ -37,59 +38,6 @@ enum {
 #define BEHIND_TOLERANCE (-0.01f)
 
 /* ---- little-endian fields ---- */
-
-static void put_u32(unsigned char *p, uint32_t value)
-{
-    for (int i = 0; i < 4; ++i)
-        p[i] = (unsigned char)(value >> (8 * i));
-}
-
-static void put_u64(unsigned char *p, uint64_t value)
-{
-    put_u32(p, (uint32_t)value);
-    put_u32(p + 4, (uint32_t)(value >> 32));
-}
-
-static void put_f32(unsigned char *p, float value)
-{
-    uint32_t bits;
-    memcpy(&bits, &value, sizeof bits);
-    put_u32(p, bits);
-}
-
-static void put_f64(unsigned char *p, double value)
-{
-    uint64_t bits;
-    memcpy(&bits, &value, sizeof bits);
-    put_u64(p, bits);
-}
-
-static uint32_t get_u32(const unsigned char *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
-           (uint32_t)p[3] << 24;
-}
-
-static uint64_t get_u64(const unsigned char *p)
-{
-    return (uint64_t)get_u32(p) | (uint64_t)get_u32(p + 4) << 32;
-}
-
-static float get_f32(const unsigned char *p)
-{
-    uint32_t bits = get_u32(p);
-    float value;
-    memcpy(&value, &bits, sizeof value);
-    return value;
-}
-
-static double get_f64(const unsigned char *p)
-{
-    uint64_t bits = get_u64(p);
-    double value;
-    memcpy(&value, &bits, sizeof value);
-    return value;
-}
 
 /* ---- building a map ---- */
 
@@ -306,21 +254,21 @@ static void encode_header(const gb_photon_map *map, unsigned char *bytes)
 {
     const gb_photon_map_header *h = &map->header;
     memset(bytes, 0, HEADER_SIZE);
-    put_u64(bytes + AT_EMITTED, h->emitted_count);
-    put_u64(bytes + AT_FIRST, h->first_photon);
-    put_u64(bytes + AT_END, h->end_photon);
-    put_u64(bytes + AT_COUNT, map->count);
-    put_u64(bytes + AT_SCENE_HASH, h->scene_hash);
-    put_u64(bytes + AT_SEED, h->seed);
-    put_u32(bytes + AT_SHARD_INDEX, h->shard_index);
-    put_u32(bytes + AT_SHARD_COUNT, h->shard_count);
-    put_u32(bytes + AT_BOUNCES, h->bounces);
-    put_u32(bytes + AT_STORE, h->store);
-    put_u32(bytes + AT_ROULETTE, h->roulette_start);
+    gb_put_u64(bytes + AT_EMITTED, h->emitted_count);
+    gb_put_u64(bytes + AT_FIRST, h->first_photon);
+    gb_put_u64(bytes + AT_END, h->end_photon);
+    gb_put_u64(bytes + AT_COUNT, map->count);
+    gb_put_u64(bytes + AT_SCENE_HASH, h->scene_hash);
+    gb_put_u64(bytes + AT_SEED, h->seed);
+    gb_put_u32(bytes + AT_SHARD_INDEX, h->shard_index);
+    gb_put_u32(bytes + AT_SHARD_COUNT, h->shard_count);
+    gb_put_u32(bytes + AT_BOUNCES, h->bounces);
+    gb_put_u32(bytes + AT_STORE, h->store);
+    gb_put_u32(bytes + AT_ROULETTE, h->roulette_start);
     for (int k = 0; k < 3; ++k) {
-        put_f64(bytes + AT_POWER + 8 * k, h->emitted_power[k]);
-        put_f32(bytes + AT_BOUNDS_MIN + 4 * k, h->bounds_min[k]);
-        put_f32(bytes + AT_BOUNDS_MAX + 4 * k, h->bounds_max[k]);
+        gb_put_f64(bytes + AT_POWER + 8 * k, h->emitted_power[k]);
+        gb_put_f32(bytes + AT_BOUNDS_MIN + 4 * k, h->bounds_min[k]);
+        gb_put_f32(bytes + AT_BOUNDS_MAX + 4 * k, h->bounds_max[k]);
     }
 }
 
@@ -370,23 +318,23 @@ static gb_result decode_header(const gb_container *container, const char *path,
                        (unsigned long long)section->size, HEADER_SIZE);
     const unsigned char *bytes = section->data;
     gb_photon_map_header *h = &map->header;
-    if (get_u32(bytes + AT_RESERVED_A) || get_u64(bytes + AT_RESERVED_B))
+    if (gb_get_u32(bytes + AT_RESERVED_A) || gb_get_u64(bytes + AT_RESERVED_B))
         return gb_fail(error, GB_ERROR_FORMAT, "%s: reserved header field is not zero", path);
-    h->emitted_count = get_u64(bytes + AT_EMITTED);
-    h->first_photon = get_u64(bytes + AT_FIRST);
-    h->end_photon = get_u64(bytes + AT_END);
-    map->count = get_u64(bytes + AT_COUNT);
-    h->scene_hash = get_u64(bytes + AT_SCENE_HASH);
-    h->seed = get_u64(bytes + AT_SEED);
-    h->shard_index = get_u32(bytes + AT_SHARD_INDEX);
-    h->shard_count = get_u32(bytes + AT_SHARD_COUNT);
-    h->bounces = get_u32(bytes + AT_BOUNCES);
-    h->store = get_u32(bytes + AT_STORE);
-    h->roulette_start = get_u32(bytes + AT_ROULETTE);
+    h->emitted_count = gb_get_u64(bytes + AT_EMITTED);
+    h->first_photon = gb_get_u64(bytes + AT_FIRST);
+    h->end_photon = gb_get_u64(bytes + AT_END);
+    map->count = gb_get_u64(bytes + AT_COUNT);
+    h->scene_hash = gb_get_u64(bytes + AT_SCENE_HASH);
+    h->seed = gb_get_u64(bytes + AT_SEED);
+    h->shard_index = gb_get_u32(bytes + AT_SHARD_INDEX);
+    h->shard_count = gb_get_u32(bytes + AT_SHARD_COUNT);
+    h->bounces = gb_get_u32(bytes + AT_BOUNCES);
+    h->store = gb_get_u32(bytes + AT_STORE);
+    h->roulette_start = gb_get_u32(bytes + AT_ROULETTE);
     for (int k = 0; k < 3; ++k) {
-        h->emitted_power[k] = get_f64(bytes + AT_POWER + 8 * k);
-        h->bounds_min[k] = get_f32(bytes + AT_BOUNDS_MIN + 4 * k);
-        h->bounds_max[k] = get_f32(bytes + AT_BOUNDS_MAX + 4 * k);
+        h->emitted_power[k] = gb_get_f64(bytes + AT_POWER + 8 * k);
+        h->bounds_min[k] = gb_get_f32(bytes + AT_BOUNDS_MIN + 4 * k);
+        h->bounds_max[k] = gb_get_f32(bytes + AT_BOUNDS_MAX + 4 * k);
     }
     return GB_OK;
 }

@@ -1,6 +1,7 @@
 /* vpl.c — the VPL set file (formats/vpl.h, formats/FORMATS.md "VPL set").
  * Fields are encoded little-endian byte by byte, whatever the host. */
 #include "vpl.h"
+#include "little_endian.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -12,33 +13,6 @@ enum {
     HEADER_SIZE = 16,           /* count u32, reserved u32, scene hash u64 */
     VPL_SIZE = 36,              /* 9 float32: position, normal, power */
 };
-
-static void put_u32(unsigned char *p, uint32_t value)
-{
-    for (int i = 0; i < 4; ++i)
-        p[i] = (unsigned char)(value >> (8 * i));
-}
-
-static uint32_t get_u32(const unsigned char *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 |
-           (uint32_t)p[3] << 24;
-}
-
-static void put_f32(unsigned char *p, float value)
-{
-    uint32_t bits;
-    memcpy(&bits, &value, sizeof bits);
-    put_u32(p, bits);
-}
-
-static float get_f32(const unsigned char *p)
-{
-    uint32_t bits = get_u32(p);
-    float value;
-    memcpy(&value, &bits, sizeof value);
-    return value;
-}
 
 static int is_unit(const float v[3])
 {
@@ -72,18 +46,18 @@ gb_result gb_vpl_check(const gb_vpl_set *set, const char *path, gb_error *error)
 static void encode_vpl(unsigned char *p, const gb_vpl *vpl)
 {
     for (int k = 0; k < 3; ++k) {
-        put_f32(p + 4 * k, vpl->position[k]);
-        put_f32(p + 12 + 4 * k, vpl->normal[k]);
-        put_f32(p + 24 + 4 * k, vpl->power[k]);
+        gb_put_f32(p + 4 * k, vpl->position[k]);
+        gb_put_f32(p + 12 + 4 * k, vpl->normal[k]);
+        gb_put_f32(p + 24 + 4 * k, vpl->power[k]);
     }
 }
 
 static void decode_vpl(const unsigned char *p, gb_vpl *vpl)
 {
     for (int k = 0; k < 3; ++k) {
-        vpl->position[k] = get_f32(p + 4 * k);
-        vpl->normal[k] = get_f32(p + 12 + 4 * k);
-        vpl->power[k] = get_f32(p + 24 + 4 * k);
+        vpl->position[k] = gb_get_f32(p + 4 * k);
+        vpl->normal[k] = gb_get_f32(p + 12 + 4 * k);
+        vpl->power[k] = gb_get_f32(p + 24 + 4 * k);
     }
 }
 
@@ -108,10 +82,10 @@ gb_result gb_vpl_write(const char *path, const gb_vpl_set *set, gb_error *error)
     if (result != GB_OK)
         return result;
     unsigned char header[HEADER_SIZE];
-    put_u32(header, set->count);
-    put_u32(header + 4, 0);
-    put_u32(header + 8, (uint32_t)set->scene_hash);
-    put_u32(header + 12, (uint32_t)(set->scene_hash >> 32));
+    gb_put_u32(header, set->count);
+    gb_put_u32(header + 4, 0);
+    gb_put_u32(header + 8, (uint32_t)set->scene_hash);
+    gb_put_u32(header + 12, (uint32_t)(set->scene_hash >> 32));
     uint64_t payload_size = (uint64_t)set->count * VPL_SIZE;
     unsigned char *payload = malloc(payload_size ? payload_size : 1);
     if (!payload)
@@ -133,10 +107,10 @@ static gb_result read_header(const gb_container *container, const char *path, gb
         return gb_fail(error, GB_ERROR_FORMAT, "%s: header is %llu bytes, expected %d", path,
                        (unsigned long long)header->size, HEADER_SIZE);
     const unsigned char *bytes = header->data;
-    if (get_u32(bytes + 4) != 0)
+    if (gb_get_u32(bytes + 4) != 0)
         return gb_fail(error, GB_ERROR_FORMAT, "%s: reserved header field is not zero", path);
-    set->count = get_u32(bytes);
-    set->scene_hash = (uint64_t)get_u32(bytes + 8) | (uint64_t)get_u32(bytes + 12) << 32;
+    set->count = gb_get_u32(bytes);
+    set->scene_hash = (uint64_t)gb_get_u32(bytes + 8) | (uint64_t)gb_get_u32(bytes + 12) << 32;
     return GB_OK;
 }
 
