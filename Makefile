@@ -98,15 +98,19 @@ check: all unit-tests
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
 	  GB_ROOT=$(CURDIR) prove --exec '' $(UNIT_TESTS:$(BUILD)/%=build/asan/%)
 
-# The demo: summarise the Cornell box, bake it, render it headless to demo/,
-# and open the window when there is a display.
+# The demo: summarise the Cornell box, bake it, render it headless to demo/
+# with each method, and open the window when there is a display.
+DEMO_METHODS ?= direct flc implicit topo
 demo: deps
 	$(MAKE) all
 	$(BIN)/scene-info scenes/cornell/cornell.scene
-	$(MAKE) bake SCENE=scenes/cornell/cornell.scene
+	$(MAKE) bake SCENE=scenes/cornell/cornell.scene VOXELIZE_FLAGS="-r 64" PHOTONS_FLAGS="-n 200000"
 	@mkdir -p demo
-	$(BIN)/gbview scenes/cornell/cornell.scene --headless --supersample 2 --bake $(BAKE) -o demo/cornell-direct.png
-	@echo "demo: wrote demo/cornell-direct.png"
+	@for m in $(DEMO_METHODS); do \
+	  $(BIN)/gbview scenes/cornell/cornell.scene --headless --method $$m --frames 8 \
+	    --resolution 256x256 --bake $(BAKE) -o demo/cornell-$$m.png || exit 1; \
+	  echo "demo: wrote demo/cornell-$$m.png"; \
+	done
 	@if [ -n "$$DISPLAY" ]; then $(BIN)/gbview scenes/cornell/cornell.scene --bake $(BAKE); fi
 
 # Baking: one pattern rule per tool; each later tool adds its own.
