@@ -100,7 +100,7 @@ check: all unit-tests
 
 # The demo: summarise the Cornell box, bake it, render it headless to demo/
 # with each method, and open the window when there is a display.
-DEMO_METHODS ?= direct flc implicit topo
+DEMO_METHODS ?= direct flc implicit topo octree
 demo: deps
 	$(MAKE) all
 	$(BIN)/scene-info scenes/cornell/cornell.scene

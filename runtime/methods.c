@@ -1,6 +1,7 @@
 #include "methods.h"
 #include "flc.h"
 #include "implicit.h"
+#include "octree.h"
 #include "topo.h"
 
 #include <string.h>
@@ -29,7 +30,7 @@ gb_result gb_method_parse(const char *name, gb_method *method, gb_error *error)
 static const gb_indirect_method *const indirect_methods[GB_METHOD_COUNT] = {
     [GB_METHOD_DIRECT] = NULL,
     [GB_METHOD_TOPO] = &gb_topo_method,
-    [GB_METHOD_OCTREE] = NULL,
+    [GB_METHOD_OCTREE] = &gb_octree_method,
     [GB_METHOD_FLC] = &gb_flc_method,
     [GB_METHOD_IMPLICIT] = &gb_implicit_method,
 };

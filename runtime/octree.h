@@ -1,0 +1,34 @@
+/* octree.h — the light octree (Vivianloc 2007, §3.2, §4.2) as a GI method
+ * of the runtime (indirect_method.h); runtime/octree.c.
+ *
+ * create  reads NAME.lot from the bake folder (cluster), uploads its node
+ *         pool, leaves and VDLs as shader storage buffers.
+ * draw    one full-screen pass over the G-buffer: per pixel, the world
+ *         point x, walked from the root to the leaves of the 8 leaf cells
+ *         around it (δ node fetches each, Figure 6), their VDL sums
+ *         interpolated trilinearly between the leaf centres. Neighbours
+ *         without a leaf or without VDLs get no weight and the weights are
+ *         renormalised over the rest (the paper's interpolation holes,
+ *         Fig. 16c): no dark seams.
+ *
+ * Convention: a VDL's irradiance E (cluster: Σ Φ / (π r²) over its
+ * photons, a density on the leaf's surface) is the irradiance it gives the
+ * leaf's own geometry, cosine included: on a surface facing ω it gives
+ * E / |n_leaf·ω|. The reflected radiance is then
+ *     Σ Kd / π · E · max(0, n·ω) / max(|n_leaf·ω|, 0.25)
+ * over the VDLs, ω a VDL's direction (toward the light), n the pixel's
+ * shading normal, n_leaf the leaf's normal; on the leaf's own plane that is
+ * Σ Kd / π · E. The 0.25 bounds the gain of grazing VDLs (x4). Taking E
+ * as the irradiance facing ω instead (no division) counts the cosine twice:
+ * relative MSE 0.016 instead of 0.0058 on the Cornell box (tests/cli/octree.t).
+ * Light from behind the geometric normal is dropped (brdf.h, "Sides").
+ * Diffuse only. Directions stay as stored: octahedral 2 x 16 bits
+ * (photon_map.h), decoded as gb_photon_unpack_direction.
+ */
+#ifndef GB_OCTREE_H
+#define GB_OCTREE_H
+
+struct gb_indirect_method;
+extern const struct gb_indirect_method gb_octree_method;
+
+#endif
