@@ -1,0 +1,537 @@
+/* segmentation.c — the `.seg` file: writer, reader, checks and the point →
+ * cluster lookup (byte layout in FORMATS.md, "Segmentation file"). Every
+ * field is written little-endian byte by byte, so the file does not depend
+ * on the host. */
+#include "segmentation.h"
+#include "little_endian.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "container.h"
+
+enum {
+    HEADER_SIZE = 88,
+    NODE_SIZE = 24,
+    EDGE_SIZE = 8,
+    CLUSTER_SIZE = 4,
+    MAP_SIZE = 4,
+    GATE_SIZE = 40,
+};
+
+/* ---- checks ---- */
+
+static int finite3(const float v[3])
+{
+    return isfinite(v[0]) && isfinite(v[1]) && isfinite(v[2]);
+}
+
+static gb_result check_header(const gb_segmentation *s, const char *path, gb_error *error)
+{
+    if (!isfinite(s->voxel_size) || !(s->voxel_size > 0.0))
+        return gb_fail(error, GB_ERROR_INVALID, "%s: voxel size %g is not positive", path,
+                       s->voxel_size);
+    for (int a = 0; a < 3; ++a) {
+        if (!isfinite(s->world_origin[a]))
+            return gb_fail(error, GB_ERROR_INVALID, "%s: world origin is not finite", path);
+        if (s->grid_size[a] <= 0)
+            return gb_fail(error, GB_ERROR_INVALID, "%s: grid size %d on axis %d is not positive",
+                           path, (int)s->grid_size[a], a);
+    }
+    if (!(s->alpha >= 0.0 && s->alpha <= 100.0))
+        return gb_fail(error, GB_ERROR_INVALID, "%s: alpha %g is not in [0, 100]", path,
+                       s->alpha);
+    if (s->node_count > s->skeleton_node_count)
+        return gb_fail(error, GB_ERROR_INVALID, "%s: %u segmented nodes but %u skeleton nodes",
+                       path, s->node_count, s->skeleton_node_count);
+    if (s->cluster_count > s->node_count || (s->node_count && !s->cluster_count))
+        return gb_fail(error, GB_ERROR_INVALID, "%s: %u clusters for %u nodes", path,
+                       s->cluster_count, s->node_count);
+    if (s->gate_count > s->edge_count)
+        return gb_fail(error, GB_ERROR_INVALID, "%s: %u gates for %u edges", path, s->gate_count,
+                       s->edge_count);
+    return GB_OK;
+}
+
+static gb_result check_nodes(const gb_segmentation *s, const char *path, gb_error *error)
+{
+    for (uint32_t n = 0; n < s->node_count; ++n) {
+        const gb_segmented_node *node = &s->nodes[n];
+        if (node->skeleton_node >= s->skeleton_node_count ||
+            (n > 0 && node->skeleton_node <= s->nodes[n - 1].skeleton_node))
+            return gb_fail(error, GB_ERROR_INVALID,
+                           "%s: node %u: skeleton node %u is out of range or out of order",
+                           path, n, node->skeleton_node);
+        if (node->node_class < GB_NODE_TOPOLOGY || node->node_class > GB_NODE_COVERAGE)
+            return gb_fail(error, GB_ERROR_INVALID, "%s: node %u: class %u is not valid", path,
+                           n, node->node_class);
+        if (!finite3(node->position) || !isfinite(node->radius) || node->radius < 0.0f)
+            return gb_fail(error, GB_ERROR_INVALID,
+                           "%s: node %u: position or radius is not valid", path, n);
+    }
+    return GB_OK;
+}
+
+static gb_result check_edges(const gb_segmentation *s, const char *path, gb_error *error)
+{
+    for (uint32_t e = 0; e < s->edge_count; ++e) {
+        uint32_t a = s->edges[2 * e], b = s->edges[2 * e + 1];
+        if (a >= b || b >= s->node_count)
+            return gb_fail(error, GB_ERROR_INVALID,
+                           "%s: edge %u (%u, %u) is not an ordered pair of the %u nodes", path,
+                           e, a, b, s->node_count);
+        if (e > 0) {
+            uint32_t pa = s->edges[2 * e - 2], pb = s->edges[2 * e - 1];
+            if (pa > a || (pa == a && pb >= b))
+                return gb_fail(error, GB_ERROR_INVALID,
+                               "%s: edge %u is out of order or repeated", path, e);
+        }
+    }
+    return GB_OK;
+}
+
+static gb_result check_clusters(const gb_segmentation *s, const char *path, gb_error *error)
+{
+    uint8_t *used = calloc(s->cluster_count ? s->cluster_count : 1, 1);
+    if (!used)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    gb_result result = GB_OK;
+    uint32_t used_count = 0;
+    for (uint32_t n = 0; n < s->node_count && !result; ++n) {
+        uint32_t c = s->cluster[n];
+        if (c >= s->cluster_count)
+            result = gb_fail(error, GB_ERROR_INVALID,
+                             "%s: node %u: cluster %u is out of range (%u clusters)", path, n, c,
+                             s->cluster_count);
+        else if (!used[c]) {
+            used[c] = 1;
+            ++used_count;
+        }
+    }
+    if (!result && used_count != s->cluster_count)
+        result = gb_fail(error, GB_ERROR_INVALID, "%s: %u of the %u clusters have no node", path,
+                         s->cluster_count - used_count, s->cluster_count);
+    free(used);
+    return result;
+}
+
+static gb_result check_node_map(const gb_segmentation *s, const char *path, gb_error *error)
+{
+    for (uint32_t k = 0; k < s->skeleton_node_count; ++k)
+        if (s->node_map[k] >= s->node_count)
+            return gb_fail(error, GB_ERROR_INVALID,
+                           "%s: skeleton node %u maps to node %u, but there are %u", path, k,
+                           s->node_map[k], s->node_count);
+    for (uint32_t n = 0; n < s->node_count; ++n)
+        if (s->node_map[s->nodes[n].skeleton_node] != n)
+            return gb_fail(error, GB_ERROR_INVALID,
+                           "%s: node %u does not map to itself in the node map", path, n);
+    return GB_OK;
+}
+
+/* The gate of edge e must sit at its middle, along it, with the min radius. */
+static int gate_matches_edge(const gb_segmentation *s, const gb_visibility_gate *g)
+{
+    const gb_segmented_node *a = &s->nodes[s->edges[2 * g->edge]];
+    const gb_segmented_node *b = &s->nodes[s->edges[2 * g->edge + 1]];
+    double length2 = 0.0, along = 0.0, norm2 = 0.0, off2 = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        double d = (double)b->position[i] - a->position[i];
+        double middle = 0.5 * ((double)a->position[i] + b->position[i]);
+        length2 += d * d;
+        along += d * g->normal[i];
+        norm2 += (double)g->normal[i] * g->normal[i];
+        off2 += (g->centre[i] - middle) * (g->centre[i] - middle);
+    }
+    double length = sqrt(length2);
+    double scale = 1.0 + length + fabs(a->position[0]) + fabs(a->position[1]) +
+                   fabs(a->position[2]);
+    return length > 0.0 && fabs(norm2 - 1.0) <= 1e-4 && along >= 0.9999 * length &&
+           sqrt(off2) <= 1e-5 * scale && g->radius == fminf(a->radius, b->radius) &&
+           g->clusters[0] == s->cluster[s->edges[2 * g->edge]] &&
+           g->clusters[1] == s->cluster[s->edges[2 * g->edge + 1]];
+}
+
+/* Gates are sorted by edge, and exactly the edges between two clusters have one. */
+static gb_result check_gates(const gb_segmentation *s, const char *path, gb_error *error)
+{
+    uint32_t next_gate = 0;
+    for (uint32_t e = 0; e < s->edge_count; ++e) {
+        int crosses = s->cluster[s->edges[2 * e]] != s->cluster[s->edges[2 * e + 1]];
+        int has_gate = next_gate < s->gate_count && s->gates[next_gate].edge == e;
+        if (crosses != has_gate)
+            return gb_fail(error, GB_ERROR_INVALID, "%s: edge %u joins %s but has %s", path,
+                           e, crosses ? "two clusters" : "one cluster",
+                           has_gate ? "a gate" : "no gate");
+        if (!has_gate)
+            continue;
+        const gb_visibility_gate *g = &s->gates[next_gate];
+        if (!finite3(g->centre) || !finite3(g->normal) || !isfinite(g->radius) ||
+            !gate_matches_edge(s, g))
+            return gb_fail(error, GB_ERROR_INVALID,
+                           "%s: gate %u does not match edge %u (centre, normal, radius or "
+                           "clusters)", path, next_gate, e);
+        ++next_gate;
+    }
+    if (next_gate != s->gate_count)
+        return gb_fail(error, GB_ERROR_INVALID, "%s: gate %u names a missing or repeated edge",
+                       path, next_gate);
+    return GB_OK;
+}
+
+gb_result gb_segmentation_validate(const gb_segmentation *s, const char *path, gb_error *error)
+{
+    if ((s->node_count && (!s->nodes || !s->cluster)) || (s->edge_count && !s->edges) ||
+        (s->skeleton_node_count && !s->node_map) || (s->gate_count && !s->gates))
+        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: segmentation arrays missing", path);
+    gb_result result = check_header(s, path, error);
+    if (!result)
+        result = check_nodes(s, path, error);
+    if (!result)
+        result = check_edges(s, path, error);
+    if (!result)
+        result = check_clusters(s, path, error);
+    if (!result)
+        result = check_node_map(s, path, error);
+    if (!result)
+        result = check_gates(s, path, error);
+    return result;
+}
+
+/* ---- encoding ---- */
+
+static void encode_header(const gb_segmentation *s, uint8_t header[HEADER_SIZE])
+{
+    memset(header, 0, HEADER_SIZE);
+    gb_put_u32(header + 0, s->skeleton_node_count);
+    gb_put_u32(header + 4, s->node_count);
+    gb_put_u32(header + 8, s->edge_count);
+    gb_put_u32(header + 12, s->cluster_count);
+    gb_put_u32(header + 16, s->gate_count);
+    gb_put_u32(header + 20, s->resolution);
+    gb_put_f64(header + 24, s->alpha);
+    gb_put_u64(header + 32, s->scene_hash);
+    gb_put_f64(header + 40, s->voxel_size);
+    for (int a = 0; a < 3; ++a)
+        gb_put_f64(header + 48 + 8 * a, s->world_origin[a]);
+    for (int a = 0; a < 3; ++a)
+        gb_put_u32(header + 72 + 4 * a, (uint32_t)s->grid_size[a]);
+    /* bytes 84..87: reserved, 0 */
+}
+
+static void decode_header(const uint8_t header[HEADER_SIZE], gb_segmentation *s)
+{
+    s->skeleton_node_count = gb_get_u32(header + 0);
+    s->node_count = gb_get_u32(header + 4);
+    s->edge_count = gb_get_u32(header + 8);
+    s->cluster_count = gb_get_u32(header + 12);
+    s->gate_count = gb_get_u32(header + 16);
+    s->resolution = gb_get_u32(header + 20);
+    s->alpha = gb_get_f64(header + 24);
+    s->scene_hash = gb_get_u64(header + 32);
+    s->voxel_size = gb_get_f64(header + 40);
+    for (int a = 0; a < 3; ++a)
+        s->world_origin[a] = gb_get_f64(header + 48 + 8 * a);
+    for (int a = 0; a < 3; ++a)
+        s->grid_size[a] = (int32_t)gb_get_u32(header + 72 + 4 * a);
+}
+
+static void encode_node(const gb_segmented_node *node, uint8_t *p)
+{
+    gb_put_u32(p, node->skeleton_node);
+    gb_put_u32(p + 4, node->node_class);
+    for (int a = 0; a < 3; ++a)
+        gb_put_f32(p + 8 + 4 * a, node->position[a]);
+    gb_put_f32(p + 20, node->radius);
+}
+
+static void decode_node(const uint8_t *p, gb_segmented_node *node)
+{
+    node->skeleton_node = gb_get_u32(p);
+    node->node_class = gb_get_u32(p + 4);
+    for (int a = 0; a < 3; ++a)
+        node->position[a] = gb_get_f32(p + 8 + 4 * a);
+    node->radius = gb_get_f32(p + 20);
+}
+
+static void encode_gate(const gb_visibility_gate *gate, uint8_t *p)
+{
+    for (int a = 0; a < 3; ++a) {
+        gb_put_f32(p + 4 * a, gate->centre[a]);
+        gb_put_f32(p + 12 + 4 * a, gate->normal[a]);
+    }
+    gb_put_f32(p + 24, gate->radius);
+    gb_put_u32(p + 28, gate->clusters[0]);
+    gb_put_u32(p + 32, gate->clusters[1]);
+    gb_put_u32(p + 36, gate->edge);
+}
+
+static void decode_gate(const uint8_t *p, gb_visibility_gate *gate)
+{
+    for (int a = 0; a < 3; ++a) {
+        gate->centre[a] = gb_get_f32(p + 4 * a);
+        gate->normal[a] = gb_get_f32(p + 12 + 4 * a);
+    }
+    gate->radius = gb_get_f32(p + 24);
+    gate->clusters[0] = gb_get_u32(p + 28);
+    gate->clusters[1] = gb_get_u32(p + 32);
+    gate->edge = gb_get_u32(p + 36);
+}
+
+static void encode_u32s(const uint32_t *values, size_t count, uint8_t *p)
+{
+    for (size_t i = 0; i < count; ++i)
+        gb_put_u32(p + 4 * i, values[i]);
+}
+
+static void decode_u32s(const uint8_t *p, size_t count, uint32_t *values)
+{
+    for (size_t i = 0; i < count; ++i)
+        values[i] = gb_get_u32(p + 4 * i);
+}
+
+/* The payloads of the five array sections, in one allocation. */
+typedef struct payloads {
+    uint8_t *bytes;
+    uint8_t *nodes, *edges, *clusters, *node_map, *gates;
+    uint64_t node_bytes, edge_bytes, cluster_bytes, map_bytes, gate_bytes;
+} payloads;
+
+static int encode_payloads(const gb_segmentation *s, payloads *p)
+{
+    p->node_bytes = (uint64_t)s->node_count * NODE_SIZE;
+    p->edge_bytes = (uint64_t)s->edge_count * EDGE_SIZE;
+    p->cluster_bytes = (uint64_t)s->node_count * CLUSTER_SIZE;
+    p->map_bytes = (uint64_t)s->skeleton_node_count * MAP_SIZE;
+    p->gate_bytes = (uint64_t)s->gate_count * GATE_SIZE;
+    uint64_t total = p->node_bytes + p->edge_bytes + p->cluster_bytes + p->map_bytes +
+                     p->gate_bytes;
+    p->bytes = malloc(total ? (size_t)total : 1);
+    if (!p->bytes)
+        return -1;
+    p->nodes = p->bytes;
+    p->edges = p->nodes + p->node_bytes;
+    p->clusters = p->edges + p->edge_bytes;
+    p->node_map = p->clusters + p->cluster_bytes;
+    p->gates = p->node_map + p->map_bytes;
+    for (uint32_t n = 0; n < s->node_count; ++n)
+        encode_node(&s->nodes[n], p->nodes + (size_t)n * NODE_SIZE);
+    encode_u32s(s->edges, 2 * (size_t)s->edge_count, p->edges);
+    encode_u32s(s->cluster, s->node_count, p->clusters);
+    encode_u32s(s->node_map, s->skeleton_node_count, p->node_map);
+    for (uint32_t g = 0; g < s->gate_count; ++g)
+        encode_gate(&s->gates[g], p->gates + (size_t)g * GATE_SIZE);
+    return 0;
+}
+
+static gb_result add_sections(gb_container_writer *w, const uint8_t *header, const payloads *p,
+                              gb_error *error)
+{
+    gb_result result = gb_container_add(w, "header", header, HEADER_SIZE, error);
+    if (!result)
+        result = gb_container_add(w, "nodes", p->nodes, p->node_bytes, error);
+    if (!result)
+        result = gb_container_add(w, "edges", p->edges, p->edge_bytes, error);
+    if (!result)
+        result = gb_container_add(w, "clusters", p->clusters, p->cluster_bytes, error);
+    if (!result)
+        result = gb_container_add(w, "node_map", p->node_map, p->map_bytes, error);
+    if (!result)
+        result = gb_container_add(w, "gates", p->gates, p->gate_bytes, error);
+    return result;
+}
+
+gb_result gb_segmentation_write(const char *path, const gb_segmentation *segmentation,
+                                gb_error *error)
+{
+    gb_result result = gb_segmentation_validate(segmentation, path, error);
+    if (result)
+        return result;
+    uint8_t header[HEADER_SIZE];
+    encode_header(segmentation, header);
+    payloads p = {0};
+    gb_container_writer *writer =
+        gb_container_writer_create("SEGM", GB_SEGMENTATION_VERSION);
+    if (encode_payloads(segmentation, &p) || !writer)
+        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    if (!result)
+        result = add_sections(writer, header, &p, error);
+    if (!result)
+        result = gb_container_commit(writer, path, error);
+    if (writer)
+        gb_container_writer_destroy(writer);
+    free(p.bytes);
+    return result;
+}
+
+/* ---- decoding ---- */
+
+static gb_result find_sized(const gb_container *c, const char *name, uint64_t count,
+                            uint64_t item_size, const char *path, const gb_section **section,
+                            gb_error *error)
+{
+    *section = gb_container_find(c, name);
+    if (!*section)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"%s\" section", path, name);
+    if ((*section)->size != count * item_size)
+        return gb_fail(error, GB_ERROR_FORMAT,
+                       "%s: \"%s\" has %llu bytes, the header needs %llu", path, name,
+                       (unsigned long long)(*section)->size,
+                       (unsigned long long)(count * item_size));
+    return GB_OK;
+}
+
+static gb_result allocate_arrays(gb_segmentation *s, const char *path, gb_error *error)
+{
+    s->nodes = malloc(s->node_count ? (size_t)s->node_count * sizeof *s->nodes : 1);
+    s->edges = malloc(s->edge_count ? (size_t)s->edge_count * 2 * sizeof *s->edges : 1);
+    s->cluster = malloc(s->node_count ? (size_t)s->node_count * sizeof *s->cluster : 1);
+    s->node_map = malloc(s->skeleton_node_count
+                             ? (size_t)s->skeleton_node_count * sizeof *s->node_map : 1);
+    s->gates = malloc(s->gate_count ? (size_t)s->gate_count * sizeof *s->gates : 1);
+    if (!s->nodes || !s->edges || !s->cluster || !s->node_map || !s->gates)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    return GB_OK;
+}
+
+static gb_result decode_arrays(const gb_container *c, const char *path, gb_segmentation *s,
+                               gb_error *error)
+{
+    const gb_section *nodes, *edges, *clusters, *map, *gates;
+    gb_result result = find_sized(c, "nodes", s->node_count, NODE_SIZE, path, &nodes, error);
+    if (!result)
+        result = find_sized(c, "edges", s->edge_count, EDGE_SIZE, path, &edges, error);
+    if (!result)
+        result = find_sized(c, "clusters", s->node_count, CLUSTER_SIZE, path, &clusters, error);
+    if (!result)
+        result = find_sized(c, "node_map", s->skeleton_node_count, MAP_SIZE, path, &map, error);
+    if (!result)
+        result = find_sized(c, "gates", s->gate_count, GATE_SIZE, path, &gates, error);
+    if (!result)
+        result = allocate_arrays(s, path, error);
+    if (result)
+        return result;
+    for (uint32_t n = 0; n < s->node_count; ++n)
+        decode_node((const uint8_t *)nodes->data + (size_t)n * NODE_SIZE, &s->nodes[n]);
+    decode_u32s(edges->data, 2 * (size_t)s->edge_count, s->edges);
+    decode_u32s(clusters->data, s->node_count, s->cluster);
+    decode_u32s(map->data, s->skeleton_node_count, s->node_map);
+    for (uint32_t g = 0; g < s->gate_count; ++g)
+        decode_gate((const uint8_t *)gates->data + (size_t)g * GATE_SIZE, &s->gates[g]);
+    return GB_OK;
+}
+
+static gb_result decode_container(const gb_container *c, const char *path, gb_segmentation *s,
+                                  gb_error *error)
+{
+    gb_result result = gb_container_check_version(c, path, GB_SEGMENTATION_VERSION, error);
+    if (result)
+        return result;
+    const gb_section *header;
+    result = find_sized(c, "header", 1, HEADER_SIZE, path, &header, error);
+    if (result)
+        return result;
+    if (gb_get_u32((const uint8_t *)header->data + 84) != 0)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: reserved header bytes are not zero", path);
+    decode_header(header->data, s);
+    result = check_header(s, path, error);
+    if (!result)
+        result = decode_arrays(c, path, s, error);
+    if (!result)
+        result = gb_segmentation_validate(s, path, error);
+    return result;
+}
+
+gb_result gb_segmentation_parse(const void *bytes, size_t size, const char *path,
+                                gb_segmentation *segmentation, gb_error *error)
+{
+    memset(segmentation, 0, sizeof *segmentation);
+    gb_container container;
+    gb_result result = gb_container_parse(bytes, size, path, "SEGM", &container, error);
+    if (result)
+        return result;
+    result = decode_container(&container, path, segmentation, error);
+    gb_container_close(&container);
+    if (result)
+        gb_segmentation_free(segmentation);
+    return result;
+}
+
+gb_result gb_segmentation_read(const char *path, gb_segmentation *segmentation, gb_error *error)
+{
+    memset(segmentation, 0, sizeof *segmentation);
+    gb_container container;
+    gb_result result = gb_container_read(path, "SEGM", &container, error);
+    if (result)
+        return result;
+    result = decode_container(&container, path, segmentation, error);
+    gb_container_close(&container);
+    if (result)
+        gb_segmentation_free(segmentation);
+    return result;
+}
+
+void gb_segmentation_free(gb_segmentation *segmentation)
+{
+    if (!segmentation)
+        return;
+    free(segmentation->nodes);
+    free(segmentation->edges);
+    free(segmentation->cluster);
+    free(segmentation->node_map);
+    free(segmentation->gates);
+    memset(segmentation, 0, sizeof *segmentation);
+}
+
+/* ---- the nearest-node grid and the lookup ---- */
+
+static int same_length(double a, double b)
+{
+    return fabs(a - b) <= 1e-9 * (fabs(a) + fabs(b)) + 1e-12;
+}
+
+gb_result gb_segmentation_check_grid(const gb_segmentation *s, const gb_voxel_grid *frame,
+                                     const int32_t *nearest, const char *path, gb_error *error)
+{
+    if (frame->scene_hash != s->scene_hash)
+        return gb_fail(error, GB_ERROR_STALE,
+                       "%s: made from another scene than the segmentation (hash %016llx, "
+                       "expected %016llx)", path, (unsigned long long)frame->scene_hash,
+                       (unsigned long long)s->scene_hash);
+    int same = same_length(frame->voxel_size, s->voxel_size);
+    for (int a = 0; a < 3; ++a)
+        same = same && frame->size[a] == s->grid_size[a] &&
+               same_length(frame->world_origin[a], s->world_origin[a]);
+    if (!same)
+        return gb_fail(error, GB_ERROR_STALE,
+                       "%s: its voxel frame is not the segmentation's (%d x %d x %d voxels "
+                       "of %g, expected %d x %d x %d of %g)", path, (int)frame->size[0],
+                       (int)frame->size[1], (int)frame->size[2], frame->voxel_size,
+                       (int)s->grid_size[0], (int)s->grid_size[1], (int)s->grid_size[2],
+                       s->voxel_size);
+    size_t count = (size_t)s->grid_size[0] * (size_t)s->grid_size[1] * (size_t)s->grid_size[2];
+    for (size_t v = 0; v < count; ++v)
+        if (nearest[v] < -1 || (nearest[v] >= 0 && (uint32_t)nearest[v] >= s->skeleton_node_count))
+            return gb_fail(error, GB_ERROR_INVALID,
+                           "%s: voxel %zu names node %d, but the skeleton has %u nodes", path, v,
+                           (int)nearest[v], s->skeleton_node_count);
+    return GB_OK;
+}
+
+int32_t gb_segmentation_cluster_at(const gb_segmentation *s, const int32_t *nearest,
+                                   const double point[3])
+{
+    size_t index = 0, stride = 1;
+    for (int a = 0; a < 3; ++a) {
+        double v = floor((point[a] - s->world_origin[a]) / s->voxel_size);
+        if (!(v >= 0.0 && v < (double)s->grid_size[a]))
+            return -1;
+        index += (size_t)v * stride;
+        stride *= (size_t)s->grid_size[a];
+    }
+    int32_t node = nearest[index];
+    if (node < 0 || (uint32_t)node >= s->skeleton_node_count)
+        return -1;
+    return (int32_t)s->cluster[s->node_map[node]];
+}

@@ -1,0 +1,269 @@
+/* skeleton.c — the `.skel` file: writer, reader and checks (byte layout in
+ * FORMATS.md, "Skeleton file"). Every field is written little-endian byte by
+ * byte (little_endian.h), so the file does not depend on the host. */
+#include "skeleton.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "container.h"
+#include "little_endian.h"
+
+enum {
+    HEADER_SIZE = 88,
+    NODE_SIZE = 16,
+    EDGE_SIZE = 8,
+};
+
+static void encode_header(const gb_skeleton *s, unsigned char header[HEADER_SIZE])
+{
+    memset(header, 0, HEADER_SIZE);
+    gb_put_u32(header + 0, s->node_count);
+    gb_put_u32(header + 4, s->edge_count);
+    gb_put_f64(header + 8, s->voxel_size);
+    for (int a = 0; a < 3; ++a)
+        gb_put_f64(header + 16 + 8 * a, s->world_origin[a]);
+    for (int a = 0; a < 3; ++a)
+        gb_put_u32(header + 40 + 4 * a, (uint32_t)s->grid_size[a]);
+    gb_put_u32(header + 52, s->resolution);
+    gb_put_u64(header + 56, s->scene_hash);
+    gb_put_f64(header + 64, s->persistence);
+    gb_put_f64(header + 72, s->min_lifespan);
+    gb_put_u32(header + 80, s->iterations);
+    gb_put_u32(header + 84, s->cavities_broken);
+}
+
+static void decode_header(const unsigned char header[HEADER_SIZE], gb_skeleton *s)
+{
+    s->node_count = gb_get_u32(header + 0);
+    s->edge_count = gb_get_u32(header + 4);
+    s->voxel_size = gb_get_f64(header + 8);
+    for (int a = 0; a < 3; ++a)
+        s->world_origin[a] = gb_get_f64(header + 16 + 8 * a);
+    for (int a = 0; a < 3; ++a)
+        s->grid_size[a] = (int32_t)gb_get_u32(header + 40 + 4 * a);
+    s->resolution = gb_get_u32(header + 52);
+    s->scene_hash = gb_get_u64(header + 56);
+    s->persistence = gb_get_f64(header + 64);
+    s->min_lifespan = gb_get_f64(header + 72);
+    s->iterations = gb_get_u32(header + 80);
+    s->cavities_broken = gb_get_u32(header + 84);
+}
+
+static gb_result check_header(const gb_skeleton *s, const char *path, gb_error *error)
+{
+    if (!isfinite(s->voxel_size) || !(s->voxel_size > 0.0))
+        return gb_fail(error, GB_ERROR_INVALID, "%s: voxel size %g is not positive", path,
+                       s->voxel_size);
+    for (int a = 0; a < 3; ++a) {
+        if (!isfinite(s->world_origin[a]))
+            return gb_fail(error, GB_ERROR_INVALID, "%s: world origin is not finite", path);
+        if (s->grid_size[a] <= 0)
+            return gb_fail(error, GB_ERROR_INVALID, "%s: grid size %d on axis %d is not positive",
+                           path, (int)s->grid_size[a], a);
+    }
+    if (!isfinite(s->persistence) || !isfinite(s->min_lifespan))
+        return gb_fail(error, GB_ERROR_INVALID, "%s: persistence parameters are not finite",
+                       path);
+    return GB_OK;
+}
+
+static gb_result check_nodes(const gb_skeleton *s, const char *path, gb_error *error)
+{
+    for (uint32_t n = 0; n < s->node_count; ++n) {
+        const gb_skeleton_node *node = &s->nodes[n];
+        if (!isfinite(node->position[0]) || !isfinite(node->position[1]) ||
+            !isfinite(node->position[2]))
+            return gb_fail(error, GB_ERROR_INVALID, "%s: node %u: position is not finite", path,
+                           n);
+        if (!isfinite(node->radius) || node->radius < 0.0f)
+            return gb_fail(error, GB_ERROR_INVALID, "%s: node %u: radius %g is not valid", path,
+                           n, (double)node->radius);
+    }
+    return GB_OK;
+}
+
+static gb_result check_edges(const gb_skeleton *s, const char *path, gb_error *error)
+{
+    for (uint32_t e = 0; e < s->edge_count; ++e) {
+        uint32_t a = s->edges[2 * e], b = s->edges[2 * e + 1];
+        if (a >= s->node_count || b >= s->node_count)
+            return gb_fail(error, GB_ERROR_INVALID,
+                           "%s: edge %u joins node %u and %u, but there are %u nodes", path, e,
+                           a, b, s->node_count);
+        if (a >= b)
+            return gb_fail(error, GB_ERROR_INVALID, "%s: edge %u (%u, %u) is not ordered", path,
+                           e, a, b);
+        if (e > 0) {
+            uint32_t pa = s->edges[2 * e - 2], pb = s->edges[2 * e - 1];
+            if (pa > a || (pa == a && pb >= b))
+                return gb_fail(error, GB_ERROR_INVALID,
+                               "%s: edge %u is out of order or repeated", path, e);
+        }
+    }
+    return GB_OK;
+}
+
+gb_result gb_skeleton_validate(const gb_skeleton *skeleton, const char *path, gb_error *error)
+{
+    if ((skeleton->node_count && !skeleton->nodes) || (skeleton->edge_count && !skeleton->edges))
+        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: skeleton arrays missing", path);
+    gb_result result = check_header(skeleton, path, error);
+    if (!result)
+        result = check_nodes(skeleton, path, error);
+    if (!result)
+        result = check_edges(skeleton, path, error);
+    return result;
+}
+
+static unsigned char *encode_nodes(const gb_skeleton *s)
+{
+    unsigned char *bytes = malloc(s->node_count ? (size_t)s->node_count * NODE_SIZE : 1);
+    if (!bytes)
+        return NULL;
+    for (uint32_t n = 0; n < s->node_count; ++n) {
+        unsigned char *p = bytes + (size_t)n * NODE_SIZE;
+        for (int a = 0; a < 3; ++a)
+            gb_put_f32(p + 4 * a, s->nodes[n].position[a]);
+        gb_put_f32(p + 12, s->nodes[n].radius);
+    }
+    return bytes;
+}
+
+static unsigned char *encode_edges(const gb_skeleton *s)
+{
+    unsigned char *bytes = malloc(s->edge_count ? (size_t)s->edge_count * EDGE_SIZE : 1);
+    if (!bytes)
+        return NULL;
+    for (size_t i = 0; i < 2 * (size_t)s->edge_count; ++i)
+        gb_put_u32(bytes + 4 * i, s->edges[i]);
+    return bytes;
+}
+
+gb_result gb_skeleton_write(const char *path, const gb_skeleton *skeleton, gb_error *error)
+{
+    gb_result result = gb_skeleton_validate(skeleton, path, error);
+    if (result)
+        return result;
+    unsigned char header[HEADER_SIZE];
+    encode_header(skeleton, header);
+    unsigned char *nodes = encode_nodes(skeleton), *edges = encode_edges(skeleton);
+    gb_container_writer *writer = gb_container_writer_create("SKEL", GB_SKELETON_VERSION);
+    if (!nodes || !edges || !writer)
+        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    if (!result)
+        result = gb_container_add(writer, "header", header, HEADER_SIZE, error);
+    if (!result)
+        result = gb_container_add(writer, "nodes", nodes,
+                                  (uint64_t)skeleton->node_count * NODE_SIZE, error);
+    if (!result)
+        result = gb_container_add(writer, "edges", edges,
+                                  (uint64_t)skeleton->edge_count * EDGE_SIZE, error);
+    if (!result)
+        result = gb_container_commit(writer, path, error);
+    if (writer)
+        gb_container_writer_destroy(writer);
+    free(nodes);
+    free(edges);
+    return result;
+}
+
+static gb_result find_section(const gb_container *c, const char *name, const char *path,
+                              const gb_section **section, gb_error *error)
+{
+    *section = gb_container_find(c, name);
+    if (!*section)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"%s\" section", path, name);
+    return GB_OK;
+}
+
+static gb_result decode_arrays(const gb_section *nodes, const gb_section *edges,
+                               const char *path, gb_skeleton *s, gb_error *error)
+{
+    if (nodes->size != (uint64_t)s->node_count * NODE_SIZE)
+        return gb_fail(error, GB_ERROR_FORMAT,
+                       "%s: \"nodes\" has %llu bytes, %u nodes need %llu", path,
+                       (unsigned long long)nodes->size, s->node_count,
+                       (unsigned long long)s->node_count * NODE_SIZE);
+    if (edges->size != (uint64_t)s->edge_count * EDGE_SIZE)
+        return gb_fail(error, GB_ERROR_FORMAT,
+                       "%s: \"edges\" has %llu bytes, %u edges need %llu", path,
+                       (unsigned long long)edges->size, s->edge_count,
+                       (unsigned long long)s->edge_count * EDGE_SIZE);
+    s->nodes = malloc(s->node_count ? (size_t)s->node_count * sizeof *s->nodes : 1);
+    s->edges = malloc(s->edge_count ? (size_t)s->edge_count * 2 * sizeof *s->edges : 1);
+    if (!s->nodes || !s->edges)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    const unsigned char *p = nodes->data;
+    for (uint32_t n = 0; n < s->node_count; ++n, p += NODE_SIZE) {
+        for (int a = 0; a < 3; ++a)
+            s->nodes[n].position[a] = gb_get_f32(p + 4 * a);
+        s->nodes[n].radius = gb_get_f32(p + 12);
+    }
+    p = edges->data;
+    for (size_t i = 0; i < 2 * (size_t)s->edge_count; ++i)
+        s->edges[i] = gb_get_u32(p + 4 * i);
+    return GB_OK;
+}
+
+static gb_result decode_container(const gb_container *c, const char *path, gb_skeleton *s,
+                                  gb_error *error)
+{
+    const gb_section *header, *nodes, *edges;
+    gb_result result = gb_container_check_version(c, path, GB_SKELETON_VERSION, error);
+    if (!result)
+        result = find_section(c, "header", path, &header, error);
+    if (!result)
+        result = find_section(c, "nodes", path, &nodes, error);
+    if (!result)
+        result = find_section(c, "edges", path, &edges, error);
+    if (result)
+        return result;
+    if (header->size != HEADER_SIZE)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: \"header\" has %llu bytes, expected %d",
+                       path, (unsigned long long)header->size, HEADER_SIZE);
+    decode_header(header->data, s);
+    result = decode_arrays(nodes, edges, path, s, error);
+    if (!result)
+        result = gb_skeleton_validate(s, path, error);
+    return result;
+}
+
+gb_result gb_skeleton_parse(const void *bytes, size_t size, const char *path,
+                            gb_skeleton *skeleton, gb_error *error)
+{
+    memset(skeleton, 0, sizeof *skeleton);
+    gb_container container;
+    gb_result result = gb_container_parse(bytes, size, path, "SKEL", &container, error);
+    if (result)
+        return result;
+    result = decode_container(&container, path, skeleton, error);
+    gb_container_close(&container);
+    if (result)
+        gb_skeleton_free(skeleton);
+    return result;
+}
+
+gb_result gb_skeleton_read(const char *path, gb_skeleton *skeleton, gb_error *error)
+{
+    memset(skeleton, 0, sizeof *skeleton);
+    gb_container container;
+    gb_result result = gb_container_read(path, "SKEL", &container, error);
+    if (result)
+        return result;
+    result = decode_container(&container, path, skeleton, error);
+    gb_container_close(&container);
+    if (result)
+        gb_skeleton_free(skeleton);
+    return result;
+}
+
+void gb_skeleton_free(gb_skeleton *skeleton)
+{
+    if (!skeleton)
+        return;
+    free(skeleton->nodes);
+    free(skeleton->edges);
+    memset(skeleton, 0, sizeof *skeleton);
+}

@@ -1,0 +1,116 @@
+#!/bin/sh
+# segment.t — the segment tool as a user runs it: voxelize the Cornell box at
+# 48 voxels, thin it, segment the skeleton, evaluate the segmentation; exit
+# codes, same bytes twice, precision and recall in [0, 1], and bad input
+# refused with "segment: ..." and no output left behind. Prints TAP.
+#
+# GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
+
+GB_ROOT=${GB_ROOT:-.}
+GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+scene=$GB_ROOT/scenes/cornell/cornell.scene
+dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-segment.XXXXXX") || exit 1
+trap 'rm -rf "$dir"' EXIT INT TERM
+count=0
+failed=0
+
+ok() {
+    count=$((count + 1))
+    if [ "$1" = 0 ]; then
+        echo "ok $count - $2"
+    else
+        failed=$((failed + 1))
+        echo "not ok $count - $2"
+    fi
+}
+
+# expect_status WHAT STATUS COMMAND...: the command exits with STATUS.
+expect_status() {
+    what=$1
+    want=$2
+    shift 2
+    "$@" >"$dir/out" 2>"$dir/err"
+    status=$?
+    ok "$([ "$status" = "$want" ]; echo $?)" "$what: exit status $want (got $status)"
+    [ "$status" = "$want" ] || sed 's/^/#   /' "$dir/err"
+}
+
+# in_unit_interval X: 0 when 0 <= X <= 1.
+in_unit_interval() {
+    awk -v x="$1" 'BEGIN { exit !(x != "" && x + 0 >= 0 && x + 0 <= 1) }'
+}
+
+for tool in voxelize thin segment; do
+    if [ ! -x "$GB_BIN/$tool" ]; then
+        echo "1..0 # SKIP $GB_BIN/$tool not built"
+        exit 0
+    fi
+done
+
+expect_status "voxelize" 0 "$GB_BIN/voxelize" -q -r 48 "$scene" -o "$dir/c.vdb"
+expect_status "thin" 0 "$GB_BIN/thin" -q "$dir/c.vdb" -o "$dir/c.skel" --grid "$dir/c.grid.vdb"
+expect_status "segment" 0 "$GB_BIN/segment" -q "$dir/c.skel" -o "$dir/c.seg"
+ok "$([ -s "$dir/c.seg" ]; echo $?)" "segment: writes the .seg file"
+ok "$([ ! -s "$dir/out" ] && [ ! -s "$dir/err" ]; echo $?)" "segment: silent without --stats"
+expect_status "segment --alpha 0 --stats" 0 "$GB_BIN/segment" --alpha 0 --stats "$dir/c.skel" \
+    -o "$dir/c0.seg"
+grep -q '^clusters  *[0-9][0-9]* (alpha 0 %)' "$dir/out"
+ok $? "segment --stats: prints the clusters and alpha"
+"$GB_BIN/segment" -q "$dir/c.skel" -o "$dir/again.seg"
+cmp -s "$dir/c.seg" "$dir/again.seg"
+ok $? "segment: the same skeleton gives the same bytes"
+
+expect_status "evaluate" 0 "$GB_BIN/segment" --evaluate -q "$scene" "$dir/c.seg" \
+    "$dir/c.grid.vdb" --pairs 2000 --seed 7
+cp "$dir/out" "$dir/table"
+for predictor in same-cluster one-gate; do
+    precision=$(awk -v p="$predictor" '$1 == p { print $2 }' "$dir/table")
+    recall=$(awk -v p="$predictor" '$1 == p { print $3 }' "$dir/table")
+    in_unit_interval "$precision"
+    ok $? "evaluate: $predictor precision $precision in [0, 1]"
+    in_unit_interval "$recall"
+    ok $? "evaluate: $predictor recall $recall in [0, 1]"
+done
+grep -q '^pairs  *2000 (seed 7)$' "$dir/table"
+ok $? "evaluate: 2000 pairs, seed 7"
+"$GB_BIN/segment" --evaluate -q "$scene" "$dir/c.seg" "$dir/c.grid.vdb" --pairs 2000 \
+    --seed 7 >"$dir/table2" 2>/dev/null
+grep -v '^seconds' "$dir/table" >"$dir/t1"
+grep -v '^seconds' "$dir/table2" >"$dir/t2"
+cmp -s "$dir/t1" "$dir/t2"
+ok $? "evaluate: the same seed gives the same table"
+
+# errors
+expect_status "--help" 0 "$GB_BIN/segment" --help
+grep -q '^usage: segment' "$dir/out"
+ok $? "--help: prints the usage on stdout"
+expect_status "--version" 0 "$GB_BIN/segment" --version
+expect_status "no output" 2 "$GB_BIN/segment" "$dir/c.skel"
+expect_status "alpha 101" 2 "$GB_BIN/segment" --alpha 101 "$dir/c.skel" -o "$dir/x.seg"
+expect_status "pairs 0" 2 "$GB_BIN/segment" --evaluate "$scene" "$dir/c.seg" "$dir/c.grid.vdb" \
+    --pairs 0
+expect_status "missing skeleton" 1 "$GB_BIN/segment" "$dir/missing.skel" -o "$dir/x.seg"
+grep -q "^segment: $dir/missing.skel: " "$dir/err"
+ok $? "missing skeleton: the message names the file"
+ok "$([ ! -e "$dir/x.seg" ]; echo $?)" "missing skeleton: no output left"
+
+head -c 100 "$dir/c.skel" >"$dir/short.skel"
+expect_status "truncated skeleton" 1 "$GB_BIN/segment" "$dir/short.skel" -o "$dir/x.seg"
+ok "$([ ! -e "$dir/x.seg" ]; echo $?)" "truncated skeleton: no output left"
+cp "$dir/c.seg" "$dir/bad.seg"
+printf 'X' | dd of="$dir/bad.seg" bs=1 seek=200 conv=notrunc 2>/dev/null
+expect_status "corrupt .seg" 1 "$GB_BIN/segment" --evaluate "$scene" "$dir/bad.seg" \
+    "$dir/c.grid.vdb" --pairs 10
+expect_status "a .skel as .seg" 1 "$GB_BIN/segment" --evaluate "$scene" "$dir/c.skel" \
+    "$dir/c.grid.vdb" --pairs 10
+grep -q "expected SEGM" "$dir/err"
+ok $? "a .skel as .seg: says which kind it expected"
+
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n' >"$dir/other.obj"
+expect_status "another scene" 1 "$GB_BIN/segment" --evaluate "$dir/other.obj" "$dir/c.seg" \
+    "$dir/c.grid.vdb" --pairs 10
+grep -q "another scene" "$dir/err"
+ok $? "another scene: refused as stale"
+
+echo "1..$count"
+[ "$failed" = 0 ]

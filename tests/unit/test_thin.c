@@ -1,0 +1,726 @@
+/* test_thin.c — unit tests of tools/thin: the skeleton has the topology of
+ * the empty space (components and independent cycles, computed here without
+ * thin's code), is a graph with no 2-D patch, is centred in corridors, and
+ * the nearest-node grid only maps voxels to nodes reachable through empty
+ * space; same input, same bytes. */
+#include "../../tools/thin/cubical_complex.h"
+#include "../../tools/thin/nearest_node.h"
+#include "../../tools/thin/persistence.h"
+#include "../../tools/thin/thin.h"
+#include "tap.h"
+#include "thin_volumes.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* ---- the skeleton graph ---- */
+
+static uint32_t graph_root(uint32_t *parent, uint32_t n)
+{
+    while (parent[n] != n)
+        n = parent[n] = parent[parent[n]];
+    return n;
+}
+
+static long graph_components(const gb_skeleton *s)
+{
+    uint32_t *parent = malloc((s->node_count + 1) * sizeof *parent);
+    for (uint32_t n = 0; n < s->node_count; ++n)
+        parent[n] = n;
+    long components = s->node_count;
+    for (uint32_t e = 0; e < s->edge_count; ++e) {
+        uint32_t a = graph_root(parent, s->edges[2 * e]);
+        uint32_t b = graph_root(parent, s->edges[2 * e + 1]);
+        if (a != b) {
+            parent[a] = b;
+            --components;
+        }
+    }
+    free(parent);
+    return components;
+}
+
+/* Corner coordinates of a node (positions are exact lattice corners). */
+static void node_corner(const gb_skeleton *s, const gb_voxel_grid *g, uint32_t n, int corner[3])
+{
+    for (int a = 0; a < 3; ++a)
+        corner[a] = (int)lround((s->nodes[n].position[a] - g->world_origin[a]) / g->voxel_size);
+}
+
+static int on_lattice(const gb_skeleton *s, const gb_voxel_grid *g)
+{
+    for (uint32_t n = 0; n < s->node_count; ++n) {
+        int c[3];
+        node_corner(s, g, n, c);
+        for (int a = 0; a < 3; ++a)
+            if (fabs(g->world_origin[a] + c[a] * g->voxel_size - s->nodes[n].position[a]) > 1e-4)
+                return 0;
+        int touches_empty = 0;
+        for (int d = 0; d < 8; ++d)
+            touches_empty |= volume_empty(g, c[0] - 1 + (d & 1), c[1] - 1 + ((d >> 1) & 1),
+                                          c[2] - 1 + ((d >> 2) & 1));
+        if (!touches_empty)
+            return 0;
+    }
+    return 1;
+}
+
+/* Edges join nodes one lattice step apart. */
+static int edges_are_unit(const gb_skeleton *s, const gb_voxel_grid *g)
+{
+    for (uint32_t e = 0; e < s->edge_count; ++e) {
+        int a[3], b[3];
+        node_corner(s, g, s->edges[2 * e], a);
+        node_corner(s, g, s->edges[2 * e + 1], b);
+        if (abs(a[0] - b[0]) + abs(a[1] - b[1]) + abs(a[2] - b[2]) != 1)
+            return 0;
+    }
+    return 1;
+}
+
+/* Is there an edge between the nodes at corners p and p + unit step? */
+static int has_edge_at(const gb_skeleton *s, const gb_voxel_grid *g, const int p[3], int axis)
+{
+    for (uint32_t e = 0; e < s->edge_count; ++e) {
+        int a[3], b[3];
+        node_corner(s, g, s->edges[2 * e], a);
+        node_corner(s, g, s->edges[2 * e + 1], b);
+        if (a[0] == p[0] && a[1] == p[1] && a[2] == p[2] && b[axis] == p[axis] + 1)
+            return 1;
+    }
+    return 0;
+}
+
+/* No unit square of the lattice has its 4 edges in the graph while it is a
+ * face of an empty voxel (a 2-D patch that should have collapsed). */
+static int no_filled_square(const gb_skeleton *s, const gb_voxel_grid *g)
+{
+    for (uint32_t e = 0; e < s->edge_count; ++e) {
+        int p[3], q[3];
+        node_corner(s, g, s->edges[2 * e], p);
+        node_corner(s, g, s->edges[2 * e + 1], q);
+        int u = q[0] != p[0] ? 0 : q[1] != p[1] ? 1 : 2;
+        for (int v = 0; v < 3; ++v) {
+            if (v == u)
+                continue;
+            int pv[3] = {p[0], p[1], p[2]}, pu[3] = {p[0], p[1], p[2]};
+            pv[v] += 1;
+            pu[u] += 1;
+            if (!has_edge_at(s, g, pv, u) || !has_edge_at(s, g, p, v) || !has_edge_at(s, g, pu, v))
+                continue;
+            int w = 3 - u - v, c[3] = {p[0], p[1], p[2]};
+            int below = volume_empty(g, c[0] - (w == 0), c[1] - (w == 1), c[2] - (w == 2));
+            int above = volume_empty(g, c[0], c[1], c[2]);
+            if (below || above)
+                return 0;
+        }
+    }
+    return 1;
+}
+
+/* ---- running thin ---- */
+
+typedef struct outcome {
+    gb_skeleton skeleton;
+    int32_t *nearest;
+    gb_thin_stats stats;
+    gb_result result;
+} outcome;
+
+static outcome run_thin(const gb_voxel_grid *g, const gb_thin_options *options)
+{
+    outcome o;
+    memset(&o, 0, sizeof o);
+    gb_error error = {{0}};
+    o.result = gb_thin(g, options, &o.skeleton, &o.nearest, &o.stats, &error);
+    if (o.result)
+        printf("# gb_thin: %s\n", error.message);
+    return o;
+}
+
+static void free_outcome(outcome *o)
+{
+    gb_skeleton_free(&o->skeleton);
+    free(o->nearest);
+}
+
+/* Every empty voxel maps to a node at a corner of a voxel of its own
+ * component; non-empty voxels map to -1 unless next to empty space. */
+static int nearest_is_consistent(const gb_voxel_grid *g, const outcome *o)
+{
+    for (int k = 0; k < g->size[2]; ++k)
+        for (int j = 0; j < g->size[1]; ++j)
+            for (int i = 0; i < g->size[0]; ++i) {
+                int32_t node = o->nearest[gb_voxel_index(g, i, j, k)];
+                int next_to_empty = 0;
+                for (int d = 0; d < 27; ++d)
+                    next_to_empty |=
+                        volume_empty(g, i + d % 3 - 1, j + d / 3 % 3 - 1, k + d / 9 - 1);
+                if (!next_to_empty && node != -1)
+                    return 0;
+                if (next_to_empty && (node < 0 || (uint32_t)node >= o->skeleton.node_count))
+                    return 0;
+            }
+    return 1;
+}
+
+static void check_topology(const char *name, gb_voxel_grid *g, long expected_b0,
+                           long expected_b1, long expected_b2)
+{
+    volume_finish(g);
+    volume_topology t = volume_topology_of(g);
+    char what[256];
+    snprintf(what, sizeof what, "%s: empty space has b0 = %ld (flood fill)", name, expected_b0);
+    CHECK_EQ_INT(t.b0, expected_b0, what);
+    snprintf(what, sizeof what, "%s: empty space has b1 = %ld (Euler characteristic)", name,
+             expected_b1);
+    CHECK_EQ_INT(t.b1, expected_b1, what);
+    snprintf(what, sizeof what, "%s: empty space has b2 = %ld (complement)", name, expected_b2);
+    CHECK_EQ_INT(t.b2, expected_b2, what);
+
+    gb_cubical_complex complex;
+    gb_error error;
+    gb_result built = gb_cubical_complex_build(&complex, g, &error);
+    snprintf(what, sizeof what, "%s: thin's complex has the Euler characteristic", name);
+    CHECK_EQ_INT(built ? -999 : gb_euler_characteristic(gb_cubical_complex_count(&complex)),
+                 t.euler, what);
+    gb_cubical_complex_free(&complex);
+
+    outcome o = run_thin(g, NULL);
+    snprintf(what, sizeof what, "%s: thin succeeds", name);
+    CHECK_EQ_INT(o.result, GB_OK, what);
+    const gb_skeleton *s = &o.skeleton;
+    long components = graph_components(s);
+    long cycles = (long)s->edge_count - (long)s->node_count + components;
+    snprintf(what, sizeof what, "%s: skeleton has the empty space's components", name);
+    CHECK_EQ_INT(components, t.b0, what);
+    snprintf(what, sizeof what, "%s: skeleton has its independent cycles (E - V + C)", name);
+    CHECK_EQ_INT(cycles, t.b1, what);
+    snprintf(what, sizeof what, "%s: one square opened per cavity", name);
+    CHECK_EQ_INT(o.stats.cavities_opened, t.b2, what);
+    snprintf(what, sizeof what, "%s: thin: no square left", name);
+    CHECK_EQ_INT(o.stats.squares_left, 0, what);
+    snprintf(what, sizeof what, "%s: no unit square of edges over an empty voxel face", name);
+    CHECK(no_filled_square(s, g), what);
+    snprintf(what, sizeof what, "%s: nodes on lattice corners of empty voxels", name);
+    CHECK(on_lattice(s, g), what);
+    snprintf(what, sizeof what, "%s: edges are unit lattice steps", name);
+    CHECK(edges_are_unit(s, g), what);
+    snprintf(what, sizeof what, "%s: every voxel next to empty space has a node, others -1", name);
+    CHECK(o.nearest && nearest_is_consistent(g, &o), what);
+    printf("# %s: %u nodes, %u edges, %u iterations\n", name, s->node_count, s->edge_count,
+           o.stats.iterations);
+    free_outcome(&o);
+    gb_voxel_grid_free(g);
+}
+
+/* ---- the volumes of the issue ---- */
+
+static void test_topology_cases(void)
+{
+    gb_voxel_grid g = volume_solid(14, 12, 10);
+    volume_box(&g, 1, 1, 1, 12, 10, 8, 0);
+    check_topology("box room", &g, 1, 0, 0);
+
+    g = volume_solid(16, 16, 6);
+    volume_box(&g, 1, 1, 1, 14, 14, 4, 0);
+    volume_box(&g, 5, 5, 1, 10, 10, 4, 1);
+    check_topology("ring corridor", &g, 1, 1, 0);
+
+    g = volume_solid(24, 12, 9);
+    volume_box(&g, 1, 1, 1, 22, 10, 7, 0);
+    volume_box(&g, 11, 0, 0, 12, 11, 8, 1);
+    volume_box(&g, 11, 5, 1, 12, 6, 4, 0);
+    check_topology("two rooms and a door", &g, 1, 0, 0);
+
+    g = volume_solid(14, 14, 7);
+    volume_box(&g, 1, 1, 1, 12, 12, 5, 0);
+    volume_box(&g, 6, 6, 1, 7, 7, 5, 1);
+    check_topology("room with a floor-to-ceiling pillar", &g, 1, 1, 0);
+
+    g = volume_solid(16, 16, 7);
+    volume_box(&g, 1, 1, 1, 14, 14, 5, 0);
+    volume_box(&g, 4, 4, 1, 5, 5, 5, 1);
+    volume_box(&g, 10, 9, 1, 11, 11, 5, 1);
+    check_topology("room with two pillars", &g, 1, 2, 0);
+
+    g = volume_solid(14, 3, 3);
+    volume_box(&g, 1, 1, 1, 12, 1, 1, 0);
+    check_topology("1-voxel corridor", &g, 1, 0, 0);
+
+    g = volume_solid(9, 9, 3);
+    volume_box(&g, 1, 1, 1, 7, 1, 1, 0);
+    volume_box(&g, 1, 7, 1, 7, 7, 1, 0);
+    volume_box(&g, 1, 1, 1, 1, 7, 1, 0);
+    volume_box(&g, 7, 1, 1, 7, 7, 1, 0);
+    check_topology("1-voxel ring corridor", &g, 1, 1, 0);
+
+    g = volume_solid(20, 20, 6);
+    for (int i = 1; i < 19; ++i)
+        volume_box(&g, i - 1, i - 1, 1, i + 1, i + 1, 4, 0);
+    volume_box(&g, 0, 0, 0, 19, 19, 0, 1);
+    volume_box(&g, 0, 0, 5, 19, 19, 5, 1);
+    volume_box(&g, 0, 0, 0, 0, 19, 5, 1);
+    volume_box(&g, 0, 0, 0, 19, 0, 5, 1);
+    volume_box(&g, 19, 0, 0, 19, 19, 5, 1);
+    volume_box(&g, 0, 19, 0, 19, 19, 5, 1);
+    check_topology("diagonal corridor", &g, 1, 0, 0);
+
+    g = volume_solid(8, 8, 8);
+    for (int i = 1; i < 7; ++i)
+        volume_box(&g, i, i, i, i, i, i, 0);
+    check_topology("voxels touching only at corners", &g, 1, 0, 0);
+
+    g = volume_solid(10, 9, 8);
+    volume_box(&g, 0, 0, 0, 9, 8, 7, 0);
+    check_topology("empty space filling the grid", &g, 1, 0, 0);
+
+    g = volume_solid(12, 7, 7);
+    volume_box(&g, 0, 2, 2, 11, 4, 4, 0);
+    volume_box(&g, 4, 0, 2, 6, 6, 4, 0);
+    check_topology("corridors leaving the grid", &g, 1, 0, 0);
+
+    g = volume_solid(6, 5, 4);
+    check_topology("no empty voxel", &g, 0, 0, 0);
+
+    g = volume_solid(3, 3, 3);
+    volume_box(&g, 1, 1, 1, 1, 1, 1, 0);
+    check_topology("single empty voxel", &g, 1, 0, 0);
+
+    g = volume_solid(1, 1, 1);
+    volume_box(&g, 0, 0, 0, 0, 0, 0, 0);
+    check_topology("a grid of one empty voxel", &g, 1, 0, 0);
+
+    g = volume_solid(1, 9, 1);
+    volume_box(&g, 0, 0, 0, 0, 8, 0, 0);
+    volume_box(&g, 0, 4, 0, 0, 4, 0, 1);
+    check_topology("a grid one voxel thick, cut in two", &g, 2, 0, 0);
+
+    g = volume_solid(16, 16, 16);
+    volume_box(&g, 1, 1, 1, 14, 14, 14, 0);
+    volume_box(&g, 6, 5, 7, 9, 9, 9, 1);
+    check_topology("object floating in a room", &g, 1, 0, 1);
+
+    g = volume_solid(18, 16, 16);
+    volume_box(&g, 1, 1, 1, 16, 14, 14, 0);
+    volume_box(&g, 4, 5, 5, 7, 9, 9, 1);
+    volume_box(&g, 11, 5, 5, 14, 9, 9, 1);
+    volume_box(&g, 12, 6, 6, 13, 8, 8, 0);
+    check_topology("two floating objects, one hollow", &g, 2, 0, 2);
+
+    g = volume_solid(16, 16, 16);
+    volume_box(&g, 1, 1, 1, 14, 14, 14, 0);
+    volume_box(&g, 5, 5, 5, 10, 10, 10, 1);
+    volume_box(&g, 7, 5, 7, 8, 10, 8, 0);
+    check_topology("floating object with a hole through it", &g, 1, 1, 1);
+
+    g = volume_solid(20, 8, 8);
+    volume_box(&g, 1, 1, 1, 7, 6, 6, 0);
+    volume_box(&g, 12, 1, 1, 18, 6, 6, 0);
+    check_topology("two separate rooms", &g, 2, 0, 0);
+
+    g = volume_solid(22, 22, 22);
+    volume_box(&g, 1, 1, 1, 20, 20, 20, 0);
+    volume_box(&g, 4, 4, 4, 17, 17, 17, 1);
+    volume_box(&g, 6, 6, 6, 15, 15, 15, 0);
+    volume_box(&g, 9, 9, 9, 12, 12, 12, 1);
+    check_topology("an object floating in a hollow floating object", &g, 2, 0, 2);
+}
+
+/* ---- geometry ---- */
+
+/* A straight corridor along x of cross-section w x h: nodes away from its
+ * ends lie on its axis, with the radius of the largest ball across it. */
+static void check_centred(int w, int h)
+{
+    int length = 30;
+    gb_voxel_grid g = volume_solid(length + 2, w + 2, h + 2);
+    volume_box(&g, 1, 1, 1, length, w, h, 0);
+    volume_finish(&g);
+    float largest = 0.0f;
+    for (int k = 1; k <= h; ++k)
+        for (int j = 1; j <= w; ++j) {
+            float d = g.distance[gb_voxel_index(&g, length / 2, j, k)];
+            largest = d > largest ? d : largest;
+        }
+    outcome o = run_thin(&g, NULL);
+    int middle_nodes = 0, off_axis = 0, radius_off = 0;
+    double centre_y = g.world_origin[1] + g.voxel_size * (1 + w / 2.0);
+    double centre_z = g.world_origin[2] + g.voxel_size * (1 + h / 2.0);
+    for (uint32_t n = 0; n < o.skeleton.node_count; ++n) {
+        const gb_skeleton_node *node = &o.skeleton.nodes[n];
+        double x = (node->position[0] - g.world_origin[0]) / g.voxel_size;
+        if (x < 8 || x > length - 6)
+            continue;
+        ++middle_nodes;
+        if (fabs(node->position[1] - centre_y) > 0.5 * g.voxel_size + 1e-6 ||
+            fabs(node->position[2] - centre_z) > 0.5 * g.voxel_size + 1e-6)
+            ++off_axis;
+        if (node->radius < largest - g.voxel_size - 1e-6 || node->radius > largest + 1e-6)
+            ++radius_off;
+    }
+    char what[160];
+    snprintf(what, sizeof what, "corridor %dx%d: the skeleton runs along its middle", w, h);
+    CHECK(middle_nodes >= length - 14, what);
+    snprintf(what, sizeof what, "corridor %dx%d: nodes within half a voxel of the axis", w, h);
+    CHECK_EQ_INT(off_axis, 0, what);
+    snprintf(what, sizeof what,
+             "corridor %dx%d: node radius within one voxel of the largest distance across", w, h);
+    CHECK_EQ_INT(radius_off, 0, what);
+    snprintf(what, sizeof what, "corridor %dx%d: a single line (no spur)", w, h);
+    CHECK_EQ_INT(o.skeleton.edge_count + 1, o.skeleton.node_count, what);
+    free_outcome(&o);
+    gb_voxel_grid_free(&g);
+}
+
+/* Two rooms, a wall at x = 12..13 with a door: every voxel of a room maps to
+ * a node on its side of the wall or in the doorway, never to one across the
+ * wall, although the nodes across are nearer in a straight line. */
+static void test_grid_through_door(void)
+{
+    gb_voxel_grid g = volume_solid(28, 24, 9);
+    volume_box(&g, 1, 1, 1, 26, 20, 7, 0);
+    volume_box(&g, 12, 0, 0, 13, 23, 8, 1);
+    volume_box(&g, 12, 1, 1, 13, 3, 7, 0); /* door at one end of the wall */
+    volume_finish(&g);
+    outcome o = run_thin(&g, NULL);
+    CHECK_EQ_INT(o.result, GB_OK, "two rooms: thin succeeds");
+    int wrong_side = 0, changed_far_from_door = 0;
+    for (int k = 1; k <= 7; ++k)
+        for (int j = 1; j <= 20; ++j)
+            for (int i = 1; i <= 26; ++i) {
+                if (!volume_empty(&g, i, j, k) || (i >= 12 && i <= 13))
+                    continue;
+                int32_t node = o.nearest[gb_voxel_index(&g, i, j, k)];
+                double x = (o.skeleton.nodes[node].position[0] - g.world_origin[0]) / g.voxel_size;
+                int room = i < 12 ? 0 : 1;
+                int node_room = x <= 12.0 ? 0 : x >= 14.0 ? 1 : -1; /* -1: doorway */
+                if (node_room >= 0 && node_room != room) {
+                    ++wrong_side;
+                    if (j > 8)
+                        ++changed_far_from_door;
+                }
+            }
+    CHECK_EQ_INT(wrong_side, 0, "two rooms: no voxel maps to a node across the wall");
+    CHECK_EQ_INT(changed_far_from_door, 0, "two rooms: mapping crosses rooms only near the door");
+    /* the wall voxels far from the door face both rooms: each side's node */
+    int32_t west = o.nearest[gb_voxel_index(&g, 11, 15, 4)];
+    int32_t wall = o.nearest[gb_voxel_index(&g, 12, 15, 4)];
+    double wall_node_x = (o.skeleton.nodes[wall].position[0] - g.world_origin[0]) / g.voxel_size;
+    CHECK(wall >= 0 && wall_node_x <= 12.0,
+          "two rooms: a wall voxel takes the node of its empty neighbour");
+    CHECK(west >= 0, "two rooms: voxels next to the wall have a node");
+    CHECK_EQ_INT(o.nearest[gb_voxel_index(&g, 5, 23, 4)], -1,
+                 "two rooms: a voxel away from empty space gets -1");
+    free_outcome(&o);
+    gb_voxel_grid_free(&g);
+}
+
+/* The nearest node is the geodesic one: in a U-shaped corridor the node at
+ * the end of the other branch is nearer in a straight line but not by path. */
+static void test_grid_is_geodesic(void)
+{
+    gb_voxel_grid g = volume_solid(24, 13, 5);
+    volume_box(&g, 1, 1, 1, 22, 3, 3, 0);
+    volume_box(&g, 1, 9, 1, 22, 11, 3, 0);
+    volume_box(&g, 20, 1, 1, 22, 11, 3, 0);
+    volume_finish(&g);
+    outcome o = run_thin(&g, NULL);
+    int crossing = 0;
+    for (int i = 1; i <= 17; ++i)
+        for (int j = 1; j <= 3; ++j) {
+            int32_t node = o.nearest[gb_voxel_index(&g, i, j, 2)];
+            double y = (o.skeleton.nodes[node].position[1] - g.world_origin[1]) / g.voxel_size;
+            crossing += y > 6.0;
+        }
+    CHECK_EQ_INT(crossing, 0, "U corridor: voxels of one branch never map to the other branch");
+    free_outcome(&o);
+    gb_voxel_grid_free(&g);
+}
+
+/* ---- the maps of persistence, against their definitions ---- */
+
+/* Chessboard distance of voxel (i,j,k) to the nearest non-empty voxel
+ * (outside the grid counts as non-empty), by brute force. */
+static int brute_distance(const gb_voxel_grid *g, int i, int j, int k)
+{
+    if (!volume_empty(g, i, j, k))
+        return 0;
+    for (int r = 1;; ++r)
+        for (int c = k - r; c <= k + r; ++c)
+            for (int b = j - r; b <= j + r; ++b)
+                for (int a = i - r; a <= i + r; ++a)
+                    if (!volume_empty(g, a, b, c))
+                        return r;
+}
+
+static void test_maps(void)
+{
+    gb_voxel_grid g = volume_solid(17, 13, 9);
+    volume_box(&g, 1, 1, 1, 15, 11, 7, 0);
+    volume_box(&g, 5, 4, 1, 6, 5, 7, 1);
+    volume_box(&g, 11, 1, 3, 15, 3, 4, 1);
+    volume_box(&g, 0, 6, 3, 0, 8, 5, 0); /* an opening onto the grid border */
+    gb_cubical_complex complex;
+    gb_persistence maps;
+    gb_error error;
+    CHECK(!gb_cubical_complex_build(&complex, &g, &error) &&
+              !gb_persistence_init(&maps, &complex, 1.0, 0.0, NULL, NULL, &error),
+          "maps: computed");
+    int nx = g.size[0], ny = g.size[1], nz = g.size[2];
+    int *d = malloc(sizeof *d * (size_t)nx * ny * nz);
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i)
+                d[gb_voxel_index(&g, i, j, k)] = brute_distance(&g, i, j, k);
+    int distance_wrong = 0, opening_wrong = 0;
+    for (int k = 0; k < nz; ++k)
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                size_t cell = gb_voxel_cell(&complex, i, j, k);
+                distance_wrong += gb_persistence_distance(&maps, cell) !=
+                                  d[gb_voxel_index(&g, i, j, k)];
+                int opening = 0; /* max distance(y) over y with |x - y| < distance(y) */
+                for (int c = 0; c < nz; ++c)
+                    for (int b = 0; b < ny; ++b)
+                        for (int a = 0; a < nx; ++a) {
+                            int dy = d[gb_voxel_index(&g, a, b, c)];
+                            int far = abs(a - i) > abs(b - j) ? abs(a - i) : abs(b - j);
+                            far = abs(c - k) > far ? abs(c - k) : far;
+                            if (far < dy && dy > opening)
+                                opening = dy;
+                        }
+                opening_wrong += gb_persistence_opening(&maps, cell) != opening;
+            }
+    CHECK_EQ_INT(distance_wrong, 0, "maps: chessboard distance as defined, every voxel");
+    CHECK_EQ_INT(opening_wrong, 0, "maps: opening as defined, every voxel");
+    free(d);
+    gb_persistence_free(&maps);
+    gb_cubical_complex_free(&complex);
+    gb_voxel_grid_free(&g);
+}
+
+/* The sweeps and Dijkstra (on 1 to 5 slabs) give the same grid, also on a
+ * serpentine whose far end needs more sweeps than allowed. */
+static void check_nearest_ways(const char *name, const gb_voxel_grid *g, int sweep_pairs)
+{
+    gb_cubical_complex complex;
+    gb_error error;
+    outcome o = run_thin(g, NULL);
+    gb_cubical_complex_build(&complex, g, &error);
+    uint32_t *cells = malloc((o.skeleton.node_count + 1) * sizeof *cells);
+    for (uint32_t n = 0; n < o.skeleton.node_count; ++n) {
+        int c[3];
+        node_corner(&o.skeleton, g, n, c);
+        cells[n] = (uint32_t)gb_cell_index(&complex, c[0] + 1, c[1] + 1, c[2] + 1);
+    }
+    size_t voxels = (size_t)g->size[0] * g->size[1] * g->size[2];
+    int same = 1;
+    for (int threads = 1; threads <= 5; ++threads) {
+        gb_nearest_options options = {sweep_pairs, threads, NULL, NULL};
+        int32_t *nearest = NULL;
+        same &= !gb_nearest_node(g, &complex, cells, o.skeleton.node_count, &options, &nearest,
+                                 &error) &&
+                !memcmp(nearest, o.nearest, voxels * sizeof *nearest);
+        free(nearest);
+    }
+    char what[160];
+    snprintf(what, sizeof what,
+             "%s: Dijkstra on 1..5 slabs (after %d sweep pairs) gives the sweeps' grid", name,
+             sweep_pairs);
+    CHECK(same, what);
+    free(cells);
+    gb_cubical_complex_free(&complex);
+    free_outcome(&o);
+}
+
+static void test_nearest_ways(void)
+{
+    gb_voxel_grid g = volume_solid(30, 24, 14);
+    volume_box(&g, 1, 1, 1, 28, 22, 12, 0);
+    volume_box(&g, 8, 6, 1, 9, 7, 12, 1);
+    volume_box(&g, 12, 3, 4, 16, 8, 6, 1);
+    volume_finish(&g);
+    check_nearest_ways("cluttered room", &g, 0);
+    gb_voxel_grid_free(&g);
+
+    /* a serpentine of 2-voxel corridors in y, walls every 3 voxels in x */
+    g = volume_solid(33, 20, 4);
+    volume_box(&g, 1, 1, 1, 31, 18, 2, 0);
+    for (int x = 3, gap_at_top = 1; x < 31; x += 3, gap_at_top = !gap_at_top)
+        volume_box(&g, x, gap_at_top ? 1 : 3, 0, x, gap_at_top ? 16 : 18, 3, 1);
+    volume_finish(&g);
+    check_nearest_ways("serpentine", &g, 0);
+    check_nearest_ways("serpentine", &g, 1);
+    gb_voxel_grid_free(&g);
+}
+
+/* ---- determinism and options ---- */
+
+static int same_outcome(const outcome *a, const outcome *b, size_t voxels)
+{
+    return a->skeleton.node_count == b->skeleton.node_count &&
+           a->skeleton.edge_count == b->skeleton.edge_count &&
+           !memcmp(a->skeleton.nodes, b->skeleton.nodes,
+                   a->skeleton.node_count * sizeof *a->skeleton.nodes) &&
+           !memcmp(a->skeleton.edges, b->skeleton.edges,
+                   a->skeleton.edge_count * 2 * sizeof *a->skeleton.edges) &&
+           !memcmp(a->nearest, b->nearest, voxels * sizeof *a->nearest);
+}
+
+static gb_voxel_grid cluttered_room(void)
+{
+    gb_voxel_grid g = volume_solid(30, 24, 14);
+    volume_box(&g, 1, 1, 1, 28, 22, 12, 0);
+    volume_box(&g, 8, 6, 1, 9, 7, 12, 1);
+    volume_box(&g, 18, 12, 1, 20, 14, 12, 1);
+    volume_box(&g, 12, 3, 4, 16, 8, 6, 1);
+    volume_box(&g, 3, 15, 1, 10, 16, 8, 1);
+    volume_box(&g, 22, 2, 7, 26, 6, 9, 1);
+    volume_finish(&g);
+    return g;
+}
+
+static void test_determinism(void)
+{
+    gb_voxel_grid g = cluttered_room();
+    outcome a = run_thin(&g, NULL), b = run_thin(&g, NULL);
+    size_t voxels = (size_t)g.size[0] * g.size[1] * g.size[2];
+    CHECK(same_outcome(&a, &b, voxels), "determinism: two runs give the same skeleton and grid");
+    int threads[] = {1, 3, 4, 7, 64};
+    for (int t = 0; t < 5; ++t) {
+        gb_thin_options options = {0};
+        options.threads = threads[t];
+        outcome c = run_thin(&g, &options);
+        char what[96];
+        snprintf(what, sizeof what, "determinism: %d threads give the same bytes as 2",
+                 threads[t]);
+        CHECK(same_outcome(&a, &c, voxels), what);
+        free_outcome(&c);
+    }
+    free_outcome(&a);
+    free_outcome(&b);
+    gb_voxel_grid_free(&g);
+}
+
+static int count_progress(void *user, double fraction)
+{
+    double *last = user;
+    if (fraction < last[0] - 1e-9 || fraction > 1.0 + 1e-9)
+        last[1] = 1.0;
+    last[0] = fraction;
+    last[2] += 1.0;
+    return 0;
+}
+
+static int cancel_progress(void *user, double fraction)
+{
+    (void)user;
+    return fraction > 0.3;
+}
+
+static void test_options(void)
+{
+    gb_voxel_grid g = cluttered_room();
+    gb_thin_options strict = {0}, loose = {0};
+    strict.persistence = -1.0;  /* keep every isthmus at once */
+    loose.persistence = 4.0;
+    loose.min_lifespan = 3.0;
+    outcome s = run_thin(&g, &strict), d = run_thin(&g, NULL), l = run_thin(&g, &loose);
+    CHECK(s.skeleton.node_count >= d.skeleton.node_count &&
+          d.skeleton.node_count >= l.skeleton.node_count,
+          "options: a larger persistence keeps fewer nodes");
+    CHECK(graph_components(&l.skeleton) == graph_components(&s.skeleton) &&
+          (long)l.skeleton.edge_count - l.skeleton.node_count ==
+              (long)s.skeleton.edge_count - s.skeleton.node_count,
+          "options: topology does not depend on persistence");
+    CHECK_NEAR(d.skeleton.persistence, 1.0, 0.0, "options: default persistence recorded");
+    CHECK_NEAR(l.skeleton.min_lifespan, 3.0, 0.0, "options: min lifespan recorded");
+    CHECK_EQ_INT(d.skeleton.scene_hash, g.scene_hash, "options: scene hash recorded");
+    CHECK_NEAR(d.skeleton.voxel_size, g.voxel_size, 0.0, "options: voxel size recorded");
+    free_outcome(&s);
+    free_outcome(&d);
+    free_outcome(&l);
+
+    double seen[3] = {0.0, 0.0, 0.0};
+    gb_thin_options watched = {0};
+    watched.progress = count_progress;
+    watched.progress_user = seen;
+    outcome w = run_thin(&g, &watched);
+    CHECK(seen[2] > 2 && seen[1] == 0.0, "progress: called, increasing, within [0, 1]");
+    free_outcome(&w);
+
+    gb_thin_options cancelled = {0};
+    cancelled.progress = cancel_progress;
+    gb_error error;
+    gb_skeleton skeleton;
+    int32_t *nearest = NULL;
+    CHECK_EQ_INT(gb_thin(&g, &cancelled, &skeleton, &nearest, NULL, &error), GB_ERROR_IO,
+                 "progress: a nonzero return cancels");
+    CHECK(skeleton.nodes == NULL && nearest == NULL, "progress: a cancelled run leaves nothing");
+    gb_voxel_grid_free(&g);
+}
+
+/* The grid as thin's main writes it: an OpenVDB int32 grid that reads back
+ * the same, -1 voxels included. */
+static void test_grid_file(void)
+{
+    gb_voxel_grid g = cluttered_room();
+    outcome o = run_thin(&g, NULL);
+    char path[] = "/tmp/gibake-test-thin-XXXXXX";
+    int fd = mkstemp(path);
+    if (fd >= 0)
+        close(fd);
+    gb_error error;
+    CHECK_EQ_INT(gb_voxel_grid_write_int32(path, &g, "nearest_node", o.nearest, &error), GB_OK,
+                 "grid file: written");
+    gb_voxel_grid frame;
+    memset(&frame, 0, sizeof frame);
+    int32_t *values = NULL;
+    CHECK_EQ_INT(gb_voxel_grid_read_int32(path, "nearest_node", &frame, &values, &error), GB_OK,
+                 "grid file: read back");
+    size_t voxels = (size_t)g.size[0] * g.size[1] * g.size[2];
+    CHECK(values && frame.size[0] == g.size[0] && frame.size[1] == g.size[1] &&
+              frame.size[2] == g.size[2] && !memcmp(values, o.nearest, voxels * sizeof *values),
+          "grid file: same frame and values");
+    CHECK_EQ_INT(frame.scene_hash, g.scene_hash, "grid file: scene hash kept");
+    free(values);
+    gb_voxel_grid_free(&frame);
+    unlink(path);
+    free_outcome(&o);
+    gb_voxel_grid_free(&g);
+}
+
+static void test_bad_input(void)
+{
+    gb_voxel_grid g = {0};
+    gb_skeleton skeleton;
+    gb_error error;
+    CHECK_EQ_INT(gb_thin(&g, NULL, &skeleton, NULL, NULL, &error), GB_ERROR_ARGUMENT,
+                 "bad input: an empty grid struct is refused");
+    g = volume_solid(4, 4, 4);
+    g.voxel_size = 0.0;
+    CHECK_EQ_INT(gb_thin(&g, NULL, &skeleton, NULL, NULL, &error), GB_ERROR_ARGUMENT,
+                 "bad input: a zero voxel size is refused");
+    gb_voxel_grid_free(&g);
+}
+
+int main(void)
+{
+    test_topology_cases();
+    check_centred(5, 5);
+    check_centred(4, 4);
+    check_centred(7, 3);
+    check_centred(9, 9);
+    test_grid_through_door();
+    test_grid_is_geodesic();
+    test_maps();
+    test_nearest_ways();
+    test_determinism();
+    test_options();
+    test_grid_file();
+    test_bad_input();
+    return tap_done();
+}

@@ -1,0 +1,275 @@
+/* segment — the segmented skeleton, visibility clusters and visibility gates
+ * of a skeleton (noel-biri-2014 §IV.B, §IV.C; tools/segment/segment.h), and
+ * the measure of how well they predict visibility (--evaluate). Parses the
+ * command line, reads the inputs, calls the library, writes the outputs. */
+
+#include <errno.h>
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "progress.h"
+#include "scene.h"
+#include "segment.h"
+#include "segmentation.h"
+#include "skeleton.h"
+#include "voxel_grid.h"
+
+static const char usage[] =
+    "usage: segment [options] IN.skel -o OUT.seg\n"
+    "       segment --evaluate SCENE IN.seg GRID.vdb [--pairs N] [--seed S]\n"
+    "Segments the skeleton IN.skel (written by thin) into topology, curvature and\n"
+    "coverage nodes, grows visibility clusters over the segmented skeleton and puts\n"
+    "a visibility gate on every edge between two clusters; writes OUT.seg.\n"
+    "With --evaluate, samples pairs of points on SCENE's surfaces, predicts their\n"
+    "visibility from IN.seg and thin's nearest-node grid GRID.vdb (\"same cluster\",\n"
+    "\"same cluster or through one gate\"), checks it with Embree rays and prints\n"
+    "precision and recall.\n"
+    "\n"
+    "  -o, --output FILE      the segmentation file (required without --evaluate)\n"
+    "  -a, --alpha PERCENT    how much a neighbour's maximal ball may differ from the\n"
+    "                         cluster's largest to join it, 0 to 100 (default 20)\n"
+    "  -e, --evaluate         evaluate IN.seg on SCENE instead of segmenting\n"
+    "  -n, --pairs N          point pairs to evaluate (default 100000)\n"
+    "      --seed S           random seed of the pairs (default 0)\n"
+    "  -s, --stats            print counts and timings on stdout\n"
+    "  -q, --quiet            no progress bar\n"
+    "  -h, --help             this help\n"
+    "  -V, --version          the version\n";
+
+enum { OPTION_SEED = 256 };
+
+typedef struct arguments {
+    const char *input, *output, *scene, *grid;
+    gb_segment_options options;
+    gb_segment_evaluate_options evaluate_options;
+    int evaluate, quiet, stats;
+} arguments;
+
+/* 0 on success, -1 after a message. */
+static int parse_number(const char *text, const char *option, double low, double high,
+                        double *value)
+{
+    char *end;
+    errno = 0;
+    *value = strtod(text, &end);
+    if (end == text || *end || errno || !(*value >= low && *value <= high)) {
+        fprintf(stderr, "segment: %s: not a number in [%g, %g]: \"%s\"\n", option, low, high,
+                text);
+        return -1;
+    }
+    return 0;
+}
+
+/* A strict decimal integer in [low, high], or -1 after a message. */
+static int parse_integer(const char *text, const char *option, unsigned long long low,
+                         unsigned long long high, unsigned long long *value)
+{
+    char *end;
+    errno = 0;
+    *value = strtoull(text, &end, 10);
+    if (end == text || *end || errno || text[0] == '-' || *value < low || *value > high) {
+        fprintf(stderr, "segment: %s: not an integer in [%llu, %llu]: \"%s\"\n", option, low,
+                high, text);
+        return -1;
+    }
+    return 0;
+}
+
+static int parse_option(int option, arguments *args)
+{
+    double value;
+    unsigned long long count;
+    switch (option) {
+    case 'o': args->output = optarg; return 0;
+    case 'a':
+        if (parse_number(optarg, "--alpha", 0.0, 100.0, &value))
+            return 3;
+        /* in the options struct 0 means the default; negative means 0 */
+        args->options.alpha = value == 0.0 ? -1.0 : value;
+        return 0;
+    case 'e': args->evaluate = 1; return 0;
+    case 'n':
+        if (parse_integer(optarg, "--pairs", 1, UINT32_MAX, &count))
+            return 3;
+        args->evaluate_options.pairs = (uint32_t)count;
+        return 0;
+    case OPTION_SEED:
+        if (parse_integer(optarg, "--seed", 0, UINT64_MAX, &count))
+            return 3;
+        args->evaluate_options.seed = count;
+        return 0;
+    case 's': args->stats = 1; return 0;
+    case 'q': args->quiet = 1; return 0;
+    case 'h': return fputs(usage, stdout) == EOF ? 2 : 1;
+    case 'V': return puts("segment (gibake) 0.1") == EOF ? 2 : 1;
+    default: fputs(usage, stderr); return 3;
+    }
+}
+
+static int check_positionals(int argc, char **argv, arguments *args)
+{
+    int count = argc - optind;
+    if (args->evaluate) {
+        if (count != 3 || args->output) {
+            fprintf(stderr, "segment: --evaluate expects SCENE IN.seg GRID.vdb and no -o\n%s",
+                    usage);
+            return 3;
+        }
+        args->scene = argv[optind];
+        args->input = argv[optind + 1];
+        args->grid = argv[optind + 2];
+        return 0;
+    }
+    if (count != 1 || !args->output) {
+        fprintf(stderr, "segment: expected one IN.skel and -o OUT.seg\n%s", usage);
+        return 3;
+    }
+    args->input = argv[optind];
+    return 0;
+}
+
+/* 0: go on; otherwise the exit code + 1 (0 for --help and --version). */
+static int parse_arguments(int argc, char **argv, arguments *args)
+{
+    static const struct option options[] = {
+        {"output", required_argument, NULL, 'o'},
+        {"alpha", required_argument, NULL, 'a'},
+        {"evaluate", no_argument, NULL, 'e'},
+        {"pairs", required_argument, NULL, 'n'},
+        {"seed", required_argument, NULL, OPTION_SEED},
+        {"stats", no_argument, NULL, 's'},
+        {"quiet", no_argument, NULL, 'q'},
+        {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
+        {NULL, 0, NULL, 0},
+    };
+    int option;
+    while ((option = getopt_long(argc, argv, "o:a:en:sqhV", options, NULL)) != -1) {
+        int status = parse_option(option, args);
+        if (status)
+            return status;
+    }
+    return check_positionals(argc, argv, args);
+}
+
+static void print_stats(const gb_segmentation *s, const gb_segment_stats *stats)
+{
+    printf("skeleton nodes   %u\n", s->skeleton_node_count);
+    printf("lines            %u\n", stats->lines);
+    printf("rings            %u\n", stats->rings);
+    printf("loops            %u\n", stats->loops);
+    printf("topology nodes   %u\n", stats->topology_nodes);
+    printf("curvature nodes  %u\n", stats->curvature_nodes);
+    printf("coverage nodes   %u\n", stats->coverage_nodes);
+    printf("segmented edges  %u\n", s->edge_count);
+    printf("clusters         %u (alpha %g %%)\n", s->cluster_count, s->alpha);
+    printf("gates            %u\n", s->gate_count);
+    printf("seconds          %.4f\n", stats->seconds);
+}
+
+static int run_segment(const arguments *args)
+{
+    gb_skeleton skeleton;
+    gb_error error;
+    if (gb_skeleton_read(args->input, &skeleton, &error)) {
+        fprintf(stderr, "segment: %s\n", error.message);
+        return 1;
+    }
+    gb_segmentation segmentation;
+    gb_segment_stats stats;
+    int status = 0;
+    if (gb_segment(&skeleton, &args->options, &segmentation, &stats, &error)) {
+        fprintf(stderr, "segment: %s: %s\n", args->input, error.message);
+        status = 1;
+    } else if (gb_segmentation_write(args->output, &segmentation, &error)) {
+        fprintf(stderr, "segment: %s\n", error.message);
+        status = 1;
+    } else if (args->stats) {
+        print_stats(&segmentation, &stats);
+    }
+    gb_segmentation_free(&segmentation);
+    gb_skeleton_free(&skeleton);
+    return status;
+}
+
+static void print_evaluation(const arguments *args, const gb_segmentation *s,
+                             const gb_segment_evaluation *e)
+{
+    double pairs = e->pairs ? (double)e->pairs : 1.0;
+    printf("scene            %s\n", args->scene);
+    printf("pairs            %llu (seed %llu)\n", (unsigned long long)e->pairs,
+           (unsigned long long)args->evaluate_options.seed);
+    printf("visible          %.4f\n", (double)e->visible / pairs);
+    printf("unlocated        %.4f\n", (double)e->unlocated / pairs);
+    printf("grazing draws    %llu\n", (unsigned long long)e->grazing);
+    printf("clusters         %u\n", s->cluster_count);
+    printf("gates            %u\n", s->gate_count);
+    printf("predictor        precision  recall\n");
+    printf("same-cluster     %.4f     %.4f\n", gb_visibility_precision(&e->same_cluster),
+           gb_visibility_recall(&e->same_cluster));
+    printf("one-gate         %.4f     %.4f\n", gb_visibility_precision(&e->one_gate),
+           gb_visibility_recall(&e->one_gate));
+    printf("seconds          %.3f\n", e->seconds);
+}
+
+/* Reads the scene, the segmentation and the grid; 0 or 1 after a message. */
+static int load_evaluation_inputs(const arguments *args, gb_scene *scene, gb_segmentation *seg,
+                                  gb_voxel_grid *frame, int32_t **nearest)
+{
+    gb_error error;
+    if (gb_scene_load(args->scene, NULL, scene, &error) ||
+        gb_segmentation_read(args->input, seg, &error) ||
+        gb_voxel_grid_read_int32(args->grid, "nearest_node", frame, nearest, &error) ||
+        gb_segmentation_check_grid(seg, frame, *nearest, args->grid, &error)) {
+        fprintf(stderr, "segment: %s\n", error.message);
+        return 1;
+    }
+    return 0;
+}
+
+static int run_evaluate(const arguments *args)
+{
+    gb_scene scene = {0};
+    gb_segmentation seg = {0};
+    gb_voxel_grid frame = {0};
+    int32_t *nearest = NULL;
+    int status = load_evaluation_inputs(args, &scene, &seg, &frame, &nearest);
+    if (!status) {
+        gb_progress progress;
+        gb_progress_begin(&progress, "segment", args->quiet);
+        gb_segment_evaluate_options options = args->evaluate_options;
+        options.progress = gb_progress_report;
+        options.progress_user = &progress;
+        gb_segment_evaluation evaluation;
+        gb_error error;
+        gb_result result = gb_segment_evaluate(&scene, &seg, nearest, &options, &evaluation,
+                                               &error);
+        gb_progress_end(&progress);
+        if (result) {
+            fprintf(stderr, "segment: %s: %s\n", args->input, error.message);
+            status = 1;
+        } else {
+            print_evaluation(args, &seg, &evaluation);
+        }
+    }
+    free(nearest);
+    gb_voxel_grid_free(&frame);
+    gb_segmentation_free(&seg);
+    gb_scene_free(&scene);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    arguments args;
+    memset(&args, 0, sizeof args);
+    int parsed = parse_arguments(argc, argv, &args);
+    if (parsed)
+        return parsed - 1;
+    int status = args.evaluate ? run_evaluate(&args) : run_segment(&args);
+    if (fflush(stdout) != 0)
+        status = 1;
+    return status;
+}

@@ -1,0 +1,164 @@
+/* cavities.c — opening the 2-cycles left by collapse (see cavities.h).
+ *
+ * The regions of the complement are flooded one at a time from the outside
+ * (cell 0, on the padding), a bit per cell: a square with one side flooded
+ * and the other not separates the flooded region from a cavity; it is
+ * removed and the cavity flooded in turn, until no square separates a
+ * flooded cell from an unflooded one. */
+#include "cavities.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "cell_list.h"
+
+typedef struct flood {
+    const gb_cubical_complex *complex;
+    uint8_t *flooded;           /* a bit per cell */
+    uint32_t *ring;             /* the breadth-first queue, circular */
+    size_t capacity, head, count;
+} flood;
+
+static int is_flooded(const flood *f, size_t cell)
+{
+    return (f->flooded[cell >> 3] >> (cell & 7)) & 1;
+}
+
+static gb_result enqueue(flood *f, size_t cell, gb_error *error)
+{
+    if (f->count == f->capacity) {
+        size_t capacity = f->capacity ? 2 * f->capacity : 4096;
+        uint32_t *ring = malloc(capacity * sizeof *ring);
+        if (!ring)
+            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cavities: out of memory");
+        for (size_t n = 0; n < f->count; ++n)
+            ring[n] = f->ring[(f->head + n) % f->capacity];
+        free(f->ring);
+        f->ring = ring;
+        f->capacity = capacity;
+        f->head = 0;
+    }
+    f->flooded[cell >> 3] |= (uint8_t)(1u << (cell & 7));
+    f->ring[(f->head + f->count++) % f->capacity] = (uint32_t)cell;
+    return GB_OK;
+}
+
+/* The region of start: cells joined through faces of the lattice whose
+ * square is not in the complex, cubes excepted. A step off either end of a
+ * row lands on a padding cell of the next or previous row, which is outside
+ * anyway. */
+static gb_result flood_region(flood *f, size_t start, gb_error *error)
+{
+    const uint8_t *faces = f->complex->faces;
+    const size_t *step = f->complex->step;
+    if (is_flooded(f, start) || (faces[start] & GB_FACE_CUBE))
+        return GB_OK;
+    gb_result result = enqueue(f, start, error);
+    while (!result && f->count) {
+        size_t cell = f->ring[f->head];
+        f->head = (f->head + 1) % f->capacity;
+        --f->count;
+        for (int axis = 0; axis < 3 && !result; ++axis) {
+            uint8_t square = gb_square_bit(axis);
+            /* the square between cell and cell - step is the one at cell */
+            size_t below = cell - step[axis], above = cell + step[axis];
+            if (cell >= step[axis] && !(faces[cell] & square) && !is_flooded(f, below) &&
+                !(faces[below] & GB_FACE_CUBE))
+                result = enqueue(f, below, error);
+            if (!result && above < f->complex->cell_count && !(faces[above] & square) &&
+                !is_flooded(f, above) && !(faces[above] & GB_FACE_CUBE))
+                result = enqueue(f, above, error);
+        }
+    }
+    return result;
+}
+
+static gb_result list_squares(const gb_cubical_complex *complex, gb_cell_list *cells,
+                              uint64_t *squares, gb_error *error)
+{
+    *squares = 0;
+    for (size_t cell = 0; cell < complex->cell_count; ++cell) {
+        uint8_t f = complex->faces[cell] & GB_FACE_SQUARES;
+        if (!f)
+            continue;
+        *squares += (uint64_t)gb_face_count(f);
+        if (gb_cell_list_push(cells, cell, error))
+            return GB_ERROR_OUT_OF_MEMORY;
+    }
+    return GB_OK;
+}
+
+static gb_result record_birth_if_facet(gb_collapse *collapse, size_t cell, int axis,
+                                       gb_error *error)
+{
+    if ((collapse->complex->faces[cell] & gb_edge_bit(axis)) &&
+        gb_edge_coface_count(collapse->complex, cell, axis) == 0)
+        return gb_persistence_record_birth(collapse->persistence, cell, axis,
+                                           collapse->iteration, error);
+    return GB_OK;
+}
+
+/* Removes the square; its edges may become facets (born now). */
+static gb_result remove_square(gb_collapse *collapse, size_t cell, int normal, gb_error *error)
+{
+    const gb_cubical_complex *complex = collapse->complex;
+    complex->faces[cell] &= (uint8_t)~gb_square_bit(normal);
+    int b = (normal + 1) % 3, c = (normal + 2) % 3;
+    if (record_birth_if_facet(collapse, cell, b, error) ||
+        record_birth_if_facet(collapse, cell + complex->step[c], b, error) ||
+        record_birth_if_facet(collapse, cell, c, error) ||
+        record_birth_if_facet(collapse, cell + complex->step[b], c, error))
+        return GB_ERROR_OUT_OF_MEMORY;
+    return gb_collapse_reconsider(collapse, cell, error);
+}
+
+/* One pass over the squares left: each one between a flooded cell and an
+ * unflooded one is removed and the cavity behind it flooded. */
+static gb_result open_separating_squares(flood *f, gb_collapse *collapse,
+                                         const gb_cell_list *cells, uint32_t *opened,
+                                         gb_error *error)
+{
+    const gb_cubical_complex *complex = collapse->complex;
+    gb_result result = GB_OK;
+    for (size_t n = 0; n < cells->count && !result; ++n) {
+        size_t cell = cells->items[n];
+        for (int normal = 0; normal < 3 && !result; ++normal) {
+            if (!(complex->faces[cell] & gb_square_bit(normal)))
+                continue;
+            size_t behind = cell - complex->step[normal];
+            if (is_flooded(f, cell) == is_flooded(f, behind))
+                continue;
+            result = remove_square(collapse, cell, normal, error);
+            if (!result)
+                result = flood_region(f, is_flooded(f, cell) ? behind : cell, error);
+            ++*opened;
+        }
+    }
+    return result;
+}
+
+gb_result gb_open_cavities(gb_cubical_complex *complex, gb_collapse *collapse,
+                           uint64_t *squares_left, uint32_t *opened, gb_error *error)
+{
+    *opened = 0;
+    gb_cell_list cells = {0};
+    gb_result result = list_squares(complex, &cells, squares_left, error);
+    if (result || !*squares_left) {
+        gb_cell_list_free(&cells);
+        return result;
+    }
+    flood f = {.complex = complex};
+    f.flooded = calloc(complex->cell_count / 8 + 1, 1);
+    if (!f.flooded)
+        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cavities: out of memory");
+    if (!result)
+        result = flood_region(&f, 0, error);
+    for (uint32_t before = UINT32_MAX; !result && *opened != before;) {
+        before = *opened;
+        result = open_separating_squares(&f, collapse, &cells, opened, error);
+    }
+    free(f.flooded);
+    free(f.ring);
+    gb_cell_list_free(&cells);
+    return result;
+}

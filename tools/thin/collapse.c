@@ -1,0 +1,424 @@
+/* collapse.c — ParDirCollapse with border lists and persistent isthmuses
+ * (see collapse.h). */
+#include "collapse.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+/* For the few small functions of the inner loops. */
+#define HOT static inline __attribute__((always_inline))
+
+/* What a cell is listed for: the kind of its g, 3 - the pair's dimension. */
+enum { KIND_CUBE, KIND_SQUARE, KIND_EDGE };
+
+static const uint8_t kind_faces[GB_COLLAPSE_KINDS] = {GB_FACE_CUBE, GB_FACE_SQUARES,
+                                                      GB_FACE_EDGES};
+
+/* Per-cell marks, each set for as long as the cell is in the matching list. */
+enum {
+    MARK_BORDER = 1u << 0,      /* << kind: in border[kind] */
+    MARK_PENDING = 1u << 3,     /* << kind: in pending[kind] */
+    MARK_BORN_X = 1u << 6,      /* its edge along x became a facet this iteration */
+    MARK_BORN = 7u << 6,        /* (born holds the cell) */
+};
+
+static uint16_t born_mark(int axis) { return (uint16_t)(MARK_BORN_X << axis); }
+
+/* ---- the lists ---- */
+
+HOT gb_result list_in(gb_collapse *collapse, gb_cell_list *list, uint16_t mark, size_t cell,
+                      gb_error *error)
+{
+    uint16_t *marks = &collapse->marks[cell];
+    if (*marks & mark)
+        return GB_OK;
+    *marks |= mark;
+    return gb_cell_list_push(list, cell, error);
+}
+
+/* The cell may hold the g (of that kind) of a new free pair: examine it in
+ * the rest of this iteration and in the next (for the substeps that come
+ * before the one that freed it). */
+HOT gb_result list_candidate(gb_collapse *collapse, size_t cell, int kind, gb_error *error)
+{
+    if (list_in(collapse, &collapse->border[kind], (uint16_t)(MARK_BORDER << kind), cell,
+                error))
+        return GB_ERROR_OUT_OF_MEMORY;
+    return list_in(collapse, &collapse->pending[kind], (uint16_t)(MARK_PENDING << kind), cell,
+                   error);
+}
+
+gb_result gb_collapse_reconsider(gb_collapse *collapse, size_t cell, gb_error *error)
+{
+    const size_t *step = collapse->complex->step;
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                size_t neighbour = (size_t)((ptrdiff_t)cell + dx + dy * (ptrdiff_t)step[1] +
+                                            dz * (ptrdiff_t)step[2]);
+                for (int kind = 0; kind < GB_COLLAPSE_KINDS; ++kind)
+                    if ((collapse->complex->faces[neighbour] & kind_faces[kind]) &&
+                        list_in(collapse, &collapse->pending[kind],
+                                (uint16_t)(MARK_PENDING << kind), neighbour, error))
+                        return GB_ERROR_OUT_OF_MEMORY;
+            }
+    return GB_OK;
+}
+
+gb_result gb_collapse_init(gb_collapse *collapse, gb_cubical_complex *complex,
+                           gb_persistence *persistence, gb_error *error)
+{
+    memset(collapse, 0, sizeof *collapse);
+    collapse->complex = complex;
+    collapse->persistence = persistence;
+    collapse->marks = calloc(complex->cell_count, sizeof *collapse->marks);
+    if (!collapse->marks)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "collapse: out of memory for %zu cells",
+                       complex->cell_count);
+    /* Every face is in a cube: the only free pairs are (square, cube) next to
+     * a non-empty voxel, at distance 1. */
+    for (size_t cell = 0; cell < complex->cell_count; ++cell) {
+        if (!(complex->faces[cell] & GB_FACE_CUBE))
+            continue;
+        ++collapse->cubes;
+        if (gb_persistence_distance(persistence, cell) == 1 &&
+            list_in(collapse, &collapse->pending[KIND_CUBE], MARK_PENDING << KIND_CUBE, cell,
+                    error)) {
+            gb_collapse_free(collapse);
+            return GB_ERROR_OUT_OF_MEMORY;
+        }
+    }
+    return GB_OK;
+}
+
+void gb_collapse_free(gb_collapse *collapse)
+{
+    if (!collapse)
+        return;
+    for (int kind = 0; kind < GB_COLLAPSE_KINDS; ++kind) {
+        gb_cell_list_free(&collapse->border[kind]);
+        gb_cell_list_free(&collapse->pending[kind]);
+    }
+    gb_cell_list_free(&collapse->born);
+    free(collapse->pairs);
+    free(collapse->marks);
+    memset(collapse, 0, sizeof *collapse);
+}
+
+/* The border of a new iteration: the cells pending from the last one that
+ * still hold a face of the kind they were listed for. */
+static void start_iteration(gb_collapse *collapse)
+{
+    const uint8_t *faces = collapse->complex->faces;
+    for (int kind = 0; kind < GB_COLLAPSE_KINDS; ++kind) {
+        gb_cell_list *border = &collapse->border[kind], *pending = &collapse->pending[kind];
+        for (size_t n = 0; n < border->count; ++n)
+            collapse->marks[border->items[n]] &= (uint16_t)~(MARK_BORDER << kind);
+        border->count = 0;
+        /* swap: the pending cells become the border, the old border's
+         * allocation takes the next iteration's pending cells */
+        gb_cell_list candidates = *pending;
+        *pending = *border;
+        *border = candidates;
+        size_t kept = 0;
+        for (size_t n = 0; n < border->count; ++n) {
+            size_t cell = border->items[n];
+            uint16_t *marks = &collapse->marks[cell];
+            *marks &= (uint16_t)~(MARK_PENDING << kind);
+            if (faces[cell] & kind_faces[kind]) {
+                *marks |= (uint16_t)(MARK_BORDER << kind);
+                border->items[kept++] = (uint32_t)cell;
+            }
+        }
+        border->count = kept;
+    }
+}
+
+/* Facets born this iteration and still there get their birth recorded; the
+ * others were collapsed at once and never needed one. */
+static gb_result end_iteration(gb_collapse *collapse, gb_error *error)
+{
+    const uint8_t *faces = collapse->complex->faces;
+    gb_result result = GB_OK;
+    for (size_t n = 0; n < collapse->born.count; ++n) {
+        size_t cell = collapse->born.items[n];
+        for (int axis = 0; axis < 3 && !result; ++axis)
+            if ((collapse->marks[cell] & born_mark(axis)) && (faces[cell] & gb_edge_bit(axis)))
+                result = gb_persistence_record_birth(collapse->persistence, cell, axis,
+                                                     collapse->iteration, error);
+        collapse->marks[cell] &= (uint16_t)~MARK_BORN;
+    }
+    collapse->born.count = 0;
+    return result;
+}
+
+/* ---- finding the free pairs of a substep ---- */
+
+static gb_result add_pair(gb_collapse *collapse, size_t cell, uint8_t g, gb_error *error)
+{
+    if (collapse->pair_count == collapse->pair_capacity) {
+        size_t capacity = collapse->pair_capacity ? 2 * collapse->pair_capacity : 1024;
+        uint64_t *pairs = realloc(collapse->pairs, capacity * sizeof *pairs);
+        if (!pairs)
+            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "collapse: out of memory");
+        collapse->pairs = pairs;
+        collapse->pair_capacity = capacity;
+    }
+    collapse->pairs[collapse->pair_count++] = (uint64_t)cell << 8 | g;
+    return GB_OK;
+}
+
+typedef struct substep {
+    int axis;                   /* direction */
+    int orientation;            /* -1 or +1 */
+    int dimension;              /* of g: 3, 2 or 1 */
+} substep;
+
+/* The cell of f: g's cell for the negative orientation, the next cell along
+ * the direction for the positive one. */
+static size_t free_face_cell(const gb_cubical_complex *complex, size_t cell, substep s)
+{
+    return s.orientation < 0 ? cell : cell + complex->step[s.axis];
+}
+
+/* An isthmus edge is protected once old enough; one born this iteration
+ * (lifespan 0) never is. */
+static int is_protected(const gb_collapse *collapse, size_t cell, int axis)
+{
+    if (collapse->marks[cell] & born_mark(axis))
+        return 0;
+    return gb_persistence_is_protected(collapse->persistence, collapse->complex, cell, axis,
+                                       collapse->iteration);
+}
+
+/* The free pairs of the substep whose g is in cell, appended to the pairs. A
+ * face of a cube is in the cube, so in a cell holding a cube only the cube
+ * can be a g. */
+HOT gb_result find_pairs_in_cell(gb_collapse *collapse, size_t cell, substep s, gb_error *error)
+{
+    const gb_cubical_complex *complex = collapse->complex;
+    const uint8_t *faces = complex->faces;
+    uint8_t here = faces[cell];
+    size_t f = free_face_cell(complex, cell, s);
+    if (s.dimension == 3) {
+        size_t beyond = s.orientation < 0 ? cell - complex->step[s.axis]
+                                          : cell + complex->step[s.axis];
+        if ((here & GB_FACE_CUBE) && !(faces[beyond] & GB_FACE_CUBE))
+            return add_pair(collapse, cell, GB_FACE_CUBE, error);
+        return GB_OK;
+    }
+    if (here & GB_FACE_CUBE)
+        return GB_OK;
+    if (s.dimension == 2) {
+        for (int normal = 0; normal < 3; ++normal) {
+            if (normal == s.axis || !(here & gb_square_bit(normal)))
+                continue;
+            int edge_axis = 3 - s.axis - normal;
+            if (gb_edge_coface_count(complex, f, edge_axis) == 1 &&
+                add_pair(collapse, cell, gb_square_bit(normal), error))
+                return GB_ERROR_OUT_OF_MEMORY;
+        }
+        return GB_OK;
+    }
+    if ((here & gb_edge_bit(s.axis)) && gb_point_coface_count(complex, f) == 1 &&
+        !is_protected(collapse, cell, s.axis))
+        return add_pair(collapse, cell, gb_edge_bit(s.axis), error);
+    return GB_OK;
+}
+
+/* ---- what a removal frees ---- */
+
+/* A face h that lost a coface: if one coface k is left, (h, k) may be a new
+ * free pair and k's cell is listed; if none, h is a facet (an edge's birth).
+ * A facet itself needs no listing: it becomes a g when one of its faces
+ * loses its other cofaces, which lists it then. */
+
+HOT gb_result square_lost_coface(gb_collapse *collapse, size_t cell, int normal,
+                                 gb_error *error)
+{
+    const uint8_t *faces = collapse->complex->faces;
+    if (!(faces[cell] & gb_square_bit(normal)))
+        return GB_OK;
+    size_t behind = cell - collapse->complex->step[normal];
+    int here = (faces[cell] & GB_FACE_CUBE) != 0, back = (faces[behind] & GB_FACE_CUBE) != 0;
+    return here + back == 1 ? list_candidate(collapse, here ? cell : behind, KIND_CUBE, error)
+                            : GB_OK;
+}
+
+static gb_result edge_became_facet(gb_collapse *collapse, size_t cell, int axis,
+                                   gb_error *error)
+{
+    uint16_t *marks = &collapse->marks[cell];
+    int born_before = (*marks & MARK_BORN) != 0;
+    *marks |= born_mark(axis);
+    return born_before ? GB_OK : gb_cell_list_push(&collapse->born, cell, error);
+}
+
+HOT gb_result edge_lost_coface(gb_collapse *collapse, size_t cell, int axis, gb_error *error)
+{
+    const gb_cubical_complex *complex = collapse->complex;
+    const uint8_t *faces = complex->faces;
+    if (!(faces[cell] & gb_edge_bit(axis)))
+        return GB_OK;
+    int b = (axis + 1) % 3, c = (axis + 2) % 3;
+    /* its squares: normal to b at cell and cell - c; normal to c at cell and cell - b */
+    size_t cells[4] = {cell, cell - complex->step[c], cell, cell - complex->step[b]};
+    uint8_t bits[4] = {gb_square_bit(b), gb_square_bit(b), gb_square_bit(c), gb_square_bit(c)};
+    int count = 0, last = 0;
+    for (int n = 0; n < 4; ++n)
+        if (faces[cells[n]] & bits[n]) {
+            ++count;
+            last = n;
+        }
+    if (count == 1)
+        return list_candidate(collapse, cells[last], KIND_SQUARE, error);
+    if (count == 0)
+        return edge_became_facet(collapse, cell, axis, error);
+    return GB_OK;
+}
+
+HOT gb_result point_lost_coface(gb_collapse *collapse, size_t cell, gb_error *error)
+{
+    const gb_cubical_complex *complex = collapse->complex;
+    const uint8_t *faces = complex->faces;
+    if (!(faces[cell] & GB_FACE_POINT))
+        return GB_OK;
+    int count = 0;
+    size_t last = cell;
+    for (int axis = 0; axis < 3; ++axis) {
+        if (faces[cell] & gb_edge_bit(axis)) {
+            ++count;
+            last = cell;
+        }
+        size_t before = cell - complex->step[axis];
+        if (faces[before] & gb_edge_bit(axis)) {
+            ++count;
+            last = before;
+        }
+    }
+    return count == 1 ? list_candidate(collapse, last, KIND_EDGE, error) : GB_OK;
+}
+
+/* Removed: the cube of cell and its square normal to axis at square_cell.
+ * Lost a coface: the cube's 5 other squares and the square's 4 edges. */
+static gb_result after_cube(gb_collapse *collapse, size_t cell, int axis, size_t square_cell,
+                            gb_error *error)
+{
+    const size_t *step = collapse->complex->step;
+    for (int normal = 0; normal < 3; ++normal) {
+        if (square_lost_coface(collapse, cell, normal, error) ||
+            square_lost_coface(collapse, cell + step[normal], normal, error))
+            return GB_ERROR_OUT_OF_MEMORY;
+    }
+    int b = (axis + 1) % 3, c = (axis + 2) % 3;
+    if (edge_lost_coface(collapse, square_cell, b, error) ||
+        edge_lost_coface(collapse, square_cell + step[c], b, error) ||
+        edge_lost_coface(collapse, square_cell, c, error) ||
+        edge_lost_coface(collapse, square_cell + step[b], c, error))
+        return GB_ERROR_OUT_OF_MEMORY;
+    return GB_OK;
+}
+
+/* Removed: the square normal to normal at cell (spanning the direction axis
+ * and edge_axis) and its edge along edge_axis at edge_cell. Lost a coface:
+ * the square's 3 other edges and the edge's 2 points. */
+static gb_result after_square(gb_collapse *collapse, size_t cell, int axis, int edge_axis,
+                              size_t edge_cell, gb_error *error)
+{
+    const size_t *step = collapse->complex->step;
+    size_t opposite = edge_cell == cell ? cell + step[axis] : cell;
+    if (edge_lost_coface(collapse, opposite, edge_axis, error) ||
+        edge_lost_coface(collapse, cell, axis, error) ||
+        edge_lost_coface(collapse, cell + step[edge_axis], axis, error) ||
+        point_lost_coface(collapse, edge_cell, error) ||
+        point_lost_coface(collapse, edge_cell + step[edge_axis], error))
+        return GB_ERROR_OUT_OF_MEMORY;
+    return GB_OK;
+}
+
+/* Removed: the edge along axis at cell and its point at point_cell. Lost a
+ * coface: the edge's other point. */
+static gb_result after_edge(gb_collapse *collapse, size_t cell, int axis, size_t point_cell,
+                            gb_error *error)
+{
+    size_t other = point_cell == cell ? cell + collapse->complex->step[axis] : cell;
+    return point_lost_coface(collapse, other, error);
+}
+
+static int axis_of_square(uint8_t square)
+{
+    return square == GB_FACE_SQUARE_YZ ? 0 : square == GB_FACE_SQUARE_XZ ? 1 : 2;
+}
+
+static gb_result remove_pair(gb_collapse *collapse, uint64_t pair, substep s, gb_error *error)
+{
+    uint8_t *faces = collapse->complex->faces;
+    size_t cell = (size_t)(pair >> 8);
+    uint8_t g = (uint8_t)(pair & 0xff);
+    size_t f = free_face_cell(collapse->complex, cell, s);
+    faces[cell] &= (uint8_t)~g;
+    if (s.dimension == 3) {
+        faces[f] &= (uint8_t)~gb_square_bit(s.axis);
+        ++collapse->cubes_removed;
+        return after_cube(collapse, cell, s.axis, f, error);
+    }
+    if (s.dimension == 2) {
+        int edge_axis = 3 - s.axis - axis_of_square(g);
+        faces[f] &= (uint8_t)~gb_edge_bit(edge_axis);
+        return after_square(collapse, cell, s.axis, edge_axis, f, error);
+    }
+    faces[f] &= (uint8_t)~GB_FACE_POINT;
+    return after_edge(collapse, cell, s.axis, f, error);
+}
+
+/* ---- iterations ---- */
+
+/* All free pairs of one direction, orientation and dimension, found on the
+ * complex as it is, then removed together. */
+HOT gb_result collapse_substep(gb_collapse *collapse, substep s, gb_error *error)
+{
+    collapse->pair_count = 0;
+    const gb_cell_list *border = &collapse->border[3 - s.dimension];
+    size_t count = border->count;
+    collapse->cells_examined += count;
+    for (size_t n = 0; n < count; ++n)
+        if (find_pairs_in_cell(collapse, border->items[n], s, error))
+            return GB_ERROR_OUT_OF_MEMORY;
+    for (size_t n = 0; n < collapse->pair_count; ++n)
+        if (remove_pair(collapse, collapse->pairs[n], s, error))
+            return GB_ERROR_OUT_OF_MEMORY;
+    collapse->pairs_removed += collapse->pair_count;
+    return GB_OK;
+}
+
+/* One substep per direction, orientation and dimension, each compiled for
+ * its constants (the scans are the inner loop of thin). */
+#define SUBSTEPS_OF(axis, orientation)                                                      \
+    (collapse_substep(collapse, (substep){axis, orientation, 3}, error) ||                  \
+     collapse_substep(collapse, (substep){axis, orientation, 2}, error) ||                  \
+     collapse_substep(collapse, (substep){axis, orientation, 1}, error))
+
+static gb_result collapse_iteration(gb_collapse *collapse, gb_error *error)
+{
+    if (SUBSTEPS_OF(0, -1) || SUBSTEPS_OF(0, 1) || SUBSTEPS_OF(1, -1) || SUBSTEPS_OF(1, 1) ||
+        SUBSTEPS_OF(2, -1) || SUBSTEPS_OF(2, 1))
+        return GB_ERROR_OUT_OF_MEMORY;
+    return end_iteration(collapse, error);
+}
+
+gb_result gb_collapse_run(gb_collapse *collapse, gb_progress_callback progress,
+                          void *progress_user, gb_error *error)
+{
+    while (collapse->pending[KIND_CUBE].count || collapse->pending[KIND_SQUARE].count ||
+           collapse->pending[KIND_EDGE].count) {
+        start_iteration(collapse);
+        if (collapse_iteration(collapse, error))
+            return GB_ERROR_OUT_OF_MEMORY;
+        ++collapse->iteration;
+        double done = collapse->cubes ? (double)collapse->cubes_removed / (double)collapse->cubes
+                                      : 1.0;
+        if (progress && progress(progress_user, done))
+            return gb_fail(error, GB_ERROR_IO, "interrupted");
+    }
+    return GB_OK;
+}

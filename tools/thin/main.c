@@ -1,0 +1,199 @@
+/* thin — the curvilinear skeleton of a voxelized scene's empty space and its
+ * nearest-node grid (tools/thin/thin.h). Parses options, reads the voxel
+ * file, calls gb_thin, writes the two files. */
+
+#include <getopt.h>
+#include <malloc.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "progress.h"
+#include "skeleton.h"
+#include "thin.h"
+#include "voxel_grid.h"
+
+static const char usage[] =
+    "usage: thin [options] IN.vdb -o OUT.skel [--grid OUT.grid.vdb]\n"
+    "Computes the curvilinear skeleton of the empty space of IN.vdb (written by\n"
+    "voxelize) by directional collapse of its cubical complex, keeping the lines\n"
+    "whose lifespan exceeds persistence * (opening - distance) + min-lifespan\n"
+    "iterations, and writes it to OUT.skel; with --grid, also the OpenVDB int32\n"
+    "grid \"nearest_node\": every voxel's geodesic nearest skeleton node.\n"
+    "\n"
+    "  -o, --output FILE        the skeleton file (required)\n"
+    "  -g, --grid FILE          the nearest-node grid\n"
+    "  -p, --persistence S      scale of opening - distance (default 1; 0 keeps\n"
+    "                           every line as soon as it appears)\n"
+    "  -l, --min-lifespan N     iterations added to the threshold (default 0)\n"
+    "  -j, --threads N          threads for the nearest-node grid when it needs\n"
+    "                           Dijkstra (default 2; the output does not depend on it)\n"
+    "  -s, --stats              print counts and timings on stdout\n"
+    "  -q, --quiet              no progress bar\n"
+    "  -h, --help               this help\n"
+    "  -V, --version            the version\n";
+
+typedef struct arguments {
+    const char *input, *output, *grid;
+    gb_thin_options options;
+    int quiet, stats;
+} arguments;
+
+/* A number from text, or -1 on error (after a message). */
+static int parse_number(const char *text, const char *option, double *value)
+{
+    char *end;
+    *value = strtod(text, &end);
+    if (end == text || *end || !(*value >= 0.0) || *value > 1e6) {
+        fprintf(stderr, "thin: %s: not a number in [0, 1e6]: \"%s\"\n", option, text);
+        return -1;
+    }
+    return 0;
+}
+
+/* 0: go on; otherwise the exit code + 1 (0 for --help and --version). */
+static int parse_arguments(int argc, char **argv, arguments *args)
+{
+    static const struct option options[] = {
+        {"output", required_argument, NULL, 'o'},
+        {"grid", required_argument, NULL, 'g'},
+        {"persistence", required_argument, NULL, 'p'},
+        {"min-lifespan", required_argument, NULL, 'l'},
+        {"threads", required_argument, NULL, 'j'},
+        {"stats", no_argument, NULL, 's'},
+        {"quiet", no_argument, NULL, 'q'},
+        {"help", no_argument, NULL, 'h'},
+        {"version", no_argument, NULL, 'V'},
+        {NULL, 0, NULL, 0},
+    };
+    double value;
+    int option;
+    while ((option = getopt_long(argc, argv, "o:g:p:l:j:sqhV", options, NULL)) != -1) {
+        switch (option) {
+        case 'o': args->output = optarg; break;
+        case 'g': args->grid = optarg; break;
+        case 'p':
+            if (parse_number(optarg, "--persistence", &value))
+                return 3;
+            /* in the options struct 0 means the default; negative means 0 */
+            args->options.persistence = value == 0.0 ? -1.0 : value;
+            break;
+        case 'l':
+            if (parse_number(optarg, "--min-lifespan", &value))
+                return 3;
+            args->options.min_lifespan = value == 0.0 ? -1.0 : value;
+            break;
+        case 'j':
+            if (parse_number(optarg, "--threads", &value))
+                return 3;
+            if (value < 1 || value > GB_THIN_MAX_THREADS || value != (int)value) {
+                fprintf(stderr, "thin: --threads: not a whole number in 1..%d: \"%s\"\n",
+                        GB_THIN_MAX_THREADS, optarg);
+                return 3;
+            }
+            args->options.threads = (int)value;
+            break;
+        case 's': args->stats = 1; break;
+        case 'q': args->quiet = 1; break;
+        case 'h': return fputs(usage, stdout) == EOF ? 2 : 1;
+        case 'V': return puts("thin (gibake) 0.1") == EOF ? 2 : 1;
+        default: fputs(usage, stderr); return 3;
+        }
+    }
+    if (optind != argc - 1 || !args->output) {
+        fprintf(stderr, "thin: expected one IN.vdb and -o OUT.skel\n%s", usage);
+        return 3;
+    }
+    args->input = argv[optind];
+    return 0;
+}
+
+static void print_stats(const gb_skeleton *s, const gb_thin_stats *stats)
+{
+    printf("voxels          %d x %d x %d\n", s->grid_size[0], s->grid_size[1], s->grid_size[2]);
+    printf("empty voxels    %llu\n", (unsigned long long)stats->empty_voxels);
+    printf("nodes           %u\n", s->node_count);
+    printf("edges           %u\n", s->edge_count);
+    printf("iterations      %u\n", stats->iterations);
+    printf("cavities opened %u\n", stats->cavities_opened);
+    printf("squares left    %llu\n", (unsigned long long)stats->squares_left);
+    printf("seconds         maps %.3f, collapse %.3f, graph %.3f, nearest %.3f\n",
+           stats->seconds_maps, stats->seconds_collapse, stats->seconds_graph,
+           stats->seconds_nearest);
+}
+
+/* The grid first: if the skeleton then fails, the new grid is removed so
+ * that a failed run leaves no output. */
+static int write_outputs(const arguments *args, const gb_voxel_grid *grid,
+                         const gb_skeleton *skeleton, const int32_t *nearest)
+{
+    gb_error error;
+    if (args->grid &&
+        gb_voxel_grid_write_int32(args->grid, grid, "nearest_node", nearest, &error)) {
+        fprintf(stderr, "thin: %s\n", error.message);
+        return 1;
+    }
+    if (gb_skeleton_write(args->output, skeleton, &error)) {
+        fprintf(stderr, "thin: %s\n", error.message);
+        if (args->grid)
+            unlink(args->grid);
+        return 1;
+    }
+    return 0;
+}
+
+static int run(const arguments *args)
+{
+    gb_voxel_grid grid = {0};
+    gb_error error;
+    if (gb_voxel_grid_read(args->input, &grid, &error)) {
+        fprintf(stderr, "thin: %s\n", error.message);
+        return 1;
+    }
+    /* the reader's OpenVDB trees are freed, but glibc keeps their heap
+     * pages: give them back before the big arrays of thin */
+    malloc_trim(0);
+    gb_progress progress;
+    gb_progress_begin(&progress, "thin", args->quiet);
+    gb_thin_options options = args->options;
+    options.progress = gb_progress_report;
+    options.progress_user = &progress;
+    gb_skeleton skeleton;
+    gb_thin_stats stats;
+    int32_t *nearest = NULL;
+    gb_result result = gb_thin(&grid, &options, &skeleton, args->grid ? &nearest : NULL, &stats,
+                               &error);
+    gb_progress_end(&progress);
+    /* only the frame is needed from here: give the memory back for writing */
+    free(grid.surface);
+    free(grid.distance);
+    grid.surface = NULL;
+    grid.distance = NULL;
+    int status = 0;
+    if (result) {
+        fprintf(stderr, "thin: %s: %s\n", args->input, error.message);
+        status = 1;
+    } else {
+        status = write_outputs(args, &grid, &skeleton, nearest);
+    }
+    if (!status && args->stats)
+        print_stats(&skeleton, &stats);
+    gb_skeleton_free(&skeleton);
+    free(nearest);
+    gb_voxel_grid_free(&grid);
+    return status;
+}
+
+int main(int argc, char **argv)
+{
+    arguments args;
+    memset(&args, 0, sizeof args);
+    int parsed = parse_arguments(argc, argv, &args);
+    if (parsed)
+        return parsed - 1;
+    int status = run(&args);
+    if (fflush(stdout) != 0)
+        status = 1;
+    return status;
+}

@@ -1,0 +1,538 @@
+/* nearest_node.c — geodesic nearest skeleton node of every voxel (see
+ * nearest_node.h).
+ *
+ * The answer is the least (distance, node) over all paths of every cell: a
+ * unique fixed point of "a cell is at most a neighbour plus the step", so
+ * any order of work that reaches it gives the same bytes. First, raster
+ * sweeps (forward over the cells with their 13 earlier neighbours, then
+ * backward with the 13 later ones, as a chamfer distance transform) until a
+ * pair of sweeps changes nothing: memory is read in order, and indoor
+ * scenes settle in 3 or 4 pairs. A volume that needs more (a maze) is done
+ * again by Dijkstra's algorithm, on several threads: the lattice is cut into
+ * slabs along z, each thread runs Dijkstra in its own slab and sends the
+ * steps that leave it to the slab they enter; rounds go on until no step
+ * improves anything. A thread writes and reads only cells of its slab. */
+#include "nearest_node.h"
+
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "cell_list.h"
+
+enum {
+    BUCKETS = 2048,             /* > the longest step, a power of two */
+    LONGEST_STEP = 1732,
+    SEED_LENGTH = 866,          /* corner to voxel centre: sqrt(3)/2 voxel */
+    MAX_SLABS = 64,
+};
+
+/* A cell's state in one word: distance (thousandths of a voxel) in the high
+ * 32 bits, node index in the low 32, so that comparing words compares
+ * (distance, node) lexicographically. Non-empty cells hold BLOCKED, which
+ * nothing improves; empty cells start at UNREACHED. */
+static const uint64_t BLOCKED = 0, UNREACHED = UINT64_MAX;
+
+static const uint32_t step_length[4] = {0, 1000, 1414, 1732};
+
+static uint32_t distance_of(uint64_t state) { return (uint32_t)(state >> 32); }
+static int32_t node_of(uint64_t state) { return (int32_t)(uint32_t)state; }
+
+static uint64_t state_of(uint32_t distance, uint32_t node)
+{
+    return (uint64_t)distance << 32 | node;
+}
+
+/* A cell reached with a state, from outside a slab or from a node. */
+typedef struct arrival {
+    uint64_t state;
+    uint64_t cell;
+} arrival;
+
+typedef struct arrivals {
+    arrival *items;
+    size_t count, capacity;
+} arrivals;
+
+typedef struct geodesic {
+    const gb_cubical_complex *complex;
+    uint64_t *state;            /* per cell */
+    ptrdiff_t offsets[26];
+    uint64_t lengths[26];       /* step lengths, shifted to the distance bits */
+} geodesic;
+
+typedef struct slab {
+    geodesic *g;
+    size_t begin, end;          /* its cells: indices begin .. end-1 (whole z layers) */
+    gb_cell_list buckets[BUCKETS];
+    size_t queued;
+    arrivals inbox;             /* sorted arrivals to start from */
+    arrivals outbox;            /* steps into other slabs */
+    size_t empty_count, settled;
+    gb_progress_callback progress;  /* slab 0 of the first round only */
+    void *progress_user;
+    gb_result result;
+    gb_error error;
+} slab;
+
+static gb_result push_arrival(arrivals *list, size_t cell, uint64_t state, gb_error *error)
+{
+    if (list->count == list->capacity) {
+        size_t capacity = list->capacity ? 2 * list->capacity : 1024;
+        arrival *items = realloc(list->items, capacity * sizeof *items);
+        if (!items)
+            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "nearest node: out of memory");
+        list->items = items;
+        list->capacity = capacity;
+    }
+    list->items[list->count++] = (arrival){state, cell};
+    return GB_OK;
+}
+
+static int compare_arrivals(const void *a, const void *b)
+{
+    const arrival *x = a, *y = b;
+    if (x->state != y->state)
+        return x->state < y->state ? -1 : 1;
+    return x->cell < y->cell ? -1 : x->cell > y->cell;
+}
+
+static void neighbour_steps(geodesic *g)
+{
+    int n = 0;
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                if (!dx && !dy && !dz)
+                    continue;
+                g->offsets[n] = dx + dy * (ptrdiff_t)g->complex->step[1] +
+                                dz * (ptrdiff_t)g->complex->step[2];
+                g->lengths[n] = (uint64_t)step_length[(dx != 0) + (dy != 0) + (dz != 0)] << 32;
+                ++n;
+            }
+}
+
+/* Returns the number of empty voxels. */
+static size_t mark_empty_cells(geodesic *g, const gb_voxel_grid *grid)
+{
+    size_t empty = 0;
+    for (size_t cell = 0; cell < g->complex->cell_count; ++cell)
+        g->state[cell] = BLOCKED;
+    for (int32_t k = 0; k < grid->size[2]; ++k)
+        for (int32_t j = 0; j < grid->size[1]; ++j) {
+            const uint8_t *surface = grid->surface + gb_voxel_index(grid, 0, j, k);
+            uint64_t *state = g->state + gb_voxel_cell(g->complex, 0, j, k);
+            for (int32_t i = 0; i < grid->size[0]; ++i)
+                if (!surface[i]) {
+                    state[i] = UNREACHED;
+                    ++empty;
+                }
+        }
+    return empty;
+}
+
+/* ---- raster sweeps ---- */
+
+/* Sweeps look at a row of cells (fixed y and z) only when a row it reads
+ * from changed since it was last swept in that direction: ticks count the
+ * rows swept, changed[row] and swept[direction][row] hold ticks. */
+typedef struct sweeper {
+    geodesic *g;
+    size_t rows;                /* size[1] * size[2] */
+    uint64_t *changed;          /* per row */
+    uint64_t *swept[2];         /* per row, forward and backward */
+    uint64_t tick;
+} sweeper;
+
+/* Does row (y, z) read from a row changed since it was last swept? It reads
+ * itself, the row before it (after it, backward) and the three rows of the
+ * layer before (after). */
+static int row_is_stale(const sweeper *w, int32_t y, int32_t z, int backward)
+{
+    const gb_cubical_complex *c = w->g->complex;
+    int32_t dz = backward ? 1 : -1, ny = c->size[1];
+    size_t row = (size_t)y + (size_t)ny * (size_t)z;
+    uint64_t since = w->swept[backward][row];
+    if (w->changed[row] > since || w->changed[(size_t)(y + dz) + (size_t)ny * (size_t)z] > since)
+        return 1;
+    for (int32_t b = y - 1; b <= y + 1; ++b)
+        if (w->changed[(size_t)b + (size_t)ny * (size_t)(z + dz)] > since)
+            return 1;
+    return 0;
+}
+
+/* Each empty cell of the row takes the best of itself and its 13 neighbours
+ * on the side already swept plus the step. Returns whether anything changed. */
+static int sweep_row(geodesic *g, size_t first, size_t count, int backward)
+{
+    const ptrdiff_t *offsets = g->offsets + (backward ? 13 : 0);
+    const uint64_t *lengths = g->lengths + (backward ? 13 : 0);
+    uint64_t *state = g->state;
+    int changed = 0;
+    for (size_t n = 0; n < count; ++n) {
+        size_t cell = backward ? first + count - 1 - n : first + n;
+        uint64_t best = state[cell];
+        if (best == BLOCKED)
+            continue;
+        for (int k = 0; k < 13; ++k) {
+            uint64_t from = state[(size_t)((ptrdiff_t)cell + offsets[k])];
+            if (from != BLOCKED && from != UNREACHED && from + lengths[k] < best)
+                best = from + lengths[k];
+        }
+        if (best != state[cell]) {
+            state[cell] = best;
+            changed = 1;
+        }
+    }
+    return changed;
+}
+
+/* One sweep over the rows holding voxels (y, z in 1 .. size-2), forward or
+ * backward. Returns whether anything changed. */
+static int sweep(sweeper *w, int backward)
+{
+    const gb_cubical_complex *c = w->g->complex;
+    int32_t ny = c->size[1], nz = c->size[2], rows_y = ny - 3, rows_z = nz - 3;
+    size_t length = (size_t)c->size[0] - 3;
+    int changed = 0;
+    for (int32_t n = 0; n < rows_y * rows_z; ++n) {
+        int32_t m = backward ? rows_y * rows_z - 1 - n : n;
+        int32_t y = 1 + m % rows_y, z = 1 + m / rows_y;
+        if (!row_is_stale(w, y, z, backward))
+            continue;
+        size_t row = (size_t)y + (size_t)ny * (size_t)z;
+        w->swept[backward][row] = ++w->tick;
+        if (sweep_row(w->g, gb_cell_index(c, 1, y, z), length, backward)) {
+            w->changed[row] = w->tick; /* stale for the rows reading it, not itself */
+            changed = 1;
+        }
+    }
+    return changed;
+}
+
+/* Sweeps until a forward and backward pair changes nothing (*settled = 1),
+ * or gives up after pairs pairs (*settled = 0). */
+static gb_result sweep_to_fixed_point(geodesic *g, int pairs, int *settled,
+                                      gb_progress_callback progress, void *progress_user,
+                                      gb_error *error)
+{
+    *settled = 0;
+    sweeper w = {.g = g};
+    w.rows = (size_t)g->complex->size[1] * (size_t)g->complex->size[2];
+    w.changed = malloc(w.rows * sizeof *w.changed);
+    w.swept[0] = calloc(w.rows, sizeof *w.swept[0]);
+    w.swept[1] = calloc(w.rows, sizeof *w.swept[1]);
+    gb_result result = GB_OK;
+    if (!w.changed || !w.swept[0] || !w.swept[1])
+        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "nearest node: out of memory");
+    for (size_t row = 0; !result && row < w.rows; ++row)
+        w.changed[row] = 1; /* the seeds */
+    w.tick = 1;
+    for (int pair = 0; !result && pair < pairs && !*settled; ++pair) {
+        int changed = sweep(&w, 0);
+        changed |= sweep(&w, 1);
+        *settled = !changed;
+        if (progress && progress(progress_user, (pair + 1.0) / (pairs + 1.0)))
+            result = gb_fail(error, GB_ERROR_IO, "interrupted");
+    }
+    free(w.changed);
+    free(w.swept[0]);
+    free(w.swept[1]);
+    return result;
+}
+
+static void seed_states(geodesic *g, const uint32_t *node_cells, uint32_t node_count)
+{
+    const size_t *step = g->complex->step;
+    for (uint32_t n = 0; n < node_count; ++n)
+        for (int d = 0; d < 8; ++d) {
+            size_t cell = node_cells[n] - ((d & 1) ? step[0] : 0) -
+                          ((d & 2) ? step[1] : 0) - ((d & 4) ? step[2] : 0);
+            uint64_t seed = state_of(SEED_LENGTH, n);
+            if (g->state[cell] != BLOCKED && seed < g->state[cell])
+                g->state[cell] = seed;
+        }
+}
+
+/* ---- Dijkstra in a slab ---- */
+
+static gb_result reach(slab *s, size_t cell, uint64_t state)
+{
+    if (state >= s->g->state[cell])
+        return GB_OK;
+    s->g->state[cell] = state;
+    ++s->queued;
+    return gb_cell_list_push(&s->buckets[distance_of(state) % BUCKETS], cell, &s->error);
+}
+
+static gb_result settle(slab *s, size_t cell)
+{
+    const geodesic *g = s->g;
+    uint64_t state = g->state[cell];
+    for (int n = 0; n < 26; ++n) {
+        size_t neighbour = (size_t)((ptrdiff_t)cell + g->offsets[n]);
+        gb_result result = neighbour >= s->begin && neighbour < s->end
+                               ? reach(s, neighbour, state + g->lengths[n])
+                               : push_arrival(&s->outbox, neighbour, state + g->lengths[n],
+                                              &s->error);
+        if (result)
+            return result;
+    }
+    return GB_OK;
+}
+
+static gb_result report(slab *s)
+{
+    if ((++s->settled & 0xffff) || !s->progress)
+        return GB_OK;
+    double fraction = (double)s->settled / (double)(s->empty_count + 1);
+    if (s->progress(s->progress_user, fraction < 1.0 ? fraction : 1.0))
+        return gb_fail(&s->error, GB_ERROR_IO, "interrupted");
+    return GB_OK;
+}
+
+/* Dial's algorithm: buckets by distance, modulo BUCKETS. The inbox (sorted)
+ * is fed in as the distance comes near, so that every queued distance lies
+ * within BUCKETS of the current one. An entry whose cell has since been
+ * reached by a shorter path is stale and skipped. */
+static gb_result propagate(slab *s)
+{
+    const arrivals *inbox = &s->inbox;
+    size_t next = 0;
+    uint32_t distance = 0;
+    for (;;) {
+        if (!s->queued) {
+            if (next == inbox->count)
+                return GB_OK;
+            distance = distance_of(inbox->items[next].state);
+        }
+        for (; next < inbox->count &&
+               distance_of(inbox->items[next].state) < distance + (BUCKETS - LONGEST_STEP);
+             ++next)
+            if (reach(s, (size_t)inbox->items[next].cell, inbox->items[next].state))
+                return GB_ERROR_OUT_OF_MEMORY;
+        gb_cell_list *bucket = &s->buckets[distance % BUCKETS];
+        for (size_t n = 0; n < bucket->count; ++n) {
+            size_t cell = bucket->items[n];
+            --s->queued;
+            if (distance_of(s->g->state[cell]) != distance)
+                continue;
+            gb_result result = settle(s, cell);
+            if (!result)
+                result = report(s);
+            if (result)
+                return result;
+        }
+        bucket->count = 0;
+        ++distance;
+    }
+}
+
+static void *propagate_thread(void *user)
+{
+    slab *s = user;
+    s->result = propagate(s);
+    return NULL;
+}
+
+/* ---- slabs and rounds ---- */
+
+/* Cuts the lattice into count slabs of about the same number of empty
+ * voxels, along z; returns how many slabs it made (at least 1). */
+static int cut_slabs(geodesic *g, slab *slabs, int count)
+{
+    const gb_cubical_complex *c = g->complex;
+    size_t layer = c->step[2], total = 0;
+    size_t *empty = calloc((size_t)c->size[2], sizeof *empty);
+    if (!empty)
+        count = 1;
+    for (int32_t z = 0; empty && z < c->size[2]; ++z) {
+        for (size_t cell = (size_t)z * layer; cell < (size_t)(z + 1) * layer; ++cell)
+            empty[z] += g->state[cell] != BLOCKED;
+        total += empty[z];
+    }
+    int made = 0;
+    size_t begin = 0, sum = 0;
+    for (int32_t z = 0; z < c->size[2] && made < count - 1 && empty; ++z) {
+        sum += empty[z];
+        if (sum * (size_t)count >= total * (size_t)(made + 1) && sum > 0) {
+            slabs[made].begin = begin;
+            slabs[made].end = begin = (size_t)(z + 1) * layer;
+            ++made;
+        }
+    }
+    slabs[made].begin = begin;
+    slabs[made].end = c->cell_count;
+    free(empty);
+    return made + 1;
+}
+
+static size_t owner_of(const slab *slabs, int count, size_t cell)
+{
+    int s = 0;
+    while (s < count - 1 && cell >= slabs[s].end)
+        ++s;
+    return (size_t)s;
+}
+
+/* Every node starts in the empty voxels around its corner. */
+static gb_result seed_nodes(slab *slabs, int count, const uint32_t *node_cells,
+                            uint32_t node_count, gb_error *error)
+{
+    const size_t *step = slabs[0].g->complex->step;
+    for (uint32_t n = 0; n < node_count; ++n)
+        for (int d = 0; d < 8; ++d) {
+            size_t cell = node_cells[n] - ((d & 1) ? step[0] : 0) -
+                          ((d & 2) ? step[1] : 0) - ((d & 4) ? step[2] : 0);
+            slab *s = &slabs[owner_of(slabs, count, cell)];
+            if (push_arrival(&s->inbox, cell, state_of(SEED_LENGTH, n), error))
+                return GB_ERROR_OUT_OF_MEMORY;
+        }
+    return GB_OK;
+}
+
+/* Runs every slab's Dijkstra, the first on this thread. */
+static gb_result run_slabs(slab *slabs, int count, gb_error *error)
+{
+    pthread_t threads[MAX_SLABS];
+    int started = 0;
+    for (int s = 1; s < count; ++s, ++started)
+        if (pthread_create(&threads[s], NULL, propagate_thread, &slabs[s]))
+            break;
+    for (int s = started + 1; s < count; ++s)
+        propagate_thread(&slabs[s]); /* no thread: run here */
+    propagate_thread(&slabs[0]);
+    for (int s = 1; s <= started; ++s)
+        pthread_join(threads[s], NULL);
+    for (int s = 0; s < count; ++s)
+        if (slabs[s].result) {
+            *error = slabs[s].error;
+            return slabs[s].result;
+        }
+    return GB_OK;
+}
+
+/* Moves every outbox into the inbox of the slab its cells belong to; *moved
+ * tells whether anything moved. */
+static gb_result exchange(slab *slabs, int count, int *moved, gb_error *error)
+{
+    *moved = 0;
+    for (int s = 0; s < count; ++s)
+        slabs[s].inbox.count = 0;
+    for (int s = 0; s < count; ++s) {
+        arrivals *out = &slabs[s].outbox;
+        for (size_t n = 0; n < out->count; ++n) {
+            slab *to = &slabs[owner_of(slabs, count, (size_t)out->items[n].cell)];
+            if (push_arrival(&to->inbox, (size_t)out->items[n].cell, out->items[n].state, error))
+                return GB_ERROR_OUT_OF_MEMORY;
+            *moved = 1;
+        }
+        out->count = 0;
+    }
+    return GB_OK;
+}
+
+/* A non-empty voxel: the best (distance + step, node) of its empty neighbours. */
+static int32_t node_from_neighbours(const geodesic *g, size_t cell)
+{
+    uint64_t best = UNREACHED;
+    for (int n = 0; n < 26; ++n) {
+        uint64_t state = g->state[(size_t)((ptrdiff_t)cell + g->offsets[n])];
+        if (state != BLOCKED && state != UNREACHED && state + g->lengths[n] < best)
+            best = state + g->lengths[n];
+    }
+    return best == UNREACHED ? -1 : node_of(best);
+}
+
+/* Writes the node of every voxel, in grid order, over the state array
+ * itself: voxel v's int32 goes to bytes 4v..4v+3, while the states still to
+ * be read (of its cell and its neighbours, cells at least v) start at byte
+ * 8v or later, so nothing is overwritten before it is read. Returns the
+ * array shrunk to the voxels. */
+static int32_t *write_nodes_in_place(geodesic *g, const gb_voxel_grid *grid)
+{
+    int32_t *nearest = (int32_t *)(void *)g->state;
+    size_t v = 0;
+    for (int32_t k = 0; k < grid->size[2]; ++k)
+        for (int32_t j = 0; j < grid->size[1]; ++j)
+            for (int32_t i = 0; i < grid->size[0]; ++i, ++v) {
+                size_t cell = gb_voxel_cell(g->complex, i, j, k);
+                uint64_t state = g->state[cell];
+                nearest[v] = state == BLOCKED ? node_from_neighbours(g, cell)
+                             : state == UNREACHED ? -1 : node_of(state);
+            }
+    g->state = NULL;
+    int32_t *shrunk = realloc(nearest, (v ? v : 1) * sizeof *nearest);
+    return shrunk ? shrunk : nearest;
+}
+
+static void free_slab(slab *s)
+{
+    for (int b = 0; b < BUCKETS; ++b)
+        gb_cell_list_free(&s->buckets[b]);
+    free(s->inbox.items);
+    free(s->outbox.items);
+}
+
+/* Dijkstra's algorithm on count slabs, from the nodes; cells must be fresh
+ * (BLOCKED or UNREACHED). */
+static gb_result dijkstra(geodesic *g, int threads, const uint32_t *node_cells,
+                          uint32_t node_count, size_t empty_count,
+                          gb_progress_callback progress, void *progress_user, gb_error *error)
+{
+    slab *slabs = calloc(MAX_SLABS, sizeof *slabs);
+    if (!slabs)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "nearest node: out of memory");
+    int count = cut_slabs(g, slabs, threads < 1 ? 1 : threads > MAX_SLABS ? MAX_SLABS : threads);
+    for (int s = 0; s < count; ++s)
+        slabs[s].g = g;
+    slabs[0].progress = progress;
+    slabs[0].progress_user = progress_user;
+    slabs[0].empty_count = empty_count / (size_t)count;
+    gb_result result = seed_nodes(slabs, count, node_cells, node_count, error);
+    for (int moved = 1; !result && moved;) {
+        for (int s = 0; s < count; ++s)
+            if (slabs[s].inbox.count > 1)
+                qsort(slabs[s].inbox.items, slabs[s].inbox.count, sizeof(arrival),
+                      compare_arrivals);
+        result = run_slabs(slabs, count, error);
+        slabs[0].progress = NULL; /* later rounds are short */
+        if (!result)
+            result = exchange(slabs, count, &moved, error);
+    }
+    for (int s = 0; s < count; ++s)
+        free_slab(&slabs[s]);
+    free(slabs);
+    return result;
+}
+
+gb_result gb_nearest_node(const gb_voxel_grid *grid, const gb_cubical_complex *complex,
+                          const uint32_t *node_cells, uint32_t node_count,
+                          const gb_nearest_options *options, int32_t **nearest,
+                          gb_error *error)
+{
+    int threads = options->threads;
+    gb_progress_callback progress = options->progress;
+    void *progress_user = options->progress_user;
+    *nearest = NULL;
+    geodesic g = {.complex = complex};
+    g.state = malloc(complex->cell_count * sizeof *g.state);
+    if (!g.state)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
+                       "nearest node: out of memory for %zu cells", complex->cell_count);
+    neighbour_steps(&g);
+    mark_empty_cells(&g, grid);
+    seed_states(&g, node_cells, node_count);
+    int settled = 0;
+    gb_result result = sweep_to_fixed_point(&g, options->sweep_pairs, &settled, progress,
+                                            progress_user, error);
+    if (!result && !settled) {
+        size_t empty_count = mark_empty_cells(&g, grid);
+        result = dijkstra(&g, threads, node_cells, node_count, empty_count, progress,
+                          progress_user, error);
+    }
+    if (!result)
+        *nearest = write_nodes_in_place(&g, grid);
+    free(g.state);
+    return result;
+}
