@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "../tools/reference/embree_scene.h"
+#include "embree_scene.h"
 #include "progress.h"
 #include "random.h"
 

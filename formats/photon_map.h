@@ -8,7 +8,7 @@
  *   position   f32 x 3    where it hit a surface (world units)
  *   power      f32 x 3    W, linear RGB
  *   direction  u32        unit vector from the hit toward where the photon
- *                         came from (runtime/brdf.h's wi), octahedral 2 x 16
+ *                         came from (common/brdf.h's wi), octahedral 2 x 16
  *                         bits: at most 0.003 degrees off
  *   normal     u32        the triangle's geometric normal turned to the side
  *                         the photon arrived from, octahedral 2 x 12 bits (at

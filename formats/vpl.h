@@ -2,7 +2,7 @@
  * (formats/FORMATS.md, "VPL set"). The runtime writes the VPLs it renders
  * with; `reference --vpl FILE` renders the same VPLs with exact visibility.
  *
- * A VPL is a one-sided diffuse emitter (runtime/brdf.h): position p, unit
+ * A VPL is a one-sided diffuse emitter (common/brdf.h): position p, unit
  * normal m, power P (W, RGB); it sends intensity P max(0, dot(m, w)) / pi
  * toward w. The set records the hash of the scene it was made from
  * (gb_scene.hash) so that a reader can refuse a stale set.

@@ -5,7 +5,7 @@
 
 #include "gl_util.h"
 
-/* The GLSL twin of runtime/brdf.h: the same functions under the same names
+/* The GLSL twin of common/brdf.h: the same functions under the same names
  * (without the gb_ prefix); change both together. */
 #define GLSL_BRDF                                                                  \
     "const float PI = 3.14159265358979323846;\n"                                   \

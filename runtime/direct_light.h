@@ -8,7 +8,7 @@
  * the environment reflected by surfaces is left out: unshadowed, as an
  * ambient Kd L_env, it doubled the error to the reference on Sponza (whose
  * court is mostly enclosed), and shadowing it is a GI method's business. The BRDF and
- * light conventions are runtime/brdf.h's, mirrored in GLSL function for
+ * light conventions are common/brdf.h's, mirrored in GLSL function for
  * function (see the shader).
  *
  * Create → draw each frame → destroy (also on a zeroed one).

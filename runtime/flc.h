@@ -10,7 +10,7 @@
  *      Alg. 1 (or discarded), the VPL centre y_i jittered uniformly over the
  *      triangle, and the direct irradiance E at y_i on each side of it from
  *      the runtime's lights and shadow maps (the light conventions of
- *      runtime/brdf.h);
+ *      common/brdf.h);
  *   2. splatting (points → geometry shader → one screen-space quad a side
  *      around the ball of Eq. 13 that bounds the support of f^k, D_{k+1};
  *      the last level covers the screen): the fragment shader reads the

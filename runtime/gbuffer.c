@@ -25,7 +25,7 @@ static const char vertex_shader[] =
     "    gl_Position = projection * (view * vec4(position, 1.0));\n"
     "}\n";
 
-/* Sides as in runtime/brdf.h: the geometric normal turned toward the viewer
+/* Sides as in common/brdf.h: the geometric normal turned toward the viewer
  * (the front face is cross(v1 - v0, v2 - v0), counter-clockwise on screen),
  * the shading normal turned to its side; only the front face emits. */
 static const char fragment_shader[] =

@@ -2,7 +2,7 @@
  * per pixel,
  *   normal      RGBA32F  view space, octahedral: xy the shading normal, zw
  *                        the geometric normal, both turned toward the viewer
- *                        (runtime/brdf.h, "Sides")
+ *                        (common/brdf.h, "Sides")
  *   depth       DEPTH32F reversed (mat4.h): view z = -near / depth; 0 where
  *                        no surface was drawn
  *   diffuse     RGBA16F  Kd, times the diffuse texture

@@ -23,7 +23,7 @@
  *     kind 0 spot (intensity W/sr), 1 directional (irradiance, W/m^2);
  *     direction: the way light travels; texel: the world size of a texel at
  *     distance 1 (spot) or everywhere (directional); cone: x the cone
- *     half-angle, y the fall-off half-angle, degrees (runtime/brdf.h).
+ *     half-angle, y the fall-off half-angle, degrees (common/brdf.h).
  * Textures at units GB_UNIT_SHADOW_CUBES (samplerCubeArrayShadow) and
  * GB_UNIT_SHADOW_PLANES (sampler2DArrayShadow).
  *

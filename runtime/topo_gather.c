@@ -16,7 +16,7 @@
 #include "gl_util.h"
 #include "topo.h"
 
-/* runtime/brdf.h's BRDF in GLSL (as direct_light.c has it). */
+/* common/brdf.h's BRDF in GLSL (as direct_light.c has it). */
 #define GLSL_BRDF                                                                  \
     "const float PI = 3.14159265358979323846;\n"                                   \
     "vec3 brdf_eval(vec3 Kd, vec3 Ks, float Ns, float n_dot_wo, float n_dot_wi,\n"  \

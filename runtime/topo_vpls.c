@@ -6,9 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../tools/reference/embree_scene.h"
-#include "../tools/reference/light_sampling.h"
-#include "../tools/reference/surface.h"
+#include "embree_scene.h"
+#include "light_sampling.h"
+#include "surface.h"
 #include "random.h"
 #include "topo.h"
 
@@ -160,7 +160,7 @@ static int start_on_delta_light(const gb_scene *scene, const gb_light *light, gb
     gb_vec3 axis = gb_vec3_load(light->direction);
     start->direction = cone_direction(axis, cos_cone, u1, u2);
     float c = gb_vec3_dot(start->direction, axis), falloff = 1.0f;
-    if (c < cos_falloff && cos_falloff > cos_cone) {   /* runtime/brdf.h smoothstep */
+    if (c < cos_falloff && cos_falloff > cos_cone) {   /* common/brdf.h smoothstep */
         float t = (c - cos_cone) / (cos_falloff - cos_cone);
         falloff = t * t * (3.0f - 2.0f * t);
     }

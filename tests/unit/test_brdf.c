@@ -1,9 +1,9 @@
-/* The BRDF conventions of runtime/brdf.h and their importance sampling
- * (tools/reference/brdf_sampling.c): energy, reciprocity, a sampling density
+/* The BRDF conventions of common/brdf.h and their importance sampling
+ * (common/brdf_sampling.c): energy, reciprocity, a sampling density
  * that integrates to one and matches the directions drawn. */
 #include <math.h>
 
-#include "../../tools/reference/brdf_sampling.h"
+#include "brdf_sampling.h"
 #include "random.h"
 #include "tap.h"
 

@@ -1,10 +1,10 @@
-/* Packed textures of the reference renderer (tools/reference/packed_texture.c):
+/* Packed textures of the reference renderer (common/packed_texture.c):
  * an 8-bit sRGB texture packed into codes reads back exactly the loader's
  * floats, other textures stay floats, lookups are bilinear and repeat. */
 #include <math.h>
 #include <stdlib.h>
 
-#include "../../tools/reference/packed_texture.h"
+#include "packed_texture.h"
 #include "random.h"
 #include "tap.h"
 
@@ -25,7 +25,7 @@ static gb_texture make_texture(int width, int height, int from_codes, uint64_t s
     return texture;
 }
 
-/* Bilinear lookup straight from the floats, the definition of runtime/brdf.h. */
+/* Bilinear lookup straight from the floats, the definition of common/brdf.h. */
 static double expected_lookup(const gb_texture *t, double s, double v, int c)
 {
     double x = (s - floor(s)) * t->width - 0.5, y = (1 - (v - floor(v))) * t->height - 0.5;

@@ -9,7 +9,7 @@
 
 #include "../../tools/reference/camera.h"
 #include "../../tools/reference/integrator.h"
-#include "../../tools/reference/light_sampling.h"
+#include "light_sampling.h"
 #include "../../tools/reference/reference.h"
 #include "scene_builder.h"
 #include "tap.h"

@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "../../runtime/brdf.h"
+#include "brdf.h"
 
 enum { MAX_EMITTERS_BEYOND_LIGHTS = 2 };    /* the area lights, the environment */
 

@@ -3,9 +3,9 @@
  * powers of N emitted photons sum, in expectation, to the scene's total
  * emitted power (flux-preserving emission, Jensen 2001 §5.1).
  *
- * Lights (conventions of runtime/brdf.h):
+ * Lights (conventions of common/brdf.h):
  *   area          the emissive triangles as one light of power sum pi Ke A,
- *                 a triangle picked by power (tools/reference/light_sampling),
+ *                 a triangle picked by power (common/light_sampling),
  *                 a point uniform on it, a cosine-weighted direction on its
  *                 front side;
  *   point         power 4 pi I, uniform directions;
@@ -28,9 +28,9 @@
 
 #include <stdint.h>
 
-#include "../reference/light_sampling.h"
-#include "../reference/surface.h"
-#include "../reference/vec3.h"
+#include "light_sampling.h"
+#include "surface.h"
+#include "vec3.h"
 #include "random.h"
 #include "scene.h"
 

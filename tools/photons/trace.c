@@ -4,7 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "../reference/brdf_sampling.h"
+#include "brdf_sampling.h"
 
 static int is_finite_colour(gb_vec3 c)
 {

@@ -1,6 +1,6 @@
 /* trace.h — one photon path: from a light, hit after hit, each hit stored as
  * a photon (formats/photon_map.h) and reflected by the material's BRDF
- * (runtime/brdf.h, sampled by tools/reference/brdf_sampling) until it
+ * (common/brdf.h, sampled by common/brdf_sampling) until it
  * leaves the scene, is absorbed or has made `bounces` reflections.
  *
  * Power is carried flux-preservingly (Jensen 2001 §5.1.3): at each
@@ -22,8 +22,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
-#include "../reference/embree_scene.h"
-#include "../reference/surface.h"
+#include "embree_scene.h"
+#include "surface.h"
 #include "emission.h"
 #include "photon_map.h"
 #include "random.h"

@@ -3,7 +3,7 @@
  * error. The `reference` tool parses options and calls gb_reference_render.
  *
  * What each mode renders (a "bounce" is a reflection at a surface; the
- * conventions of light and BRDF are those of runtime/brdf.h):
+ * conventions of light and BRDF are those of common/brdf.h):
  *   full                  every path with min_bounces..bounces reflections:
  *                         path tracing, next-event estimation of every light
  *                         with multiple importance sampling for area lights,

@@ -5,7 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../reference/embree_scene.h"
+#include "embree_scene.h"
 #include "random.h"
 #include "segment.h"
 

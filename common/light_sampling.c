@@ -3,7 +3,7 @@
 #include <math.h>
 #include <stdlib.h>
 
-#include "../../runtime/brdf.h"
+#include "brdf.h"
 #include "surface.h"
 
 static double triangle_power(const gb_scene *scene, uint32_t t)

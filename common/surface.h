@@ -1,12 +1,12 @@
 /* surface.h — what the reference renderer knows of a ray's hit: position,
- * normals turned toward the viewer (runtime/brdf.h, "Sides"), the BRDF with
+ * normals turned toward the viewer (common/brdf.h, "Sides"), the BRDF with
  * its texture applied, the emission seen from that side, and how far to move
  * new rays off the surface.
  */
 #ifndef GB_SURFACE_H
 #define GB_SURFACE_H
 
-#include "../../runtime/brdf.h"
+#include "brdf.h"
 #include "embree_scene.h"
 #include "packed_texture.h"
 #include "scene.h"

@@ -1,4 +1,4 @@
-/* brdf_sampling.h — importance sampling of the gibake BRDF (runtime/brdf.h)
+/* brdf_sampling.h — importance sampling of the gibake BRDF (common/brdf.h)
  * for the reference path tracer: a cosine-weighted diffuse lobe and the
  * Phong lobe around the mirror direction, chosen in proportion to the
  * luminance of Kd and Ks.
@@ -9,7 +9,7 @@
 #ifndef GB_BRDF_SAMPLING_H
 #define GB_BRDF_SAMPLING_H
 
-#include "../../runtime/brdf.h"
+#include "brdf.h"
 #include "vec3.h"
 
 typedef struct gb_brdf_sample {
@@ -18,7 +18,7 @@ typedef struct gb_brdf_sample {
     float pdf;                  /* solid-angle density of wi */
 } gb_brdf_sample;
 
-/* f(wo, wi) (runtime/brdf.h) for vectors. */
+/* f(wo, wi) (common/brdf.h) for vectors. */
 gb_vec3 gb_brdf_eval_vectors(const gb_brdf *brdf, gb_vec3 n, gb_vec3 wo, gb_vec3 wi);
 
 /* Density with which gb_brdf_sample_direction picks wi. */

@@ -4,7 +4,7 @@
  * Area lights (the emissive triangles) are sampled by power, then uniformly
  * by area on the chosen triangle: one sample per shading point. Point, spot
  * and directional lights are delta lights: each is evaluated at every
- * shading point (one shadow ray each). Conventions: runtime/brdf.h.
+ * shading point (one shadow ray each). Conventions: common/brdf.h.
  *
  * The caller owns the gb_light_table and frees it with gb_light_table_free.
  */

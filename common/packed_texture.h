@@ -8,7 +8,7 @@
  * do not come from 256 sRGB codes (an EXR, say) is not packed and is read
  * as floats. Packed texels are stored in 4x4 tiles of one cache line each,
  * so the 2x2 texels of a bilinear lookup mostly share a line. Lookups are
- * bilinear and repeat (runtime/brdf.h).
+ * bilinear and repeat (common/brdf.h).
  */
 #ifndef GB_PACKED_TEXTURE_H
 #define GB_PACKED_TEXTURE_H
