@@ -2,23 +2,16 @@
  * traced on threads in chunks of consecutive photon indices. Each chunk
  * keeps its own photons; once every path is done the chunks are joined in
  * index order, so the map is the same whatever thread traced which chunk. */
-#include <math.h>
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <time.h>
-#include <unistd.h>
-#if defined(__SSE__)
-#include <pmmintrin.h>
-#include <xmmintrin.h>
-#endif
 
 #include "emission.h"
 #include "photons.h"
 #include "trace.h"
+#include "work_queue.h"
 
-enum { CHUNK_PHOTONS = 4096, MAX_THREADS = 256 };
-enum { RUNNING = 0, INTERRUPTED, OUT_OF_MEMORY };
+enum { CHUNK_PHOTONS = 4096 };
 
 typedef struct run_job {
     const gb_photons_tracer *tracer;
@@ -28,34 +21,9 @@ typedef struct run_job {
     uint64_t first, end;        /* this shard's photon indices */
     uint64_t chunk_count;
     gb_photons_sink *chunks;    /* chunk_count */
-    atomic_uint_fast64_t next_chunk;
-    atomic_uint_fast64_t chunks_done;
-    atomic_int state;
+    atomic_int out_of_memory;
     atomic_uint_fast64_t rays, stored, escaped, nonfinite;
 } run_job;
-
-/* Flush denormals to zero, as Embree advises for speed; the same in every
- * thread, so it changes no result between thread counts. */
-static unsigned flush_denormals(void)
-{
-#if defined(__SSE__)
-    unsigned saved = _mm_getcsr();
-    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-    return saved;
-#else
-    return 0;
-#endif
-}
-
-static void restore_denormals(unsigned saved)
-{
-#if defined(__SSE__)
-    _mm_setcsr(saved);
-#else
-    (void)saved;
-#endif
-}
 
 static void add_counters(run_job *job, const gb_photons_counters *c)
 {
@@ -65,96 +33,38 @@ static void add_counters(run_job *job, const gb_photons_counters *c)
     atomic_fetch_add(&job->nonfinite, c->nonfinite);
 }
 
-/* Photon i draws from stream i of the seed: the thread does not matter. */
-static void trace_chunk(run_job *job, uint64_t chunk)
+/* A work-queue item. Photon i draws from stream i of the seed: the thread
+ * does not matter. Returns nonzero (stop) when out of memory. */
+static int trace_chunk(void *context, uint64_t chunk)
 {
+    run_job *job = context;
     uint64_t begin = job->first + chunk * CHUNK_PHOTONS;
     uint64_t end = job->end - begin > CHUNK_PHOTONS ? begin + CHUNK_PHOTONS : job->end;
     gb_photons_counters counters = {0};
-    for (uint64_t i = begin; i < end; ++i) {
+    int stop = 0;
+    for (uint64_t i = begin; i < end && !stop; ++i) {
         gb_random rng = gb_random_make(job->seed, i);
         gb_photon_ray ray;
         gb_photon_emission_sample(job->emission, job->emitted_count, &rng, &ray);
-        if (!gb_photons_trace_path(job->tracer, &ray, &rng, &job->chunks[chunk], &counters)) {
-            atomic_store(&job->state, OUT_OF_MEMORY);
-            break;
-        }
+        stop = !gb_photons_trace_path(job->tracer, &ray, &rng, &job->chunks[chunk], &counters);
     }
+    if (stop)
+        atomic_store(&job->out_of_memory, 1);
     add_counters(job, &counters);
-}
-
-/* Traces the next chunk; 0 when none is left or the run stops. */
-static int trace_next_chunk(run_job *job)
-{
-    if (atomic_load(&job->state) != RUNNING)
-        return 0;
-    uint64_t chunk = atomic_fetch_add(&job->next_chunk, 1);
-    if (chunk >= job->chunk_count)
-        return 0;
-    trace_chunk(job, chunk);
-    atomic_fetch_add(&job->chunks_done, 1);
-    return 1;
-}
-
-static void *worker(void *user)
-{
-    unsigned saved = flush_denormals();
-    while (trace_next_chunk(user))
-        ;
-    restore_denormals(saved);
-    return NULL;
-}
-
-/* The calling thread traces too, and reports progress between its chunks. */
-static void trace_and_report(run_job *job, const gb_photons_options *options)
-{
-    unsigned saved = flush_denormals();
-    while (trace_next_chunk(job)) {
-        double done = job->chunk_count ? (double)atomic_load(&job->chunks_done) /
-                                             (double)job->chunk_count
-                                       : 1.0;
-        if (options->progress && options->progress(options->progress_user, done))
-            atomic_store(&job->state, INTERRUPTED);
-    }
-    restore_denormals(saved);
-}
-
-static int thread_count(const gb_photons_options *options, uint64_t chunk_count)
-{
-    long threads = options->threads > 0 ? options->threads : sysconf(_SC_NPROCESSORS_ONLN);
-    if (threads < 1)
-        threads = 1;
-    if (threads > MAX_THREADS)
-        threads = MAX_THREADS;
-    return (uint64_t)threads < chunk_count ? (int)threads : (chunk_count ? (int)chunk_count : 1);
+    return stop;
 }
 
 static gb_result run_threads(run_job *job, const gb_photons_options *options, int *used,
                              gb_error *error)
 {
-    pthread_t threads[MAX_THREADS];
-    int count = thread_count(options, job->chunk_count), started = 0;
-    gb_result result = GB_OK;
-    for (; started < count - 1; ++started)
-        if (pthread_create(&threads[started], NULL, worker, job) != 0) {
-            result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "photons: cannot start a thread");
-            atomic_store(&job->state, INTERRUPTED);
-            break;
-        }
-    if (result == GB_OK)
-        trace_and_report(job, options);
-    for (int i = 0; i < started; ++i)
-        pthread_join(threads[i], NULL);
-    *used = started + 1;
-    if (result != GB_OK)
-        return result;
-    switch (atomic_load(&job->state)) {
-    case INTERRUPTED:
-        return gb_fail(error, GB_ERROR_INTERRUPTED, "photons: interrupted");
-    case OUT_OF_MEMORY:
+    gb_work_queue queue = {.item_count = job->chunk_count, .threads = options->threads,
+                           .progress = options->progress,
+                           .progress_user = options->progress_user};
+    if (gb_work_queue_run(&queue, trace_chunk, job, used) == GB_OK)
+        return GB_OK;
+    if (atomic_load(&job->out_of_memory))
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "photons: out of memory for the photons");
-    }
-    return GB_OK;
+    return gb_fail(error, GB_ERROR_INTERRUPTED, "photons: interrupted");
 }
 
 /* ---- the map ---- */

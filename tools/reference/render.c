@@ -2,22 +2,17 @@
  * threads, each pixel drawing from its own PCG32 stream (stream = pixel
  * index), so the image is the same whatever the number of threads. */
 #include <math.h>
-#include <pthread.h>
 #include <stdatomic.h>
 #include <string.h>
 #include <time.h>
-#include <unistd.h>
-#if defined(__SSE__)
-#include <pmmintrin.h>
-#include <xmmintrin.h>
-#endif
 
 #include "camera.h"
 #include "integrator.h"
 #include "reference.h"
 #include "surface.h"
+#include "work_queue.h"
 
-enum { TILE_SIZE = 16, MAX_THREADS = 256, MAX_RESOLUTION = 32768 };
+enum { TILE_SIZE = 16, MAX_RESOLUTION = 32768 };
 
 typedef struct render_job {
     const gb_integrator *integrator;
@@ -26,9 +21,6 @@ typedef struct render_job {
     int spp;
     uint64_t seed;
     int tiles_x, tile_count;
-    atomic_int next_tile;
-    atomic_int tiles_done;
-    atomic_int stop;
     atomic_uint_fast64_t rays;
     atomic_uint_fast64_t nonfinite;
 } render_job;
@@ -58,29 +50,6 @@ gb_result gb_reference_mode_parse(const char *name, gb_reference_mode *mode, gb_
                    "indirect1-unshadowed, vpl)", name);
 }
 
-/* Flush denormals to zero, as Embree advises for speed; the same in every
- * thread, so it changes no result between thread counts. */
-static unsigned flush_denormals(void)
-{
-#if defined(__SSE__)
-    unsigned saved = _mm_getcsr();
-    _MM_SET_FLUSH_ZERO_MODE(_MM_FLUSH_ZERO_ON);
-    _MM_SET_DENORMALS_ZERO_MODE(_MM_DENORMALS_ZERO_ON);
-    return saved;
-#else
-    return 0;
-#endif
-}
-
-static void restore_denormals(unsigned saved)
-{
-#if defined(__SSE__)
-    _mm_setcsr(saved);
-#else
-    (void)saved;
-#endif
-}
-
 static void render_pixel(render_job *job, int x, int y, gb_trace_state *state,
                          uint64_t *nonfinite)
 {
@@ -107,8 +76,11 @@ static void render_pixel(render_job *job, int x, int y, gb_trace_state *state,
         pixel[c] = kept ? (float)(total[c] / kept) : 0.0f;
 }
 
-static void render_tile(render_job *job, int tile)
+/* A work-queue item: one tile. */
+static int render_tile(void *context, uint64_t item)
 {
+    render_job *job = context;
+    int tile = (int)item;
     int x0 = (tile % job->tiles_x) * TILE_SIZE, y0 = (tile / job->tiles_x) * TILE_SIZE;
     int x1 = x0 + TILE_SIZE < job->frame->width ? x0 + TILE_SIZE : job->frame->width;
     int y1 = y0 + TILE_SIZE < job->frame->height ? y0 + TILE_SIZE : job->frame->height;
@@ -119,70 +91,18 @@ static void render_tile(render_job *job, int tile)
             render_pixel(job, x, y, &state, &nonfinite);
     atomic_fetch_add(&job->rays, state.rays);
     atomic_fetch_add(&job->nonfinite, nonfinite);
-}
-
-/* Renders tiles until none is left; returns how many this thread rendered. */
-static int render_next_tile(render_job *job)
-{
-    if (atomic_load(&job->stop))
-        return 0;
-    int tile = atomic_fetch_add(&job->next_tile, 1);
-    if (tile >= job->tile_count)
-        return 0;
-    render_tile(job, tile);
-    atomic_fetch_add(&job->tiles_done, 1);
-    return 1;
-}
-
-static void *worker(void *user)
-{
-    unsigned saved = flush_denormals();
-    while (render_next_tile(user))
-        ;
-    restore_denormals(saved);
-    return NULL;
-}
-
-/* The calling thread renders too, and reports progress between its tiles. */
-static void render_and_report(render_job *job, const gb_reference_options *options)
-{
-    unsigned saved = flush_denormals();
-    while (render_next_tile(job))
-        if (options->progress &&
-            options->progress(options->progress_user,
-                              (double)atomic_load(&job->tiles_done) / job->tile_count))
-            atomic_store(&job->stop, 1);
-    restore_denormals(saved);
-}
-
-static int thread_count(const gb_reference_options *options, int tile_count)
-{
-    long threads = options->threads > 0 ? options->threads : sysconf(_SC_NPROCESSORS_ONLN);
-    if (threads < 1)
-        threads = 1;
-    if (threads > MAX_THREADS)
-        threads = MAX_THREADS;
-    return threads < tile_count ? (int)threads : tile_count;
+    return 0;
 }
 
 static gb_result run_threads(render_job *job, const gb_reference_options *options,
                              gb_error *error)
 {
-    pthread_t threads[MAX_THREADS];
-    int count = thread_count(options, job->tile_count), started = 0;
-    gb_result result = GB_OK;
-    for (; started < count - 1; ++started)
-        if (pthread_create(&threads[started], NULL, worker, job) != 0) {
-            result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "reference: cannot start a thread");
-            atomic_store(&job->stop, 1);
-            break;
-        }
-    render_and_report(job, options);
-    for (int i = 0; i < started; ++i)
-        pthread_join(threads[i], NULL);
-    if (result == GB_OK && atomic_load(&job->tiles_done) < job->tile_count)
-        result = gb_fail(error, GB_ERROR_ARGUMENT, "reference: rendering cancelled");
-    return result;
+    gb_work_queue queue = {.item_count = (uint64_t)job->tile_count, .threads = options->threads,
+                           .progress = options->progress,
+                           .progress_user = options->progress_user};
+    if (gb_work_queue_run(&queue, render_tile, job, NULL) != GB_OK)
+        return gb_fail(error, GB_ERROR_INTERRUPTED, "reference: rendering cancelled");
+    return GB_OK;
 }
 
 /* ---- options -------------------------------------------------------------- */

@@ -1,7 +1,8 @@
 /* threads.h — runs one function on a few threads and waits for all of them
- * (pthreads). Thread 0 is the calling thread, so it may report progress. */
-#ifndef GB_VOXELIZE_THREADS_H
-#define GB_VOXELIZE_THREADS_H
+ * (pthreads). Thread 0 is the calling thread, so it may report progress.
+ * Work handed out item by item is work_queue.h, built on this. */
+#ifndef GB_THREADS_H
+#define GB_THREADS_H
 
 #include "result.h"
 
