@@ -7,6 +7,7 @@
 #include <string.h>
 #include <sys/stat.h>
 
+#include "environment.h"
 #include "image.h"
 #include "mesh_openmesh.h"
 #include "obj.h"
@@ -35,6 +36,8 @@ void gb_scene_free(gb_scene *scene)
     free(scene->emissive_triangles);
     free(scene->lights);
     free(scene->cameras);
+    free(scene->environment_map);
+    free(scene->environment_texture.rgb);
     free(scene->path);
     memset(scene, 0, sizeof *scene);
 }
@@ -221,12 +224,12 @@ static uint64_t hash_u32s(uint64_t h, const uint32_t *values, size_t n)
     return h;
 }
 
-/* The texture's file name (not its folder: moving the scene keeps the hash). */
-static uint64_t hash_texture_name(uint64_t h, const char *map_Kd)
+/* An image's file name (not its folder: moving the scene keeps the hash). */
+static uint64_t hash_texture_name(uint64_t h, const char *path)
 {
-    if (!map_Kd)
+    if (!path)
         return hash_u32(h, 0);
-    const char *name = strrchr(map_Kd, '/') ? strrchr(map_Kd, '/') + 1 : map_Kd;
+    const char *name = strrchr(path, '/') ? strrchr(path, '/') + 1 : path;
     h = hash_u32(h, (uint32_t)strlen(name));
     return hash_bytes(h, name, strlen(name));
 }
@@ -268,6 +271,8 @@ static uint64_t hash_materials_and_lights(uint64_t h, const gb_scene *scene)
         h = hash_floats(h, &light->cone_angle, 1);
         h = hash_floats(h, &light->falloff_angle, 1);
     }
+    if (scene->environment_map)     /* only then: older hashes stay valid */
+        h = hash_texture_name(h, scene->environment_map);
     return hash_floats(h, scene->environment, 3);
 }
 
@@ -349,9 +354,11 @@ static gb_result load_mesh(const char *path, gb_scene *scene, gb_error *error)
                    ".obj.gz, .ply, .off or .stl)", path);
 }
 
-/* Takes the lights, cameras and environment of the scene file. */
-static void take_scene_file_parts(gb_scene_file *file, gb_scene *scene)
+/* Takes the lights, cameras and environment of the scene file;
+ * environment_map is the map's resolved path (taken too), or NULL. */
+static void take_scene_file_parts(gb_scene_file *file, char *environment_map, gb_scene *scene)
 {
+    scene->environment_map = environment_map;
     scene->lights = file->lights;
     scene->light_count = file->light_count;
     scene->cameras = file->cameras;
@@ -362,21 +369,43 @@ static void take_scene_file_parts(gb_scene_file *file, gb_scene *scene)
     file->light_count = file->camera_count = 0;
 }
 
+static gb_result check_file_exists(const char *scene_path, int line, const char *what,
+                                   const char *path, gb_error *error)
+{
+    struct stat status;
+    if (stat(path, &status) != 0)
+        return gb_fail(error, GB_ERROR_IO, "%s:%d: %s %s: %s", scene_path, line, what, path,
+                       strerror(errno));
+    if (!S_ISREG(status.st_mode))
+        return gb_fail(error, GB_ERROR_IO, "%s:%d: %s %s: not a file", scene_path, line, what,
+                       path);
+    return GB_OK;
+}
+
 static gb_result check_mesh_exists(const char *scene_path, const gb_scene_file *file,
                                    const char *mesh_path, gb_error *error)
 {
-    struct stat status;
-    if (stat(mesh_path, &status) != 0)
-        return gb_fail(error, GB_ERROR_IO, "%s:%d: mesh %s: %s", scene_path, file->mesh_line,
-                       mesh_path, strerror(errno));
-    if (!S_ISREG(status.st_mode))
-        return gb_fail(error, GB_ERROR_IO, "%s:%d: mesh %s: not a file", scene_path,
-                       file->mesh_line, mesh_path);
-    if (!is_obj(mesh_path) && !is_openmesh_type(mesh_path))
+    gb_result result = check_file_exists(scene_path, file->mesh_line, "mesh", mesh_path, error);
+    if (result == GB_OK && !is_obj(mesh_path) && !is_openmesh_type(mesh_path))
         return gb_fail(error, GB_ERROR_UNSUPPORTED, "%s:%d: mesh %s: unknown file type "
                        "(expected .obj, .obj.gz, .ply, .off or .stl)", scene_path,
                        file->mesh_line, mesh_path);
-    return GB_OK;
+    return result;
+}
+
+/* The environment map's path beside the scene file, checked to exist;
+ * *map_path stays NULL when the file names none. */
+static gb_result find_environment_map(const char *scene_path, const char *folder,
+                                      const gb_scene_file *file, char **map_path,
+                                      gb_error *error)
+{
+    *map_path = NULL;
+    if (!file->environment_map)
+        return GB_OK;
+    if (!(*map_path = gb_path_join(folder, file->environment_map)))
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", scene_path);
+    return check_file_exists(scene_path, file->environment_map_line, "environment-map",
+                             *map_path, error);
 }
 
 /* Loads the mesh a scene file names, with its lights, cameras and
@@ -386,16 +415,20 @@ static gb_result load_scene_file(const char *path, gb_scene *scene, char **mesh_
 {
     gb_scene_file file;
     gb_result result = gb_scene_file_read(path, &file, error);
-    char *folder = NULL;
+    char *folder = NULL, *map_path = NULL;
     if (result == GB_OK && (!(folder = gb_path_folder(path))
                             || !(*mesh_path = gb_path_join(folder, file.mesh))))
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     if (result == GB_OK)
         result = check_mesh_exists(path, &file, *mesh_path, error);
     if (result == GB_OK)
+        result = find_environment_map(path, folder, &file, &map_path, error);
+    if (result == GB_OK)
         result = load_mesh(*mesh_path, scene, error);
     if (result == GB_OK)
-        take_scene_file_parts(&file, scene);
+        take_scene_file_parts(&file, map_path, scene);
+    else
+        free(map_path);
     free(folder);
     gb_scene_file_free(&file);
     return result;
@@ -420,21 +453,38 @@ static gb_result image_to_texture(const gb_image *image, gb_texture *texture,
     return GB_OK;
 }
 
+static gb_result load_image(const char *path, gb_texture *texture, gb_error *error)
+{
+    gb_image image = {0};
+    gb_result result = gb_image_read(path, &image, error);
+    if (result == GB_OK)
+        result = image_to_texture(&image, texture, path, error);
+    gb_image_free(&image);
+    return result;
+}
+
+static gb_result load_environment_map(gb_scene *scene, gb_error *error)
+{
+    if (!scene->environment_map || scene->environment_texture.rgb)
+        return GB_OK;
+    gb_result result = load_image(scene->environment_map, &scene->environment_texture, error);
+    if (result == GB_OK)
+        result = gb_environment_map_check(&scene->environment_texture, scene->environment_map,
+                                          error);
+    return result;
+}
+
 static gb_result load_textures(gb_scene *scene, gb_error *error)
 {
     for (uint32_t i = 0; i < scene->material_count; ++i) {
         gb_material *material = &scene->materials[i];
         if (!material->map_Kd || material->texture.rgb)
             continue;
-        gb_image image = {0};
-        gb_result result = gb_image_read(material->map_Kd, &image, error);
-        if (result == GB_OK)
-            result = image_to_texture(&image, &material->texture, material->map_Kd, error);
-        gb_image_free(&image);
+        gb_result result = load_image(material->map_Kd, &material->texture, error);
         if (result != GB_OK)
             return result;
     }
-    return GB_OK;
+    return load_environment_map(scene, error);
 }
 
 /* Reads the scene or mesh at path; *mesh_path is the mesh read (malloc'ed). */

@@ -75,7 +75,10 @@ typedef struct gb_scene {
     gb_light *lights;
     uint32_t camera_count;      /* at least 1: a default is derived from the bounds */
     gb_camera *cameras;
-    float environment[3];       /* radiance of the background */
+    float environment[3];       /* radiance of the background (no map) */
+    char *environment_map;      /* resolved path of a lat-long image, or NULL
+                                   (common/environment.h reads it) */
+    gb_texture environment_texture; /* its pixels, if the options asked for them */
 
     float bounds_min[3], bounds_max[3];
     uint64_t hash;              /* content hash: geometry, materials, lights */
@@ -86,7 +89,8 @@ typedef struct gb_scene {
 } gb_scene;
 
 typedef struct gb_scene_options {
-    int load_textures;          /* 0 (default): check map_Kd exists, do not decode */
+    int load_textures;          /* 0 (default): check map_Kd and the environment
+                                   map exist, do not decode */
 } gb_scene_options;
 
 /* options may be NULL for the defaults. */

@@ -210,22 +210,23 @@ static gb_result read_camera(const gb_text *text, gb_span *line, gb_scene_file *
     return result != GB_OK ? result : check_camera(text, camera, error);
 }
 
-static gb_result read_mesh(const gb_text *text, gb_span *line, gb_scene_file *file,
-                           gb_error *error)
+/* A path statement: the rest of the line (it may hold spaces), given once. */
+static gb_result read_path(const gb_text *text, gb_span *line, const char *statement,
+                           char **path_out, int *line_out, gb_error *error)
 {
-    if (file->mesh)
-        return gb_fail(error, GB_ERROR_PARSE, "%s:%d: a second mesh (the first is on line %d)",
-                       text->name, text->line, file->mesh_line);
+    if (*path_out)
+        return gb_fail(error, GB_ERROR_PARSE, "%s:%d: a second %s (the first is on line %d)",
+                       text->name, text->line, statement, *line_out);
     gb_span path = gb_span_trim(*line);
     if (gb_span_length(path) == 0)
-        return gb_fail(error, GB_ERROR_PARSE, "%s:%d: mesh without a path", text->name,
-                       text->line);
+        return gb_fail(error, GB_ERROR_PARSE, "%s:%d: %s without a path", text->name,
+                       text->line, statement);
     if (memchr(path.begin, '\0', gb_span_length(path)))
-        return gb_fail(error, GB_ERROR_PARSE, "%s:%d: mesh path holds a NUL byte", text->name,
-                       text->line);
-    file->mesh = gb_span_dup(path);
-    file->mesh_line = text->line;
-    if (!file->mesh)
+        return gb_fail(error, GB_ERROR_PARSE, "%s:%d: %s path holds a NUL byte", text->name,
+                       text->line, statement);
+    *path_out = gb_span_dup(path);
+    *line_out = text->line;
+    if (!*path_out)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s:%d: out of memory", text->name,
                        text->line);
     return GB_OK;
@@ -234,6 +235,7 @@ static gb_result read_mesh(const gb_text *text, gb_span *line, gb_scene_file *fi
 static gb_result read_environment(const gb_text *text, gb_span *line, gb_scene_file *file,
                                   gb_error *error)
 {
+    file->environment_line = text->line;
     gb_result result = gb_text_floats(text, line, "environment", file->environment, 3, error);
     if (result == GB_OK)
         result = gb_text_expect_end(text, line, error);
@@ -254,7 +256,10 @@ static gb_result read_statement(const gb_text *text, gb_span key, gb_span *line,
                                 gb_scene_file *file, gb_error *error)
 {
     if (gb_span_is(key, "mesh"))
-        return read_mesh(text, line, file, error);
+        return read_path(text, line, "mesh", &file->mesh, &file->mesh_line, error);
+    if (gb_span_is(key, "environment-map"))
+        return read_path(text, line, "environment-map", &file->environment_map,
+                         &file->environment_map_line, error);
     if (gb_span_is(key, "environment"))
         return read_environment(text, line, file, error);
     if (gb_span_is(key, "light"))
@@ -290,6 +295,10 @@ static gb_result parse_terminated(const char *buffer, size_t size, const char *n
                        "'gibake-scene 1')", name);
     if (!file->mesh)
         return gb_fail(error, GB_ERROR_PARSE, "%s: no mesh statement", name);
+    if (file->environment_map && file->environment_line)
+        return gb_fail(error, GB_ERROR_PARSE, "%s:%d: environment colour and environment-map on "
+                       "line %d: give one of the two", name, file->environment_line,
+                       file->environment_map_line);
     return GB_OK;
 }
 
@@ -322,6 +331,7 @@ gb_result gb_scene_file_read(const char *path, gb_scene_file *file, gb_error *er
 void gb_scene_file_free(gb_scene_file *file)
 {
     free(file->mesh);
+    free(file->environment_map);
     free(file->lights);
     free(file->cameras);
     memset(file, 0, sizeof *file);

@@ -1,9 +1,9 @@
 /* scene_file.h — the `.scene` text file: which mesh, which extra lights,
- * cameras and environment colour (formats/FORMATS.md, "Scene file").
+ * cameras and environment (formats/FORMATS.md, "Scene file").
  *
  *   gibake-scene 1
  *   mesh PATH
- *   environment R G B
+ *   environment R G B            (or)  environment-map PATH
  *   light point position X Y Z intensity R G B
  *   light spot position X Y Z direction X Y Z intensity R G B cone DEG falloff DEG
  *   light directional direction X Y Z irradiance R G B
@@ -28,6 +28,9 @@ typedef struct gb_scene_file {
     char *mesh;                 /* as written: relative to the scene file's folder */
     int mesh_line;              /* line of the mesh statement, for messages */
     float environment[3];       /* 0 0 0 unless given */
+    int environment_line;       /* its line, 0 when not given */
+    char *environment_map;      /* as written, or NULL */
+    int environment_map_line;
     uint32_t light_count;
     gb_light *lights;
     uint32_t camera_count;

@@ -54,10 +54,12 @@ static const char fragment_shader[] =
     "layout(binding = 6) uniform sampler2D gbuffer_emission;\n"
     "layout(binding = 8) uniform samplerCubeArrayShadow shadow_cubes;\n"
     "layout(binding = 9) uniform sampler2DArrayShadow shadow_planes;\n"
+    "layout(binding = 10) uniform sampler2D environment_map;\n"
     "uniform mat4 view_to_world;\n"
     "uniform vec2 tan_half_fov;\n"
     "uniform float near;\n"
     "uniform vec3 environment;\n"
+    "uniform bool has_environment_map;\n"
     "uniform int point_count;\n"
     "uniform int plane_count;\n"
     "uniform bool shadows;\n"
@@ -125,6 +127,17 @@ static const char fragment_shader[] =
     "    return reflected(s, wi, l.intensity.rgb * falloff * inverse_square(r2))\n"
     "           * plane_visibility(i, s, texel * axial);\n"
     "}\n"
+    /* The background toward the pixel: formats/environment.h's lat-long
+     * lookup (row 0 is +y; the middle column looks along -z). */
+    "vec3 background(ivec2 pixel) {\n"
+    "    if (!has_environment_map)\n"
+    "        return environment;\n"
+    "    vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(textureSize(gbuffer_depth, 0)) - 1.0;\n"
+    "    vec3 d = normalize(mat3(view_to_world) * vec3(ndc * tan_half_fov, -1.0));\n"
+    "    float u = atan(d.x, -d.z) / (2.0 * 3.14159265358979) + 0.5;\n"
+    "    float v = acos(clamp(d.y, -1.0, 1.0)) / 3.14159265358979;\n"
+    "    return textureLod(environment_map, vec2(u, v), 0.0).rgb;\n"
+    "}\n"
     "Surface surface_at(ivec2 pixel, float depth) {\n"
     "    vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(textureSize(gbuffer_depth, 0)) - 1.0;\n"
     "    float z = -near / depth;\n"
@@ -146,7 +159,7 @@ static const char fragment_shader[] =
     "    ivec2 pixel = ivec2(gl_FragCoord.xy);\n"
     "    float depth = texelFetch(gbuffer_depth, pixel, 0).r;\n"
     "    if (depth <= 0.0) {\n"
-    "        radiance = vec4(environment, 1.0);\n"
+    "        radiance = vec4(background(pixel), 1.0);\n"
     "        return;\n"
     "    }\n"
     "    Surface s = surface_at(pixel, depth);\n"
@@ -158,7 +171,22 @@ static const char fragment_shader[] =
     "    radiance = vec4(L, 1.0);\n"
     "}\n";
 
-gb_result gb_direct_light_create(gb_direct_light *pass, gb_error *error)
+/* The map as a float RGB texture: bilinear, wrapping round in u, clamped in v. */
+static GLuint environment_texture(const gb_texture *map)
+{
+    GLuint texture;
+    glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+    glTextureStorage2D(texture, 1, GL_RGB32F, map->width, map->height);
+    glTextureSubImage2D(texture, 0, 0, 0, map->width, map->height, GL_RGB, GL_FLOAT, map->rgb);
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    return texture;
+}
+
+gb_result gb_direct_light_create(gb_direct_light *pass, const gb_texture *environment_map,
+                                 gb_error *error)
 {
     memset(pass, 0, sizeof *pass);
     gb_result result = gb_gl_program("direct light", gb_gl_fullscreen_vertex_shader,
@@ -166,10 +194,12 @@ gb_result gb_direct_light_create(gb_direct_light *pass, gb_error *error)
     if (result != GB_OK)
         return result;
     glCreateVertexArrays(1, &pass->empty_vertex_array);
+    if (environment_map && environment_map->rgb)
+        pass->environment_map = environment_texture(environment_map);
     return GB_OK;
 }
 
-static void set_uniforms(GLuint program, const gb_direct_inputs *in)
+static void set_uniforms(GLuint program, GLuint environment_map, const gb_direct_inputs *in)
 {
     const gb_view *view = in->view;
     gb_mat4 view_to_world = gb_view_inverse_matrix(view);
@@ -182,6 +212,8 @@ static void set_uniforms(GLuint program, const gb_direct_inputs *in)
     glProgramUniform1f(program, glGetUniformLocation(program, "near"), view->near);
     glProgramUniform3fv(program, glGetUniformLocation(program, "environment"), 1,
                         in->environment);
+    glProgramUniform1i(program, glGetUniformLocation(program, "has_environment_map"),
+                       environment_map != 0);
     glProgramUniform1i(program, glGetUniformLocation(program, "point_count"),
                        (GLint)in->shadows->point_count);
     glProgramUniform1i(program, glGetUniformLocation(program, "plane_count"),
@@ -196,7 +228,8 @@ void gb_direct_light_draw(gb_direct_light *pass, const gb_direct_inputs *inputs)
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     glUseProgram(pass->program);
-    set_uniforms(pass->program, inputs);
+    set_uniforms(pass->program, pass->environment_map, inputs);
+    glBindTextureUnit(10, pass->environment_map);
     gb_gbuffer_bind(inputs->gbuffer);
     gb_shadow_maps_bind(inputs->shadows);
     gb_gl_draw_fullscreen(pass->empty_vertex_array);
@@ -208,5 +241,7 @@ void gb_direct_light_destroy(gb_direct_light *pass)
         glDeleteProgram(pass->program);
     if (pass->empty_vertex_array)
         glDeleteVertexArrays(1, &pass->empty_vertex_array);
+    if (pass->environment_map)
+        glDeleteTextures(1, &pass->environment_map);
     memset(pass, 0, sizeof *pass);
 }

@@ -26,6 +26,7 @@
 typedef struct gb_direct_light {
     GLuint program;
     GLuint empty_vertex_array;
+    GLuint environment_map;     /* the scene's lat-long map, or 0: its colour */
 } gb_direct_light;
 
 typedef struct gb_direct_inputs {
@@ -36,7 +37,9 @@ typedef struct gb_direct_inputs {
     int shadows_enabled;        /* 0: every light fully visible (a debug mode) */
 } gb_direct_inputs;
 
-gb_result gb_direct_light_create(gb_direct_light *pass, gb_error *error);
+/* environment_map: the scene's loaded map (copied to the GPU), or NULL. */
+gb_result gb_direct_light_create(gb_direct_light *pass, const gb_texture *environment_map,
+                                 gb_error *error);
 /* Draws into the bound framebuffer (the viewport is the G-buffer's). */
 void gb_direct_light_draw(gb_direct_light *pass, const gb_direct_inputs *inputs);
 void gb_direct_light_destroy(gb_direct_light *pass);

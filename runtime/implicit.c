@@ -1,10 +1,14 @@
 /* implicit.c — implicit visibility (Dong 2007) as a GI method of the
  * runtime (indirect_method.h).
  *
- * create  Algorithm 1 steps 1-7 once (the scene is static): elements,
- *         hierarchy, links in bins (implicit.h); the finer mesh to the GPU.
- * draw    steps 8-11 each frame on the CPU (the light could change), the
- *         elements' indirect incident radiance E / pi uploaded as a vertex
+ * create  Algorithm 1 steps 1-2 (elements, hierarchy) and a first build of
+ *         the links (steps 4-7); the finer mesh to the GPU.
+ * draw    each frame, on the CPU: steps 4-7 again (UpdateElements, the
+ *         links in bins) while the last build took under
+ *         GB_IMPLICIT_FRAME_SECONDS — gbview's scenes do not move, so above
+ *         that the last links, which a rebuild would give again, are kept —
+ *         then steps 8-11 (the light). The elements' incident radiance
+ *         E / pi (environment and bounces) is uploaded as a vertex
  *         attribute and interpolated over the finer mesh's triangles (the
  *         paper's display, 4.3.1) into the method's own target with its own
  *         depth test; then a full-screen pass adds Kd (the G-buffer's,
@@ -17,6 +21,7 @@
 
 #include "gl_util.h"
 #include "indirect_method.h"
+#include "progress.h"
 
 enum { UNIT_INCIDENT = 10, DEFAULT_BINS = 12, DEFAULT_BOUNCES = 1 };
 
@@ -26,7 +31,10 @@ typedef struct implicit_state {
     gb_implicit_bins bins;
     gb_implicit_links links;
     gb_implicit_solution solution;
+    float *environment;         /* bins.count * 3 from the scene's map, or NULL */
     int bounces;
+    double build_seconds;       /* the last Update + links */
+    gb_implicit_step_times times;
     GLuint position_buffer, incident_buffer, index_buffer, vertex_array;
     GLuint mesh_program, compose_program, empty_vertex_array;
     GLuint framebuffer, incident_texture, depth_texture;
@@ -127,6 +135,7 @@ static void implicit_destroy(void *state)
     glDeleteTextures(2, textures);
     gb_implicit_solution_free(&s->solution);
     gb_implicit_links_free(&s->links);
+    free(s->environment);
     gb_implicit_bins_free(&s->bins);
     gb_implicit_model_free(&s->model);
     free(s);
@@ -144,17 +153,61 @@ static gb_result check_parameters(const gb_method_parameters *p, int *bins, int 
     return GB_OK;
 }
 
+/* Steps 4-7: UpdateElements, then the links, which replace the old ones
+ * only when made. */
+static gb_result rebuild_links(implicit_state *s, gb_error *error)
+{
+    gb_implicit_link_options options = {.hierarchical = 1, .lights = s->scene,
+                                        .environment = s->environment};
+    gb_implicit_links links;
+    double start = gb_seconds();
+    gb_result result = gb_implicit_update_elements(&s->model, error);
+    double updated = gb_seconds();
+    if (result == GB_OK)
+        result = gb_implicit_create_links(&s->model, &s->bins, &options, &links, NULL, error);
+    if (result != GB_OK)
+        return result;
+    gb_implicit_links_free(&s->links);
+    s->links = links;
+    s->build_seconds = gb_seconds() - start;
+    s->times.update_ms += 1e3 * (updated - start);
+    s->times.create_ms += 1e3 * links.wall.create;
+    s->times.refine_ms += 1e3 * (links.wall.refine + links.wall.compact);
+    return GB_OK;
+}
+
+/* The scene's environment map, if loaded, averaged over each bin (4.4). */
+static gb_result make_environment(implicit_state *s, gb_error *error)
+{
+    if (!s->scene->environment_texture.rgb)
+        return GB_OK;
+    s->environment = malloc(3 * (size_t)s->bins.count * sizeof *s->environment);
+    if (!s->environment)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    return gb_implicit_environment_bins(&s->bins, &s->scene->environment_texture, 1.0f,
+                                        s->environment, error);
+}
+
 static gb_result build(implicit_state *s, int bins, gb_error *error)
 {
-    gb_implicit_link_options options = {.hierarchical = 1, .lights = s->scene};
     gb_result result = gb_implicit_model_create(s->scene, 0.0f, &s->model, error);
     if (result == GB_OK)
         result = gb_implicit_bins_create(bins, &s->bins, error);
     if (result == GB_OK)
-        result = gb_implicit_create_links(&s->model, &s->bins, &options, &s->links, NULL, error);
+        result = make_environment(s, error);
+    if (result == GB_OK)
+        result = rebuild_links(s, error);
     if (result == GB_OK)
         result = gb_implicit_solution_create(&s->model, &s->solution, error);
     return result;
+}
+
+void gb_implicit_times(const void *method_state, gb_implicit_step_times *times)
+{
+    const implicit_state *s = method_state;
+    memset(times, 0, sizeof *times);
+    if (s)
+        *times = s->times;
 }
 
 static gb_result implicit_create(const gb_indirect_setup *setup, void **state, gb_error *error)
@@ -215,7 +268,15 @@ static void implicit_draw(void *state, const gb_indirect_frame *frame)
     implicit_state *s = state;
     GLint output = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
+    gb_error error;
+    /* The create made the first frame's links; a failed rebuild keeps the last. */
+    if (s->times.frames > 0 && s->build_seconds < GB_IMPLICIT_FRAME_SECONDS &&
+        rebuild_links(s, &error) == GB_OK)
+        ++s->times.rebuilds;
+    double start = gb_seconds();
     gb_implicit_illuminate(s->scene, &s->model, &s->links, s->bounces, &s->solution);
+    s->times.illuminate_ms += 1e3 * (gb_seconds() - start);
+    ++s->times.frames;
     glNamedBufferSubData(s->incident_buffer, 0,
                          3 * (GLsizeiptr)s->model.element_count * sizeof(float),
                          s->solution.display);

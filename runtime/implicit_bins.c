@@ -5,27 +5,6 @@
 #include <math.h>
 #include <stdlib.h>
 
-int gb_implicit_bin(int n, const float d[3])
-{
-    if (n <= 0 || !isfinite(d[0]) || !isfinite(d[1]) || !isfinite(d[2]))
-        return -1;
-    int axis = 0;
-    for (int a = 1; a < 3; ++a)
-        if (fabsf(d[a]) > fabsf(d[axis]))
-            axis = a;
-    float major = fabsf(d[axis]);
-    if (major == 0.0f)
-        return -1;
-    int face = 2 * axis + (d[axis] < 0.0f);
-    int cell[2];
-    for (int k = 0; k < 2; ++k) {
-        float t = d[(axis + 1 + k) % 3] / major;           /* in [-1, 1] */
-        int i = (int)floorf(0.5f * (t + 1.0f) * (float)n);
-        cell[k] = i < 0 ? 0 : i >= n ? n - 1 : i;
-    }
-    return (face * n + cell[1]) * n + cell[0];
-}
-
 /* The solid angle of [0, u] x [0, v] on the face at distance 1, signed. */
 static double face_area(double u, double v)
 {

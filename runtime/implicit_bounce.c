@@ -8,6 +8,9 @@
  *              link nearer than the light (links->light_visible; no ray is
  *              traced), or unshadowed when the links were made without
  *              the scene's lights;
+ *   display    starts with the environment's share of the direct light
+ *              (the runtime's direct pass leaves the sky's reflection to
+ *              the GI method), then adds each bounce;
  *   bounces    ComputeIlluminateLeafNodes: every element gathers the
  *              outgoing radiance of the nodes it links to; PullupEnergy:
  *              every internal node takes the area-weighted mean of its
@@ -139,9 +142,14 @@ static void direct_light(const gb_scene *scene, const gb_implicit_model *model,
                                      ? &links->light_visible[(size_t)e * links->light_count]
                                      : NULL;
         light_irradiance(scene, &model->nodes[e], visible, E);
-        for (int k = 0; k < 3; ++k)
-            s->direct[3 * (size_t)e + k] +=
-                (links->environment_weight[e] * scene->environment[k] + E[k]) / GB_PI;
+        for (int k = 0; k < 3; ++k) {
+            float sky = (links->environment_irradiance
+                             ? links->environment_irradiance[3 * (size_t)e + k]
+                             : links->environment_weight[e] * scene->environment[k]) /
+                        GB_PI;
+            s->sky[3 * (size_t)e + k] = sky;
+            s->direct[3 * (size_t)e + k] += sky + E[k] / GB_PI;
+        }
     }
 }
 
@@ -159,7 +167,7 @@ void gb_implicit_illuminate(const gb_scene *scene, const gb_implicit_model *mode
 {
     direct_light(scene, model, links, s);
     reflect(model, s->direct, s->radiance);
-    memset(s->display, 0, 3 * (size_t)model->element_count * sizeof(float));
+    memcpy(s->display, s->sky, 3 * (size_t)model->element_count * sizeof(float));
     for (int bounce = 0; bounce < bounces; ++bounce) {
         compute_illuminate_leaf_nodes(model, links, s->radiance, s->gathered);
         for (size_t i = 0; i < 3 * (size_t)model->element_count; ++i)
@@ -177,9 +185,10 @@ gb_result gb_implicit_solution_create(const gb_implicit_model *model,
     s->direct = calloc(elements, sizeof(float));
     s->display = calloc(elements, sizeof(float));
     s->gathered = calloc(elements, sizeof(float));
+    s->sky = calloc(elements, sizeof(float));
     s->radiance = calloc(nodes, sizeof(float));
     s->emission = calloc(nodes, sizeof(float));
-    if (!s->direct || !s->display || !s->gathered || !s->radiance || !s->emission) {
+    if (!s->direct || !s->display || !s->gathered || !s->sky || !s->radiance || !s->emission) {
         gb_implicit_solution_free(s);
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
     }
@@ -191,6 +200,7 @@ void gb_implicit_solution_free(gb_implicit_solution *s)
     free(s->direct);
     free(s->display);
     free(s->gathered);
+    free(s->sky);
     free(s->radiance);
     free(s->emission);
     memset(s, 0, sizeof *s);

@@ -68,37 +68,9 @@ static void fill_corners(const gb_scene *scene, const gb_implicit_model *model, 
         }
 }
 
-/* Adds a third of the finer triangle (e0, e1, e2)'s area, its area-weighted
- * normal and the centroid of the corner's third, (22 a + 7 b + 7 c) / 36, to
- * each corner's element. sums: normal xyz, centroid xyz times area. */
-static void add_triangle(gb_implicit_model *model, const uint32_t e[3], double *sums)
-{
-    const float *p[3];
-    for (int k = 0; k < 3; ++k)
-        p[k] = &model->vertices[3 * (size_t)e[k]];
-    double u[3], v[3], n[3];
-    for (int k = 0; k < 3; ++k) {
-        u[k] = (double)p[1][k] - p[0][k];
-        v[k] = (double)p[2][k] - p[0][k];
-    }
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
-    double area = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    for (int k = 0; k < 3; ++k) {
-        model->nodes[e[k]].area += (float)(area / 3.0);
-        double *sum = &sums[6 * (size_t)e[k]];
-        for (int c = 0; c < 3; ++c) {
-            sum[c] += 0.5 * n[c];
-            double centroid = (22.0 * p[k][c] + 7.0 * p[(k + 1) % 3][c] +
-                               7.0 * p[(k + 2) % 3][c]) / 36.0;
-            sum[3 + c] += area / 3.0 * centroid;
-        }
-    }
-}
-
+/* The finer mesh's triangles, by the corners' elements. */
 static void emit_triangles(const gb_scene *scene, gb_implicit_model *model,
-                           const uint32_t *element_of, const size_t *base, double *sums)
+                           const uint32_t *element_of, const size_t *base)
 {
     uint32_t out = 0;
     for (uint32_t t = 0; t < scene->triangle_count; ++t) {
@@ -109,13 +81,11 @@ static void emit_triangles(const gb_scene *scene, gb_implicit_model *model,
                 uint32_t up[3] = {of[corner_index(n, i, j)], of[corner_index(n, i + 1, j)],
                                   of[corner_index(n, i, j + 1)]};
                 memcpy(&model->triangles[3 * (size_t)out++], up, sizeof up);
-                add_triangle(model, up, sums);
                 if (i + j + 1 < n) {
                     uint32_t down[3] = {of[corner_index(n, i + 1, j)],
                                         of[corner_index(n, i + 1, j + 1)],
                                         of[corner_index(n, i, j + 1)]};
                     memcpy(&model->triangles[3 * (size_t)out++], down, sizeof down);
-                    add_triangle(model, down, sums);
                 }
             }
     }
@@ -146,20 +116,12 @@ static uint32_t weld(const corner *corners, size_t count, uint32_t *element_of,
     return elements;
 }
 
-static void finish_elements(const gb_scene *scene, gb_implicit_model *model,
-                            const double *sums, const uint32_t *segment_material)
+/* Each element's diffuse reflectance and emission: its segment's material's. */
+static void set_materials(const gb_scene *scene, gb_implicit_model *model,
+                          const uint32_t *segment_material)
 {
     for (uint32_t e = 0; e < model->element_count; ++e) {
-        gb_implicit_node *node = &model->nodes[e];
-        const double *n = &sums[6 * (size_t)e];
-        double length = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-        for (int k = 0; k < 3; ++k) {
-            node->normal[k] = length > 0.0 ? (float)(n[k] / length) : 0.0f;
-            if (node->area > 0.0f)
-                node->position[k] = (float)(n[3 + k] / node->area);
-            node->box_min[k] = node->box_max[k] = node->position[k];
-        }
-        const gb_material *m = &scene->materials[segment_material[node->segment]];
+        const gb_material *m = &scene->materials[segment_material[model->nodes[e].segment]];
         memcpy(&model->Kd[3 * (size_t)e], m->Kd, 3 * sizeof(float));
         memcpy(&model->Le[3 * (size_t)e], m->Ke, 3 * sizeof(float));
     }
@@ -195,7 +157,6 @@ gb_result gb_implicit_create_surfels(const gb_scene *scene, gb_implicit_model *m
     }
     corner *corners = malloc(count * sizeof *corners + 1);
     uint32_t *element_of = malloc(count * sizeof *element_of + 1);
-    double *sums = NULL;
     model->nodes = malloc(count * sizeof *model->nodes + 1);
     model->triangles = malloc(3 * triangles * sizeof *model->triangles + 1);
     model->vertices = malloc(3 * count * sizeof *model->vertices + 1);
@@ -210,17 +171,17 @@ gb_result gb_implicit_create_surfels(const gb_scene *scene, gb_implicit_model *m
         qsort(corners, count, sizeof *corners, compare_corners);
         model->element_count = weld(corners, count, element_of, model);
         model->triangle_count = (uint32_t)triangles;
-        sums = calloc(6 * (size_t)model->element_count + 1, sizeof *sums);
         model->Kd = malloc(3 * (size_t)model->element_count * sizeof(float) + 1);
         model->Le = malloc(3 * (size_t)model->element_count * sizeof(float) + 1);
-        if (!sums || !model->Kd || !model->Le)
+        if (!model->Kd || !model->Le)
             result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
     }
     if (result == GB_OK) {
-        emit_triangles(scene, model, element_of, base, sums);
-        finish_elements(scene, model, sums, segment_material);
+        emit_triangles(scene, model, element_of, base);
+        result = gb_implicit_update_leaves(model, error);
     }
-    free(sums);
+    if (result == GB_OK)
+        set_materials(scene, model, segment_material);
     free(corners);
     free(element_of);
     free(base);

@@ -173,7 +173,7 @@ typedef struct builder {
 } builder;
 
 /* A parent's position, normal, area and box from its children. */
-static void summarise(gb_implicit_model *model, gb_implicit_node *node)
+void gb_implicit_summarise(gb_implicit_model *model, gb_implicit_node *node)
 {
     double p[3] = {0, 0, 0}, n[3] = {0, 0, 0}, area = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -214,7 +214,7 @@ static uint32_t add_node(builder *b, const uint32_t *children, uint32_t count, u
     node->segment = segment;
     memcpy(&model->children[b->child_count], children, count * sizeof *children);
     b->child_count += count;
-    summarise(model, node);
+    gb_implicit_summarise(model, node);
     return index;
 }
 

@@ -13,7 +13,7 @@ static gb_result create_passes(gb_renderer *r, gb_error *error)
     if (result == GB_OK)
         result = gb_shadow_maps_create(r->scene, &r->options.shadow, &r->shadows, error);
     if (result == GB_OK)
-        result = gb_direct_light_create(&r->direct, error);
+        result = gb_direct_light_create(&r->direct, &r->scene->environment_texture, error);
     if (result == GB_OK)
         result = gb_output_create(width, height, &r->output, error);
     return result;

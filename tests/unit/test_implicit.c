@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+
 #include "../../runtime/implicit.h"
 #include "progress.h"
 #include "scene_builder.h"
@@ -423,6 +424,393 @@ static void test_implicit_shadow(void)
     gb_scene_free(&scene);
 }
 
+/* Directions exactly on a face's edge (two axes of equal magnitude, ties
+ * to the lowest axis) and exactly on the border between two bins inside a
+ * face (either bin of the two). */
+static void test_exact_face_edges(int n)
+{
+    /* the cell of coordinate t in [-1, 1], as gb_implicit_bin computes it */
+#define CELL(t) ((int)floorf(0.5f * ((t) + 1.0f) * (float)n))
+    int row = CELL(0.3f), back = CELL(-0.3f);
+#undef CELL
+    const struct {
+        float d[3];
+        int bin;
+    } cases[] = {
+        {{1, 1, 0.3f}, (0 * n + row) * n + n - 1},      /* +x, u = 1 */
+        {{-1, 0.3f, -1}, (1 * n + 0) * n + row},         /* -x, v = -1 */
+        {{0.3f, -1, 1}, (3 * n + row) * n + n - 1},      /* -y, u = z = 1 */
+        {{-0.3f, 1, -1}, (2 * n + back) * n + 0},        /* +y, u = z = -1 */
+        {{1, 0.3f, -1}, (0 * n + 0) * n + row},          /* +x: ties x, z */
+    };
+    int right = 1;
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; ++i)
+        right &= gb_implicit_bin(n, cases[i].d) == cases[i].bin;
+    char what[128];
+    snprintf(what, sizeof what, "n %d: face-edge directions go to the lowest tied axis's face", n);
+    CHECK(right, what);
+    int between = 1;
+    for (int i = 1; i < n; ++i) {
+        float t = -1.0f + 2.0f * (float)i / (float)n;
+        const float d[3] = {1.0f, t, 0.5f}, e[3] = {-0.25f, -1.0f, t};
+        int column = gb_implicit_bin(n, d) % n, column_e = gb_implicit_bin(n, e) % n;
+        between &= (column == i - 1 || column == i) && (column_e == i - 1 || column_e == i) &&
+                   gb_implicit_bin(n, d) / (n * n) == 0 && gb_implicit_bin(n, e) / (n * n) == 3;
+    }
+    snprintf(what, sizeof what, "n %d: a direction between two bins goes to one of them", n);
+    CHECK(between, what);
+}
+
+static int all_finite(const float *values, size_t count)
+{
+    for (size_t i = 0; i < count; ++i)
+        if (!isfinite(values[i]))
+            return 0;
+    return 1;
+}
+
+typedef struct lit_model {
+    gb_implicit_model m;
+    gb_implicit_bins bins;
+    gb_implicit_links links;
+    gb_implicit_solution s;
+} lit_model;
+
+static int light_model(const gb_scene *scene, float element_size, int bounces, lit_model *x)
+{
+    gb_error error;
+    gb_implicit_link_options options = {.hierarchical = 1, .lights = scene};
+    memset(x, 0, sizeof *x);
+    int ok = gb_implicit_model_create(scene, element_size, &x->m, &error) == GB_OK &&
+             gb_implicit_bins_create(8, &x->bins, &error) == GB_OK &&
+             gb_implicit_create_links(&x->m, &x->bins, &options, &x->links, NULL, &error) ==
+                 GB_OK &&
+             gb_implicit_solution_create(&x->m, &x->s, &error) == GB_OK;
+    if (!ok)
+        printf("# %s\n", error.message);
+    else
+        gb_implicit_illuminate(scene, &x->m, &x->links, bounces, &x->s);
+    return ok;
+}
+
+static void free_lit(lit_model *x)
+{
+    gb_implicit_solution_free(&x->s);
+    gb_implicit_links_free(&x->links);
+    gb_implicit_bins_free(&x->bins);
+    gb_implicit_model_free(&x->m);
+}
+
+/* Section 4.4: a lone square under a constant environment has every bin
+ * above it empty, so each element's sky E / pi is the environment's
+ * radiance exactly; a box standing on it hides part of the sky from the
+ * ground at its foot (and the ground bounces some light back). */
+static void test_sky(void)
+{
+    const float L[3] = {1.0f, 0.5f, 0.25f};
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    const float p[4][3] = {{-2, 0, -2}, {2, 0, -2}, {2, 0, 2}, {-2, 0, 2}};
+    const float up[3] = {0, 10, 0};
+    add_quad_facing(&scene, p, up, add_grey(&scene, 0.5f, 0.0f));
+    scene_done(&scene);
+    memcpy(scene.environment, L, sizeof L);
+    lit_model x;
+    if (!CHECK(light_model(&scene, 0.25f, 1, &x), "sky over a square: built"))
+        return;
+    double worst = 0.0;
+    for (uint32_t e = 0; e < x.m.element_count; ++e)
+        for (int k = 0; k < 3; ++k)
+            worst = fmax(worst, fabs(x.s.display[3 * e + k] - L[k]));
+    CHECK_NEAR(worst, 0.0, 1e-5, "sky over a square: E / pi is the environment's radiance");
+    free_lit(&x);
+    const float lo[3] = {-0.5f, 0, -0.5f}, hi[3] = {0.5f, 1, 0.5f};
+    add_box(&scene, lo, hi, 0, add_grey(&scene, 0.5f, 0.0f));
+    scene_done(&scene);
+    memcpy(scene.environment, L, sizeof L);
+    if (!CHECK(light_model(&scene, 0.25f, 1, &x), "sky over a box on a square: built"))
+        return;
+    double foot = -1.0, far_ = -1.0, foot_d = 1e9, far_d = 1e9;
+    for (uint32_t e = 0; e < x.m.element_count; ++e) {
+        const gb_implicit_node *node = &x.m.nodes[e];
+        if (node->normal[1] < 0.99f || node->position[1] > 0.01f)
+            continue;                   /* the ground only */
+        double dx = node->position[0] - 0.75, dz = node->position[2];
+        double df = fabs(node->position[0] - 1.8) + fabs(node->position[2] - 1.8);
+        if (dx * dx + dz * dz < foot_d) {
+            foot_d = dx * dx + dz * dz;
+            foot = x.s.sky[3 * e];
+        }
+        if (df < far_d) {
+            far_d = df;
+            far_ = x.s.sky[3 * e];
+        }
+    }
+    printf("# sky E / pi on the ground: %.3f at the box's foot, %.3f in a far corner\n", foot,
+           far_);
+    CHECK(foot > 0.0 && foot < 0.9 * far_, "box on a square: less sky at the box's foot");
+    CHECK(all_finite(x.s.display, 3 * (size_t)x.m.element_count),
+          "box on a square: no NaN in the light");
+    free_lit(&x);
+    gb_scene_free(&scene);
+}
+
+/* Appends a vertex to a scene being built by hand. */
+static uint32_t push_vertex(gb_scene *scene, float x, float y, float z)
+{
+    scene->positions = builder_grow(scene->positions, 3 * ((size_t)scene->vertex_count + 1),
+                                    sizeof *scene->positions);
+    float *p = &scene->positions[3 * (size_t)scene->vertex_count];
+    p[0] = x;
+    p[1] = y;
+    p[2] = z;
+    return scene->vertex_count++;
+}
+
+/* A degenerate triangle (gb_scene_finish would drop it; built by hand,
+ * it reaches the model) over a square under the sky: its elements have no
+ * area, no NaN, and they hide nothing. */
+static void test_zero_area(void)
+{
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    uint32_t grey = add_grey(&scene, 0.5f, 0.0f);
+    const float p[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    add_quad(&scene, p, grey);
+    uint32_t a = push_vertex(&scene, 0.2f, 0.5f, 0.3f), b = push_vertex(&scene, 0.8f, 0.5f, 0.3f),
+             c = push_vertex(&scene, 0.5f, 0.5f, 0.3f);
+    add_triangle(&scene, a, b, c, grey);
+    scene.environment[0] = scene.environment[1] = scene.environment[2] = 1.0f;
+    lit_model x;
+    if (!CHECK(light_model(&scene, 0.1f, 2, &x), "zero-area triangle: built")) {
+        gb_scene_free(&scene);
+        return;
+    }
+    uint32_t zero = 0;
+    double worst = 0.0;
+    int finite = all_finite(x.s.display, 3 * (size_t)x.m.element_count) &&
+                 all_finite(x.s.direct, 3 * (size_t)x.m.element_count);
+    for (uint32_t i = 0; i < x.m.node_count; ++i)
+        finite &= isfinite(x.m.nodes[i].position[0] + x.m.nodes[i].position[1] +
+                           x.m.nodes[i].position[2] + x.m.nodes[i].normal[0] +
+                           x.m.nodes[i].area);
+    for (uint32_t e = 0; e < x.m.element_count; ++e) {
+        if (x.m.nodes[e].area == 0.0f)
+            ++zero;
+        else
+            worst = fmax(worst, fabs(x.s.sky[3 * e] - 1.0));
+    }
+    printf("# zero-area triangle: %u of %u elements have no area\n", zero, x.m.element_count);
+    CHECK(zero > 0, "zero-area triangle: its elements have area 0");
+    CHECK(finite, "zero-area triangle: positions, normals, areas and light finite");
+    CHECK_NEAR(worst, 0.0, 1e-5, "zero-area triangle: casts no shadow on the square");
+    free_lit(&x);
+    gb_scene_free(&scene);
+}
+
+/* The smallest mesh: one vertex, one triangle on it. */
+static void test_one_vertex(void)
+{
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    uint32_t grey = add_grey(&scene, 0.5f, 1.0f);
+    uint32_t v = push_vertex(&scene, 1.0f, 2.0f, 3.0f);
+    add_triangle(&scene, v, v, v, grey);
+    scene.environment[0] = scene.environment[1] = scene.environment[2] = 1.0f;
+    lit_model x;
+    if (!CHECK(light_model(&scene, 0.0f, 2, &x), "one vertex: built")) {
+        gb_scene_free(&scene);
+        return;
+    }
+    CHECK_EQ_INT(x.m.element_count, 1, "one vertex: one element");
+    CHECK_EQ_INT(x.m.root_count, 1, "one vertex: one root, the element");
+    CHECK_NEAR(x.m.nodes[0].area, 0.0, 0.0, "one vertex: the element has no area");
+    CHECK(all_finite(x.s.display, 3) && all_finite(x.s.direct, 3) &&
+              all_finite(x.m.nodes[0].position, 3) && all_finite(x.m.nodes[0].normal, 3),
+          "one vertex: no NaN");
+    CHECK_NEAR(x.s.display[0] + x.s.display[1] + x.s.display[2], 0.0, 0.0,
+               "one vertex: no light (it faces nowhere)");
+    gb_error error;
+    CHECK(gb_implicit_update_elements(&x.m, &error) == GB_OK &&
+              all_finite(x.m.nodes[0].position, 3),
+          "one vertex: UpdateElements keeps it finite");
+    free_lit(&x);
+    gb_scene_free(&scene);
+}
+
+/* UpdateElements (4.2.1): run again on unmoved vertices it changes
+ * nothing; on vertices moved by (1, 2, 3) and scaled by 2 about the origin,
+ * positions follow, areas grow 4 times, normals stay; links rebuilt on the
+ * moved model light it as before (the bins are fixed in world space, the
+ * sky has no position). */
+static void test_dynamic_update(void)
+{
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    const float p[4][3] = {{-2, 0, -2}, {2, 0, -2}, {2, 0, 2}, {-2, 0, 2}};
+    const float up[3] = {0, 10, 0}, lo[3] = {-0.5f, 0, -0.5f}, hi[3] = {0.5f, 1, 0.5f};
+    add_quad_facing(&scene, p, up, add_grey(&scene, 0.5f, 0.0f));
+    add_box(&scene, lo, hi, 0, add_grey(&scene, 0.7f, 0.0f));
+    scene_done(&scene);
+    scene.environment[0] = scene.environment[1] = scene.environment[2] = 1.0f;
+    lit_model x;
+    if (!CHECK(light_model(&scene, 0.25f, 1, &x), "UpdateElements: built")) {
+        gb_scene_free(&scene);
+        return;
+    }
+    uint32_t nodes = x.m.node_count, elements = x.m.element_count;
+    gb_implicit_node *before = malloc(nodes * sizeof *before);
+    float *display = malloc(3 * (size_t)elements * sizeof *display);
+    memcpy(before, x.m.nodes, nodes * sizeof *before);
+    memcpy(display, x.s.display, 3 * (size_t)elements * sizeof *display);
+    gb_error error;
+    CHECK(gb_implicit_update_elements(&x.m, &error) == GB_OK, "UpdateElements: runs");
+    double still = 0.0;
+    for (uint32_t i = 0; i < nodes; ++i)
+        for (int k = 0; k < 3; ++k)
+            still = fmax(still, fabs(x.m.nodes[i].position[k] - before[i].position[k]) +
+                                    fabs(x.m.nodes[i].normal[k] - before[i].normal[k]) +
+                                    fabs(x.m.nodes[i].box_max[k] - before[i].box_max[k]));
+    CHECK_NEAR(still, 0.0, 1e-6, "UpdateElements: unmoved vertices, unchanged nodes");
+    const float shift[3] = {1, 2, 3};
+    for (uint32_t e = 0; e < elements; ++e)
+        for (int k = 0; k < 3; ++k)
+            x.m.vertices[3 * e + k] = 2.0f * x.m.vertices[3 * e + k] + shift[k];
+    gb_implicit_update_elements(&x.m, &error);
+    double moved = 0.0, area = 0.0, normal = 0.0;
+    for (uint32_t i = 0; i < nodes; ++i) {
+        for (int k = 0; k < 3; ++k) {
+            moved = fmax(moved, fabs(x.m.nodes[i].position[k] -
+                                     (2.0 * before[i].position[k] + shift[k])));
+            normal = fmax(normal, fabs(x.m.nodes[i].normal[k] - before[i].normal[k]));
+        }
+        area = fmax(area, fabs(x.m.nodes[i].area - 4.0 * before[i].area) / before[i].area);
+    }
+    printf("# UpdateElements after x 2 + (1, 2, 3): position %.2g, area %.2g (relative), "
+           "normal %.2g off\n", moved, area, normal);
+    CHECK(moved < 1e-4 && area < 1e-5 && normal < 1e-5,
+          "UpdateElements: every node follows its moved vertices");
+    gb_implicit_link_options options = {.hierarchical = 1};
+    gb_implicit_links_free(&x.links);
+    CHECK(gb_implicit_create_links(&x.m, &x.bins, &options, &x.links, NULL, &error) == GB_OK,
+          "UpdateElements: links rebuilt on the moved model");
+    gb_implicit_illuminate(&scene, &x.m, &x.links, 1, &x.s);
+    double worst = 0.0;
+    for (uint32_t i = 0; i < 3 * elements; ++i)
+        worst = fmax(worst, fabs(x.s.display[i] - display[i]));
+    printf("# rebuilt on the moved model: light differs by %.2g at most\n", worst);
+    CHECK_NEAR(worst, 0.0, 0.02, "UpdateElements: the moved model is lit as before");
+    free(before);
+    free(display);
+    free_lit(&x);
+    gb_scene_free(&scene);
+}
+
+/* Section 4.4 with a map: gb_implicit_environment_bins on lat-long maps
+ * made here (reading one from a file is test_scene's). */
+static void make_map(gb_texture *map, int width, int height, int mode)
+{
+    free(map->rgb);
+    map->rgb = malloc(3 * (size_t)width * (size_t)height * sizeof *map->rgb);
+    map->width = width;
+    map->height = height;
+    for (int row = 0; row < height; ++row)
+        for (int column = 0; column < width; ++column) {
+            float *p = &map->rgb[3 * ((size_t)row * width + column)];
+            float u = (column + 0.5f) / width, v = (row + 0.5f) / height;
+            float value = mode == 0 ? 1.0f                        /* constant */
+                          : mode == 1 ? (v < 0.5f ? 1.0f : 0.0f)  /* sky above y = 0 */
+                                      : (u >= 0.25f && u < 0.75f ? 1.0f : 0.0f); /* -z half */
+            p[0] = 0.5f * value;
+            p[1] = value;
+            p[2] = 2.0f * value;
+        }
+}
+
+/* E / pi of the sky at the elements of a lone unit square facing `toward`. */
+static double square_sky(const gb_implicit_bins *bins, const float *radiance,
+                         const float toward[3])
+{
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    float p[4][3];
+    int axis = fabsf(toward[0]) > 0.5f ? 0 : fabsf(toward[1]) > 0.5f ? 1 : 2;
+    for (int i = 0; i < 4; ++i) {
+        p[i][axis] = 0.0f;
+        p[i][(axis + 1) % 3] = (i == 1 || i == 2) ? 1.0f : 0.0f;
+        p[i][(axis + 2) % 3] = i >= 2 ? 1.0f : 0.0f;
+    }
+    add_quad_facing(&scene, p, toward, add_grey(&scene, 0.5f, 0.0f));
+    scene_done(&scene);
+    gb_implicit_model m;
+    gb_implicit_links links;
+    gb_implicit_solution s;
+    gb_error error;
+    gb_implicit_link_options options = {.hierarchical = 1, .environment = radiance};
+    double mean = -1.0;
+    if (gb_implicit_model_create(&scene, 0.25f, &m, &error) == GB_OK) {
+        if (gb_implicit_create_links(&m, bins, &options, &links, NULL, &error) == GB_OK &&
+            gb_implicit_solution_create(&m, &s, &error) == GB_OK) {
+            gb_implicit_illuminate(&scene, &m, &links, 1, &s);
+            mean = 0.0;
+            for (uint32_t e = 0; e < m.element_count; ++e)
+                mean += s.sky[3 * e + 1] / m.element_count;   /* green: value x 1 */
+            gb_implicit_solution_free(&s);
+            gb_implicit_links_free(&links);
+        }
+        gb_implicit_model_free(&m);
+    }
+    gb_scene_free(&scene);
+    return mean;
+}
+
+static void test_environment_map(void)
+{
+    gb_implicit_bins bins;
+    gb_error error;
+    if (!CHECK(gb_implicit_bins_create(8, &bins, &error) == GB_OK, "environment map: bins"))
+        return;
+    float *radiance = malloc(3 * bins.count * sizeof *radiance);
+    gb_texture map = {0};
+    make_map(&map, 64, 32, 0);
+    double worst = 0.0;
+    if (gb_implicit_environment_bins(&bins, &map, 2.0f, radiance, &error) == GB_OK)
+        for (uint32_t b = 0; b < bins.count; ++b)
+            for (int k = 0; k < 3; ++k)
+                worst = fmax(worst, fabs(radiance[3 * b + k] - 2.0 * (k == 0 ? 0.5 : k)));
+    else
+        worst = 1.0;
+    CHECK_NEAR(worst, 0.0, 1e-5, "environment map: a constant map x 2 gives every bin 2 x it");
+    const float up[3] = {0.5f, 10, 0.5f}, down[3] = {0.5f, -10, 0.5f};
+    const float side[3] = {10, 0.5f, 0.5f}, minus_z[3] = {0.5f, 0.5f, -10};
+    const float plus_z[3] = {0.5f, 0.5f, 10};
+    double constant = square_sky(&bins, radiance, side);
+    CHECK_NEAR(constant, 2.0, 1e-4, "environment map: constant, E / pi is its radiance");
+    make_map(&map, 64, 512, 1);
+    gb_implicit_environment_bins(&bins, &map, 1.0f, radiance, &error);
+    double sky_up = square_sky(&bins, radiance, up), sky_down = square_sky(&bins, radiance, down);
+    double sky_side = square_sky(&bins, radiance, side);
+    printf("# sky above y = 0: E / pi %.4f facing up, %.4f down, %.4f sideways\n", sky_up,
+           sky_down, sky_side);
+    CHECK_NEAR(sky_up, 1.0, 0.01, "environment map: upper sky, a square facing up gets it all");
+    CHECK_NEAR(sky_down, 0.0, 0.01, "environment map: upper sky, facing down none");
+    CHECK_NEAR(sky_side, 0.5, 0.01, "environment map: upper sky, a wall half (cos-weighted)");
+    make_map(&map, 512, 64, 2);
+    gb_implicit_environment_bins(&bins, &map, 1.0f, radiance, &error);
+    double toward = square_sky(&bins, radiance, minus_z), away = square_sky(&bins, radiance, plus_z);
+    printf("# map's middle columns: E / pi %.4f facing -z, %.4f facing +z\n", toward, away);
+    CHECK(toward > 0.99 && away < 0.01, "environment map: the middle column looks along -z");
+    gb_texture empty = {0};
+    CHECK(gb_implicit_environment_bins(&bins, &empty, 1.0f, radiance, &error) == GB_ERROR_INVALID,
+          "environment map: an empty map is refused");
+    map.rgb[7] = NAN;
+    CHECK(gb_implicit_environment_bins(&bins, &map, 1.0f, radiance, &error) == GB_ERROR_INVALID,
+          "environment map: a NaN pixel is refused");
+    free(map.rgb);
+    free(radiance);
+    gb_implicit_bins_free(&bins);
+}
+
 static void test_cornell(const char *root)
 {
     char path[4096];
@@ -446,8 +834,10 @@ int main(void)
 {
     const char *root = getenv("GB_ROOT");
     root = root ? root : ".";
-    for (int n = 1; n <= 16; n += (n < 8 ? 1 : 4))
+    for (int n = 1; n <= 16; n += (n < 8 ? 1 : 4)) {
         test_bins_at_edges_and_corners(n);
+        test_exact_face_edges(n);
+    }
     test_bad_directions();
     gb_scene squares;
     uint32_t b, c;
@@ -460,6 +850,11 @@ int main(void)
     test_furnace(12);
     test_point_light();
     test_implicit_shadow();
+    test_sky();
+    test_zero_area();
+    test_one_vertex();
+    test_dynamic_update();
+    test_environment_map();
     test_cornell(root);
     return tap_done();
 }

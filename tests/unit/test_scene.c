@@ -12,6 +12,8 @@
 #include "obj.h"
 #include "scene.h"
 #include "scene_file.h"
+#include "environment.h"
+#include "image.h"
 #include "tap.h"
 
 static char root[2048];
@@ -507,6 +509,86 @@ static void write_cube_openmesh_files(void)
     write_file(in_temporary("cube-ascii.stl", path, sizeof path), ascii);
 }
 
+/* environment-map: a lat-long image beside the scene file, y up, the middle
+ * column along -z (formats/environment.h). The test map is 8 x 4: row r
+ * holds r + 1 in red, column c holds c in green, blue is 0.5. */
+static void write_environment_map(const char *path)
+{
+    gb_image map = {0};
+    gb_error error;
+    if (gb_image_allocate(&map, 8, 4, 3, &error) != GB_OK) {
+        printf("Bail out! %s\n", error.message);
+        exit(1);
+    }
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 8; ++c) {
+            float *p = &map.pixels[3 * (r * 8 + c)];
+            p[0] = (float)(r + 1);
+            p[1] = (float)c;
+            p[2] = 0.5f;
+        }
+    if (gb_image_write(path, &map, &error) != GB_OK) {
+        printf("Bail out! %s\n", error.message);
+        exit(1);
+    }
+    gb_image_free(&map);
+}
+
+static void test_environment_map(void)
+{
+    char obj_path[4096], map_path[4096], scene_path[4096];
+    write_file(in_temporary("cube.obj", obj_path, sizeof obj_path), cube_obj);
+    write_environment_map(in_temporary("sky map.exr", map_path, sizeof map_path));
+    write_file(in_temporary("sky.scene", scene_path, sizeof scene_path),
+               "gibake-scene 1\nmesh cube.obj\nenvironment-map sky map.exr\n");
+    gb_scene scene, plain;
+    gb_scene_options textures = {.load_textures = 1};
+    if (!CHECK(load(scene_path, NULL, &scene), "a scene with an environment map loads"))
+        return;
+    CHECK(scene.environment_map && strcmp(scene.environment_map, map_path) == 0
+          && !scene.environment_texture.rgb, "its path is resolved, its pixels not read");
+    float up[3] = {0, 1, 0}, rgb[3];
+    gb_environment_radiance(&scene, up, rgb);
+    CHECK(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0, "not loaded: the colour (black) instead");
+    write_file(in_temporary("plain.scene", scene_path, sizeof scene_path),
+               "gibake-scene 1\nmesh cube.obj\n");
+    if (load(scene_path, NULL, &plain)) {
+        CHECK(plain.hash != scene.hash, "the map is part of the scene hash");
+        gb_scene_free(&plain);
+    }
+    gb_scene_free(&scene);
+
+    in_temporary("sky.scene", scene_path, sizeof scene_path);
+    if (!CHECK(load(scene_path, &textures, &scene), "with textures, the map is read"))
+        return;
+    CHECK(scene.environment_texture.width == 8 && scene.environment_texture.height == 4,
+          "8 x 4 pixels");
+    float down[3] = {0, -1, 0}, back[3] = {0, 0, -1}, front[3] = {0, 0, 1};
+    float right[3] = {1, 0, 0}, horizon[3];
+    gb_environment_radiance(&scene, up, rgb);
+    CHECK_NEAR(rgb[0], 1.0, 1e-6, "+y reads the top row");
+    gb_environment_radiance(&scene, down, horizon);
+    CHECK_NEAR(horizon[0], 4.0, 1e-6, "-y reads the bottom row");
+    gb_environment_radiance(&scene, back, rgb);
+    CHECK_NEAR(rgb[0], 2.5, 1e-6, "the horizon is between rows 1 and 2");
+    CHECK_NEAR(rgb[1], 3.5, 1e-6, "-z is the middle of the columns (between 3 and 4)");
+    gb_environment_radiance(&scene, right, rgb);
+    CHECK_NEAR(rgb[1], 5.5, 1e-6, "+x is three quarters across");
+    gb_environment_radiance(&scene, front, rgb);
+    CHECK_NEAR(rgb[1], 3.5, 1e-6, "+z wraps: between the last column (7) and the first (0)");
+    CHECK_NEAR(rgb[2], 0.5, 1e-6, "blue everywhere 0.5");
+    gb_scene_free(&scene);
+
+    gb_error error;
+    write_file(scene_path, "gibake-scene 1\nmesh cube.obj\nenvironment 1 1 1\n"
+                           "environment-map sky map.exr\n");
+    CHECK(gb_scene_load(scene_path, NULL, &scene, &error) == GB_ERROR_PARSE
+          && strstr(error.message, ":3:"), "a colour and a map are refused, at the colour's line");
+    write_file(scene_path, "gibake-scene 1\nmesh cube.obj\nenvironment-map none.exr\n");
+    CHECK(gb_scene_load(scene_path, NULL, &scene, &error) == GB_ERROR_IO
+          && strstr(error.message, ":3: environment-map"), "a missing map: file:line");
+}
+
 static void test_openmesh_types(void)
 {
     static const char *const names[] = {"cube.off", "cube-ascii.stl", "cube-binary.stl"};
@@ -723,7 +805,8 @@ static void remove_temporary_folder(void)
 {
     static const char *const names[] = {"cube.obj", "lit.scene", "one.scene", "two.scene",
                                         "nomtl.obj", "notex.mtl", "cube.off",
-                                        "cube-ascii.stl", "cube-binary.stl"};
+                                        "cube-ascii.stl", "cube-binary.stl", "sky map.exr",
+                                        "sky.scene", "plain.scene"};
     char path[4096];
     for (size_t i = 0; i < sizeof names / sizeof *names; ++i)
         unlink(in_temporary(names[i], path, sizeof path));
@@ -757,6 +840,7 @@ int main(void)
     test_hash_stable();
     test_finish_in_memory();
     test_missing_files();
+    test_environment_map();
     remove_temporary_folder();
     return tap_done();
 }

@@ -7,6 +7,7 @@
 #include <math.h>
 
 #include "brdf_sampling.h"
+#include "environment.h"
 #include "surface.h"
 
 enum { MAX_UNSHADOWED_LAYERS = 4096 };   /* surfaces crossed along one direction */
@@ -122,6 +123,14 @@ static gb_vec3 emission_seen(const gb_integrator *in, const gb_surface *from,
 }
 
 /* Samples the BRDF at s and traces the ray. Returns 0 when the path ends. */
+/* The background's radiance along dir, a ray that hit nothing. */
+static gb_vec3 environment_seen(const gb_integrator *in, gb_vec3 dir)
+{
+    float d[3] = {dir.x, dir.y, dir.z}, rgb[3];
+    gb_environment_radiance(in->scene, d, rgb);
+    return gb_vec3_load(rgb);
+}
+
 static int scatter(const gb_integrator *in, gb_surface *s, gb_trace_state *state, bounce *out)
 {
     gb_brdf_sample sample;
@@ -135,7 +144,7 @@ static int scatter(const gb_integrator *in, gb_surface *s, gb_trace_state *state
     out->hit = gb_embree_intersect(in->rays, gb_surface_ray_origin(s, sample.wi), sample.wi,
                                    0.0f, INFINITY, &hit, &state->rays);
     if (!out->hit) {
-        out->light = gb_vec3_load(in->scene->environment);
+        out->light = environment_seen(in, sample.wi);
         return 1;
     }
     gb_surface_at_hit(in->surfaces, &hit, sample.wi, &out->next);
@@ -162,7 +171,7 @@ static gb_vec3 trace_path(const gb_integrator *in, gb_vec3 origin, gb_vec3 dir, 
 {
     gb_hit hit;
     if (!gb_embree_intersect(in->rays, origin, dir, 0.0f, INFINITY, &hit, &state->rays))
-        return lo == 0 ? gb_vec3_load(in->scene->environment) : BLACK;
+        return lo == 0 ? environment_seen(in, dir) : BLACK;
     gb_surface s;
     gb_surface_at_hit(in->surfaces, &hit, dir, &s);
     gb_vec3 sum = lo == 0 ? s.emission : BLACK, beta = {1.0f, 1.0f, 1.0f};
