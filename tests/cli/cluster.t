@@ -49,8 +49,24 @@ ok $? "the same bytes with 1 and 2 threads"
 grep -q '^leaves [1-9]' "$dir/stats" && grep -q '^vdls [1-9]' "$dir/stats"
 ok $? "--stats prints leaves and VDLs"
 
+# the best of 4 k-means runs per leaf: its first run is the single run, so
+# no leaf spreads more
+spread_of() {
+    sed -n 's/^mean_spread_degrees //p' "$1"
+}
+"$tool" $small --stats --vdls 4 --max-spread 0 "$scene" "$dir/in.phot" -o "$dir/r1.lot" \
+    >"$dir/r1" 2>"$dir/err" &&
+    "$tool" $small --stats --vdls 4 --max-spread 0 --restarts 4 "$scene" "$dir/in.phot" \
+        -o "$dir/r4.lot" >"$dir/r4" 2>"$dir/err" &&
+    awk -v one="$(spread_of "$dir/r1")" -v four="$(spread_of "$dir/r4")" \
+        'BEGIN { exit !(one > 0 && four > 0 && four <= one) }'
+ok $? "--restarts 4: mean spread $(spread_of "$dir/r4") <= $(spread_of "$dir/r1") of one run"
+"$tool" $small --restarts 0 "$scene" "$dir/in.phot" -o "$dir/bad.lot" 2>"$dir/err"
+[ $? = 2 ] && [ ! -e "$dir/bad.lot" ]
+ok $? "--restarts 0: exit 2, nothing written"
+
 "$tool" --help >"$dir/help"
-[ $? = 0 ] && grep -q -- '--max-spread' "$dir/help"
+[ $? = 0 ] && grep -q -- '--max-spread' "$dir/help" && grep -q -- '--restarts' "$dir/help"
 ok $? "--help: exit 0, lists the options"
 "$tool" --version >/dev/null
 ok $? "--version: exit 0"

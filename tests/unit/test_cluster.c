@@ -1,7 +1,9 @@
 /* test_cluster.c — the light octree (tools/cluster, formats/light_octree):
  * leaves only where geometry is and their normals; chord-length k-means on
  * synthetic directions (bundles, degenerate input, irradiance conserved);
- * VDL count chosen by spread; photons of one and two suns on a plane
+ * VDL count chosen by spread; the spread of rings and of a cosine-weighted
+ * hemisphere against their analytic values, known clusters recovered,
+ * k-means restarts never worse; photons of one and two suns on a plane
  * clustered into VDLs of the analytic direction and irradiance; bytes the
  * same whatever the threads; bad inputs and corrupt files refused. */
 #include <math.h>
@@ -245,11 +247,177 @@ static void test_count_by_spread(void)
     float centroids[9];
     double scratch[400];
     seed = gb_random_make(3, 0);
-    uint32_t made = gb_kmeans_directions(w.directions, w.weights, w.count, 3, &seed, centroids,
+    uint32_t made = gb_kmeans_directions(w.directions, w.weights, w.count, 3, NULL, &seed, centroids,
                                          assignment, scratch);
     CHECK(made == 3 && gb_kmeans_spread(w.directions, w.weights, w.count, centroids,
                                         assignment) > 10.0,
           "... and three clusters spread more than 10 degrees");
+    gb_vdl_workspace_free(&w);
+}
+
+/* ---- k-means quality and the spread ---------------------------------------- */
+
+/* Appends n directions on the cone of half-angle theta (degrees) about +z,
+ * equally spaced in azimuth, weight w each. */
+static uint32_t add_ring(float *d, float *weights, uint32_t at, uint32_t n, double theta,
+                         float w)
+{
+    double t = theta * PI / 180.0;
+    for (uint32_t i = 0; i < n; ++i, ++at) {
+        double phi = 2.0 * PI * i / n;
+        d[3 * at] = (float)(sin(t) * cos(phi));
+        d[3 * at + 1] = (float)(sin(t) * sin(phi));
+        d[3 * at + 2] = (float)cos(t);
+        weights[at] = w;
+    }
+    return at;
+}
+
+/* The spread is the power-weighted RMS chord to the centroid, as an angle:
+ * a ring at 20 degrees spreads 20 degrees; rings at 10 (weight 3) and 30
+ * (weight 1) spread 2 asin(sqrt((3 c10² + c30²) / 4) / 2), c = 2 sin(θ/2). */
+static void test_spread_of_rings(void)
+{
+    enum { N = 360 };
+    float d[3 * 2 * N], w[2 * N], c[3];
+    uint32_t a[2 * N];
+    double scratch[2 * N];
+    uint32_t n = add_ring(d, w, 0, N, 20.0, 1.0f);
+    gb_random rng = gb_random_make(5, 0);
+    CHECK_EQ_INT(gb_kmeans_directions(d, w, n, 1, NULL, &rng, c, a, scratch), 1, "a ring: one "
+                 "cluster");
+    const float z[3] = {0.0f, 0.0f, 1.0f};
+    CHECK(angle_degrees(c, z) < 0.01, "... its centroid is the ring's axis");
+    CHECK_NEAR(gb_kmeans_spread(d, w, n, c, a), 20.0, 1e-3, "... a ring at 20 degrees spreads "
+               "20 degrees");
+    n = add_ring(d, w, 0, N, 10.0, 3.0f);
+    n = add_ring(d, w, n, N, 30.0, 1.0f);
+    gb_kmeans_directions(d, w, n, 1, NULL, &rng, c, a, scratch);
+    double c10 = 2.0 * sin(5.0 * PI / 180.0), c30 = 2.0 * sin(15.0 * PI / 180.0);
+    double expected = 2.0 * asin(sqrt((3.0 * c10 * c10 + c30 * c30) / 4.0) / 2.0) * 180.0 / PI;
+    CHECK_NEAR(gb_kmeans_spread(d, w, n, c, a), expected, 1e-3, "rings at 10 (weight 3) and 30 "
+               "degrees: the power-weighted RMS chord as an angle (17.23)");
+}
+
+/* n directions of a cosine-weighted hemisphere about +z: what a surface
+ * receives under uniform incident radiance. */
+static void cosine_hemisphere(float *d, float *w, uint32_t n, gb_random *rng)
+{
+    for (uint32_t i = 0; i < n; ++i) {
+        float u1 = gb_random_float(rng), u2 = gb_random_float(rng);
+        float r = sqrtf(u1), phi = 2.0f * (float)PI * u2;
+        d[3 * i] = r * cosf(phi);
+        d[3 * i + 1] = r * sinf(phi);
+        d[3 * i + 2] = sqrtf(fmaxf(0.0f, 1.0f - u1));
+        w[i] = 1.0f;
+    }
+}
+
+static int assigned_to_nearest(const float *d, uint32_t n, const float *c, uint32_t k,
+                               const uint32_t *a)
+{
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = 0; j < k; ++j) {
+            const float *x = &d[3 * i], *m = &c[3 * j], *mine = &c[3 * a[i]];
+            if (x[0] * m[0] + x[1] * m[1] + x[2] * m[2] >
+                x[0] * mine[0] + x[1] * mine[1] + x[2] * mine[2] + 1e-6f)
+                return 0;
+        }
+    return 1;
+}
+
+/* One cluster of a cosine-weighted hemisphere: E[chord²] = 2 - 2 E[cos θ] =
+ * 2/3, so the spread is 2 asin(sqrt(2/3) / 2) = 48.19 degrees. Four
+ * clusters: every photon on its nearest centroid; restarts never worse than
+ * one run from the same stream, and better for some streams. */
+static void test_cosine_hemisphere(void)
+{
+    enum { N = 20000 };
+    float *d = malloc(3 * N * sizeof *d), *w = malloc(N * sizeof *w), c[3 * 4];
+    uint32_t *a = malloc(N * sizeof *a);
+    double *scratch = malloc(N * sizeof *scratch);
+    gb_random rng = gb_random_make(11, 0);
+    cosine_hemisphere(d, w, N, &rng);
+    gb_kmeans_directions(d, w, N, 1, NULL, &rng, c, a, scratch);
+    double expected = 2.0 * asin(sqrt(2.0 / 3.0) / 2.0) * 180.0 / PI;
+    double spread = gb_kmeans_spread(d, w, N, c, a);
+    printf("# cosine hemisphere, k = 1: spread %.2f, analytic %.2f degrees\n", spread, expected);
+    CHECK_NEAR(spread, expected, 0.5, "cosine hemisphere, k = 1: spread 48.19 degrees");
+    int never_worse = 1, better = 0, nearest = 1;
+    for (uint64_t stream = 0; stream < 6; ++stream) {
+        gb_random one = gb_random_make(12, stream), many = one;
+        gb_kmeans_directions(d, w, N, 4, NULL, &one, c, a, scratch);
+        double single = gb_kmeans_spread(d, w, N, c, a);
+        gb_kmeans_options o = {.restarts = 4};
+        gb_kmeans_directions(d, w, N, 4, &o, &many, c, a, scratch);
+        double best = gb_kmeans_spread(d, w, N, c, a);
+        never_worse &= best <= single + 1e-9;
+        better += best < single - 1e-6;
+        nearest &= assigned_to_nearest(d, N, c, 4, a);
+    }
+    CHECK(nearest, "k = 4: every photon assigned to its nearest centroid");
+    printf("# 4 restarts spread less than 1 run for %d of 6 streams\n", better);
+    CHECK(never_worse && better > 0, "... 4 restarts never spread more than 1 run from the "
+          "same stream, and less for some streams");
+    free(d);
+    free(w);
+    free(a);
+    free(scratch);
+}
+
+/* Five bundles of unequal sizes and powers (the heaviest 500 times the
+ * lightest), 2 degrees of noise: k = 5 with 8 restarts puts each bundle in
+ * its own cluster, centroid on the bundle's direction, for every stream. One
+ * k-means++ run alone misses about a quarter of the time (splits the heavy
+ * bundle, merges the two light ones: a local minimum). */
+static void test_known_clusters(void)
+{
+    gb_vdl_workspace w;
+    gb_error error;
+    CHECK(gb_vdl_workspace_create(&w, 500, 8, &error) == GB_OK, "workspace");
+    const float axes[5][3] = {{0, 0, 1}, {0.8f, 0, 0.6f}, {-0.6f, 0.64f, 0.48f},
+                              {0, -0.8f, 0.6f}, {-0.5f, -0.5f, 0.707f}};
+    const uint32_t sizes[5] = {200, 120, 80, 60, 40};
+    const float powers[5][3] = {{1, 1, 1}, {0.1f, 0.1f, 0.1f}, {3, 2, 1}, {0.5f, 0, 0},
+                                {0.05f, 0.05f, 0.2f}};
+    gb_random rng = gb_random_make(13, 0);
+    w.count = 0;
+    for (int b = 0; b < 5; ++b) {
+        float axis[3] = {axes[b][0], axes[b][1], axes[b][2]};
+        normalize3(axis);
+        add_bundle(&w, axis, sizes[b], 0.035f, powers[b], &rng);
+    }
+    int recovered = 1, on_axis = 1;
+    for (uint64_t stream = 0; stream < 8; ++stream) {
+        gb_random seed = gb_random_make(14, stream);
+        gb_kmeans_options o = {.restarts = 8};
+        uint32_t made = gb_kmeans_directions(w.directions, w.weights, w.count, 5, &o, &seed,
+                                             w.centroids, w.assignment, w.scratch);
+        uint32_t first = 0, used = 0;
+        for (int b = 0; b < 5; ++b) {
+            uint32_t cluster = w.assignment[first];
+            for (uint32_t i = first; i < first + sizes[b]; ++i)
+                recovered &= w.assignment[i] == cluster;
+            recovered &= !(used & 1u << cluster);
+            used |= 1u << cluster;
+            float axis[3] = {axes[b][0], axes[b][1], axes[b][2]};
+            normalize3(axis);
+            on_axis &= angle_degrees(&w.centroids[3 * cluster], axis) < 1.0;
+            first += sizes[b];
+        }
+        recovered &= made == 5;
+    }
+    CHECK(recovered, "five bundles, k = 5, 8 restarts, 8 streams: each bundle is one cluster of "
+          "its own");
+    CHECK(on_axis, "... whose centroid lies within 1 degree of the bundle's direction");
+    gb_light_octree_vdl vdls[8];
+    double spread;
+    gb_random seed = gb_random_make(15, 0);
+    w.kmeans.restarts = 8;
+    CHECK_EQ_INT(gb_vdls_from_photons(&w, 1.0f, 2.5f, &seed, vdls, &spread), 5,
+                 "... as VDLs of spread <= 2.5 degrees, K_max 8: bisection over k finds 5");
+    CHECK(spread <= 2.5, "... spreading under 2.5 degrees (4 clusters merge the two light "
+          "bundles: about 3.3)");
     gb_vdl_workspace_free(&w);
 }
 
@@ -581,6 +749,9 @@ int main(void)
     test_two_bundles();
     test_identical_directions();
     test_count_by_spread();
+    test_spread_of_rings();
+    test_cosine_hemisphere();
+    test_known_clusters();
     test_one_sun();
     test_two_suns_and_determinism();
     test_bad_inputs();

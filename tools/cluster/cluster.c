@@ -24,6 +24,7 @@ static gb_result resolve_options(const gb_cluster_options *in, gb_cluster_option
     o->depth = o->depth ? o->depth : GB_CLUSTER_DEFAULT_DEPTH;
     o->knn = o->knn ? o->knn : GB_CLUSTER_DEFAULT_KNN;
     o->vdls_max = o->vdls_max ? o->vdls_max : GB_CLUSTER_DEFAULT_VDLS;
+    o->restarts = o->restarts ? o->restarts : 1;
     o->max_spread = o->max_spread != 0.0f ? o->max_spread : GB_CLUSTER_DEFAULT_SPREAD;
     if (o->threads <= 0) {
         long cores = sysconf(_SC_NPROCESSORS_ONLN);
@@ -31,9 +32,9 @@ static gb_result resolve_options(const gb_cluster_options *in, gb_cluster_option
     }
     if (o->depth > GB_LIGHT_OCTREE_MAX_DEPTH || o->vdls_max > GB_LIGHT_OCTREE_MAX_VDLS ||
         o->knn > 100000 || !(o->radius >= 0.0f) || !(o->max_spread <= 180.0f) ||
-        o->threads > 256)
+        o->threads > 256 || o->restarts > 64)
         return gb_fail(error, GB_ERROR_ARGUMENT, "cluster: bad options (depth 1..%d, K "
-                       "1..100000, K_max 1..%d, R >= 0, spread <= 180)",
+                       "1..100000, K_max 1..%d, R >= 0, spread <= 180, restarts <= 64)",
                        GB_LIGHT_OCTREE_MAX_DEPTH, GB_LIGHT_OCTREE_MAX_VDLS);
     return GB_OK;
 }
@@ -85,6 +86,7 @@ static void *chunk_worker(void *user)
         atomic_store(&job->failed, 1);
         return NULL;
     }
+    w.kmeans.restarts = job->options->restarts;
     for (uint32_t j; (j = atomic_fetch_add(&job->next, 1)) < job->count;)
         cluster_leaf(job, &w, kept, j);
     gb_vdl_workspace_free(&w);

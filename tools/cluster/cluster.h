@@ -18,8 +18,8 @@
  * VDLs of a leaf sum to its estimate exactly (to float rounding).
  *
  * Determinism: leaves are processed in Morton order, in chunks whose results
- * land in per-leaf slots; leaf i seeds k-means++ from PCG32 stream i of the
- * seed. The file is the same whatever the threads.
+ * land in per-leaf slots; leaf i seeds k-means++ (and its restarts) from
+ * PCG32 stream i of the seed. The file is the same whatever the threads.
  *
  * Options: a zeroed gb_cluster_options means the defaults. The caller owns
  * the octree it gets (gb_light_octree_free).
@@ -50,6 +50,8 @@ typedef struct gb_cluster_options {
     unsigned vdls_max;          /* K_max, 1..64; 0: 8 */
     float max_spread;           /* degrees; 0: 15. The smallest k whose spread is
                                    at most this; negative: always K_max */
+    unsigned restarts;          /* k-means runs per clustering, the best kept
+                                   (kmeans.h); 0: 1 */
     uint64_t seed;
     int threads;                /* 0: every core */
     gb_progress_callback progress; /* fraction done, from the calling thread; may be NULL */

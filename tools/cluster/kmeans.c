@@ -44,8 +44,9 @@ static uint32_t draw_proportional(const double *score, uint32_t n, double total,
     return last;
 }
 
-/* k-means++: the first centroid by weight, each next by weight x D². Uses
- * score (n) as scratch. Returns the centroids chosen (< k when every
+/* k-means++: the first centroid by weight, each next by weight x D², D the
+ * chord to the nearest centroid chosen so far (kept in score, n, updated
+ * with each new centroid). Returns the centroids chosen (< k when every
  * direction already coincides with one). */
 static uint32_t seed_centroids(const float *directions, const float *weights, uint32_t n,
                                uint32_t k, gb_random *rng, float *centroids, double *score)
@@ -55,13 +56,16 @@ static uint32_t seed_centroids(const float *directions, const float *weights, ui
         total += score[i] = weights[i];
     uint32_t chosen = draw_proportional(score, n, total, rng);
     memcpy(centroids, &directions[3 * (size_t)chosen], 3 * sizeof *centroids);
+    for (uint32_t i = 0; i < n; ++i)
+        score[i] = INFINITY;
     uint32_t made = 1;
     for (; made < k; ++made) {
+        const float *newest = &centroids[3 * (made - 1)];
         total = 0.0;
         for (uint32_t i = 0; i < n; ++i) {
-            const float *d = &directions[3 * (size_t)i];
-            double best = chord2(d, &centroids[3 * (size_t)nearest_centroid(d, centroids, made)]);
-            total += score[i] = best > 1e-12 ? weights[i] * best : 0.0;
+            double d2 = chord2(&directions[3 * (size_t)i], newest);
+            double s = d2 > 1e-12 ? weights[i] * d2 : 0.0;   /* on a centroid: never drawn */
+            total += score[i] = s < score[i] ? s : score[i];
         }
         if (!(total > 0.0))
             break;
@@ -71,8 +75,54 @@ static uint32_t seed_centroids(const float *directions, const float *weights, ui
     return made;
 }
 
+/* The photon that adds most to Σ w |d - c|², from a cluster of more than one
+ * photon; UINT32_MAX when none adds anything. */
+static uint32_t costliest_photon(const float *directions, const float *weights, uint32_t n,
+                                 const uint32_t *assignment, const uint32_t *members,
+                                 const float *centroids)
+{
+    uint32_t best = UINT32_MAX;
+    double best_cost = 1e-12;
+    for (uint32_t i = 0; i < n; ++i) {
+        if (members[assignment[i]] < 2)
+            continue;
+        double cost = weights[i] * chord2(&directions[3 * (size_t)i],
+                                          &centroids[3 * (size_t)assignment[i]]);
+        if (cost > best_cost) {
+            best_cost = cost;
+            best = i;
+        }
+    }
+    return best;
+}
+
+/* A cluster left empty moves to the costliest photon, which joins it; its
+ * old cluster's centroid is kept until the next update. Returns whether any
+ * moved. */
+static int reseed_empty(const float *directions, const float *weights, uint32_t n, uint32_t k,
+                        uint32_t *assignment, float *centroids)
+{
+    uint32_t members[GB_KMEANS_MAX_CLUSTERS] = {0};
+    for (uint32_t i = 0; i < n; ++i)
+        ++members[assignment[i]];
+    int moved = 0;
+    for (uint32_t c = 0; c < k; ++c) {
+        if (members[c])
+            continue;
+        uint32_t i = costliest_photon(directions, weights, n, assignment, members, centroids);
+        if (i == UINT32_MAX)
+            break;
+        --members[assignment[i]];
+        assignment[i] = c;
+        members[c] = 1;
+        memcpy(&centroids[3 * (size_t)c], &directions[3 * (size_t)i], 3 * sizeof *centroids);
+        moved = 1;
+    }
+    return moved;
+}
+
 /* Moves each centroid to the normalised weighted mean of its directions; a
- * cluster left empty, or whose directions cancel, keeps its centroid. */
+ * cluster whose directions cancel keeps its centroid. */
 static void update_centroids(const float *directions, const float *weights, uint32_t n,
                              uint32_t k, const uint32_t *assignment, float *centroids,
                              double *sums)
@@ -102,33 +152,68 @@ static int assign(const float *directions, uint32_t n, const float *centroids, u
     return changed;
 }
 
-uint32_t gb_kmeans_directions(const float *directions, const float *weights, uint32_t n,
-                              uint32_t k, gb_random *rng, float *centroids,
-                              uint32_t *assignment, double *scratch)
+static double cost(const float *directions, const float *weights, uint32_t n,
+                   const float *centroids, const uint32_t *assignment)
 {
-    if (n == 0 || k == 0)
-        return 0;
+    double sum = 0.0;
+    for (uint32_t i = 0; i < n; ++i)
+        sum += weights[i] * chord2(&directions[3 * (size_t)i], &centroids[3 * (size_t)assignment[i]]);
+    return sum;
+}
+
+/* One k-means++ seeding and its Lloyd iterations; returns the clusters made. */
+static uint32_t run_once(const float *directions, const float *weights, uint32_t n, uint32_t k,
+                         gb_random *rng, float *centroids, uint32_t *assignment,
+                         double *scratch)
+{
     uint32_t made = seed_centroids(directions, weights, n, k, rng, centroids, scratch);
     for (uint32_t i = 0; i < n; ++i)
         assignment[i] = UINT32_MAX;
     for (int iteration = 0; iteration < GB_KMEANS_MAX_ITERATIONS; ++iteration) {
-        if (!assign(directions, n, centroids, made, assignment))
+        int changed = assign(directions, n, centroids, made, assignment);
+        changed |= reseed_empty(directions, weights, n, made, assignment, centroids);
+        if (!changed)
             break;
         update_centroids(directions, weights, n, made, assignment, centroids, scratch);
     }
     return made;
 }
 
+uint32_t gb_kmeans_directions(const float *directions, const float *weights, uint32_t n,
+                              uint32_t k, const gb_kmeans_options *options, gb_random *rng,
+                              float *centroids, uint32_t *assignment, double *scratch)
+{
+    k = k < GB_KMEANS_MAX_CLUSTERS ? k : GB_KMEANS_MAX_CLUSTERS;
+    if (n == 0 || k == 0)
+        return 0;
+    uint32_t restarts = options && options->restarts ? options->restarts : 1;
+    float best[3 * GB_KMEANS_MAX_CLUSTERS];
+    double best_cost = INFINITY;
+    uint32_t best_made = 0;
+    for (uint32_t run = 0; run < restarts; ++run) {
+        uint32_t made = run_once(directions, weights, n, k, rng, centroids, assignment, scratch);
+        double c = cost(directions, weights, n, centroids, assignment);
+        if (c < best_cost || run == 0) {
+            best_cost = c;
+            best_made = made;
+            memcpy(best, centroids, 3 * (size_t)made * sizeof *best);
+        }
+        if (!(best_cost > 0.0))
+            break;
+    }
+    memcpy(centroids, best, 3 * (size_t)best_made * sizeof *best);
+    assign(directions, n, centroids, best_made, assignment);
+    return best_made;
+}
+
 double gb_kmeans_spread(const float *directions, const float *weights, uint32_t n,
                         const float *centroids, const uint32_t *assignment)
 {
-    double sum = 0.0, weight = 0.0;
-    for (uint32_t i = 0; i < n; ++i) {
-        sum += weights[i] * chord2(&directions[3 * (size_t)i], &centroids[3 * (size_t)assignment[i]]);
+    double weight = 0.0;
+    for (uint32_t i = 0; i < n; ++i)
         weight += weights[i];
-    }
     if (!(weight > 0.0))
         return 0.0;
-    double chord = sqrt(sum / weight);
+    double chord = sqrt(cost(directions, weights, n, centroids, assignment) / weight);
     return 2.0 * asin(fmin(1.0, 0.5 * chord)) * (180.0 / M_PI);
 }

@@ -27,6 +27,8 @@ static const char usage[] =
     "      --vdls K_MAX        most VDLs per leaf, 1..64 (default 8)\n"
     "      --max-spread DEG    fewest VDLs whose spread is at most DEG degrees\n"
     "                          (default 15; 0: always K_MAX)\n"
+    "      --restarts N        k-means runs per leaf and k, the best kept, 1..64\n"
+    "                          (default 1)\n"
     "      --seed N            k-means++ seed (default 0)\n"
     "  -t, --threads N         threads (default: every core)\n"
     "      --stats             print leaves, VDLs and seconds on stdout\n"
@@ -40,7 +42,7 @@ typedef struct arguments {
     int quiet, stats;
 } arguments;
 
-enum { OPTION_VDLS = 256, OPTION_SPREAD, OPTION_SEED, OPTION_STATS };
+enum { OPTION_VDLS = 256, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED, OPTION_STATS };
 
 static int parse_unsigned(const char *text, uint64_t low, uint64_t high, uint64_t *value)
 {
@@ -87,6 +89,8 @@ static int parse_value(int option, const char *text, arguments *a)
         /* 0 means "always K_max", which the library spells as negative */
         return parse_float(text, 0.0f, 180.0f, &o->max_spread) &&
                (o->max_spread = o->max_spread == 0.0f ? -1.0f : o->max_spread, 1);
+    case OPTION_RESTARTS:
+        return parse_unsigned(text, 1, 64, &value) && (o->restarts = (unsigned)value, 1);
     case OPTION_SEED:
         return parse_unsigned(text, 0, UINT64_MAX, &o->seed);
     case 't':
@@ -143,6 +147,7 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"radius", required_argument, NULL, 'r'},
         {"vdls", required_argument, NULL, OPTION_VDLS},
         {"max-spread", required_argument, NULL, OPTION_SPREAD},
+        {"restarts", required_argument, NULL, OPTION_RESTARTS},
         {"seed", required_argument, NULL, OPTION_SEED},
         {"threads", required_argument, NULL, 't'},
         {"stats", no_argument, NULL, OPTION_STATS},

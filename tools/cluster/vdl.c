@@ -20,8 +20,10 @@ gb_result gb_vdl_workspace_create(gb_vdl_workspace *w, uint32_t capacity, uint32
     w->assignment = malloc(n * sizeof *w->assignment);
     w->centroids = malloc(3 * (size_t)vdls_max * sizeof *w->centroids);
     w->scratch = malloc(scratch * sizeof *w->scratch);
+    w->kept_assignment = malloc(n * sizeof *w->kept_assignment);
+    w->kept_centroids = malloc(3 * (size_t)vdls_max * sizeof *w->kept_centroids);
     if (!w->directions || !w->powers || !w->weights || !w->assignment || !w->centroids ||
-        !w->scratch) {
+        !w->scratch || !w->kept_assignment || !w->kept_centroids) {
         gb_vdl_workspace_free(w);
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cluster: out of memory");
     }
@@ -36,6 +38,8 @@ void gb_vdl_workspace_free(gb_vdl_workspace *w)
     free(w->assignment);
     free(w->centroids);
     free(w->scratch);
+    free(w->kept_assignment);
+    free(w->kept_centroids);
     memset(w, 0, sizeof *w);
 }
 
@@ -53,29 +57,54 @@ void gb_vdl_workspace_load(gb_vdl_workspace *w, const gb_photon_map *map,
 
 static uint32_t run_kmeans(gb_vdl_workspace *w, uint32_t k, gb_random *rng, double *spread)
 {
-    uint32_t made = gb_kmeans_directions(w->directions, w->weights, w->count, k, rng,
-                                         w->centroids, w->assignment, w->scratch);
+    uint32_t made = gb_kmeans_directions(w->directions, w->weights, w->count, k, &w->kmeans,
+                                         rng, w->centroids, w->assignment, w->scratch);
     *spread = gb_kmeans_spread(w->directions, w->weights, w->count, w->centroids,
                                w->assignment);
     return made;
 }
 
-/* The smallest k whose clustering spreads at most max_spread; the workspace
- * keeps that clustering. K_max is tried first: when even it spreads more
- * (most leaves under indirect light), it is the answer without trying the
- * smaller k. Returns the clusters made. */
+/* Keeps the workspace's clustering of `made` clusters aside, and back. */
+static void save_clustering(gb_vdl_workspace *w, uint32_t made)
+{
+    memcpy(w->kept_assignment, w->assignment, w->count * sizeof *w->assignment);
+    memcpy(w->kept_centroids, w->centroids, 3 * (size_t)made * sizeof *w->centroids);
+}
+
+static void restore_clustering(gb_vdl_workspace *w, uint32_t made)
+{
+    memcpy(w->assignment, w->kept_assignment, w->count * sizeof *w->assignment);
+    memcpy(w->centroids, w->kept_centroids, 3 * (size_t)made * sizeof *w->centroids);
+}
+
+/* The fewest k whose clustering spreads at most max_spread, by bisection
+ * over k (vdl.h); the workspace keeps that clustering. K_max is tried
+ * first: when even it spreads more (most leaves under indirect light), it
+ * is the answer. Returns the clusters made. */
 static uint32_t choose_clustering(gb_vdl_workspace *w, float max_spread, gb_random *rng,
                                   double *spread)
 {
     uint32_t made = run_kmeans(w, w->vdls_max, rng, spread);
     if (*spread > max_spread || w->vdls_max == 1)
         return made;
-    for (uint32_t k = 1; k < w->vdls_max; ++k) {
+    uint32_t low = 1, high = w->vdls_max, kept = made; /* high passes; below low fail */
+    double kept_spread = *spread;
+    save_clustering(w, kept);
+    while (low < high) {
+        uint32_t k = low + (high - low) / 2;
         made = run_kmeans(w, k, rng, spread);
-        if (*spread <= max_spread || made < k)
-            return made;
+        if (*spread <= max_spread || made < k) {
+            high = k;
+            kept = made;
+            kept_spread = *spread;
+            save_clustering(w, kept);
+        } else {
+            low = k + 1;
+        }
     }
-    return run_kmeans(w, w->vdls_max, rng, spread);
+    restore_clustering(w, kept);
+    *spread = kept_spread;
+    return kept;
 }
 
 static int brighter_first(const void *a, const void *b)

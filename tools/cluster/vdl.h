@@ -3,11 +3,13 @@
  * (irradiance RGB, direction), irradiance = Σ Φ_i / (π r²) over the cluster,
  * direction = the cluster's centroid (toward the light).
  *
- * Beyond the paper, the number of VDLs is chosen by error: k = 1, 2, ...
- * K_max, the first k whose spread (kmeans.h, the paper's §5.3.2 error) is at
- * most max_spread degrees; K_max when none is (K_max is tried first, and
- * kept at once when even it spreads more). Clusters that end up empty
- * give no VDL. VDLs are sorted brightest first (sum of RGB).
+ * Beyond the paper, the number of VDLs is chosen by error: the fewest k in
+ * 1 .. K_max whose spread (kmeans.h, the paper's §5.3.2 error) is at most
+ * max_spread degrees; K_max when none is (K_max is tried first, and kept at
+ * once when even it spreads more). The spread falls as k grows, so k is
+ * found by bisection: at most 1 + log2(K_max) clusterings a leaf (4 for
+ * K_max 8, where counting up from 1 took up to 8). Clusters that end up
+ * empty give no VDL. VDLs are sorted brightest first (sum of RGB).
  *
  * A workspace holds one leaf's photons and the k-means arrays; one per
  * thread, owned by the caller (gb_vdl_workspace_free).
@@ -17,6 +19,7 @@
 
 #include <stdint.h>
 
+#include "kmeans.h"
 #include "light_octree.h"
 #include "photon_map.h"
 #include "random.h"
@@ -31,6 +34,9 @@ typedef struct gb_vdl_workspace {
     uint32_t *assignment;           /* capacity */
     float *centroids;               /* vdls_max x 3 */
     double *scratch;                /* max(capacity, 3 vdls_max) */
+    uint32_t *kept_assignment;      /* capacity: the best clustering so far */
+    float *kept_centroids;          /* vdls_max x 3 */
+    gb_kmeans_options kmeans;       /* zeroed by create: the defaults */
 } gb_vdl_workspace;
 
 gb_result gb_vdl_workspace_create(gb_vdl_workspace *workspace, uint32_t capacity,
