@@ -1,6 +1,8 @@
 /* topo.c — gb_topo_method: VPL indirect light with implicit visibility
  * through visibility clusters and gates (Noël & Biri 2014, §V). Load time:
- * the bake's .seg and .grid.vdb, the VPLs (topo_vpls.c) and their clusters.
+ * the bake's .seg and .grid.vdb, the gates' disks fitted to the openings
+ * between clusters when the bake has the voxels (.vdb; topo_gate_openings.c),
+ * the VPLs (topo_vpls.c) and their clusters.
  * Each frame: visibility cluster per fragment (GPU compute), IUGC on the
  * CPU from the G-buffer read back, LA (GPU compute; gb_topo_assign is its
  * CPU twin), then IL (GPU fragment pass). The
@@ -53,6 +55,38 @@ static gb_result need_bake(const gb_bake_files *bake, gb_error *error)
     return GB_OK;
 }
 
+/* The gates' lists, after gates for the openings the voxels show and with
+ * disks measured on them when the bake has its voxels
+ * (topo_gate_openings.c). */
+static gb_result build_gates(topo_state *t, const gb_bake_files *bake, gb_error *error)
+{
+    if (!bake->usable[GB_BAKE_VOXELS])
+        return gb_topo_gates_build(&t->segmentation, &t->gates, error);
+    const char *voxels_path = bake->paths[GB_BAKE_VOXELS];
+    gb_voxel_grid voxels = {0};
+    gb_result result = gb_voxel_grid_read(voxels_path, &voxels, error);
+    const gb_segmentation *s = &t->segmentation;
+    if (result == GB_OK && (voxels.size[0] != s->grid_size[0] ||
+                            voxels.size[1] != s->grid_size[1] ||
+                            voxels.size[2] != s->grid_size[2]))
+        result = gb_fail(error, GB_ERROR_STALE, "%s: voxel grid %dx%dx%d, segmentation %dx%dx%d",
+                         voxels_path, voxels.size[0], voxels.size[1], voxels.size[2],
+                         s->grid_size[0], s->grid_size[1], s->grid_size[2]);
+    uint32_t added = 0;
+    if (result == GB_OK)
+        gb_topo_voxel_clusters_mark_surface(s, t->voxel_clusters, voxels.surface);
+    if (result == GB_OK)
+        result = gb_topo_gates_add_openings(&t->segmentation, t->voxel_clusters, voxels.surface,
+                                            &added, error);
+    if (result == GB_OK)
+        result = gb_topo_gates_build(&t->segmentation, &t->gates, error);
+    if (result == GB_OK)
+        result = gb_topo_gates_fit_openings(&t->segmentation, &t->gates, t->voxel_clusters,
+                                            voxels.surface, error);
+    gb_voxel_grid_free(&voxels);
+    return result;
+}
+
 static gb_result load_clusters(topo_state *t, const gb_bake_files *bake, gb_error *error)
 {
     const char *grid_path = bake->paths[GB_BAKE_NEAREST_NODE];
@@ -67,7 +101,7 @@ static gb_result load_clusters(topo_state *t, const gb_bake_files *bake, gb_erro
     if (result == GB_OK && !(t->voxel_clusters = gb_topo_voxel_clusters(&t->segmentation, nearest)))
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "topo: out of memory");
     if (result == GB_OK)
-        result = gb_topo_gates_build(&t->segmentation, &t->gates, error);
+        result = build_gates(t, bake, error);
     free(nearest);
     gb_voxel_grid_free(&frame);
     return result;
@@ -130,7 +164,7 @@ static gb_result topo_create(const gb_indirect_setup *setup, void **state, gb_er
         result = gb_topo_cluster_pass_create(&t->segmentation, t->voxel_clusters,
                                              &t->cluster_pass, error);
     if (result == GB_OK)
-        result = gb_topo_gather_create(&t->vpls, &t->segmentation,
+        result = gb_topo_gather_create(&t->vpls, &t->segmentation, &t->gates,
                                        (float)t->segmentation.voxel_size, &t->gather, error);
     if (result == GB_OK)
         result = gb_topo_la_gpu_create(&t->vpls, t->vpl_cluster, &t->gates, &t->la_gpu, error);

@@ -3,10 +3,13 @@
  * them each frame:
  *
  *   VPLs      topo_vpls.c               paths from the primary lights (Embree, once)
+ *   gates     topo_gate_openings.c      (once) gate disks fitted to the openings
+ *                                       between the clusters' voxels
  *   GP        gbuffer.c + topo_clusters.c  the visibility cluster of each fragment (GPU)
  *   IUGC      topo_geometry_clusters.c  geometry clusters (Olsson et al. 2012) that
  *                                       never straddle two visibility clusters
- *   LA        topo_assignment_gpu.c     VPLs per geometry cluster, with their gate
+ *   LA        topo_assignment_gpu.c     VPLs per geometry cluster, with their route
+ *                                       (one gate, or two in a row)
  *             (topo_assignment.c: the same on the CPU, the tests' oracle)
  *   IL        topo_gather.c             per fragment, the assigned VPLs, cone test;
  *                                       a fragment with no visibility cluster
@@ -64,9 +67,19 @@ gb_result gb_topo_vpls_generate(const gb_scene *scene, uint32_t count, uint64_t 
  * GPU looks a fragment up in. malloc'ed, NULL when out of memory. */
 int32_t *gb_topo_voxel_clusters(const gb_segmentation *segmentation, const int32_t *nearest);
 
+/* Marks the voxels voxelize flagged as surface: cluster c becomes
+ * GB_TOPO_SURFACE_CLUSTER(c) = -c - 2 (its own inverse), which the lookups
+ * below use only as a last resort: thin gives a surface voxel the node of
+ * its best empty neighbour, often across the wall. */
+#define GB_TOPO_SURFACE_CLUSTER(c) (-(c) - 2)
+void gb_topo_voxel_clusters_mark_surface(const gb_segmentation *segmentation,
+                                         int32_t *voxel_clusters, const uint8_t *surface);
+
 /* The cluster of a surface point x of geometric normal ng: x moved into the
- * empty side by 1, 2, 3 voxels until one has a cluster. -1: none. The CPU
- * twin of the GPU lookup. */
+ * empty side by |ng|_1 voxels (out of the surface's own voxels), then 1 and
+ * 2 voxels more, until one has a cluster; failing that, the first marked
+ * surface voxel's cluster on the way. -1: none. The CPU twin of the GPU
+ * lookup. */
 int32_t gb_topo_surface_cluster(const gb_segmentation *segmentation, const int32_t *voxel_clusters,
                                 const float x[3], const float ng[3]);
 
@@ -121,20 +134,55 @@ void gb_geometry_clusters_free(gb_geometry_clusters *clusters);
 void gb_topo_pixel_position(const gb_topo_frame_input *frame, int x, int y, float d, float out[3]);
 
 /* ---- LA (topo_assignment.c) -------------------------------------------- */
+/* How light leaves a visibility cluster: through one of its gates into the
+ * neighbour on the other side (the paper's cones, Fig. 11), or through that
+ * gate and then one gate of the neighbour into the cluster beyond (the
+ * sample must then lie in both cones). target: the cluster it lights. */
+enum { GB_TOPO_ROUTE_GATES = 2 };
+typedef struct gb_topo_route {
+    uint32_t gates[GB_TOPO_ROUTE_GATES];   /* the second GB_TOPO_NO_GATE: one gate */
+    uint32_t target;
+} gb_topo_route;
+
+/* The routes from one cluster to one target: routes[first .. first + count). */
+typedef struct gb_topo_route_group {
+    uint32_t target, first, count;
+} gb_topo_route_group;
+
 typedef struct gb_topo_gates {
     uint32_t cluster_count;
     uint32_t *offsets;          /* cluster_count + 1, into gates */
     uint32_t *gates;            /* the gates of each cluster */
+    uint32_t route_count;
+    uint32_t *route_offsets;    /* cluster_count + 1, into routes */
+    gb_topo_route *routes;      /* the routes out of each cluster, by target */
+    uint32_t group_count;
+    uint32_t *group_offsets;    /* cluster_count + 1, into groups */
+    gb_topo_route_group *groups;    /* the groups of each cluster, by target */
 } gb_topo_gates;
 
 gb_result gb_topo_gates_build(const gb_segmentation *segmentation, gb_topo_gates *gates,
                               gb_error *error);
 void gb_topo_gates_free(gb_topo_gates *gates);
 
-/* A VPL assigned to a geometry cluster, with the gate its light goes
- * through (GB_TOPO_NO_GATE: same visibility cluster). */
+/* (topo_gate_openings.c) A gate (edge UINT32_MAX, disk to be fitted) for
+ * every pair of clusters whose empty voxels share a face but that no gate
+ * joins yet; *added of them. Build the gates' lists after this. */
+gb_result gb_topo_gates_add_openings(gb_segmentation *segmentation, const int32_t *voxel_clusters,
+                                     const uint8_t *surface, uint32_t *added, gb_error *error);
+/* Each gate's disk refitted to the faces between the empty voxels of its
+ * two clusters (each face goes to the nearest gate of the pair): centroid, mean normal, radius
+ * sqrt(2 <r^2>) in its plane (at least the paper's min maxball). surface:
+ * voxelize's surface flags in the same frame, or NULL (every voxel with a
+ * cluster counts as empty). Gates without such faces are left alone. */
+gb_result gb_topo_gates_fit_openings(gb_segmentation *segmentation, const gb_topo_gates *gates,
+                                     const int32_t *voxel_clusters, const uint8_t *surface,
+                                     gb_error *error);
+
+/* A VPL assigned to a geometry cluster, with the group of routes its light
+ * may take (GB_TOPO_NO_GATE: same visibility cluster). */
 typedef struct gb_topo_entry {
-    uint32_t vpl, gate;
+    uint32_t vpl, group;
 } gb_topo_entry;
 
 typedef struct gb_topo_assignment {
@@ -144,15 +192,29 @@ typedef struct gb_topo_assignment {
 } gb_topo_assignment;
 
 /* The cone of a VPL at p through a gate: apex p, axis toward the gate's
- * centre, half-angle atan(radius / distance). */
+ * centre, half-angle atan(radius / distance). A VPL within the radius of
+ * the centre has no cone: hits_sphere then says yes, contains tests the
+ * segment from p to x against the disk itself (big fitted gates have many
+ * VPLs that close; lighting every direction from them lit whole clusters
+ * behind walls). */
 int gb_topo_cone_hits_sphere(const float p[3], const gb_visibility_gate *gate,
                              const float centre[3], float radius);
 int gb_topo_cone_contains(const float p[3], const gb_visibility_gate *gate, const float x[3]);
+/* x lies in the cone of every gate of the route. */
+int gb_topo_route_contains(const float p[3], const gb_segmentation *segmentation,
+                           const gb_topo_route *route, const float x[3]);
+/* The group of the routes from cluster from to cluster to; GB_TOPO_NO_GATE:
+ * none. */
+uint32_t gb_topo_group_of(const gb_topo_gates *gates, uint32_t from, uint32_t to);
+/* x lies on one of the group's routes (IL's test). */
+int gb_topo_group_contains(const float p[3], const gb_segmentation *segmentation,
+                           const gb_topo_gates *gates, uint32_t group, const float x[3]);
 
 /* LA (§V.C): for each geometry cluster, the VPLs of its own visibility
- * cluster, then (GB_TOPO_FULL) every other VPL once per gate of the VPL's
- * cluster whose cone meets the cluster's bounding sphere. vpl_cluster[i]:
- * the visibility cluster of VPL i (-1: none; such a VPL lights nothing). */
+ * cluster, then (GB_TOPO_FULL) every other VPL once, with the group of
+ * routes from its cluster to the geometry cluster's, when one route's cones
+ * all meet the cluster's bounding sphere. vpl_cluster[i]: the visibility
+ * cluster of VPL i (-1: none; such a VPL lights nothing). */
 gb_result gb_topo_assign(const gb_geometry_clusters *clusters, const gb_vpl_set *vpls,
                          const int32_t *vpl_cluster, const gb_segmentation *segmentation,
                          const gb_topo_gates *gates, gb_topo_visibility visibility,
@@ -166,7 +228,7 @@ gb_result gb_topo_compute_program(const char *name, const char *source, GLuint *
 /* ---- IL (topo_gather.c) ------------------------------------------------ */
 typedef struct gb_topo_gather_pass {
     GLuint program, empty_vertex_array;
-    GLuint vpl_buffer, gate_buffer, range_buffer, entry_buffer;
+    GLuint vpl_buffer, gate_buffer, route_buffer, group_buffer, range_buffer, entry_buffer;
     GLsizeiptr range_size, entry_size;
     uint32_t vpl_count;
     float clamp_distance;
@@ -174,7 +236,8 @@ typedef struct gb_topo_gather_pass {
 
 /* clamp_distance: the geometric term's 1/r^2 uses max(r, clamp_distance). */
 gb_result gb_topo_gather_create(const gb_vpl_set *vpls, const gb_segmentation *segmentation,
-                                float clamp_distance, gb_topo_gather_pass *pass, gb_error *error);
+                                const gb_topo_gates *gates, float clamp_distance,
+                                gb_topo_gather_pass *pass, gb_error *error);
 /* Draws the indirect light into the bound framebuffer (additive blending
  * set by the renderer); every_vpl: GB_TOPO_NONE. */
 void gb_topo_gather_draw(const gb_topo_gather_pass *pass, const float view_to_world[16],
@@ -187,7 +250,7 @@ void gb_topo_gather_destroy(gb_topo_gather_pass *pass);
  * entry count (gb_topo_la_gpu_read copies the entries back, for tests). */
 typedef struct gb_topo_la_gpu {
     GLuint count_program, write_program;
-    GLuint vpl_cluster, gate_offsets, gate_lists, clusters;
+    GLuint vpl_cluster, group_offsets, clusters;
     GLsizeiptr clusters_size;
     uint32_t vpl_count;
 } gb_topo_la_gpu;

@@ -14,13 +14,15 @@
     "struct VPL { vec4 position; vec4 normal; vec4 power; };\n"                    \
     "struct GeometryCluster { vec4 sphere; uvec4 info; };\n"                        \
     "layout(std430, binding = 3) readonly buffer VPLs { VPL vpls[]; };\n"          \
-    "layout(std430, binding = 4) readonly buffer Gates { vec4 gates[]; };\n"        \
+    "struct Gate { vec4 disk; vec4 normal; };\n"                                   \
+    "layout(std430, binding = 4) readonly buffer Gates { Gate gates[]; };\n"        \
     "layout(std430, binding = 5) buffer Ranges { uvec2 ranges[]; };\n"              \
     "layout(std430, binding = 6) writeonly buffer Entries { uvec2 entries[]; };\n"  \
     "layout(std430, binding = 7) readonly buffer Clusters { GeometryCluster clusters[]; };\n" \
     "layout(std430, binding = 8) readonly buffer VPLClusters { int vpl_cluster[]; };\n" \
-    "layout(std430, binding = 9) readonly buffer GateOffsets { uint gate_offsets[]; };\n" \
-    "layout(std430, binding = 10) readonly buffer GateLists { uint gate_list[]; };\n" \
+    "layout(std430, binding = 9) readonly buffer GroupOffsets { uint group_offsets[]; };\n" \
+    "layout(std430, binding = 10) readonly buffer Routes { uvec4 routes[]; };\n" \
+    "layout(std430, binding = 11) readonly buffer Groups { uvec4 groups[]; };\n" \
     "uniform uint cluster_count;\n"                                                \
     "uniform uint vpl_count;\n"                                                    \
     "uniform bool gates_on;\n"                                                     \
@@ -49,6 +51,11 @@
     "        return true;\n"                                                        \
     "    return cos_v >= cos_limit;\n"                                              \
     "}\n"                                                                          \
+    "bool route_hits_sphere(vec3 p, uvec4 route, vec3 centre, float radius) {\n"   \
+    "    return cone_hits_sphere(p, gates[route.x].disk, centre, radius) &&\n"      \
+    "           (route.y == NO ||\n"                                                \
+    "            cone_hits_sphere(p, gates[route.y].disk, centre, radius));\n"      \
+    "}\n"                                                                          \
     "void emit(uint g, inout uint n, uint vpl, uint gate);\n"                       \
     "void main() {\n"                                                              \
     "    uint g = gl_GlobalInvocationID.x;\n"                                       \
@@ -66,10 +73,19 @@
     "        }\n"                                                                   \
     "        if (!gates_on)\n"                                                      \
     "            continue;\n"                                                       \
-    "        for (uint k = gate_offsets[c]; k < gate_offsets[c + 1]; ++k)\n"        \
-    "            if (cone_hits_sphere(vpls[v].position.xyz, gates[gate_list[k]],\n" \
-    "                                 gc.sphere.xyz, gc.sphere.w))\n"               \
-    "                emit(g, n, v, gate_list[k]);\n"                                \
+    "        uint lo = group_offsets[c], hi = group_offsets[c + 1];\n"             \
+    "        while (lo < hi) {\n"                                                   \
+    "            uint mid = lo + (hi - lo) / 2u;\n"                                 \
+    "            if (groups[mid].x < gc.info.x) lo = mid + 1u; else hi = mid;\n"    \
+    "        }\n"                                                                   \
+    "        if (lo == group_offsets[c + 1] || groups[lo].x != gc.info.x)\n"       \
+    "            continue;\n"                                                       \
+    "        for (uint k = groups[lo].y; k < groups[lo].y + groups[lo].z; ++k)\n"   \
+    "            if (route_hits_sphere(vpls[v].position.xyz, routes[k],\n"          \
+    "                                  gc.sphere.xyz, gc.sphere.w)) {\n"            \
+    "                emit(g, n, v, lo);\n"                                          \
+    "                break;\n"                                                      \
+    "            }\n"                                                               \
     "    }\n"                                                                       \
     "    ranges[g].y = n;\n"                                                        \
     "}\n"
@@ -105,10 +121,8 @@ gb_result gb_topo_la_gpu_create(const gb_vpl_set *vpls, const int32_t *vpl_clust
         return result;
     la->vpl_count = vpls->count;
     la->vpl_cluster = buffer_of(vpl_cluster, (GLsizeiptr)(vpls->count * sizeof(int32_t)));
-    la->gate_offsets = buffer_of(gates->offsets,
-                                 (GLsizeiptr)((gates->cluster_count + 1) * sizeof(uint32_t)));
-    la->gate_lists = buffer_of(gates->gates, (GLsizeiptr)(gates->offsets[gates->cluster_count] *
-                                                          sizeof(uint32_t)));
+    la->group_offsets = buffer_of(gates->group_offsets,
+                                  (GLsizeiptr)((gates->cluster_count + 1) * sizeof(uint32_t)));
     la->clusters = buffer_of(NULL, 16);
     return GB_OK;
 }
@@ -170,8 +184,9 @@ gb_result gb_topo_la_gpu_run(gb_topo_la_gpu *la, const gb_geometry_clusters *clu
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, gather->range_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, la->clusters);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, la->vpl_cluster);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, la->gate_offsets);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, la->gate_lists);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, la->group_offsets);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, gather->route_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, gather->group_buffer);
     int gates_on = visibility == GB_TOPO_FULL;
     if (n)
         dispatch(la->count_program, la, n, gates_on);
@@ -209,8 +224,8 @@ void gb_topo_la_gpu_destroy(gb_topo_la_gpu *la)
         glDeleteProgram(la->count_program);
     if (la->write_program)
         glDeleteProgram(la->write_program);
-    GLuint buffers[] = {la->vpl_cluster, la->gate_offsets, la->gate_lists, la->clusters};
-    for (int i = 0; i < 4; ++i)
+    GLuint buffers[] = {la->vpl_cluster, la->group_offsets, la->clusters};
+    for (int i = 0; i < 3; ++i)
         if (buffers[i])
             glDeleteBuffers(1, &buffers[i]);
     memset(la, 0, sizeof *la);

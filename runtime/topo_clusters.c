@@ -12,9 +12,21 @@
 #include "gbuffer.h"
 #include "topo.h"
 
-/* The fragment moves 1, 2, then 3 voxels off its surface: its own voxel is a
- * surface voxel, which has no nearest node. */
-enum { MAX_OFFSET_VOXELS = 3, UNIT_VOXEL_CLUSTERS = 12 };
+/* The fragment moves off its surface along its geometric normal ng until it
+ * leaves the surface's voxels: voxelize marks every voxel a triangle touches,
+ * so a plane's voxels reach |ng.x| + |ng.y| + |ng.z| voxels (up to sqrt 3)
+ * from it along ng, and a point that much off the plane lies in an empty
+ * voxel. Looking up closer is wrong, not just useless: thin's grid gives a
+ * surface voxel the node of its best empty neighbour, often on the far side
+ * of the wall (a box's inside). Then one and two voxels further, in case
+ * another surface is in the way. When the bake's voxels are at hand, the
+ * surface voxels' clusters are marked (gb_topo_voxel_clusters_mark_surface)
+ * and only used when no empty voxel on the way has one: a fragment in a
+ * corner, where the offset runs along the other wall, first takes the
+ * nearest empty voxel with a cluster among the 27 around its first offset,
+ * on its normal's side. */
+enum { OFFSET_STEPS = 3, UNIT_VOXEL_CLUSTERS = 12 };
+#define OFFSET_MARGIN 1.01f
 
 int32_t *gb_topo_voxel_clusters(const gb_segmentation *s, const int32_t *nearest)
 {
@@ -29,6 +41,48 @@ int32_t *gb_topo_voxel_clusters(const gb_segmentation *s, const int32_t *nearest
                           : -1;
     }
     return clusters;
+}
+
+void gb_topo_voxel_clusters_mark_surface(const gb_segmentation *s, int32_t *voxel_clusters,
+                                         const uint8_t *surface)
+{
+    size_t n = (size_t)s->grid_size[0] * (size_t)s->grid_size[1] * (size_t)s->grid_size[2];
+    for (size_t i = 0; i < n; ++i)
+        if (surface[i] && voxel_clusters[i] >= 0)
+            voxel_clusters[i] = GB_TOPO_SURFACE_CLUSTER(voxel_clusters[i]);
+}
+
+/* The cluster of the empty voxel among the 27 around p whose centre is
+ * nearest p, on the side of x that ng points to; -1: none. */
+static int32_t cluster_around(const gb_segmentation *s, const int32_t *voxel_clusters,
+                              const float x[3], const float ng[3], const float p[3])
+{
+    int32_t base[3], best = -1;
+    float h = (float)s->voxel_size, best_d2 = INFINITY;
+    for (int a = 0; a < 3; ++a)
+        base[a] = (int32_t)floorf((p[a] - (float)s->world_origin[a]) / h);
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) {
+                int32_t v[3] = {base[0] + dx, base[1] + dy, base[2] + dz};
+                float centre[3], side = 0.0f, d2 = 0.0f;
+                int inside = 1;
+                for (int a = 0; a < 3; ++a) {
+                    inside &= v[a] >= 0 && v[a] < s->grid_size[a];
+                    centre[a] = (float)s->world_origin[a] + ((float)v[a] + 0.5f) * h;
+                    side += (centre[a] - x[a]) * ng[a];
+                    d2 += (centre[a] - p[a]) * (centre[a] - p[a]);
+                }
+                if (!inside || side <= 0.0f || d2 >= best_d2)
+                    continue;
+                int32_t c = voxel_clusters[(size_t)v[0] + (size_t)s->grid_size[0] *
+                                           ((size_t)v[1] + (size_t)s->grid_size[1] * (size_t)v[2])];
+                if (c >= 0) {
+                    best = c;
+                    best_d2 = d2;
+                }
+            }
+    return best;
 }
 
 static int32_t voxel_cluster(const gb_segmentation *s, const int32_t *voxel_clusters,
@@ -48,15 +102,22 @@ static int32_t voxel_cluster(const gb_segmentation *s, const int32_t *voxel_clus
 int32_t gb_topo_surface_cluster(const gb_segmentation *s, const int32_t *voxel_clusters,
                                 const float x[3], const float ng[3])
 {
-    for (int step = 1; step <= MAX_OFFSET_VOXELS; ++step) {
-        float p[3];
+    float l1 = fabsf(ng[0]) + fabsf(ng[1]) + fabsf(ng[2]), first[3];
+    int32_t on_surface = -1;
+    for (int step = 0; step < OFFSET_STEPS; ++step) {
+        float p[3], t = (OFFSET_MARGIN * l1 + (float)step) * (float)s->voxel_size;
         for (int a = 0; a < 3; ++a)
-            p[a] = x[a] + ng[a] * (float)step * (float)s->voxel_size;
+            p[a] = x[a] + ng[a] * t;
+        if (step == 0)
+            memcpy(first, p, sizeof first);
         int32_t c = voxel_cluster(s, voxel_clusters, p);
         if (c >= 0)
             return c;
+        if (c < -1 && on_surface < 0)
+            on_surface = GB_TOPO_SURFACE_CLUSTER(c);
     }
-    return -1;
+    int32_t around = cluster_around(s, voxel_clusters, x, ng, first);
+    return around >= 0 ? around : on_surface;
 }
 
 static const char compute_shader[] =
@@ -80,6 +141,27 @@ static const char compute_shader[] =
     "        return -1;\n"
     "    return texelFetch(voxel_clusters, v, 0).r;\n"
     "}\n"
+    "int cluster_around(vec3 x, vec3 ng, vec3 p) {\n"
+    "    ivec3 base = ivec3(floor((p - grid_origin) / voxel_size));\n"
+    "    int best = -1;\n"
+    "    float best_d2 = 3.0e38;\n"
+    "    for (int dz = -1; dz <= 1; ++dz)\n"
+    "        for (int dy = -1; dy <= 1; ++dy)\n"
+    "            for (int dx = -1; dx <= 1; ++dx) {\n"
+    "                ivec3 v = base + ivec3(dx, dy, dz);\n"
+    "                vec3 centre = grid_origin + (vec3(v) + 0.5) * voxel_size;\n"
+    "                float d2 = dot(centre - p, centre - p);\n"
+    "                if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, grid_size)) ||\n"
+    "                    dot(centre - x, ng) <= 0.0 || d2 >= best_d2)\n"
+    "                    continue;\n"
+    "                int c = texelFetch(voxel_clusters, v, 0).r;\n"
+    "                if (c >= 0) {\n"
+    "                    best = c;\n"
+    "                    best_d2 = d2;\n"
+    "                }\n"
+    "            }\n"
+    "    return best;\n"
+    "}\n"
     "void main() {\n"
     "    ivec2 pixel = ivec2(gl_GlobalInvocationID.xy);\n"
     "    ivec2 size = imageSize(clusters);\n"
@@ -93,8 +175,19 @@ static const char compute_shader[] =
     "        vec3 x = (view_to_world * vec4(ndc * tan_half_fov * -z, z, 1.0)).xyz;\n"
     "        vec3 ng = normalize(mat3(view_to_world) *\n"
     "                            oct_decode(texelFetch(gbuffer_normal, pixel, 0).zw));\n"
-    "        for (int step = 1; step <= 3 && c < 0; ++step)\n"
-    "            c = voxel_cluster(x + ng * (float(step) * voxel_size));\n"
+    "        float l1 = abs(ng.x) + abs(ng.y) + abs(ng.z);\n"
+    "        int on_surface = -1;\n"
+    "        for (int step = 0; step < 3 && c < 0; ++step) {\n"
+    "            int v = voxel_cluster(x + ng * ((1.01 * l1 + float(step)) * voxel_size));\n"
+    "            if (v >= 0)\n"
+    "                c = v;\n"
+    "            else if (v < -1 && on_surface < 0)\n"
+    "                on_surface = -v - 2;\n"
+    "        }\n"
+    "        if (c < 0)\n"
+    "            c = cluster_around(x, ng, x + ng * (1.01 * l1 * voxel_size));\n"
+    "        if (c < 0)\n"
+    "            c = on_surface;\n"
     "    }\n"
     "    imageStore(clusters, pixel, uvec4(c >= 0 ? uint(c) : NO_CLUSTER, NO_CLUSTER, 0u, 0u));\n"
     "}\n";

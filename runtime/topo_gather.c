@@ -1,7 +1,9 @@
 /* topo_gather.c — IL (Noël & Biri 2014, §V.D): each fragment gathers the
  * VPLs LA assigned to its geometry cluster (G-buffer clusters.y). A VPL
- * stored with a gate lights the fragment only when the fragment lies in the
- * cone from the VPL through the gate's disk: the implicit shadow.
+ * stored with a route lights the fragment only when the fragment lies in the
+ * cone from the VPL through each gate's disk of the route: the implicit
+ * shadow. A VPL is stored once, with the group of routes from its cluster
+ * to the fragment's: one route containing the fragment lights it.
  *
  * The geometric term G = cos(VPL) cos(x) / r^2 is bounded as in instant
  * radiosity with bounded contributions (Kollig & Keller 2004, the paper's
@@ -32,9 +34,12 @@ static const char fragment_shader[] =
     "#version 450 core\n"
     "struct VPL { vec4 position; vec4 normal; vec4 power; };\n"
     "layout(std430, binding = 3) readonly buffer VPLs { VPL vpls[]; };\n"
-    "layout(std430, binding = 4) readonly buffer Gates { vec4 gates[]; };\n"
+    "struct Gate { vec4 disk; vec4 normal; };\n"
+    "layout(std430, binding = 4) readonly buffer Gates { Gate gates[]; };\n"
     "layout(std430, binding = 5) readonly buffer Ranges { uvec2 ranges[]; };\n"
     "layout(std430, binding = 6) readonly buffer Entries { uvec2 entries[]; };\n"
+    "layout(std430, binding = 10) readonly buffer Routes { uvec4 routes[]; };\n"
+    "layout(std430, binding = 11) readonly buffer Groups { uvec4 groups[]; };\n"
     "layout(binding = 1) uniform sampler2D gbuffer_normal;\n"
     "layout(binding = 2) uniform sampler2D gbuffer_depth;\n"
     "layout(binding = 3) uniform sampler2D gbuffer_diffuse;\n"
@@ -68,16 +73,34 @@ static const char fragment_shader[] =
     "    s.Ns = glossy.a;\n"
     "    return s;\n"
     "}\n"
-    /* The cone from p through the gate's disk (topo_assignment.c). */
+    /* The cone from p through the gate's disk; from within the disk's
+     * radius, the segment to x through the disk (topo_assignment.c). */
     "bool in_gate_cone(vec3 p, uint gate, vec3 x) {\n"
-    "    vec4 g = gates[gate];\n"
+    "    vec4 g = gates[gate].disk;\n"
     "    vec3 axis = g.xyz - p;\n"
     "    float d = length(axis);\n"
-    "    if (d <= g.w)\n"
-    "        return true;\n"
+    "    if (d <= g.w) {\n"
+    "        vec3 n = gates[gate].normal.xyz;\n"
+    "        float dp = dot(p - g.xyz, n), dx = dot(x - g.xyz, n);\n"
+    "        if (!(dp * dx < 0.0))\n"
+    "            return false;\n"
+    "        vec3 q = p + (dp / (dp - dx)) * (x - p) - g.xyz;\n"
+    "        return dot(q, q) <= g.w * g.w;\n"
+    "    }\n"
     "    float cos_half = d / sqrt(d * d + g.w * g.w);\n"
     "    vec3 v = x - p;\n"
     "    return dot(v, axis / d) >= cos_half * length(v);\n"
+    "}\n"
+    "bool in_route(vec3 p, uint route, vec3 x) {\n"
+    "    uvec4 r = routes[route];\n"
+    "    return in_gate_cone(p, r.x, x) && (r.y == NO || in_gate_cone(p, r.y, x));\n"
+    "}\n"
+    "bool in_group(vec3 p, uint group, vec3 x) {\n"
+    "    uvec4 g = groups[group];\n"
+    "    for (uint k = g.y; k < g.y + g.z; ++k)\n"
+    "        if (in_route(p, k, x))\n"
+    "            return true;\n"
+    "    return false;\n"
     "}\n"
     "vec3 vpl_light(uint i, Surface s) {\n"
     "    VPL l = vpls[i];\n"
@@ -109,7 +132,7 @@ static const char fragment_shader[] =
     "        uvec2 range = ranges[g];\n"
     "        for (uint k = range.x; k < range.x + range.y; ++k) {\n"
     "            uvec2 e = entries[k];\n"
-    "            if (e.y == NO || in_gate_cone(vpls[e.x].position.xyz, e.y, s.position))\n"
+    "            if (e.y == NO || in_group(vpls[e.x].position.xyz, e.y, s.position))\n"
     "                L += vpl_light(e.x, s);\n"
     "        }\n"
     "    }\n"
@@ -121,6 +144,36 @@ static GLuint buffer_of(const void *data, GLsizeiptr size)
     GLuint buffer;
     glCreateBuffers(1, &buffer);
     glNamedBufferData(buffer, size > 0 ? size : 16, data, GL_DYNAMIC_DRAW);
+    return buffer;
+}
+
+static GLuint route_buffer(const gb_topo_gates *gates)
+{
+    uint32_t *data = calloc((size_t)gates->route_count * 4 + 4, sizeof *data);
+    if (!data)
+        return 0;
+    for (uint32_t i = 0; i < gates->route_count; ++i) {
+        data[4 * i] = gates->routes[i].gates[0];
+        data[4 * i + 1] = gates->routes[i].gates[1];
+        data[4 * i + 2] = gates->routes[i].target;
+    }
+    GLuint buffer = buffer_of(data, (GLsizeiptr)(gates->route_count * 4 * sizeof *data));
+    free(data);
+    return buffer;
+}
+
+static GLuint group_buffer(const gb_topo_gates *gates)
+{
+    uint32_t *data = calloc((size_t)gates->group_count * 4 + 4, sizeof *data);
+    if (!data)
+        return 0;
+    for (uint32_t i = 0; i < gates->group_count; ++i) {
+        data[4 * i] = gates->groups[i].target;
+        data[4 * i + 1] = gates->groups[i].first;
+        data[4 * i + 2] = gates->groups[i].count;
+    }
+    GLuint buffer = buffer_of(data, (GLsizeiptr)(gates->group_count * 4 * sizeof *data));
+    free(data);
     return buffer;
 }
 
@@ -141,20 +194,22 @@ static GLuint vpl_buffer(const gb_vpl_set *vpls)
 
 static GLuint gate_buffer(const gb_segmentation *s)
 {
-    float *data = calloc((size_t)s->gate_count * 4 + 4, sizeof *data);
+    float *data = calloc((size_t)s->gate_count * 8 + 8, sizeof *data);
     if (!data)
         return 0;
-    for (uint32_t i = 0; i < s->gate_count; ++i) {
-        memcpy(&data[4 * i], s->gates[i].centre, 3 * sizeof(float));
-        data[4 * i + 3] = s->gates[i].radius;
+    for (uint32_t i = 0; i < s->gate_count; ++i) {   /* Gate: disk, normal */
+        memcpy(&data[8 * i], s->gates[i].centre, 3 * sizeof(float));
+        data[8 * i + 3] = s->gates[i].radius;
+        memcpy(&data[8 * i + 4], s->gates[i].normal, 3 * sizeof(float));
     }
-    GLuint buffer = buffer_of(data, (GLsizeiptr)(s->gate_count * 4 * sizeof *data));
+    GLuint buffer = buffer_of(data, (GLsizeiptr)(s->gate_count * 8 * sizeof *data));
     free(data);
     return buffer;
 }
 
 gb_result gb_topo_gather_create(const gb_vpl_set *vpls, const gb_segmentation *s,
-                                float clamp_distance, gb_topo_gather_pass *pass, gb_error *error)
+                                const gb_topo_gates *gates, float clamp_distance,
+                                gb_topo_gather_pass *pass, gb_error *error)
 {
     memset(pass, 0, sizeof *pass);
     gb_result result = gb_gl_program("topo IL", gb_gl_fullscreen_vertex_shader, fragment_shader,
@@ -164,9 +219,11 @@ gb_result gb_topo_gather_create(const gb_vpl_set *vpls, const gb_segmentation *s
     glCreateVertexArrays(1, &pass->empty_vertex_array);
     pass->vpl_buffer = vpl_buffer(vpls);
     pass->gate_buffer = gate_buffer(s);
+    pass->route_buffer = route_buffer(gates);
+    pass->group_buffer = group_buffer(gates);
     pass->range_buffer = buffer_of(NULL, 16);
     pass->entry_buffer = buffer_of(NULL, 16);
-    if (!pass->vpl_buffer || !pass->gate_buffer)
+    if (!pass->vpl_buffer || !pass->gate_buffer || !pass->route_buffer || !pass->group_buffer)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "IL: out of memory");
     pass->vpl_count = vpls->count;
     pass->clamp_distance = clamp_distance;
@@ -191,6 +248,8 @@ void gb_topo_gather_draw(const gb_topo_gather_pass *pass, const float view_to_wo
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, pass->gate_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, pass->range_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 6, pass->entry_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, pass->route_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 11, pass->group_buffer);
     gb_gl_draw_fullscreen(pass->empty_vertex_array);
 }
 
@@ -200,9 +259,9 @@ void gb_topo_gather_destroy(gb_topo_gather_pass *pass)
         glDeleteProgram(pass->program);
     if (pass->empty_vertex_array)
         glDeleteVertexArrays(1, &pass->empty_vertex_array);
-    GLuint buffers[] = {pass->vpl_buffer, pass->gate_buffer, pass->range_buffer,
-                        pass->entry_buffer};
-    for (int i = 0; i < 4; ++i)
+    GLuint buffers[] = {pass->vpl_buffer, pass->gate_buffer, pass->route_buffer,
+                        pass->group_buffer, pass->range_buffer, pass->entry_buffer};
+    for (int i = 0; i < 6; ++i)
         if (buffers[i])
             glDeleteBuffers(1, &buffers[i]);
     memset(pass, 0, sizeof *pass);

@@ -9,6 +9,8 @@
 #include "../../tools/segment/coverage_nodes.h"
 #include "../../tools/segment/curvature_nodes.h"
 #include "../../tools/segment/segment.h"
+#include "../../tools/thin/thin.h"
+#include "../../tools/voxelize/voxelize.h"
 #include "container.h"
 #include "random.h"
 #include "scene_builder.h"
@@ -958,6 +960,81 @@ static void test_evaluate(void)
     CHECK_EQ_INT(e.unlocated, 0, "evaluate: every point found a cluster");
 }
 
+/* ---- a convex room, end to end ---- */
+
+/* The clusters of the empty voxels strictly inside [lo, hi] (one voxel in
+ * from the walls), through thin's grid and the segmentation; how many
+ * distinct ones, and how many such voxels have none. */
+static int room_clusters(const gb_voxel_grid *g, const int32_t *nearest,
+                         const gb_segmentation *seg, const float lo[3], const float hi[3],
+                         int *unlocated)
+{
+    uint8_t *seen = calloc(seg->cluster_count + 1, 1);
+    int distinct = 0;
+    *unlocated = 0;
+    for (int32_t k = 0; k < g->size[2]; ++k)
+        for (int32_t j = 0; j < g->size[1]; ++j)
+            for (int32_t i = 0; i < g->size[0]; ++i) {
+                int32_t v[3] = {i, j, k}, inside = 1;
+                for (int a = 0; a < 3; ++a) {
+                    double c = g->world_origin[a] + (v[a] + 0.5) * g->voxel_size;
+                    inside &= c > lo[a] + g->voxel_size && c < hi[a] - g->voxel_size;
+                }
+                size_t index = gb_voxel_index(g, i, j, k);
+                if (!inside || g->surface[index])
+                    continue;
+                int32_t node = nearest[index];
+                if (node < 0) {
+                    ++*unlocated;
+                    continue;
+                }
+                uint32_t c = seg->cluster[seg->node_map[node]];
+                distinct += !seen[c];
+                seen[c] = 1;
+            }
+    free(seen);
+    return distinct;
+}
+
+/* A closed box room 4 x 3 x 5 voxelized at 48, thinned, segmented: its
+ * inside is one visibility cluster (the other clusters are the empty shell
+ * voxelize pads the scene with, outside the walls). */
+static void test_convex_room(void)
+{
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    uint32_t grey = add_grey(&scene, 0.5f, 0.0f);
+    const float lo[3] = {0, 0, 0}, hi[3] = {4, 3, 5};
+    add_box(&scene, lo, hi, 1, grey);
+    scene_done(&scene);
+    gb_voxelize_options voxelize = {.resolution = 48};
+    gb_voxel_grid grid = {0};
+    gb_skeleton skeleton = {0};
+    gb_segmentation seg = {0};
+    int32_t *nearest = NULL;
+    gb_error error;
+    gb_result result = gb_voxelize_scene(&scene, &voxelize, &grid, &error);
+    if (result == GB_OK)
+        result = gb_thin(&grid, NULL, &skeleton, &nearest, NULL, &error);
+    if (result == GB_OK)
+        result = gb_segment(&skeleton, NULL, &seg, NULL, &error);
+    if (result != GB_OK)
+        printf("#   %s\n", error.message);
+    CHECK(result == GB_OK, "convex room: voxelize, thin, segment");
+    if (result == GB_OK) {
+        int unlocated, distinct = room_clusters(&grid, nearest, &seg, lo, hi, &unlocated);
+        printf("# convex room: %u skeleton nodes, %u clusters in all, %d inside, %d voxels "
+               "inside without a node\n", skeleton.node_count, seg.cluster_count, distinct,
+               unlocated);
+        CHECK(distinct == 1 && unlocated == 0, "convex room: its inside is one cluster");
+    }
+    free(nearest);
+    gb_segmentation_free(&seg);
+    gb_skeleton_free(&skeleton);
+    gb_voxel_grid_free(&grid);
+    gb_scene_free(&scene);
+}
+
 int main(void)
 {
     (void)build_cornell_box; /* scene_builder.h helpers these tests do not use */
@@ -980,5 +1057,6 @@ int main(void)
     test_file();
     test_lookup();
     test_evaluate();
+    test_convex_room();
     return tap_done();
 }

@@ -3,6 +3,10 @@
  * gate cone tests, IUGC (one visibility cluster per geometry cluster, the
  * spheres bound their fragments) and LA on two rooms joined by a door: a
  * VPL in room A reaches room B only inside the cone through the door gate;
+ * three rooms: room C only through both doors' cones; a VPL at a door
+ * lights through the disk only; the lookup off a tilted wall never lands in
+ * the wall's voxels; a gate refitted to its opening (and a gate added where
+ * clusters touch without one);
  * LA on the GPU gives the CPU's lists, and the GPU's visibility cluster of
  * each fragment is the CPU's (headless GL, skipped without it). */
 #include <math.h>
@@ -13,6 +17,7 @@
 #include "../../runtime/gbuffer.h"
 #include "../../runtime/view.h"
 #include "../../runtime/topo.h"
+#include "random.h"
 #include "scene_builder.h"
 #include "tap.h"
 
@@ -139,16 +144,203 @@ static void test_two_rooms_assignment(void)
     CHECK(gb_topo_assign(&clusters, &vpls, &vpl_cluster, &s, &gates, GB_TOPO_FULL, &a, &error) ==
               GB_OK, "LA: two rooms assigned");
     CHECK(a.ranges[1] == 1 && a.entries[a.ranges[0]].vpl == 0 &&
-              a.entries[a.ranges[0]].gate == 0,
+              a.entries[a.ranges[0]].group == 0,
           "LA: room B in the door's cone gets the VPL with the door gate");
     CHECK_EQ_INT(a.ranges[3], 0, "LA: room B outside the cone gets nothing");
-    CHECK(a.ranges[5] == 1 && a.entries[a.ranges[4]].gate == GB_TOPO_NO_GATE,
+    CHECK(a.ranges[5] == 1 && a.entries[a.ranges[4]].group == GB_TOPO_NO_GATE,
           "LA: room A gets its own VPL without a gate");
     CHECK(gb_topo_assign(&clusters, &vpls, &vpl_cluster, &s, &gates, GB_TOPO_CLUSTERS, &a,
                          &error) == GB_OK && a.ranges[1] == 0 && a.ranges[5] == 1,
           "LA, gates off: room B gets nothing, room A its VPL");
     gb_topo_assignment_free(&a);
     gb_topo_gates_free(&gates);
+}
+
+/* Three rooms along x: cluster 0 (x < 0), 1 (0 < x < 4), 2 (x > 4); door
+ * gates of radius 0.5 at x = 0 and x = 4. */
+static gb_visibility_gate doors[2] = {{{0, 0, 0}, {1, 0, 0}, 0.5f, {0, 1}, 0},
+                                      {{4, 0, 0}, {1, 0, 0}, 0.5f, {1, 2}, 1}};
+
+static void test_routes(void)
+{
+    gb_segmentation s = {.cluster_count = 3, .gate_count = 2, .gates = doors};
+    gb_topo_gates gates;
+    gb_error error;
+    CHECK(gb_topo_gates_build(&s, &gates, &error) == GB_OK, "routes: built for three rooms");
+    /* out of room 0: door 0 into room 1, doors 0 then 1 into room 2 */
+    int two_gate = 0;
+    for (uint32_t k = gates.route_offsets[0]; k < gates.route_offsets[1]; ++k)
+        two_gate += gates.routes[k].target == 2 && gates.routes[k].gates[0] == 0 &&
+                    gates.routes[k].gates[1] == 1;
+    CHECK(gates.route_offsets[1] == 2 && two_gate == 1,
+          "routes: room 0 reaches room 1 through one door, room 2 through both");
+    gb_geometry_cluster list[2] = {sphere_cluster(2, 8, 0, 0.2f), sphere_cluster(2, 8, 3, 0.2f)};
+    gb_geometry_clusters clusters = {2, 2, list};
+    gb_vpl vpl = {{-2, 0, 0}, {1, 0, 0}, {1, 1, 1}};
+    gb_vpl_set vpls = {0, 1, &vpl};
+    int32_t vpl_cluster = 0;
+    gb_topo_assignment a = {0};
+    CHECK(gb_topo_assign(&clusters, &vpls, &vpl_cluster, &s, &gates, GB_TOPO_FULL, &a, &error) ==
+              GB_OK && a.ranges[1] == 1 && a.ranges[3] == 0,
+          "LA: room 2 in line with both doors gets the VPL, off the line nothing");
+    const gb_topo_route_group *group = &gates.groups[a.entries[0].group];
+    const gb_topo_route *route = &gates.routes[group->first];
+    CHECK(group->target == 2 && group->count == 1 && route->gates[0] == 0 &&
+              route->gates[1] == 1,
+          "LA: ... with the group of routes to room 2: through both doors");
+    CHECK(a.entries[0].group == gb_topo_group_of(&gates, 0, 2) &&
+              gb_topo_group_of(&gates, 2, 0) != GB_TOPO_NO_GATE &&
+              gb_topo_group_of(&gates, 0, 0) == GB_TOPO_NO_GATE,
+          "LA: groups found by source and target (none from a room to itself)");
+    CHECK(gb_topo_group_contains(vpl.position, &s, &gates, a.entries[0].group,
+                                 (float[3]){8, 0.2f, 0}),
+          "IL: a point seen through both doors is lit");
+    /* in the cone of the first door (8.5 degrees off its axis, half-angle
+     * 14) but not of the second (half-angle 4.8): the paper's test, one
+     * cone through a gate of the VPL's cluster, would light it */
+    float beside[3] = {8, 1.5f, 0};
+    CHECK(gb_topo_cone_contains(vpl.position, &doors[0], beside) &&
+              !gb_topo_route_contains(vpl.position, &s, route, beside),
+          "IL: a point behind the wall between the doors stays dark");
+    gb_topo_assignment_free(&a);
+    gb_topo_gates_free(&gates);
+}
+
+static void test_vpl_at_the_door(void)
+{
+    float p[3] = {-0.2f, 0, 0};     /* within the door's radius of its centre */
+    CHECK(gb_topo_cone_contains(p, &door, (float[3]){3, 0.3f, 0}),
+          "gate: from inside its radius, light through the disk passes");
+    CHECK(!gb_topo_cone_contains(p, &door, (float[3]){-3, 2, 0}) &&
+              !gb_topo_cone_contains(p, &door, (float[3]){1, 4, 0}),
+          "gate: ... but not to its own side, nor past the disk's rim");
+}
+
+/* A frame of n^3 unit voxels at the origin. */
+static gb_segmentation unit_frame(int32_t nx, int32_t ny, int32_t nz)
+{
+    gb_segmentation s = {.voxel_size = 1.0, .grid_size = {nx, ny, nz}};
+    return s;
+}
+
+/* A wall through a 16^3 grid, plane x + 2y + 3z = 24 (tilted: its voxels
+ * are up to |n|_1 = 1.6 voxels thick along n), clusters 0 on the normal's
+ * side, 1 behind; the wall's own voxels get cluster 1, as thin's grid may
+ * give them (the node of their best empty neighbour). */
+static void test_lookup_off_the_wall(void)
+{
+    enum { N = 16 };
+    gb_segmentation s = unit_frame(N, N, N);
+    float n[3] = {1, 2, 3}, len = sqrtf(14.0f), reach = 0.0f;
+    for (int a = 0; a < 3; ++a) {
+        n[a] /= len;
+        reach += 0.5f * fabsf(n[a]);
+    }
+    int32_t *clusters = malloc(N * N * N * sizeof *clusters);
+    uint8_t *surface = malloc(N * N * N);
+    for (int i = 0; i < N * N * N; ++i) {
+        float c[3] = {i % N + 0.5f, (i / N) % N + 0.5f, i / (N * N) + 0.5f};
+        float d = (c[0] + 2 * c[1] + 3 * c[2] - 24.0f) / len;
+        surface[i] = fabsf(d) <= reach;
+        clusters[i] = d > reach ? 0 : 1;
+    }
+    int wrong_now = 0, wrong_before = 0, points = 0;
+    gb_random rng = gb_random_make(5, 0);
+    for (int k = 0; k < 400; ++k) {
+        float y = 2 + 4 * gb_random_float(&rng), z = 2 + 2 * gb_random_float(&rng);
+        float x[3] = {24 - 2 * y - 3 * z, y, z};
+        if (!(x[0] > 3 && x[0] < N - 3))
+            continue;
+        ++points;
+        wrong_now += gb_topo_surface_cluster(&s, clusters, x, n) != 0;
+        float one_voxel[3] = {x[0] + n[0], x[1] + n[1], x[2] + n[2]};
+        int32_t v[3] = {(int32_t)one_voxel[0], (int32_t)one_voxel[1], (int32_t)one_voxel[2]};
+        wrong_before += clusters[v[0] + N * (v[1] + N * v[2])] != 0;
+    }
+    printf("# lookup: %d points on the wall, one voxel off: %d in the far cluster, now %d\n",
+           points, wrong_before, wrong_now);
+    CHECK(points > 50 && wrong_before > 0, "lookup: one voxel off a tilted wall can land in it");
+    CHECK_EQ_INT(wrong_now, 0, "lookup: |n|_1 voxels off, always the cluster on the normal's side");
+    gb_topo_voxel_clusters_mark_surface(&s, clusters, surface);
+    int marked = 0;
+    for (int i = 0; i < N * N * N; ++i)
+        marked += surface[i] ? clusters[i] == GB_TOPO_SURFACE_CLUSTER(1) : clusters[i] >= 0;
+    CHECK_EQ_INT(marked, N * N * N, "mark_surface: surface voxels coded, the others untouched");
+    /* another surface's voxel where the first offset of a point lands (a
+     * corner), with the far side's cluster: used as is it misleads the
+     * lookup, marked it is skipped */
+    float x[3] = {24 - 2 * 4.0f - 3 * 3.0f, 4.0f, 3.0f}, t = 1.01f * 6.0f / len;
+    int32_t v[3] = {(int32_t)(x[0] + t * n[0]), (int32_t)(x[1] + t * n[1]),
+                    (int32_t)(x[2] + t * n[2])};
+    int32_t *in_the_way = &clusters[v[0] + N * (v[1] + N * v[2])];
+    *in_the_way = 1;
+    int misled = gb_topo_surface_cluster(&s, clusters, x, n) == 1;
+    *in_the_way = GB_TOPO_SURFACE_CLUSTER(1);
+    CHECK(misled && gb_topo_surface_cluster(&s, clusters, x, n) == 0,
+          "lookup: a marked surface voxel in the way is skipped");
+    free(clusters);
+    free(surface);
+}
+
+/* Two rooms along x in a 20 x 10 x 10 grid, split by a wall at x = 10
+ * (surface voxels) with a 6 x 6 opening (y, z in 2..8); the segmented
+ * skeleton's gate there has the paper's radius, min maxball = 0.5. */
+static void test_gate_fitted_to_opening(void)
+{
+    enum { NX = 20, NY = 10, NZ = 10 };
+    gb_segmentation s = unit_frame(NX, NY, NZ);
+    gb_visibility_gate gate = {{10, 5, 5}, {1, 0, 0}, 0.5f, {0, 1}, 0};
+    s.cluster_count = 2;
+    s.gate_count = 1;
+    s.gates = &gate;
+    int32_t *clusters = malloc(NX * NY * NZ * sizeof *clusters);
+    uint8_t *surface = calloc(NX * NY * NZ, 1);
+    for (int i = 0; i < NX * NY * NZ; ++i) {
+        int x = i % NX, y = (i / NX) % NY, z = i / (NX * NY);
+        int opening = y >= 2 && y < 8 && z >= 2 && z < 8;
+        surface[i] = x == 10 && !opening;
+        clusters[i] = x < 10 ? 0 : 1;    /* wall voxels too, as thin's grid gives them */
+    }
+    gb_topo_gates gates;
+    gb_error error;
+    float vpl[3] = {4, 5, 5}, lit[3] = {16, 9.5f, 5};
+    int before = gb_topo_cone_contains(vpl, &gate, lit);
+    CHECK(gb_topo_gates_build(&s, &gates, &error) == GB_OK &&
+              gb_topo_gates_fit_openings(&s, &gates, clusters, surface, &error) == GB_OK,
+          "openings: gate fitted");
+    printf("# opening: centre %.2f %.2f %.2f normal %.2f %.2f %.2f radius %.3f\n", gate.centre[0],
+           gate.centre[1], gate.centre[2], gate.normal[0], gate.normal[1], gate.normal[2],
+           gate.radius);
+    CHECK(fabsf(gate.centre[0] - 10) < 1e-4f && fabsf(gate.centre[1] - 5) < 1e-4f &&
+              fabsf(gate.centre[2] - 5) < 1e-4f && gate.normal[0] > 0.999f,
+          "openings: disk at the opening's centre, facing from cluster 0 to 1");
+    CHECK(gate.radius > 3.0f && gate.radius < 4.25f,
+          "openings: radius between the opening's inscribed and circumscribed circles "
+          "(the wall's voxels are not part of it)");
+    CHECK(!before && gb_topo_cone_contains(vpl, &gate, lit),
+          "openings: light through the opening's edge, cut by the paper's disk, passes");
+    gb_topo_gates_free(&gates);
+
+    /* a third room behind x = 15 that no skeleton edge joins to room 1 */
+    for (int i = 0; i < NX * NY * NZ; ++i)
+        if (i % NX >= 15)
+            clusters[i] = 2;
+    s.cluster_count = 3;
+    s.gates = malloc(sizeof *s.gates);
+    s.gates[0] = gate;
+    uint32_t added = 0;
+    CHECK(gb_topo_gates_add_openings(&s, clusters, surface, &added, &error) == GB_OK &&
+              added == 1 && s.gate_count == 2 && s.gates[1].clusters[0] == 1 &&
+              s.gates[1].clusters[1] == 2 && s.gates[1].edge == UINT32_MAX,
+          "openings: clusters 1 and 2 touch without a gate: one is added");
+    CHECK(gb_topo_gates_build(&s, &gates, &error) == GB_OK &&
+              gb_topo_gates_fit_openings(&s, &gates, clusters, surface, &error) == GB_OK &&
+              fabsf(s.gates[1].centre[0] - 15) < 1e-4f && s.gates[1].radius > 5.0f,
+          "openings: ... fitted to the whole x = 15 section");
+    gb_topo_gates_free(&gates);
+    free(s.gates);
+    free(clusters);
+    free(surface);
 }
 
 /* 64 x 40 pixels, camera at the origin looking down -z: columns < 20 see
@@ -277,7 +469,7 @@ static void test_la_cpu_equals_gpu(void)
                          &error) == GB_OK, "LA on the CPU: Cornell box VPLs, 4 clusters");
     gb_topo_gather_pass gather;
     gb_topo_la_gpu la;
-    gb_result result = gb_topo_gather_create(&vpls, &q.s, 1.0f, &gather, &error);
+    gb_result result = gb_topo_gather_create(&vpls, &q.s, &gates, 1.0f, &gather, &error);
     if (result == GB_OK)
         result = gb_topo_la_gpu_create(&vpls, vpl_cluster, &gates, &la, &error);
     if (result == GB_OK)
@@ -291,7 +483,7 @@ static void test_la_cpu_equals_gpu(void)
           "LA: some VPLs assigned, not every one everywhere");
     int gated = 0;
     for (uint32_t i = 0; i < cpu.entry_count; ++i)
-        gated += cpu.entries[i].gate != GB_TOPO_NO_GATE;
+        gated += cpu.entries[i].group != GB_TOPO_NO_GATE;
     CHECK(gated > 0, "LA: some VPLs assigned through a gate");
     CHECK(result == GB_OK && gpu.entry_count == cpu.entry_count &&
               memcmp(gpu.ranges, cpu.ranges, 2 * cpu.cluster_count * sizeof *cpu.ranges) == 0 &&
@@ -326,7 +518,9 @@ static void oct_decode(float x, float y, float n[3])
 }
 
 /* A voxel grid over the Cornell box whose clusters are its four quadrants
- * in x and z (and -1 in the top layer of voxels, as if it had no node). */
+ * in x and z (and -1 in five layers under the ceiling, as if they had no
+ * node: deep enough that the lookup's offsets and its 27-voxel fallback
+ * find nothing for the ceiling's fragments). */
 static int32_t *quadrant_voxels(const gb_scene *scene, gb_segmentation *s)
 {
     memset(s, 0, sizeof *s);
@@ -342,7 +536,8 @@ static int32_t *quadrant_voxels(const gb_scene *scene, gb_segmentation *s)
         for (int32_t j = 0; j < n[1]; ++j)
             for (int32_t i = 0; i < n[0]; ++i)
                 clusters[i + n[0] * (j + n[1] * k)] =
-                    j == n[1] - 3 ? -1 : (i >= n[0] / 2) + 2 * (k >= n[2] / 2);
+                    j >= n[1] - 7 && j <= n[1] - 3 ? -1
+                                                   : (i >= n[0] / 2) + 2 * (k >= n[2] / 2);
     return clusters;
 }
 
@@ -441,6 +636,10 @@ int main(void)
     test_vpls_sun();
     test_cones();
     test_two_rooms_assignment();
+    test_routes();
+    test_vpl_at_the_door();
+    test_lookup_off_the_wall();
+    test_gate_fitted_to_opening();
     test_iugc();
     test_la_cpu_equals_gpu();
     test_cluster_lookup_gpu();

@@ -105,14 +105,21 @@ static gb_vec3 facing(const surface_point *p, gb_vec3 q)
                ? gb_vec3_negate(p->normal) : p->normal;
 }
 
+/* Looked up |normal|_1 voxels off the surface (out of the voxels the
+ * surface itself touches, whose node thin takes from whichever side is
+ * nearer a node, often the far side of the wall), then one and two voxels
+ * further; the runtime's lookup (runtime/topo_clusters.c). */
 static int32_t cluster_near(const evaluation *ev, gb_vec3 position, gb_vec3 normal)
 {
-    float step = (float)ev->seg->voxel_size;
-    gb_vec3 off = gb_vec3_madd(position, normal, step);
-    double at[3] = {off.x, off.y, off.z};
-    int32_t c = gb_segmentation_cluster_at(ev->seg, ev->nearest, at);
-    if (c >= 0)
-        return c;
+    float l1 = fabsf(normal.x) + fabsf(normal.y) + fabsf(normal.z);
+    for (int step = 0; step < 3; ++step) {
+        gb_vec3 off = gb_vec3_madd(position, normal,
+                                   (1.01f * l1 + (float)step) * (float)ev->seg->voxel_size);
+        double at[3] = {off.x, off.y, off.z};
+        int32_t c = gb_segmentation_cluster_at(ev->seg, ev->nearest, at);
+        if (c >= 0)
+            return c;
+    }
     double on[3] = {position.x, position.y, position.z};
     return gb_segmentation_cluster_at(ev->seg, ev->nearest, on);
 }
