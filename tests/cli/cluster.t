@@ -12,18 +12,7 @@ tool=$GB_BIN/cluster
 scene=$GB_ROOT/scenes/cornell/cornell.scene
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-cluster.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-count=0
-failed=0
-
-ok() {
-    count=$((count + 1))
-    if [ "$1" = 0 ]; then
-        echo "ok $count - $2"
-    else
-        failed=$((failed + 1))
-        echo "not ok $count - $2"
-    fi
-}
+. "$(dirname "$0")/tap.sh"
 
 if [ ! -x "$tool" ] || [ ! -x "$GB_BIN/photons" ]; then
     echo "Bail out! $tool or photons not built"
@@ -95,5 +84,4 @@ status=$?
 [ $status = 1 ] && grep -q 'another scene' "$dir/err" && [ ! -e "$dir/bad.lot" ]
 ok $? "photons of another scene: exit 1, stale, nothing written"
 
-echo "1..$count"
-[ $failed = 0 ]
+tap_done

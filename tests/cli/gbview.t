@@ -16,33 +16,9 @@ imgdiff=$GB_BIN/imgdiff
 scene=$GB_ROOT/scenes/cornell/cornell.scene
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-gbview.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-count=0
-failed=0
-
-ok() {
-    count=$((count + 1))
-    if [ "$1" = 0 ]; then
-        echo "ok $count - $2"
-    else
-        failed=$((failed + 1))
-        echo "not ok $count - $2"
-    fi
-}
-
-skip() {
-    count=$((count + 1))
-    echo "ok $count # skip $1"
-}
-
-value() {
-    sed -n "s/^$1 //p" "$2"
-}
+. "$(dirname "$0")/tap.sh"
 
 # awk: is the number $1 below $2?
-below() {
-    awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a + 0 < b + 0) }'
-}
-
 if [ ! -x "$tool" ] || [ ! -x "$imgdiff" ]; then
     echo "Bail out! $tool or $imgdiff not built"
     exit 1
@@ -111,15 +87,6 @@ ok "$(grep -q "cornell.skel" "$dir/err"; echo $?)" "the corrupt .skel is reporte
 ok "$([ "$(grep -c "skipped" "$dir/err")" = 5 ]; echo $?)" "one message per missing or bad file"
 ok "$([ -s "$dir/bake.png" ]; echo $?)" "and the image is still rendered"
 
-expect_failure() { # WHAT STATUS PATTERN ARGS...
-    what=$1 want=$2 pattern=$3
-    shift 3
-    "$tool" "$@" >"$dir/out" 2>"$dir/err"
-    status=$?
-    ok "$([ $status = "$want" ]; echo $?)" "$what: exit status $want (got $status)"
-    ok "$(grep -q "$pattern" "$dir/err"; echo $?)" "$what: says '$pattern' on stderr"
-}
-
 expect_failure "a missing scene" 1 "^gbview: .*missing.scene" \
     --headless "$dir/missing.scene" -o "$dir/missing.png"
 ok "$([ ! -e "$dir/missing.png" ]; echo $?)" "a failed run writes no image"
@@ -152,5 +119,4 @@ else
     for i in 1 2 3; do skip "xvfb-run not installed (Debian package xvfb)"; done
 fi
 
-echo "1..$count"
-[ $failed = 0 ]
+tap_done

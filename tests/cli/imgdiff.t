@@ -10,24 +10,9 @@ GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
 tool=$GB_BIN/imgdiff
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-imgdiff.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-count=0
-failed=0
-
-ok() {
-    count=$((count + 1))
-    if [ "$1" = 0 ]; then
-        echo "ok $count - $2"
-    else
-        failed=$((failed + 1))
-        echo "not ok $count - $2"
-    fi
-}
+. "$(dirname "$0")/tap.sh"
 
 # value KEY FILE: the value printed for KEY in FILE
-value() {
-    sed -n "s/^$1 //p" "$2"
-}
-
 if [ ! -x "$tool" ]; then
     echo "Bail out! $tool not built"
     exit 1
@@ -77,5 +62,4 @@ ok "$([ $? = 0 ] && grep -q "^usage: imgdiff" "$dir/out"; echo $?)" "--help on s
 "$tool" --version >"$dir/out"
 ok "$([ $? = 0 ] && grep -q "imgdiff (gibake)" "$dir/out"; echo $?)" "--version"
 
-echo "1..$count"
-[ $failed = 0 ]
+tap_done

@@ -16,31 +16,7 @@ imgdiff=$GB_BIN/imgdiff
 scene=$GB_ROOT/scenes/cornell/cornell.scene
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-implicit.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-count=0
-failed=0
-
-ok() {
-    count=$((count + 1))
-    if [ "$1" = 0 ]; then
-        echo "ok $count - $2"
-    else
-        failed=$((failed + 1))
-        echo "not ok $count - $2"
-    fi
-}
-
-skip() {
-    count=$((count + 1))
-    echo "ok $count # skip $1"
-}
-
-value() {
-    sed -n "s/^$1 //p" "$2"
-}
-
-below() {
-    awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && a + 0 < b + 0) }'
-}
+. "$(dirname "$0")/tap.sh"
 
 if [ ! -x "$tool" ] || [ ! -x "$imgdiff" ]; then
     echo "Bail out! $tool or $imgdiff not built"
@@ -172,5 +148,4 @@ else
     skip "$reference or oiiotool missing"
 fi
 
-echo "1..$count"
-[ $failed = 0 ]
+tap_done

@@ -12,22 +12,7 @@ tool=$GB_BIN/photons
 scene=$GB_ROOT/scenes/cornell/cornell.scene
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-photons.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-count=0
-failed=0
-
-ok() {
-    count=$((count + 1))
-    if [ "$1" = 0 ]; then
-        echo "ok $count - $2"
-    else
-        failed=$((failed + 1))
-        echo "not ok $count - $2"
-    fi
-}
-
-value() {
-    sed -n "s/^$1 //p" "$2"
-}
+. "$(dirname "$0")/tap.sh"
 
 if [ ! -x "$tool" ]; then
     echo "Bail out! $tool not built"
@@ -63,15 +48,6 @@ done
 ok $? "--merge of 4 shards: exit status 0"
 ok "$(cmp -s "$dir/one.phot" "$dir/merged.phot"; echo $?)" \
     "the merged shards are byte for byte the single run"
-
-expect_failure() { # WHAT STATUS PATTERN ARGS...
-    what=$1 want=$2 pattern=$3
-    shift 3
-    "$tool" "$@" >"$dir/out" 2>"$dir/err"
-    status=$?
-    ok "$([ $status = "$want" ]; echo $?)" "$what: exit status $want (got $status)"
-    ok "$(grep -q "$pattern" "$dir/err"; echo $?)" "$what: says '$pattern' on stderr"
-}
 
 expect_failure "a missing scene" 1 "^photons: .*missing.scene" \
     --quiet "$dir/missing.scene" -o "$dir/missing.phot"
@@ -118,5 +94,4 @@ ok "$([ $? = 0 ] && grep -q "^usage: photons" "$dir/out"; echo $?)" "--help on s
 "$tool" --version >"$dir/out"
 ok "$([ $? = 0 ] && grep -q "photons (gibake)" "$dir/out"; echo $?)" "--version"
 
-echo "1..$count"
-[ $failed = 0 ]
+tap_done

@@ -13,22 +13,7 @@ imgdiff=$GB_BIN/imgdiff
 scene=$GB_ROOT/scenes/cornell/cornell.scene
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-reference.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-count=0
-failed=0
-
-ok() {
-    count=$((count + 1))
-    if [ "$1" = 0 ]; then
-        echo "ok $count - $2"
-    else
-        failed=$((failed + 1))
-        echo "not ok $count - $2"
-    fi
-}
-
-value() {
-    sed -n "s/^$1 //p" "$2"
-}
+. "$(dirname "$0")/tap.sh"
 
 if [ ! -x "$tool" ] || [ ! -x "$imgdiff" ]; then
     echo "Bail out! $tool or $imgdiff not built"
@@ -57,15 +42,6 @@ ok "$([ "$(value max_error "$dir/diff")" != 0 ]; echo $?)" "another seed, anothe
 "$tool" $small --mode indirect1-unshadowed --camera 0 "$scene" -o "$dir/u.exr"
 ok $? "indirect1-unshadowed mode runs"
 
-expect_failure() { # WHAT STATUS PATTERN ARGS...
-    what=$1 want=$2 pattern=$3
-    shift 3
-    "$tool" "$@" >"$dir/out" 2>"$dir/err"
-    status=$?
-    ok "$([ $status = "$want" ]; echo $?)" "$what: exit status $want (got $status)"
-    ok "$(grep -q "$pattern" "$dir/err"; echo $?)" "$what: says '$pattern' on stderr"
-}
-
 expect_failure "a missing scene" 1 "^reference: .*missing.scene" \
     --quiet "$dir/missing.scene" -o "$dir/missing.exr"
 ok "$([ ! -e "$dir/missing.exr" ]; echo $?)" "a failed run writes no image"
@@ -85,5 +61,4 @@ ok "$([ $? = 0 ] && grep -q "^usage: reference" "$dir/out"; echo $?)" "--help on
 "$tool" --version >"$dir/out"
 ok "$([ $? = 0 ] && grep -q "reference (gibake)" "$dir/out"; echo $?)" "--version"
 
-echo "1..$count"
-[ $failed = 0 ]
+tap_done

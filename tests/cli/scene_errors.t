@@ -10,18 +10,7 @@ GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
 tool=$GB_BIN/scene-info
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-scene-errors.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-count=0
-failed=0
-
-ok() {
-    count=$((count + 1))
-    if [ "$1" = 0 ]; then
-        echo "ok $count - $2"
-    else
-        failed=$((failed + 1))
-        echo "not ok $count - $2"
-    fi
-}
+. "$(dirname "$0")/tap.sh"
 
 # expect_error WHAT FILE MESSAGE: scene-info FILE exits 1, prints exactly
 # "scene-info: MESSAGE" on stderr and nothing on stdout.
@@ -119,5 +108,4 @@ ok $? "warning on stderr: 1 degenerate triangles dropped"
 "$tool" --quiet "$dir/dropped.obj" >"$dir/out" 2>"$dir/err"
 ok "$([ ! -s "$dir/err" ]; echo $?)" "--quiet silences the warning"
 
-echo "1..$count"
-[ $failed = 0 ]
+tap_done

@@ -11,18 +11,7 @@ GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
 scene=$GB_ROOT/scenes/cornell/cornell.scene
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-segment.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-count=0
-failed=0
-
-ok() {
-    count=$((count + 1))
-    if [ "$1" = 0 ]; then
-        echo "ok $count - $2"
-    else
-        failed=$((failed + 1))
-        echo "not ok $count - $2"
-    fi
-}
+. "$(dirname "$0")/tap.sh"
 
 # expect_status WHAT STATUS COMMAND...: the command exits with STATUS.
 expect_status() {
@@ -112,5 +101,4 @@ expect_status "another scene" 1 "$GB_BIN/segment" --evaluate "$dir/other.obj" "$
 grep -q "another scene" "$dir/err"
 ok $? "another scene: refused as stale"
 
-echo "1..$count"
-[ "$failed" = 0 ]
+tap_done

@@ -11,18 +11,7 @@ GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
 tool=$GB_BIN/thin
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-thin.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-count=0
-failed=0
-
-ok() {
-    count=$((count + 1))
-    if [ "$1" = 0 ]; then
-        echo "ok $count - $2"
-    else
-        failed=$((failed + 1))
-        echo "not ok $count - $2"
-    fi
-}
+. "$(dirname "$0")/tap.sh"
 
 # status_of COMMAND...: its exit status, output in $dir/out and $dir/err.
 status_of() {
@@ -81,5 +70,4 @@ ok "$(grep -q '^thin: --persistence' "$dir/err"; echo $?)" "with a message namin
 ok "$([ "$(status_of "$tool" -q "$dir/box.vdb" -o "$dir/no/such/dir.skel")" = 1 ]; echo $?)" \
     "an unwritable output exits 1"
 
-echo "1..$count"
-[ "$failed" = 0 ]
+tap_done

@@ -14,27 +14,7 @@ GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
 scene=$GB_ROOT/scenes/cornell/cornell.scene
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-topo.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-count=0
-failed=0
-
-ok() {
-    count=$((count + 1))
-    if [ "$1" = 0 ]; then
-        echo "ok $count - $2"
-    else
-        failed=$((failed + 1))
-        echo "not ok $count - $2"
-    fi
-}
-
-value() {
-    sed -n "s/^$1 //p" "$2"
-}
-
-# awk: is the number $1 below $2?
-below() {
-    awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && b != "" && a + 0 < b + 0) }'
-}
+. "$(dirname "$0")/tap.sh"
 
 for tool in voxelize thin segment gbview reference imgdiff; do
     if [ ! -x "$GB_BIN/$tool" ]; then
@@ -107,5 +87,4 @@ ok $? "gates add light the clusters alone miss: MSE at most that of clusters onl
 below "$mse_topo" "$(awk -v a="$mse_none" 'BEGIN { print a * 1.1 }')"
 ok $? "topo's MSE within 1.1 x that of no visibility (one cluster for the room)"
 
-echo "1..$count"
-[ "$failed" = 0 ]
+tap_done

@@ -11,23 +11,7 @@ GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
 tool=$GB_BIN/voxelize
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-voxelize.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
-count=0
-failed=0
-
-ok() {
-    count=$((count + 1))
-    if [ "$1" = 0 ]; then
-        echo "ok $count - $2"
-    else
-        failed=$((failed + 1))
-        echo "not ok $count - $2"
-    fi
-}
-
-skip() {
-    count=$((count + 1))
-    echo "ok $count # SKIP $1"
-}
+. "$(dirname "$0")/tap.sh"
 
 # active NAME FILE: the number of active voxels vdb_print reports for grid NAME
 active() {
@@ -140,5 +124,4 @@ ok "$([ $? = 2 ] && grep -q "no output file" "$dir/err"; echo $?)" "no -o: exit 
 "$tool" -o "$dir/x.vdb" 2>"$dir/err"
 ok "$([ $? = 2 ] && grep -q "expected one SCENE" "$dir/err"; echo $?)" "no SCENE: exit 2"
 
-echo "1..$count"
-[ "$failed" = 0 ]
+tap_done
