@@ -4,8 +4,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "gl_util.h"
+#include "progress.h"
 
 /* The seed of v_rand (per vertex, at load) and of u_rand (per frame). */
 #define FLC_SEED 0x464c43u
@@ -13,6 +15,8 @@ enum {
     SSBO_TRIANGLES = 3,
     SSBO_ALBEDOS = 4,
     SSBO_VPLS = 5,
+    SSBO_PATCHES = 6,
+    SSBO_COMMANDS = 7,
     UNIT_SPLAT = 10,
     UNIT_ACCUMULATED = 11,
     GENERATE_GROUP = 64,
@@ -41,12 +45,14 @@ enum {
 #define GLSL_VPL                                                                   \
     "struct Vpl { vec4 position_level; vec4 normal_tile; vec4 front; vec4 back; };\n"
 
-/* Pass 1: one VPL per VPL triangle, or none (level -1). E(t_i) follows
- * runtime/direct_light.c's lights and shadow-map bias, as irradiance on a
- * side of the triangle (its geometric normal). */
-static const char generate_shader[] =
-    "#version 450 core\n"
-    "layout(local_size_x = 64) in;\n"
+/* Pass 1, shared by the regular pipeline (a compute pass over the VPL
+ * triangles) and the divergent one (the geometry shader after the
+ * tessellation): lights, Alg. 1, and make_vpl, the VPL of one triangle or
+ * none. E(t_i) follows runtime/direct_light.c's lights and shadow-map bias,
+ * as irradiance on a side of the triangle (its geometric normal). Patches and
+ * Commands are the divergent buffer and the two indirect draws (PATCH_*,
+ * COMMAND_*). */
+static const char generate_common[] =
     "struct PointLight { vec4 position_range; vec4 intensity_one_sided; vec4 normal; };\n"
     "struct PlaneLight { mat4 world_to_clip; vec4 position_kind; vec4 direction_texel;\n"
     "                    vec4 intensity; vec4 cone; };\n"
@@ -57,11 +63,14 @@ static const char generate_shader[] =
     "layout(std430, binding = 3) readonly buffer Triangles { Triangle triangles[]; };\n"
     "layout(std430, binding = 4) readonly buffer Albedos { vec4 albedos[]; };\n"
     "layout(std430, binding = 5) writeonly buffer Vpls { Vpl vpls[]; };\n"
+    "layout(std430, binding = 6) buffer Patches { uvec4 patches[]; };\n"
+    "layout(std430, binding = 7) buffer Commands { uint commands[8]; };\n"
     "layout(binding = 8) uniform samplerCubeArrayShadow shadow_cubes;\n"
     "layout(binding = 9) uniform sampler2DArrayShadow shadow_planes;\n"
-    "uniform uint triangle_count;\n"
     "uniform uint u_rand;\n"
+    "uniform bool keep_all;\n"
     "uniform float S_bar[16];\n"
+    "uniform float S[16];\n"
     "uniform uint tiles;\n"
     "uniform int point_count;\n"
     "uniform int plane_count;\n"
@@ -142,36 +151,176 @@ static const char generate_shader[] =
     "}\n"
     /* Alg. 1 */
     "int flc_level(float u, float area) {\n"
+    "    if (keep_all)\n"
+    "        return N;\n"
     "    for (int k = 0; k <= N; ++k)\n"
     "        if (u < area / S_bar[k])\n"
     "            return k;\n"
     "    return -1;\n"
     "}\n"
-    "void main() {\n"
-    "    uint i = gl_GlobalInvocationID.x;\n"
-    "    if (i >= triangle_count)\n"
-    "        return;\n"
-    "    Triangle t = triangles[i];\n"
-    "    uint u_i = flc_hash(floatBitsToUint(t.p1_key.w) ^ u_rand);\n"   /* Alg. 2 */
-    "    int level = flc_level(flc_uniform(u_i), t.p2_area.w);\n"
-    "    vec3 p0 = t.p0_material.xyz, e1 = t.p1_key.xyz - p0, e2 = t.p2_area.xyz - p0;\n"
+    "bool make_vpl(vec3 p0, vec3 p1, vec3 p2, float area, uint key, uint material,\n"
+    "              out Vpl vpl) {\n"
+    "    uint u_i = flc_hash(key ^ u_rand);\n"                         /* Alg. 2 */
+    "    int level = flc_level(flc_uniform(u_i), area);\n"
+    "    vec3 e1 = p1 - p0, e2 = p2 - p0;\n"
     "    vec3 cross_product = cross(e1, e2);\n"
     "    float twice_area = length(cross_product);\n"
-    "    if (level < 0 || !(twice_area > 0.0) || isinf(twice_area)) {\n"
-    "        vpls[i].position_level = vec4(0.0, 0.0, 0.0, -1.0);\n"
-    "        return;\n"
-    "    }\n"
+    "    vpl.position_level = vec4(0.0, 0.0, 0.0, -1.0);\n"
+    "    if (level < 0 || !(twice_area > 0.0) || isinf(twice_area))\n"
+    "        return false;\n"
     "    uint b1 = flc_hash(u_i), b2 = flc_hash(b1), b3 = flc_hash(b2);\n"
     "    float s = sqrt(flc_uniform(b1)), v = flc_uniform(b2);\n"      /* jittered y_i */
     "    vec3 y = p0 + s * (1.0 - v) * e1 + s * v * e2;\n"
     "    vec3 n = cross_product / twice_area;\n"
-    "    vec3 rho = albedos[floatBitsToUint(t.p0_material.w)].rgb;\n"
-    "    Vpl vpl;\n"
+    "    vec3 rho = albedos[material].rgb;\n"
+    "    if (keep_all)\n"                    /* weight area, not S_N */
+    "        rho *= 0.5 * twice_area / S[N];\n"
     "    vpl.position_level = vec4(y, float(level));\n"
     "    vpl.normal_tile = vec4(n, float(b3 % tiles));\n"
     "    vpl.front = vec4(rho * irradiance(y, n), 0.0);\n"      /* radiosity B = rho E */
     "    vpl.back = vec4(rho * irradiance(y, -n), 0.0);\n"
+    "    return true;\n"
+    "}\n"
+    /* The tessellation of a divergent triangle (gb_flc_tessellation). */
+    "uvec2 flc_tessellation(float area) {\n"
+    "    float t = sqrt(2.0 / 3.0) * min(sqrt(area / S_bar[N]), float(MAX_SUBDIVISION));\n"
+    "    uint c = max(1u, uint(ceil(t / float(MAX_TESS_LEVEL))));\n"
+    "    return uvec2(c, max(2u, 2u * uint(ceil(t / (2.0 * float(c))))));\n"
+    "}\n";
+
+/* Pass 1 of the regular pipeline: one VPL per regular VPL triangle of [first,
+ * first + triangle_count), or none (level -1); a divergent one (area > S̄_N)
+ * is appended instead to the divergent buffer as the c x c cells of its
+ * barycentric grid (up and down triangles: c^2 patches of 3 vertices), each
+ * to be tessellated at level m (the paper's first pass, which stores the
+ * divergent triangles for the second, indirect, draw). */
+static const char generate_main[] =
+    "uniform uint first;\n"
+    "uniform uint triangle_count;\n"
+    "uniform uint patch_capacity;\n"
+    "void main() {\n"
+    "    if (gl_GlobalInvocationID.x >= triangle_count)\n"
+    "        return;\n"
+    "    uint i = first + gl_GlobalInvocationID.x;\n"
+    "    Triangle t = triangles[i];\n"
+    "    float area = t.p2_area.w;\n"
+    "    if (area > S_bar[N]) {\n"
+    "        vpls[i].position_level = vec4(0.0, 0.0, 0.0, -1.0);\n"
+    "        uvec2 cm = flc_tessellation(area);\n"
+    "        uint c = cm.x, base = atomicAdd(commands[0], 3u * c * c) / 3u, k = base;\n"
+    "        for (uint b = 0u; b < c; ++b)\n"
+    "            for (uint a = 0u; a + b < c; ++a) {\n"
+    "                if (k < patch_capacity)\n"
+    "                    patches[k] = uvec4(i, a | (b << 8) | (1u << 16), c, cm.y);\n"
+    "                ++k;\n"
+    "                if (a + b + 1u < c && k < patch_capacity)\n"
+    "                    patches[k] = uvec4(i, a | (b << 8), c, cm.y);\n"
+    "                k += a + b + 1u < c ? 1u : 0u;\n"
+    "            }\n"
+    "        return;\n"
+    "    }\n"
+    "    Vpl vpl;\n"
+    "    make_vpl(t.p0_material.xyz, t.p1_key.xyz, t.p2_area.xyz, area,\n"
+    "             floatBitsToUint(t.p1_key.w), floatBitsToUint(t.p0_material.w), vpl);\n"
     "    vpls[i] = vpl;\n"
+    "}\n";
+
+/* The divergent pipeline's second draw (glDrawArraysIndirect of the
+ * patches, rasterizer off): the vertex shader puts the corners of patch
+ * gl_VertexID / 3 in the base triangle's barycentric coordinates (a, b);
+ * the control shader sets every level to m; the evaluation shader makes each
+ * sub-vertex in model space with v_rand_tess, a hash of its barycentric
+ * coordinates (Fig. 8: the pattern depends only on the area, so the value
+ * follows the sub-vertex from frame to frame); the geometry shader makes the
+ * sub-triangle's VPL (u_i from the base key XOR the three v_rand_tess, Alg.
+ * 2) and appends it after the regular ones, counting it in the splatting's
+ * indirect draw. */
+static const char tess_vertex_shader[] =
+    "#version 450 core\n"
+    "layout(std430, binding = 6) buffer Patches { uvec4 patches[]; };\n"
+    "uniform uint patch_capacity;\n"
+    "out vec2 v_ab;\n"
+    "out uint v_patch;\n"
+    "void main() {\n"
+    "    uint p = uint(gl_VertexID) / 3u, corner = uint(gl_VertexID) % 3u;\n"
+    "    uvec4 q = p < patch_capacity ? patches[p] : uvec4(0u, 0u, 1u, 0u);\n"
+    "    vec2 g = vec2(float(q.y & 255u), float((q.y >> 8) & 255u));\n"
+    "    if ((q.y >> 16) != 0u)\n"                                    /* up */
+    "        g += corner == 1u ? vec2(1.0, 0.0) : corner == 2u ? vec2(0.0, 1.0) : vec2(0.0);\n"
+    "    else\n"                                                       /* down */
+    "        g += corner == 0u ? vec2(1.0, 0.0) : corner == 1u ? vec2(1.0) : vec2(0.0, 1.0);\n"
+    "    v_ab = g / float(max(q.z, 1u));\n"
+    "    v_patch = p;\n"
+    "}\n";
+
+static const char tess_control_shader[] =
+    "#version 450 core\n"
+    "layout(vertices = 3) out;\n"
+    "layout(std430, binding = 6) buffer Patches { uvec4 patches[]; };\n"
+    "uniform uint patch_capacity;\n"
+    "in vec2 v_ab[];\n"
+    "in uint v_patch[];\n"
+    "out vec2 c_ab[];\n"
+    "patch out uint c_patch;\n"
+    "void main() {\n"
+    "    c_ab[gl_InvocationID] = v_ab[gl_InvocationID];\n"
+    "    if (gl_InvocationID == 0) {\n"
+    "        uint p = v_patch[0];\n"
+    "        float m = p < patch_capacity ? float(patches[p].w) : 0.0;\n"  /* 0: culled */
+    "        gl_TessLevelOuter[0] = m;\n"
+    "        gl_TessLevelOuter[1] = m;\n"
+    "        gl_TessLevelOuter[2] = m;\n"
+    "        gl_TessLevelInner[0] = m;\n"
+    "        c_patch = p;\n"
+    "    }\n"
+    "}\n";
+
+static const char tess_evaluation_shader[] =
+    "layout(triangles, equal_spacing, ccw) in;\n"
+    "struct Triangle { vec4 p0_material; vec4 p1_key; vec4 p2_area; };\n"
+    "layout(std430, binding = 3) readonly buffer Triangles { Triangle triangles[]; };\n"
+    "layout(std430, binding = 6) buffer Patches { uvec4 patches[]; };\n"
+    "in vec2 c_ab[];\n"
+    "patch in uint c_patch;\n"
+    "out vec3 e_position;\n"
+    "out uint e_random;\n"
+    "out uint e_patch;\n"
+    "uint flc_hash(uint v) {\n"
+    "    uint state = v * 747796405u + 2891336453u;\n"
+    "    uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;\n"
+    "    return (word >> 22u) ^ word;\n"
+    "}\n"
+    "void main() {\n"
+    "    vec3 w = gl_TessCoord;\n"
+    "    vec2 ab = w.x * c_ab[0] + w.y * c_ab[1] + w.z * c_ab[2];\n"
+    "    Triangle t = triangles[patches[c_patch].x];\n"
+    "    vec3 p0 = t.p0_material.xyz;\n"
+    "    e_position = p0 + ab.x * (t.p1_key.xyz - p0) + ab.y * (t.p2_area.xyz - p0);\n"
+    "    uvec2 g = uvec2(round(clamp(ab, 0.0, 1.0) * TESS_GRID));\n"  /* gb_flc_tess_coord_random */
+    "    e_random = flc_hash(flc_hash(g.x) ^ (g.y * 0x9e3779b9u));\n"
+    "    e_patch = c_patch;\n"
+    "    gl_Position = vec4(0.0);\n"
+    "}\n";
+
+static const char tess_geometry_main[] =
+    "layout(triangles) in;\n"
+    "layout(points, max_vertices = 1) out;\n"
+    "in vec3 e_position[];\n"
+    "in uint e_random[];\n"
+    "in uint e_patch[];\n"
+    "uniform uint divergent_first;\n"
+    "uniform uint divergent_capacity;\n"
+    "void main() {\n"
+    "    Triangle t = triangles[patches[e_patch[0]].x];\n"
+    "    uint key = floatBitsToUint(t.p1_key.w) ^ e_random[0] ^ e_random[1] ^ e_random[2];\n"
+    "    vec3 p0 = e_position[0], p1 = e_position[1], p2 = e_position[2];\n"
+    "    float area = 0.5 * length(cross(p1 - p0, p2 - p0));\n"
+    "    Vpl vpl;\n"
+    "    if (!make_vpl(p0, p1, p2, area, key, floatBitsToUint(t.p0_material.w), vpl))\n"
+    "        return;\n"
+    "    uint slot = atomicAdd(commands[4], 1u);\n"
+    "    if (slot < divergent_capacity)\n"
+    "        vpls[divergent_first + slot] = vpl;\n"
     "}\n";
 
 static const char splat_vertex_shader[] =
@@ -250,7 +399,10 @@ static const char splat_geometry_shader[] =
     "    corner(side, b.x, b.y);\n"
     "    EndPrimitive();\n"
     "}\n"
+    "uniform int vpl_count;\n"
     "void main() {\n"
+    "    if (v_index[0] >= vpl_count)\n"     /* past the divergent VPLs' room */
+    "        return;\n"
     "    Vpl vpl = vpls[v_index[0]];\n"
     "    int level = int(vpl.position_level.w);\n"
     "    if (level < 0)\n"
@@ -378,13 +530,17 @@ typedef struct flc_state {
     gb_flc_levels levels;
     float epsilon;
     int tiling;
-    uint32_t triangle_count;
-    GLuint generate_program, splat_program, resolve_program, composite_program;
+    uint32_t triangle_count, regular_count;   /* regular ones first, divergent ones whole */
+    uint32_t patch_capacity, divergent_capacity;  /* room for the tessellation */
+    GLuint generate_program, splat_program, tess_program, resolve_program, composite_program;
     GLuint triangle_buffer, albedo_buffer, vpl_buffer, empty_vertex_array;
+    GLuint patch_buffer, command_buffer;
     int width, height, tile_width, tile_height;
     GLuint splat_texture, splat_framebuffer, accumulated_texture, accumulated_framebuffer;
     uint32_t accumulated;           /* frames in the accumulation */
     gb_mat4 last_view, last_projection;
+    int measuring;
+    gb_flc_pass_times times;
 } flc_state;
 
 void gb_flc_scene_levels(const gb_scene *scene, const gb_method_parameters *parameters,
@@ -400,19 +556,36 @@ void gb_flc_scene_levels(const gb_scene *scene, const gb_method_parameters *para
     double mu = parameters->flc_mu > 1.0f ? parameters->flc_mu : GB_FLC_DEFAULT_MU;
     int count = parameters->flc_levels > 0 ? parameters->flc_levels : GB_FLC_DEFAULT_LEVELS;
     gb_flc_levels_make(GB_FLC_D_NEAR_FRACTION * R_scene, N_avg, mu, count - 1, levels);
+    levels->keep_all = parameters->flc_levels == GB_FLC_NO_DECIMATION;
 }
 
-/* Compiles and links the stages of one program (types[i], sources[i]). */
+/* "#version 450 core" and the constants the GLSL shares with
+ * flc_decimation.h, into text: the first part of the stages that start
+ * without it. */
+static const char *flc_prelude(char *text, size_t size)
+{
+    snprintf(text, size,
+             "#version 450 core\n#define MAX_SUBDIVISION %uu\n#define MAX_TESS_LEVEL %uu\n"
+             "#define TESS_GRID %u.0\n", (unsigned)GB_FLC_MAX_SUBDIVISION,
+             (unsigned)GB_FLC_MAX_TESS_LEVEL, (unsigned)GB_FLC_TESS_GRID);
+    return text;
+}
+
+/* Compiles and links the stages of one program (types[i], the NULL-ended
+ * parts[i] of its source). */
 static gb_result build_program(const char *name, const GLenum *types,
-                               const char *const *sources, int count, GLuint *program,
+                               const char *const *const *parts, int count, GLuint *program,
                                gb_error *error)
 {
     char log[2048] = "";
     GLint ok = 1;
     *program = glCreateProgram();
     for (int i = 0; i < count && ok; ++i) {
+        GLsizei part_count = 0;
+        while (parts[i][part_count])
+            ++part_count;
         GLuint shader = glCreateShader(types[i]);
-        glShaderSource(shader, 1, &sources[i], NULL);
+        glShaderSource(shader, part_count, parts[i], NULL);
         glCompileShader(shader);
         glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
         if (!ok)
@@ -437,13 +610,30 @@ static gb_result build_programs(flc_state *s, gb_error *error)
 {
     static const GLenum compute[] = {GL_COMPUTE_SHADER};
     static const GLenum splat[] = {GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER};
-    const char *generate_sources[] = {generate_shader};
-    const char *splat_sources[] = {splat_vertex_shader, splat_geometry_shader,
-                                   splat_fragment_shader};
-    gb_result result = build_program("VPL generation", compute, generate_sources, 1,
+    static const GLenum tess[] = {GL_VERTEX_SHADER, GL_TESS_CONTROL_SHADER,
+                                  GL_TESS_EVALUATION_SHADER, GL_GEOMETRY_SHADER};
+    char prelude[256];
+    const char *pre = flc_prelude(prelude, sizeof prelude);
+    const char *generate[] = {pre, "layout(local_size_x = 64) in;\n", generate_common,
+                              generate_main, NULL};
+    const char *splat_vertex[] = {splat_vertex_shader, NULL};
+    const char *splat_geometry[] = {splat_geometry_shader, NULL};
+    const char *splat_fragment[] = {splat_fragment_shader, NULL};
+    const char *tess_vertex[] = {tess_vertex_shader, NULL};
+    const char *tess_control[] = {tess_control_shader, NULL};
+    const char *tess_evaluation[] = {pre, tess_evaluation_shader, NULL};
+    const char *tess_geometry[] = {pre, generate_common, tess_geometry_main, NULL};
+    const char *const *generate_parts[] = {generate};
+    const char *const *splat_parts[] = {splat_vertex, splat_geometry, splat_fragment};
+    const char *const *tess_parts[] = {tess_vertex, tess_control, tess_evaluation,
+                                       tess_geometry};
+    gb_result result = build_program("VPL generation", compute, generate_parts, 1,
                                      &s->generate_program, error);
     if (result == GB_OK)
-        result = build_program("splatting", splat, splat_sources, 3, &s->splat_program, error);
+        result = build_program("splatting", splat, splat_parts, 3, &s->splat_program, error);
+    if (result == GB_OK)
+        result = build_program("divergent tessellation", tess, tess_parts, 4,
+                               &s->tess_program, error);
     if (result == GB_OK)
         result = gb_gl_program("flc untile and blur", gb_gl_fullscreen_vertex_shader,
                                resolve_shader, &s->resolve_program, error);
@@ -483,17 +673,37 @@ static GLuint make_albedo_buffer(const gb_scene *scene)
 static gb_result make_buffers(flc_state *s, uint64_t seed, gb_error *error)
 {
     gb_flc_triangles triangles;
-    gb_result result = gb_flc_triangles_build(s->scene, &s->levels, seed, &triangles, error);
+    gb_result result = gb_flc_triangles_build_whole(s->scene, &s->levels, seed, &triangles,
+                                                    error);
     if (result != GB_OK)
         return result;
+    if (triangles.count + triangles.tessellated_bound > GB_FLC_MAX_TRIANGLES) {
+        gb_flc_triangles_free(&triangles);
+        return gb_fail(error, GB_ERROR_UNSUPPORTED,
+                       "flc: room for %llu VPLs of divergent triangles (at most %u): "
+                       "lower N_avg", (unsigned long long)triangles.tessellated_bound,
+                       GB_FLC_MAX_TRIANGLES);
+    }
     s->triangle_count = triangles.count;
+    s->regular_count = triangles.regular_count;
+    s->patch_capacity = (uint32_t)triangles.patch_bound;
+    s->divergent_capacity = (uint32_t)triangles.tessellated_bound;
+    s->times.regular_triangles = triangles.regular_count;
+    s->times.divergent_triangles = triangles.divergent_count;
     size_t count = triangles.count ? triangles.count : 1;
     glCreateBuffers(1, &s->triangle_buffer);
     glNamedBufferStorage(s->triangle_buffer, (GLsizeiptr)(count * sizeof *triangles.items),
                          triangles.count ? triangles.items : NULL, 0);
     gb_flc_triangles_free(&triangles);
     glCreateBuffers(1, &s->vpl_buffer);
-    glNamedBufferStorage(s->vpl_buffer, (GLsizeiptr)(count * VPL_BYTES), NULL, 0);
+    glNamedBufferStorage(s->vpl_buffer,
+                         (GLsizeiptr)((count + s->divergent_capacity) * VPL_BYTES), NULL, 0);
+    glCreateBuffers(1, &s->patch_buffer);
+    glNamedBufferStorage(s->patch_buffer,
+                         (GLsizeiptr)((s->patch_capacity + 1) * 4 * sizeof(uint32_t)), NULL, 0);
+    glCreateBuffers(1, &s->command_buffer);
+    glNamedBufferStorage(s->command_buffer, 8 * sizeof(uint32_t), NULL,
+                         GL_DYNAMIC_STORAGE_BIT);
     s->albedo_buffer = make_albedo_buffer(s->scene);
     glCreateVertexArrays(1, &s->empty_vertex_array);
     return GB_OK;
@@ -548,13 +758,14 @@ static void flc_destroy(void *state)
     if (!s)
         return;
     destroy_targets(s);
-    GLuint programs[] = {s->generate_program, s->splat_program, s->resolve_program,
-                         s->composite_program};
-    for (int i = 0; i < 4; ++i)
+    GLuint programs[] = {s->generate_program, s->splat_program, s->tess_program,
+                         s->resolve_program, s->composite_program};
+    for (int i = 0; i < 5; ++i)
         if (programs[i])
             glDeleteProgram(programs[i]);
-    GLuint buffers[] = {s->triangle_buffer, s->albedo_buffer, s->vpl_buffer};
-    for (int i = 0; i < 3; ++i)
+    GLuint buffers[] = {s->triangle_buffer, s->albedo_buffer, s->vpl_buffer, s->patch_buffer,
+                        s->command_buffer};
+    for (int i = 0; i < 5; ++i)
         if (buffers[i])
             glDeleteBuffers(1, &buffers[i]);
     if (s->empty_vertex_array)
@@ -573,7 +784,8 @@ static gb_result flc_create(const gb_indirect_setup *setup, void **state, gb_err
     if (parameters->flc_tiling < 0 || parameters->flc_tiling > GB_FLC_MAX_TILING)
         return gb_fail(error, GB_ERROR_ARGUMENT, "flc: tiling %d is not in 0..%d",
                        parameters->flc_tiling, GB_FLC_MAX_TILING);
-    if (parameters->flc_levels > GB_FLC_MAX_LEVELS)
+    if (parameters->flc_levels > GB_FLC_MAX_LEVELS ||
+        (parameters->flc_levels < 0 && parameters->flc_levels != GB_FLC_NO_DECIMATION))
         return gb_fail(error, GB_ERROR_ARGUMENT, "flc: %d levels: at most %d",
                        parameters->flc_levels, GB_FLC_MAX_LEVELS);
     flc_state *s = calloc(1, sizeof *s);
@@ -624,19 +836,20 @@ static void set_tiles(GLuint program, const flc_state *s)
     set_int(program, "scale", 1 << s->tiling);
 }
 
-/* Pass 1. */
-static void generate_vpls(flc_state *s, const gb_indirect_frame *frame)
+/* Pass 1's uniforms and bindings in program (the compute pass or the
+ * tessellation's geometry shader). */
+static void prepare_generation(flc_state *s, GLuint program, const gb_indirect_frame *frame)
 {
-    GLuint program = s->generate_program;
     uint32_t u_rand = gb_flc_hash(frame->frame_index * 0x9e3779b9u ^ gb_flc_hash(FLC_SEED));
     glUseProgram(program);
-    glProgramUniform1ui(program, glGetUniformLocation(program, "triangle_count"),
-                        s->triangle_count);
     glProgramUniform1ui(program, glGetUniformLocation(program, "u_rand"), u_rand);
     glProgramUniform1ui(program, glGetUniformLocation(program, "tiles"),
                         1u << (2 * s->tiling));
     glProgramUniform1fv(program, glGetUniformLocation(program, "S_bar"), s->levels.N + 1,
                         s->levels.S_bar);
+    glProgramUniform1fv(program, glGetUniformLocation(program, "S"), s->levels.N + 1,
+                        s->levels.S);
+    set_int(program, "keep_all", s->levels.keep_all);
     set_levels(program, &s->levels);
     set_int(program, "point_count", (int)frame->shadows->point_count);
     set_int(program, "plane_count", (int)frame->shadows->plane_count);
@@ -646,7 +859,20 @@ static void generate_vpls(flc_state *s, const gb_indirect_frame *frame)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_TRIANGLES, s->triangle_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_ALBEDOS, s->albedo_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_VPLS, s->vpl_buffer);
-    glDispatchCompute((s->triangle_count + GENERATE_GROUP - 1) / GENERATE_GROUP, 1, 1);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_PATCHES, s->patch_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_COMMANDS, s->command_buffer);
+    glProgramUniform1ui(program, glGetUniformLocation(program, "patch_capacity"),
+                        s->patch_capacity);
+}
+
+/* Pass 1 over the VPL triangles [first, first + count). */
+static void generate_vpls(flc_state *s, uint32_t first, uint32_t count)
+{
+    GLuint program = s->generate_program;
+    glUseProgram(program);
+    glProgramUniform1ui(program, glGetUniformLocation(program, "first"), first);
+    glProgramUniform1ui(program, glGetUniformLocation(program, "triangle_count"), count);
+    glDispatchCompute((count + GENERATE_GROUP - 1) / GENERATE_GROUP, 1, 1);
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
@@ -672,21 +898,92 @@ static void set_splat_uniforms(const flc_state *s, const gb_indirect_frame *fram
                         s->levels.S);
     set_float(program, "epsilon", s->epsilon);
     set_float(program, "tile_weight", (float)(1 << (2 * s->tiling)));
+    set_int(program, "vpl_count", (int)(s->triangle_count + s->divergent_capacity));
 }
 
-/* Pass 2. */
-static void splat_vpls(flc_state *s, const gb_indirect_frame *frame)
+/* Pass 2's target, uniforms and bindings. */
+static void prepare_splatting(flc_state *s, const gb_indirect_frame *frame)
 {
-    static const float zero[4] = {0, 0, 0, 0};
     glBindFramebuffer(GL_FRAMEBUFFER, s->splat_framebuffer);
     glViewport(0, 0, s->tile_width << s->tiling, s->tile_height << s->tiling);
-    glClearNamedFramebufferfv(s->splat_framebuffer, GL_COLOR, 0, zero);
     glUseProgram(s->splat_program);
     set_splat_uniforms(s, frame);
     gb_gbuffer_bind(frame->gbuffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_VPLS, s->vpl_buffer);
     glBindVertexArray(s->empty_vertex_array);
-    glDrawArrays(GL_POINTS, 0, (GLsizei)s->triangle_count);
+}
+
+/* Pass 2 of the VPLs of [first, first + count). */
+static void splat_vpls(flc_state *s, uint32_t first, uint32_t count)
+{
+    glUseProgram(s->splat_program);
+    glBindVertexArray(s->empty_vertex_array);
+    glDrawArrays(GL_POINTS, (GLint)first, (GLsizei)count);
+}
+
+/* The regular pipeline: VPLs of the regular triangles, generated then
+ * splatted. */
+static void run_regular(flc_state *s, const gb_indirect_frame *frame)
+{
+    if (!s->regular_count)
+        return;
+    prepare_generation(s, s->generate_program, frame);
+    generate_vpls(s, 0, s->regular_count);
+    prepare_splatting(s, frame);
+    splat_vpls(s, 0, s->regular_count);
+}
+
+/* The divergent pipeline: the compute pass appends the divergent triangles'
+ * cells to the divergent buffer and counts them in the first indirect draw,
+ * which tessellates them and appends their VPLs after the regular ones,
+ * counting them in the second indirect draw, the splatting. No CPU wait. */
+static void run_divergent(flc_state *s, const gb_indirect_frame *frame)
+{
+    uint32_t divergent = s->triangle_count - s->regular_count;
+    if (!divergent)
+        return;
+    const uint32_t commands[8] = {0, 1, 0, 0, 0, 1, s->triangle_count, 0};
+    glNamedBufferSubData(s->command_buffer, 0, sizeof commands, commands);
+    prepare_generation(s, s->generate_program, frame);
+    generate_vpls(s, s->regular_count, divergent);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    GLuint program = s->tess_program;
+    glUseProgram(program);
+    prepare_generation(s, program, frame);
+    glProgramUniform1ui(program, glGetUniformLocation(program, "divergent_first"),
+                        s->triangle_count);
+    glProgramUniform1ui(program, glGetUniformLocation(program, "divergent_capacity"),
+                        s->divergent_capacity);
+    glBindVertexArray(s->empty_vertex_array);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, s->command_buffer);
+    glPatchParameteri(GL_PATCH_VERTICES, 3);
+    glEnable(GL_RASTERIZER_DISCARD);
+    glDrawArraysIndirect(GL_PATCHES, (const void *)0);
+    glDisable(GL_RASTERIZER_DISCARD);
+    glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT | GL_COMMAND_BARRIER_BIT);
+    prepare_splatting(s, frame);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, s->command_buffer);
+    glDrawArraysIndirect(GL_POINTS, (const void *)(4 * sizeof(uint32_t)));
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+}
+
+/* The wall-clock ms since *start, after glFinish when measuring; restarts *start. */
+static double lap(const flc_state *s, double *start)
+{
+    if (!s->measuring)
+        return 0.0;
+    glFinish();
+    double now = gb_seconds(), ms = 1e3 * (now - *start);
+    *start = now;
+    return ms;
+}
+
+/* The process's CPU time, ms. */
+static double cpu_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
 }
 
 /* Pass 3. */
@@ -735,11 +1032,44 @@ static void flc_draw(void *state, const gb_indirect_frame *frame)
     glDisable(GL_CULL_FACE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    generate_vpls(s, frame);
-    splat_vpls(s, frame);
+    static const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(s->splat_framebuffer, GL_COLOR, 0, zero);
+    double start = 0.0;
+    lap(s, &start);
+    double cpu_start = s->measuring ? cpu_ms() : 0.0;
+    run_regular(s, frame);
+    double regular = lap(s, &start);
+    run_divergent(s, frame);
+    double divergent = lap(s, &start);
     resolve(s);
     ++s->accumulated;
     composite(s, (GLuint)target);
+    if (s->measuring) {
+        s->times.regular_ms += regular;
+        s->times.divergent_ms += divergent;
+        s->times.resolve_ms += lap(s, &start);
+        s->times.cpu_ms += cpu_ms() - cpu_start;
+        s->times.frames++;
+        uint32_t made = 0;
+        if (s->triangle_count > s->regular_count)
+            glGetNamedBufferSubData(s->command_buffer, 4 * sizeof(uint32_t), sizeof made, &made);
+        s->times.divergent_vpls += made;
+    }
+}
+
+void gb_flc_measure(void *state, int on)
+{
+    flc_state *s = state;
+    if (s)
+        s->measuring = on;
+}
+
+void gb_flc_times(const void *state, gb_flc_pass_times *times)
+{
+    const flc_state *s = state;
+    memset(times, 0, sizeof *times);
+    if (s)
+        *times = s->times;
 }
 
 const gb_indirect_method gb_flc_method = {

@@ -3,15 +3,23 @@
  * of diffuse light, unshadowed, from VPLs made of the scene's triangles
  * themselves each frame, with no precomputation.
  *
- * Each frame, on the GPU:
- *   1. VPL generation (a compute pass over the VPL triangles of
- *      flc_decimation.h, divergent ones already subdivided): u_i from the
- *      per-frame u_rand and the triangle's v_rand (Alg. 2), the level by
- *      Alg. 1 (or discarded), the VPL centre y_i jittered uniformly over the
- *      triangle, and the direct irradiance E at y_i on each side of it from
- *      the runtime's lights and shadow maps (the light conventions of
- *      common/brdf.h);
- *   2. splatting (points → geometry shader → one screen-space quad a side
+ * Each frame, on the GPU, without a CPU wait:
+ *   1. VPL generation, in two pipelines (Sec. 6). The regular one: a compute
+ *      pass over the scene's triangles (flc_decimation.h's list, regular ones
+ *      first): u_i from the per-frame u_rand and the triangle's v_rand (Alg.
+ *      2), the level by Alg. 1 (or discarded), the VPL centre y_i jittered
+ *      uniformly over the triangle, and the direct irradiance E at y_i on
+ *      each side of it from the runtime's lights and shadow maps (the light
+ *      conventions of common/brdf.h). The same pass appends each divergent
+ *      triangle (area > S̄_N) to the divergent buffer, as patches, and counts
+ *      them in an indirect draw command; the divergent pipeline draws them
+ *      (glDrawArraysIndirect, rasterizer off) through the tessellation stage,
+ *      which subdivides them in model space (flc_decimation.h), and a
+ *      geometry shader that makes each sub-triangle's VPL as above (u_i from
+ *      the base v_rand XOR the sub-vertices' v_rand_tess, Alg. 2, Fig. 8) and
+ *      appends it, counted in a second indirect command;
+ *   2. splatting, of each pipeline's VPLs (the divergent ones by the second
+ *      indirect draw) (points → geometry shader → one screen-space quad a side
  *      around the ball of Eq. 13 that bounds the support of f^k, D_{k+1};
  *      the last level covers the screen): the fragment shader reads the
  *      G-buffer and adds H(t_i, x, n_x) S_k f^k(d(t_i, x)) (Eqs. 5, 7, 10,
@@ -25,14 +33,16 @@
  * starts again when the view or the size changes, so frame K shows the mean
  * of K estimates.
  *
- * Departures from the paper, each for the reference's sake: the VPL emits as
+ * Departures from the paper. For the reference's sake: the VPL emits as
  * a Lambertian surface (radiance rho E / pi, brdf.h's VPL) rather than Eq. 6's
  * 3/(2 pi) cos lobe, and from both sides of the triangle, each with its own
  * E (surfaces reflect on both sides in gibake); the last level's support
- * extends to infinity (flc_decimation.h); divergent triangles are
- * subdivided once on the CPU (the scene is static) rather than by the
- * tessellation stage; a textured VPL's albedo is its material's Kd times the
- * texture's mean.
+ * extends to infinity (flc_decimation.h). Otherwise: v_rand_tess is a hash of the
+ * sub-vertex's barycentric coordinates rather than a noise texture's texel;
+ * the divergent triangles are split from the regular ones once, on the CPU
+ * (the scene is static: the list is sorted), and the compute pass, not a
+ * geometry shader, appends them; a textured VPL's albedo is its material's
+ * Kd times the texture's mean.
  */
 #ifndef GB_FLC_H
 #define GB_FLC_H
@@ -41,6 +51,8 @@
 #include "indirect_method.h"
 
 enum {
+    GB_FLC_NO_DECIMATION = -1,      /* flc_levels: keep every VPL triangle (keep_all of
+                                       flc_decimation.h) over the default levels' list */
     GB_FLC_DEFAULT_N_AVG = 256,
     GB_FLC_DEFAULT_LEVELS = 6,      /* N = 5, as the paper's Fig. 10 */
     GB_FLC_MAX_TILING = 4,
@@ -52,8 +64,31 @@ enum {
 extern const gb_indirect_method gb_flc_method;
 
 /* The levels of scene for parameters (zero fields: defaults), R_scene half
- * the diagonal of its bounds. */
+ * the diagonal of its bounds; flc_levels GB_FLC_NO_DECIMATION: the default
+ * count of levels with keep_all set. */
 void gb_flc_scene_levels(const gb_scene *scene, const gb_method_parameters *parameters,
                          gb_flc_levels *levels);
+
+/* Per-pass times (the paper's Table 1), summed over the frames drawn while
+ * measuring: each pass is closed by glFinish and timed by the wall clock,
+ * which costs some parallelism, so only benchmarks turn it on. The regular
+ * pipeline is VPL generation and splatting of the regular triangles, the
+ * divergent one the appending, tessellation, VPL generation and splatting of
+ * the divergent ones; resolve is the untiling, blur and accumulation, and
+ * the composite. */
+typedef struct gb_flc_pass_times {
+    double regular_ms, divergent_ms, resolve_ms;
+    double cpu_ms;                  /* the process's CPU time over the same passes
+                                       (llvmpipe's threads included): less
+                                       sensitive to other jobs than the wall clock */
+    uint32_t frames;
+    uint32_t regular_triangles, divergent_triangles;   /* scene triangles of each */
+    uint64_t divergent_vpls;        /* VPLs the tessellation made, over the frames */
+} gb_flc_pass_times;
+
+/* On a state gb_flc_method.create made: measure (1) or not (0, the default)
+ * the frames drawn from now on. */
+void gb_flc_measure(void *state, int on);
+void gb_flc_times(const void *state, gb_flc_pass_times *times);
 
 #endif

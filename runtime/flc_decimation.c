@@ -32,6 +32,8 @@ void gb_flc_levels_make(double D_near, double N_avg, double mu, int N, gb_flc_le
 
 int gb_flc_level(const gb_flc_levels *levels, float u, float area)
 {
+    if (levels->keep_all)
+        return levels->N;
     for (int k = 0; k <= levels->N; ++k)
         if (u < area / levels->S_bar[k])
             return k;
@@ -72,14 +74,37 @@ static void corner(const gb_scene *scene, uint32_t t, int c, double p[3])
     p[0] = v[0], p[1] = v[1], p[2] = v[2];
 }
 
-/* The subdivision of triangle t: n (1 for a regular triangle). */
-static uint32_t subdivision(const gb_scene *scene, uint32_t t, const gb_flc_levels *levels)
+uint32_t gb_flc_subdivision(const gb_flc_levels *levels, double area)
 {
-    double area = gb_triangle_area(scene, t), limit = levels->S_bar[levels->N];
+    double limit = levels->S_bar[levels->N];
     if (!(area > limit))
         return 1;
     double n = ceil(sqrt(area / limit));
     return n > GB_FLC_MAX_SUBDIVISION ? GB_FLC_MAX_SUBDIVISION : (uint32_t)n;
+}
+
+/* t of gb_flc_tessellation. */
+static double tessellation_t(const gb_flc_levels *levels, double area)
+{
+    double x = sqrt(area / levels->S_bar[levels->N]);
+    return sqrt(2.0 / 3.0) * (x < GB_FLC_MAX_SUBDIVISION ? x : GB_FLC_MAX_SUBDIVISION);
+}
+
+void gb_flc_tessellation(const gb_flc_levels *levels, double area, uint32_t *c, uint32_t *m)
+{
+    *c = *m = 1;
+    if (!(area > levels->S_bar[levels->N]))
+        return;
+    double t = tessellation_t(levels, area);
+    *c = t > GB_FLC_MAX_TESS_LEVEL ? (uint32_t)ceil(t / GB_FLC_MAX_TESS_LEVEL) : 1;
+    *m = 2 * (uint32_t)ceil(t / (2.0 * *c));
+    *m = *m < 2 ? 2 : *m;
+}
+
+/* The subdivision of triangle t: n (1 for a regular triangle). */
+static uint32_t subdivision(const gb_scene *scene, uint32_t t, const gb_flc_levels *levels)
+{
+    return gb_flc_subdivision(levels, gb_triangle_area(scene, t));
 }
 
 /* The point of barycentric grid coordinates (i, j) of n over p[3]. */
@@ -138,14 +163,16 @@ static uint32_t subdivide(const gb_scene *scene, uint32_t t, uint32_t n, uint32_
     return count;
 }
 
-gb_result gb_flc_triangles_build(const gb_scene *scene, const gb_flc_levels *levels,
-                                 uint64_t seed, gb_flc_triangles *triangles, gb_error *error)
+/* The list: regular triangles first, then the divergent ones, subdivided
+ * (split) or whole. */
+static gb_result build(const gb_scene *scene, const gb_flc_levels *levels, uint64_t seed,
+                       int split, gb_flc_triangles *triangles, gb_error *error)
 {
     memset(triangles, 0, sizeof *triangles);
     double total = 0.0;
     for (uint32_t t = 0; t < scene->triangle_count; ++t) {
         uint32_t n = subdivision(scene, t, levels);
-        total += (double)n * n;
+        total += split ? (double)n * n : 1.0;
     }
     if (total > GB_FLC_MAX_TRIANGLES)
         return gb_fail(error, GB_ERROR_UNSUPPORTED,
@@ -155,16 +182,42 @@ gb_result gb_flc_triangles_build(const gb_scene *scene, const gb_flc_levels *lev
     if (!triangles->items)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "flc: out of memory");
     float limit = levels->S_bar[levels->N];
-    for (uint32_t t = 0; t < scene->triangle_count; ++t) {
-        uint32_t n = subdivision(scene, t, levels), key = 0;
-        for (int c = 0; c < 3; ++c)
-            key ^= gb_flc_vertex_random(seed, scene->indices[3 * (size_t)t + c]);
-        gb_flc_triangle *out = &triangles->items[triangles->count];
-        triangles->count += subdivide(scene, t, n, key, out);
-        n > 1 ? ++triangles->divergent_count : ++triangles->regular_count;
-        triangles->capped_count += n > 1 && out->area > limit;
-    }
+    for (int divergent = 0; divergent < 2; ++divergent)     /* regular ones first */
+        for (uint32_t t = 0; t < scene->triangle_count; ++t) {
+            uint32_t n = subdivision(scene, t, levels), key = 0;
+            if ((n > 1) != divergent)
+                continue;
+            for (int c = 0; c < 3; ++c)
+                key ^= gb_flc_vertex_random(seed, scene->indices[3 * (size_t)t + c]);
+            gb_flc_triangle *out = &triangles->items[triangles->count];
+            triangles->count += subdivide(scene, t, split ? n : 1, key, out);
+            n > 1 ? ++triangles->divergent_count : ++triangles->regular_count;
+            if (n > 1 && split)
+                triangles->capped_count += out->area > limit;
+            else if (n > 1) {
+                triangles->capped_count += out->area > (double)limit * n * n;
+                uint32_t cells, level;
+                gb_flc_tessellation(levels, out->area, &cells, &level);
+                uint64_t side = cells + 1 > 4 ? 4 : cells + 1;
+                double t = tessellation_t(levels, out->area) + 2.0 * (cells + 1);
+                triangles->patch_bound += side * side;
+                triangles->tessellated_bound += (uint64_t)ceil(1.5 * t * t);
+            }
+        }
     return GB_OK;
+}
+
+gb_result gb_flc_triangles_build(const gb_scene *scene, const gb_flc_levels *levels,
+                                 uint64_t seed, gb_flc_triangles *triangles, gb_error *error)
+{
+    return build(scene, levels, seed, 1, triangles, error);
+}
+
+gb_result gb_flc_triangles_build_whole(const gb_scene *scene, const gb_flc_levels *levels,
+                                       uint64_t seed, gb_flc_triangles *triangles,
+                                       gb_error *error)
+{
+    return build(scene, levels, seed, 0, triangles, error);
 }
 
 void gb_flc_triangles_free(gb_flc_triangles *triangles)

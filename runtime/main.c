@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "bake_files.h"
+#include "flc.h"
 #include "headless.h"
 #include "image.h"
 #include "methods.h"
@@ -53,6 +54,8 @@ static const char usage[] =
     "      --epsilon E         flc: distance clamp, world units (default 1% of the\n"
     "                          scene's radius)\n"
     "      --tiling T          flc: splat into 4^T interleaved tiles (default 0)\n"
+    "      --no-decimation     flc: every triangle a VPL (the estimator without\n"
+    "                          light cuts, for comparison)\n"
     "      --bins N            implicit: 6 x N x N cube-map bins (8, 12 default, 16)\n"
     "      --bounces N         implicit: bounces of indirect light (1 default, 2)\n"
     "  -q, --quiet             no warnings\n"
@@ -83,6 +86,7 @@ enum {
     OPTION_FLC_MU,
     OPTION_FLC_LEVELS,
     OPTION_FLC_EPSILON,
+    OPTION_FLC_NO_DECIMATION,
     OPTION_FLC_TILING,
     OPTION_VPLS,
     OPTION_TERMS,
@@ -153,6 +157,9 @@ static int parse_flc_option(int option, const char *value, arguments *a)
         if (!parse_long(value, 1, 16, &number))
             return bad_value("--levels", value);
         p->flc_levels = (int)number;
+        return 0;
+    case OPTION_FLC_NO_DECIMATION:
+        p->flc_levels = GB_FLC_NO_DECIMATION;
         return 0;
     default:
         if (!parse_long(value, 0, 4, &number))
@@ -256,6 +263,7 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"levels", required_argument, NULL, OPTION_FLC_LEVELS},
         {"epsilon", required_argument, NULL, OPTION_FLC_EPSILON},
         {"tiling", required_argument, NULL, OPTION_FLC_TILING},
+        {"no-decimation", no_argument, NULL, OPTION_FLC_NO_DECIMATION},
         {"vpls", required_argument, NULL, OPTION_VPLS},
         {"terms", required_argument, NULL, OPTION_TERMS},
         {"write-vpls", required_argument, NULL, OPTION_WRITE_VPLS},

@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../../runtime/context.h"
 #include "../../runtime/flc.h"
 #include "../../runtime/headless.h"
 #include "../../tools/imgdiff/image_error.h"
@@ -118,6 +119,57 @@ static void test_levels(void)
             consistent &= (u < area / l.S_bar[j]) == (k >= 0 && j >= k);
     }
     CHECK(consistent, "each u gives one level: the first k with u < area / S̄_k, or none");
+    l.keep_all = 1;
+    int kept = 1;
+    for (int i = 0; i < 1000; ++i)
+        kept &= gb_flc_level(&l, (float)i / 1000.0f, 1e-3f * l.S0) == l.N;
+    CHECK(kept, "no decimation (keep_all): every triangle kept, at level N");
+    gb_method_parameters parameters = {.flc_levels = GB_FLC_NO_DECIMATION};
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    build_cornell_box(&scene, SIZE, SIZE);
+    gb_flc_levels defaults, none;
+    gb_flc_scene_levels(&scene, &(gb_method_parameters){0}, &defaults);
+    gb_flc_scene_levels(&scene, &parameters, &none);
+    CHECK(none.keep_all && !defaults.keep_all && none.N == defaults.N &&
+              none.S_bar[none.N] == defaults.S_bar[defaults.N],
+          "GB_FLC_NO_DECIMATION: the default levels (so the same VPL triangles), keep_all set");
+    gb_scene_free(&scene);
+}
+
+/* The tessellation of a divergent triangle: c x c cells of an even level
+ * m <= 64 whose sub-triangles, 2 / (3 c^2 m^2) of its area, are at most S̄_N
+ * and as large as that allows (the least even m, the fewest cells). */
+static void test_tessellation(void)
+{
+    gb_flc_levels l;
+    gb_flc_levels_make(10.0, 256.0, 2.0, 5, &l);
+    double limit = l.S_bar[l.N];
+    int ok = 1, tight = 1;
+    for (double ratio = 1.001; ratio < 256.0 * 256.0; ratio *= 1.01) {
+        uint32_t c, m;
+        gb_flc_tessellation(&l, ratio * limit, &c, &m);
+        double sub = 2.0 / 3.0 * ratio * limit / ((double)c * c * m * m);
+        ok &= m >= 2 && m % 2 == 0 && m <= GB_FLC_MAX_TESS_LEVEL && c <= 4 &&
+              sub <= limit * (1 + 1e-9);
+        double bigger = 2.0 / 3.0 * ratio * limit / ((double)c * c * (m - 2) * (m - 2));
+        tight &= (m == 2 || bigger > limit) &&
+                 (c == 1 || sqrt(2.0 / 3.0 * ratio) > 64.0 * (c - 1));
+    }
+    CHECK(ok, "areas of S̄_N to 65536 S̄_N: even levels <= 64, sub-triangles <= S̄_N");
+    CHECK(tight, "the least even level, the fewest cells");
+    uint32_t c, m;
+    gb_flc_tessellation(&l, 1e6 * 65536.0 * limit, &c, &m);
+    CHECK(c == 4 && m == 54, "past n = 256: capped at 4 cells of level 54 (t = 209)");
+    gb_flc_tessellation(&l, 0.5 * limit, &c, &m);
+    CHECK(c == 1 && m == 1, "a regular triangle: not tessellated");
+    CHECK(gb_flc_subdivision(&l, l.S_bar[l.N]) == 1 &&
+              gb_flc_subdivision(&l, 1.01 * l.S_bar[l.N]) == 2 &&
+              gb_flc_subdivision(&l, 100.0 * l.S_bar[l.N]) == 10,
+          "n = ceil(sqrt(area / S̄_N)), 1 for a regular triangle");
+    CHECK(gb_flc_tess_coord_random(3, 5) == gb_flc_tess_coord_random(3, 5) &&
+              gb_flc_tess_coord_random(3, 5) != gb_flc_tess_coord_random(5, 3),
+          "v_rand_tess: a function of the sub-vertex's coordinates, not symmetric");
 }
 
 static void test_random(void)
@@ -157,6 +209,17 @@ static int finite_triangles(const gb_flc_triangles *list)
     return 1;
 }
 
+/* The triangles of GL's equal-spacing tessellation of a triangle, every level
+ * m: rings of m, m - 2, ... segments a side, 3 (2 r - 2) triangles between
+ * rings r and r - 2, one at the centre for odd m. */
+static uint64_t gl_triangles(uint32_t m)
+{
+    uint64_t count = m % 2;
+    for (uint32_t r = m; r >= 2; r -= 2)
+        count += 3 * (2 * r - 2);
+    return count;
+}
+
 static void check_subdivision(const gb_scene *scene, const char *name)
 {
     gb_flc_levels l;
@@ -183,6 +246,40 @@ static void check_subdivision(const gb_scene *scene, const char *name)
     CHECK(finite_triangles(&list), what);
     CHECK_EQ_INT(list.regular_count + list.divergent_count, scene->triangle_count,
                  "every scene triangle is regular or divergent");
+    int ordered = 1;
+    uint32_t j = 0;     /* items[0, regular_count): the regular triangles, in scene order */
+    for (uint32_t t = 0; t < scene->triangle_count; ++t) {
+        if (gb_triangle_area(scene, t) > l.S_bar[l.N])
+            continue;
+        const float *v = &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t]];
+        ordered &= j < list.regular_count && !memcmp(list.items[j].p0, v, sizeof(float[3]));
+        ++j;
+    }
+    ordered &= j == list.regular_count;
+    snprintf(what, sizeof what, "%s: the regular triangles first, the sub-triangles after", name);
+    gb_flc_triangles whole;
+    snprintf(what, sizeof what, "%s: the list for the tessellation built", name);
+    if (CHECK(gb_flc_triangles_build_whole(scene, &l, 1, &whole, &error) == GB_OK, what)) {
+        double whole_area = 0.0;
+        uint64_t patches = 0, tessellated = 0;
+        for (uint32_t i = 0; i < whole.count; ++i) {
+            whole_area += whole.items[i].area;
+            uint32_t c, m;
+            gb_flc_tessellation(&l, whole.items[i].area, &c, &m);
+            patches += i >= whole.regular_count ? (uint64_t)c * c : 0;
+            tessellated += i >= whole.regular_count ? (uint64_t)c * c * gl_triangles(m) : 0;
+        }
+        snprintf(what, sizeof what, "%s: whole, the same regular triangles, then the divergent "
+                 "ones whole, covering the scene's area", name);
+        CHECK(whole.count == scene->triangle_count && whole.regular_count == list.regular_count &&
+                  !memcmp(whole.items, list.items, list.regular_count * sizeof *list.items) &&
+                  fabs(whole_area / scene_area(scene) - 1.0) < 1e-3,
+              what);
+        snprintf(what, sizeof what, "%s: room for every cell and sub-triangle", name);
+        CHECK(whole.patch_bound >= patches && whole.tessellated_bound >= tessellated, what);
+        gb_flc_triangles_free(&whole);
+    }
+    CHECK(ordered && list.count >= list.regular_count + 4 * list.divergent_count, what);
     gb_flc_triangles_free(&list);
 }
 
@@ -245,11 +342,13 @@ static int load_cornell(gb_scene *scene)
     return 1;
 }
 
-static int render_flc(const gb_scene *scene, int frames, int tiling, gb_image *image)
+static int render_flc_levels(const gb_scene *scene, int frames, int tiling, int levels,
+                             gb_image *image)
 {
     gb_headless_options options = {
         .renderer = {.width = SIZE, .height = SIZE, .method = GB_METHOD_FLC,
-                     .terms = GB_TERMS_INDIRECT, .parameters = {.flc_tiling = tiling}},
+                     .terms = GB_TERMS_INDIRECT,
+                     .parameters = {.flc_tiling = tiling, .flc_levels = levels}},
         .frames = frames,
     };
     gb_error error;
@@ -258,6 +357,11 @@ static int render_flc(const gb_scene *scene, int frames, int tiling, gb_image *i
         return 0;
     }
     return 1;
+}
+
+static int render_flc(const gb_scene *scene, int frames, int tiling, gb_image *image)
+{
+    return render_flc_levels(scene, frames, tiling, 0, image);
 }
 
 static int all_finite(const gb_image *image)
@@ -337,7 +441,97 @@ static void test_renders(const gb_scene *scene)
         CHECK(error_tiled < FLC_TILED_RELATIVE_MSE_MAX, "tiled: relative MSE below 0.003");
         gb_image_free(&a);
     }
+    if (CHECK(render_flc_levels(scene, 1, 0, GB_FLC_NO_DECIMATION, &a),
+              "no decimation (every VPL triangle)")) {
+        double error_all = relative_mse(&a, &reference);
+        printf("# no decimation, 1 frame: relative MSE %.6g\n", error_all);
+        CHECK(error_all < FLC_RELATIVE_MSE_MAX,
+              "no decimation, 1 frame: relative MSE below the 16-frame threshold");
+        gb_image_free(&a);
+    }
     gb_image_free(&reference);
+}
+
+/* 3 frames of 64x64 through a renderer, the last 2 measured (gb_flc_measure),
+ * as bench/flc_passes.c; the last frame into image. */
+static int measured_frames(const gb_scene *scene, int levels, gb_flc_pass_times *times,
+                           gb_image *image)
+{
+    gb_view view;
+    gb_context context;
+    gb_error error;
+    if (gb_scene_view(scene, 0, &view, &error) != GB_OK ||
+        gb_context_create_headless(&context, &error) != GB_OK) {
+        printf("# %s\n", error.message);
+        return 0;
+    }
+    gb_renderer_options options = {.width = SIZE, .height = SIZE, .method = GB_METHOD_FLC,
+                                   .terms = GB_TERMS_INDIRECT,
+                                   .parameters = {.flc_levels = levels}};
+    gb_renderer renderer;
+    gb_result result = gb_renderer_create(scene, &options, &context.errors, &renderer, &error);
+    for (int i = 0; i < 3 && result == GB_OK; ++i) {
+        gb_renderer_draw(&renderer, &view);
+        result = gb_renderer_finish_frame(&renderer, &error);
+        if (i == 0)
+            gb_flc_measure(renderer.method_state[GB_METHOD_FLC], 1);
+    }
+    if (result == GB_OK)
+        result = gb_renderer_read(&renderer, image, &error);
+    if (result == GB_OK)
+        gb_flc_times(renderer.method_state[GB_METHOD_FLC], times);
+    else
+        printf("# %s\n", error.message);
+    gb_renderer_destroy(&renderer);
+    gb_context_destroy(&context);
+    return result == GB_OK;
+}
+
+/* The sub-triangles GL's tessellation makes of the scene's divergent triangles. */
+static uint64_t tessellated_count(const gb_scene *scene, int levels)
+{
+    gb_flc_levels l;
+    gb_flc_scene_levels(scene, &(gb_method_parameters){.flc_levels = levels}, &l);
+    uint64_t count = 0;
+    for (uint32_t t = 0; t < scene->triangle_count; ++t) {
+        uint32_t c, m;
+        gb_flc_tessellation(&l, gb_triangle_area(scene, t), &c, &m);
+        count += m > 1 ? (uint64_t)c * c * gl_triangles(m) : 0;
+    }
+    return count;
+}
+
+static void test_pass_times(const gb_scene *scene)
+{
+    gb_flc_pass_times t;
+    gb_image measured, plain;
+    if (CHECK(measured_frames(scene, 0, &t, &measured), "3 frames, the last 2 measured")) {
+        CHECK(t.frames == 2 && t.regular_ms >= 0.0 && t.divergent_ms > 0.0 &&
+                  t.resolve_ms > 0.0,
+              "the pass times cover the 2 measured frames");
+        CHECK(t.regular_triangles == 0 && t.divergent_triangles > 0,
+              "the Cornell box: every triangle divergent");
+        uint64_t all = tessellated_count(scene, 0);
+        printf("# %llu VPLs of %llu sub-triangles over 2 frames\n",
+               (unsigned long long)t.divergent_vpls, (unsigned long long)all);
+        CHECK(t.divergent_vpls > 0 && t.divergent_vpls < 2 * all,
+              "the tessellation's VPLs: some of its sub-triangles, decimated");
+        if (CHECK(render_flc(scene, 3, 0, &plain), "3 frames unmeasured")) {
+            CHECK(!memcmp(measured.pixels, plain.pixels, (size_t)SIZE * SIZE * 3 * sizeof(float)),
+                  "measuring leaves the image as it was");
+            gb_image_free(&plain);
+        }
+        gb_image_free(&measured);
+    }
+    if (CHECK(measured_frames(scene, GB_FLC_NO_DECIMATION, &t, &measured),
+              "no decimation, measured")) {
+        uint64_t all = tessellated_count(scene, GB_FLC_NO_DECIMATION);
+        printf("# no decimation: %llu VPLs over 2 frames, %llu sub-triangles a frame\n",
+               (unsigned long long)t.divergent_vpls, (unsigned long long)all);
+        CHECK(t.divergent_vpls == 2 * all,
+              "no decimation: a VPL for every sub-triangle of GL's tessellation pattern");
+        gb_image_free(&measured);
+    }
 }
 
 static void test_extreme_render(void)
@@ -369,6 +563,7 @@ int main(void)
     test_partition_of_unity();
     test_levels();
     test_random();
+    test_tessellation();
     test_hard_scenes();
     gb_scene scene;
     if (!load_cornell(&scene)) {
@@ -376,6 +571,7 @@ int main(void)
         return 0;
     }
     test_renders(&scene);
+    test_pass_times(&scene);
     test_extreme_render();
     gb_scene_free(&scene);
     return tap_done();
