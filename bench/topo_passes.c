@@ -1,9 +1,12 @@
 /* topo_passes.c — Table I of Noël & Biri 2014 on this machine: ms per pass
  * of the topological method (GP = G-buffer + visibility clusters, IUGC, LA,
  * IL) and the frame, headless, means over the frames after the first.
+ * IUGC is the GPU pass (topo_geometry_clusters_gpu.c); the last column is
+ * the CPU reference IUGC (GB_TOPO_IUGC=cpu: G-buffer read back, clusters
+ * sent back) timed on a second renderer right after, for comparison.
  *
  *   topo_passes SCENE BAKE_DIR WIDTHxHEIGHT FRAMES VPLS...
- * prints one line per VPL count: vpls gp iugc la il total (ms).
+ * prints one line per VPL count: vpls gp iugc la il total iugc_cpu (ms).
  */
 #include <stdio.h>
 #include <stdlib.h>
@@ -12,9 +15,16 @@
 #include "../runtime/renderer.h"
 #include "../runtime/topo.h"
 
+typedef struct pass_ms {
+    double gp, iugc, la, il, total;
+} pass_ms;
+
+/* Means of FRAMES frames after the first; iugc: "gpu" or "cpu". */
 static gb_result measure(const gb_scene *scene, const gb_bake_files *bake, int width,
-                         int height, int frames, int vpls, gb_error *error)
+                         int height, int frames, int vpls, const char *iugc, pass_ms *ms,
+                         gb_error *error)
 {
+    setenv("GB_TOPO_IUGC", iugc, 1);
     gb_view view;
     gb_result result = gb_scene_view(scene, 0, &view, error);
     gb_context context;
@@ -36,12 +46,12 @@ static gb_result measure(const gb_scene *scene, const gb_bake_files *bake, int w
     if (result == GB_OK) {
         gb_topo_times(renderer.method_state[GB_METHOD_TOPO], &all);
         double n = all.frames - first.frames > 0 ? all.frames - first.frames : 1;
-        double gp = gb_timings_mean_ms(&renderer.timings, GB_PASS_GBUFFER) +
-                    (all.clusters_ms - first.clusters_ms) / n;
-        double iugc = (all.iugc_ms - first.iugc_ms) / n, la = (all.la_ms - first.la_ms) / n;
-        double il = (all.il_ms - first.il_ms) / n;
-        double total = gb_timings_mean_ms(&renderer.timings, GB_PASS_COUNT);
-        printf("%5d %9.1f %9.1f %9.1f %9.1f %9.1f\n", vpls, gp, iugc, la, il, total);
+        ms->gp = gb_timings_mean_ms(&renderer.timings, GB_PASS_GBUFFER) +
+                 (all.clusters_ms - first.clusters_ms) / n;
+        ms->iugc = (all.iugc_ms - first.iugc_ms) / n;
+        ms->la = (all.la_ms - first.la_ms) / n;
+        ms->il = (all.il_ms - first.il_ms) / n;
+        ms->total = gb_timings_mean_ms(&renderer.timings, GB_PASS_COUNT);
         gb_renderer_destroy(&renderer);
     }
     gb_context_destroy(&context);
@@ -63,14 +73,22 @@ int main(int argc, char **argv)
         fprintf(stderr, "topo_passes: %s\n", error.message);
         return 1;
     }
-    printf(" vpls     GP ms   IUGC ms     LA ms     IL ms  total ms   (%dx%d)\n", width, height);
+    printf(" vpls     GP ms   IUGC ms     LA ms     IL ms  total ms  IUGC CPU ms   (%dx%d)\n",
+           width, height);
     int status = 0;
-    for (int i = 5; i < argc && !status; ++i)
-        if (measure(&scene, &bake, width, height, atoi(argv[4]), atoi(argv[i]), &error) !=
-            GB_OK) {
+    for (int i = 5; i < argc && !status; ++i) {
+        pass_ms gpu, cpu;
+        int vpls = atoi(argv[i]), frames = atoi(argv[4]);
+        if (measure(&scene, &bake, width, height, frames, vpls, "gpu", &gpu, &error) != GB_OK ||
+            measure(&scene, &bake, width, height, frames, vpls, "cpu", &cpu, &error) != GB_OK) {
             fprintf(stderr, "topo_passes: %s\n", error.message);
             status = 1;
+            break;
         }
+        printf("%5d %9.1f %9.1f %9.1f %9.1f %9.1f %12.1f\n", vpls, gpu.gp, gpu.iugc, gpu.la,
+               gpu.il, gpu.total, cpu.iugc);
+        fflush(stdout);
+    }
     gb_scene_free(&scene);
     return status;
 }

@@ -3,9 +3,11 @@
  * the bake's .seg and .grid.vdb, the gates' disks fitted to the openings
  * between clusters when the bake has the voxels (.vdb; topo_gate_openings.c),
  * the VPLs (topo_vpls.c) and their clusters.
- * Each frame: visibility cluster per fragment (GPU compute), IUGC on the
- * CPU from the G-buffer read back, LA (GPU compute; gb_topo_assign is its
- * CPU twin), then IL (GPU fragment pass). The
+ * Each frame: visibility cluster per fragment (GPU compute), IUGC (GPU
+ * compute, topo_geometry_clusters_gpu.c; with GB_TOPO_IUGC=cpu in the
+ * environment, gb_topo_geometry_clusters_build on the G-buffer read back),
+ * LA (GPU compute; gb_topo_assign is its CPU twin), then IL (GPU fragment
+ * pass). The
  * frame's G-buffer clusters texture ends with x = visibility cluster and
  * y = geometry cluster. */
 #include <math.h>
@@ -29,6 +31,8 @@ typedef struct topo_state {
     gb_topo_cluster_pass cluster_pass;
     gb_topo_gather_pass gather;
     gb_topo_la_gpu la_gpu;
+    gb_topo_iugc_gpu iugc_gpu;
+    int iugc_on_cpu;            /* GB_TOPO_IUGC=cpu: the reference IUGC */
     gb_geometry_clusters geometry;
     gb_topo_assignment assignment;
     float *depth;
@@ -129,6 +133,7 @@ static void topo_destroy(void *state)
     if (!t)
         return;
     gb_topo_la_gpu_destroy(&t->la_gpu);
+    gb_topo_iugc_gpu_destroy(&t->iugc_gpu);
     gb_topo_gather_destroy(&t->gather);
     gb_topo_cluster_pass_destroy(&t->cluster_pass);
     gb_topo_assignment_free(&t->assignment);
@@ -168,6 +173,10 @@ static gb_result topo_create(const gb_indirect_setup *setup, void **state, gb_er
                                        (float)t->segmentation.voxel_size, &t->gather, error);
     if (result == GB_OK)
         result = gb_topo_la_gpu_create(&t->vpls, t->vpl_cluster, &t->gates, &t->la_gpu, error);
+    const char *iugc = getenv("GB_TOPO_IUGC");
+    t->iugc_on_cpu = iugc && strcmp(iugc, "cpu") == 0;
+    if (result == GB_OK && !t->iugc_on_cpu)
+        result = gb_topo_iugc_gpu_create(&t->iugc_gpu, error);
     if (result != GB_OK) {
         topo_destroy(t);
         return result;
@@ -188,6 +197,30 @@ static int fit_frame(topo_state *t, int width, int height)
     t->width = t->depth && t->clusters ? width : 0;
     t->height = t->depth && t->clusters ? height : 0;
     return t->width != 0;
+}
+
+/* IUGC and LA on the GPU; the geometry clusters' count is the one value
+ * read back (LA's CPU prefix sum needs it). 0 when out of memory (the frame
+ * then gathers every VPL, unshadowed). */
+static int cluster_and_assign_gpu(topo_state *t, const gb_indirect_frame *frame,
+                                  const gb_topo_frame_input *input)
+{
+    const gb_gbuffer *g = frame->gbuffer;
+    double start = gb_seconds();
+    gb_error error;
+    uint32_t count = 0;
+    int ok = gb_topo_iugc_gpu_run(&t->iugc_gpu, g->depth, g->clusters, input, &count,
+                                  &error) == GB_OK;
+    glFinish();
+    double iugc = gb_seconds();
+    ok = ok && gb_topo_la_gpu_run_resident(&t->la_gpu, t->iugc_gpu.clusters, count,
+                                           t->visibility, &t->gather, &t->assignment,
+                                           &error) == GB_OK;
+    glFinish();
+    double la = gb_seconds();
+    t->times.iugc_ms += 1e3 * (iugc - start);
+    t->times.la_ms += 1e3 * (la - iugc);
+    return ok;
 }
 
 /* IUGC on the CPU, LA on the GPU; 0 when out of memory (the frame then gathers
@@ -235,7 +268,9 @@ static void topo_draw(void *state, const gb_indirect_frame *frame)
     glFinish();
     double clusters = gb_seconds();
     int every_vpl = t->visibility == GB_TOPO_NONE;
-    if (!every_vpl && fit_frame(t, frame->width, frame->height)) {
+    if (!every_vpl && !t->iugc_on_cpu) {
+        every_vpl = !cluster_and_assign_gpu(t, frame, &input);
+    } else if (!every_vpl && fit_frame(t, frame->width, frame->height)) {
         input.depth = t->depth;
         input.clusters = t->clusters;
         every_vpl = !cluster_and_assign(t, frame, &input);

@@ -6,8 +6,9 @@
  *   gates     topo_gate_openings.c      (once) gate disks fitted to the openings
  *                                       between the clusters' voxels
  *   GP        gbuffer.c + topo_clusters.c  the visibility cluster of each fragment (GPU)
- *   IUGC      topo_geometry_clusters.c  geometry clusters (Olsson et al. 2012) that
- *                                       never straddle two visibility clusters
+ *   IUGC      topo_geometry_clusters_gpu.c  geometry clusters (Olsson et al. 2012)
+ *                                       that never straddle two visibility clusters
+ *             (topo_geometry_clusters.c: the same on the CPU, the tests' oracle)
  *   LA        topo_assignment_gpu.c     VPLs per geometry cluster, with their route
  *                                       (one gate, or two in a row)
  *             (topo_assignment.c: the same on the CPU, the tests' oracle)
@@ -15,7 +16,7 @@
  *                                       a fragment with no visibility cluster
  *                                       gathers every VPL, unshadowed
  *
- * The CPU parts (VPLs, IUGC, CPU LA) are plain C on plain arrays, so the
+ * The CPU parts (VPLs, CPU IUGC, CPU LA) are plain C on plain arrays, so the
  * unit tests run them without a GL context.
  */
 #ifndef GB_TOPO_H
@@ -33,8 +34,9 @@
 extern const gb_indirect_method gb_topo_method;
 
 /* Wall-clock ms of the method's passes, summed over its frames (glFinish
- * after each): the visibility clusters (GPU), IUGC (CPU, with the G-buffer
- * read back and the geometry clusters sent back), LA (GPU), IL (GPU). */
+ * after each): the visibility clusters (GPU), IUGC (GPU, with its count
+ * read back; with GB_TOPO_IUGC=cpu: CPU, with the G-buffer read back and
+ * the geometry clusters sent back), LA (GPU), IL (GPU). */
 typedef struct gb_topo_pass_times {
     double clusters_ms, iugc_ms, la_ms, il_ms;
     uint32_t frames;
@@ -130,8 +132,43 @@ gb_result gb_topo_geometry_clusters_build(const gb_topo_frame_input *frame,
                                           gb_geometry_clusters *out, gb_error *error);
 void gb_geometry_clusters_free(gb_geometry_clusters *clusters);
 
+/* The depth slice of the key at reversed depth d > 0 (the formula above,
+ * tiles_y from frame->height); non-increasing in d. */
+uint32_t gb_topo_depth_slice(const gb_topo_frame_input *frame, float d);
+
 /* World position of pixel (x, y) at reversed depth d. */
 void gb_topo_pixel_position(const gb_topo_frame_input *frame, int x, int y, float d, float out[3]);
+
+/* ---- IUGC on the GPU (topo_geometry_clusters_gpu.c) ---------------------
+ * The same geometry clusters, numbered as gb_topo_geometry_clusters_build
+ * numbers them (tiles row by row, keys in order within a tile), made by
+ * three compute passes: per tile, the distinct keys in order in shared
+ * memory; a prefix sum of the tiles' counts; per tile, boxes by atomics on
+ * floats as ordered uints, then spheres. The G-buffer's clusters.y gets
+ * the geometry cluster, `clusters` the spheres in LA's layout (vec4 centre
+ * and radius, uvec4 visibility cluster, 0, 0, 0), `boxes` vec4 min, vec4
+ * max. The slice of a depth is looked up in a table of the CPU's slice
+ * boundaries, so that the keys are the CPU's bit for bit. */
+typedef struct gb_topo_iugc_gpu {
+    GLuint tile_program, scan_program, bounds_program;
+    GLuint slice_bounds, tile_counts, tile_offsets, total, clusters, boxes;
+    uint32_t slice_count, tile_count, capacity;
+    int slices_exact;           /* the table covers every positive depth */
+    float table_near, table_tan_y;
+    int table_height;
+} gb_topo_iugc_gpu;
+
+gb_result gb_topo_iugc_gpu_create(gb_topo_iugc_gpu *iugc, gb_error *error);
+/* Reads frame's width, height, view_to_world, tan_half_fov, near (not its
+ * arrays); depth and clusters: the G-buffer's textures. *count: the number
+ * of geometry clusters (the one value read back, for LA). */
+gb_result gb_topo_iugc_gpu_run(gb_topo_iugc_gpu *iugc, GLuint depth, GLuint clusters,
+                               const gb_topo_frame_input *frame, uint32_t *count,
+                               gb_error *error);
+/* Copies count clusters back (tests). */
+gb_result gb_topo_iugc_gpu_read(const gb_topo_iugc_gpu *iugc, uint32_t count,
+                                gb_geometry_clusters *out, gb_error *error);
+void gb_topo_iugc_gpu_destroy(gb_topo_iugc_gpu *iugc);
 
 /* ---- LA (topo_assignment.c) -------------------------------------------- */
 /* How light leaves a visibility cluster: through one of its gates into the
@@ -260,6 +297,11 @@ gb_result gb_topo_la_gpu_create(const gb_vpl_set *vpls, const int32_t *vpl_clust
 gb_result gb_topo_la_gpu_run(gb_topo_la_gpu *la, const gb_geometry_clusters *clusters,
                              gb_topo_visibility visibility, gb_topo_gather_pass *gather,
                              gb_topo_assignment *out, gb_error *error);
+/* The same with count clusters already on the GPU in LA's layout (as
+ * gb_topo_iugc_gpu_run leaves them in iugc->clusters). */
+gb_result gb_topo_la_gpu_run_resident(gb_topo_la_gpu *la, GLuint clusters, uint32_t count,
+                                      gb_topo_visibility visibility, gb_topo_gather_pass *gather,
+                                      gb_topo_assignment *out, gb_error *error);
 gb_result gb_topo_la_gpu_read(const gb_topo_gather_pass *gather, gb_topo_assignment *out,
                               gb_error *error);
 void gb_topo_la_gpu_destroy(gb_topo_la_gpu *la);

@@ -166,23 +166,28 @@ gb_result gb_topo_la_gpu_run(gb_topo_la_gpu *la, const gb_geometry_clusters *clu
 {
     uint32_t n = clusters->count;
     float *packed = pack_clusters(clusters);
-    uint32_t *ranges = realloc(out->ranges, ((size_t)n + 1) * 2 * sizeof *ranges);
-    if (!packed || !ranges) {
-        free(packed);
-        if (ranges)
-            out->ranges = ranges;
+    if (!packed)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "LA: out of memory");
-    }
-    out->ranges = ranges;
-    out->cluster_count = n;
     grow(la->clusters, &la->clusters_size, (GLsizeiptr)n * 8 * (GLsizeiptr)sizeof(float));
     glNamedBufferSubData(la->clusters, 0, (GLsizeiptr)n * 8 * (GLsizeiptr)sizeof(float), packed);
     free(packed);
+    return gb_topo_la_gpu_run_resident(la, la->clusters, n, visibility, gather, out, error);
+}
+
+gb_result gb_topo_la_gpu_run_resident(gb_topo_la_gpu *la, GLuint clusters, uint32_t n,
+                                      gb_topo_visibility visibility, gb_topo_gather_pass *gather,
+                                      gb_topo_assignment *out, gb_error *error)
+{
+    uint32_t *ranges = realloc(out->ranges, ((size_t)n + 1) * 2 * sizeof *ranges);
+    if (!ranges)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "LA: out of memory");
+    out->ranges = ranges;
+    out->cluster_count = n;
     grow(gather->range_buffer, &gather->range_size, (GLsizeiptr)(n + 1) * 8);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, gather->vpl_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, gather->gate_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 5, gather->range_buffer);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, la->clusters);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 7, clusters);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 8, la->vpl_cluster);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 9, la->group_offsets);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 10, gather->route_buffer);

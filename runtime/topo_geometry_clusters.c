@@ -32,6 +32,13 @@ void gb_topo_pixel_position(const gb_topo_frame_input *f, int x, int y, float d,
 }
 
 /* Olsson et al. 2012, eq. 3: slices whose depth grows like the tiles' width. */
+static uint32_t depth_slice(const gb_topo_frame_input *f, float d, int tiles_y);
+
+uint32_t gb_topo_depth_slice(const gb_topo_frame_input *f, float d)
+{
+    return depth_slice(f, d, (f->height + GB_TOPO_TILE - 1) / GB_TOPO_TILE);
+}
+
 static uint32_t depth_slice(const gb_topo_frame_input *f, float d, int tiles_y)
 {
     float z = f->near / d;      /* -view z, >= near */
