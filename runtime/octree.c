@@ -35,6 +35,7 @@ static const char fragment_shader[] =
     "const uint NONE = 0xffffffffu;\n"
     "const float PI = 3.14159265358979;\n"
     "const float MIN_COS = 0.25;\n"
+    "const float MIN_WEIGHT = 1e-6;\n"
     GB_GLSL_OCTAHEDRAL
     /* gb_light_octree_find_leaf: depth node fetches from the root. */
     "uint find_leaf(ivec3 cell) {\n"
@@ -49,11 +50,7 @@ static const char fragment_shader[] =
     "    }\n"
     "    return node;\n"
     "}\n"
-    /* gb_photon_unpack_direction. */
-    "vec3 vdl_direction(uint bits) {\n"
-    "    vec2 q = (vec2(float(bits & 0xffffu), float(bits >> 16)) - 32768.0) / 32767.0;\n"
-    "    return oct_decode(q);\n"
-    "}\n"
+    GB_GLSL_VDL_DIRECTION
     /* Sum of the leaf's VDLs, E max(0, n.w) / max(|nl.w|, MIN_COS) (octree.h);
      * false for no leaf or no VDL. */
     "bool leaf_light(uint leaf, vec3 n, vec3 ng, out vec3 sum) {\n"
@@ -73,7 +70,11 @@ static const char fragment_shader[] =
     "    return true;\n"
     "}\n"
     /* Trilinear between the 8 leaf centres around x, renormalised over the
-     * neighbours that have VDLs. */
+     * neighbours that have VDLs. Each weight is at least MIN_WEIGHT: at a
+     * leaf centre the weights of the other 7 vanish, and when that leaf has
+     * no VDLs the pixel would be black (tests/unit/test_octree_display.c);
+     * there the floor makes it the mean of the others, and elsewhere it
+     * changes the result by under 10^-5. */
     "vec3 interpolate(vec3 x, vec3 n, vec3 ng) {\n"
     "    vec3 g = (x - origin) / cell_size - 0.5;\n"
     "    vec3 base = floor(g), f = g - base;\n"
@@ -82,9 +83,9 @@ static const char fragment_shader[] =
     "    for (int c = 0; c < 8; ++c) {\n"
     "        ivec3 o = ivec3(c & 1, (c >> 1) & 1, c >> 2);\n"
     "        vec3 t = mix(1.0 - f, f, vec3(o));\n"
-    "        float w = t.x * t.y * t.z;\n"
+    "        float w = max(t.x * t.y * t.z, MIN_WEIGHT);\n"
     "        vec3 sum;\n"
-    "        if (w > 0.0 && leaf_light(find_leaf(ivec3(base) + o), n, ng, sum)) {\n"
+    "        if (leaf_light(find_leaf(ivec3(base) + o), n, ng, sum)) {\n"
     "            total += w * sum;\n"
     "            weight += w;\n"
     "        }\n"
