@@ -58,6 +58,28 @@ static const float TABLE_MIN_DEPTH = 1e-30f;
     "    return gl_WorkGroupID.y * gl_NumWorkGroups.x + gl_WorkGroupID.x;\n"    \
     "}\n"
 
+/* Exclusive prefix sum of n over a workgroup of THREADS invocations
+ * (Hillis-Steele, double-buffered in shared sums[2 THREADS]); *total. */
+#define GLSL_PREFIX_SUM                                                           \
+    "shared uint sums[2u * THREADS];\n"                                          \
+    "uint prefix_sum(uint lid, uint n, out uint total) {\n"                      \
+    "    uint from = 0u;\n"                                                      \
+    "    sums[lid] = n;\n"                                                       \
+    "    memoryBarrierShared();\n"                                               \
+    "    barrier();\n"                                                           \
+    "    for (uint offset = 1u; offset < THREADS; offset <<= 1u) {\n"            \
+    "        uint v = sums[from + lid];\n"                                       \
+    "        if (lid >= offset)\n"                                               \
+    "            v += sums[from + lid - offset];\n"                              \
+    "        sums[THREADS - from + lid] = v;\n"                                  \
+    "        from = THREADS - from;\n"                                           \
+    "        memoryBarrierShared();\n"                                           \
+    "        barrier();\n"                                                       \
+    "    }\n"                                                                    \
+    "    total = sums[from + THREADS - 1u];\n"                                   \
+    "    return sums[from + lid] - n;\n"                                         \
+    "}\n"
+
 static const char tile_shader[] =
     GLSL_TILE_COMMON
     "layout(binding = 2) uniform sampler2D gbuffer_depth;\n"
@@ -69,7 +91,6 @@ static const char tile_shader[] =
     "uniform float log_base;\n"
     "shared uvec2 keys[PIXELS];\n"
     "shared uvec2 distinct[PIXELS];\n"
-    "shared uint sums[2u * THREADS];\n"
     "bool less(uvec2 a, uvec2 b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }\n"
     /* the largest j with d <= slice_bound[j] (slice_bound[0] = +inf), from
      * the GPU's own log, moved to the table's answer */
@@ -99,24 +120,7 @@ static const char tile_shader[] =
     "            barrier();\n"
     "        }\n"
     "}\n"
-    /* exclusive prefix sum of n over the workgroup (Hillis-Steele); *total */
-    "uint prefix_sum(uint lid, uint n, out uint total) {\n"
-    "    uint from = 0u;\n"
-    "    sums[lid] = n;\n"
-    "    memoryBarrierShared();\n"
-    "    barrier();\n"
-    "    for (uint offset = 1u; offset < THREADS; offset <<= 1u) {\n"
-    "        uint v = sums[from + lid];\n"
-    "        if (lid >= offset)\n"
-    "            v += sums[from + lid - offset];\n"
-    "        sums[THREADS - from + lid] = v;\n"
-    "        from = THREADS - from;\n"
-    "        memoryBarrierShared();\n"
-    "        barrier();\n"
-    "    }\n"
-    "    total = sums[from + THREADS - 1u];\n"
-    "    return sums[from + lid] - n;\n"
-    "}\n"
+    GLSL_PREFIX_SUM
     /* the sorted keys made distinct into distinct[]; returns how many */
     "uint compact(uint lid) {\n"
     "    uint n = 0u;\n"
@@ -245,7 +249,7 @@ static const char scan_shader[] =
     "layout(std430, binding = 3) writeonly buffer Total { uint total; };\n"
     "uniform uint tiles;\n"
     "const uint THREADS = 256u;\n"
-    "shared uint sums[2u * THREADS];\n"
+    GLSL_PREFIX_SUM
     "void main() {\n"
     "    uint lid = gl_LocalInvocationIndex;\n"
     "    uint per = (tiles + THREADS - 1u) / THREADS;\n"
@@ -253,26 +257,14 @@ static const char scan_shader[] =
     "    uint n = 0u;\n"
     "    for (uint t = begin; t < end; ++t)\n"
     "        n += tile_count[t];\n"
-    "    uint from = 0u;\n"
-    "    sums[lid] = n;\n"
-    "    memoryBarrierShared();\n"
-    "    barrier();\n"
-    "    for (uint offset = 1u; offset < THREADS; offset <<= 1u) {\n"
-    "        uint v = sums[from + lid];\n"
-    "        if (lid >= offset)\n"
-    "            v += sums[from + lid - offset];\n"
-    "        sums[THREADS - from + lid] = v;\n"
-    "        from = THREADS - from;\n"
-    "        memoryBarrierShared();\n"
-    "        barrier();\n"
-    "    }\n"
-    "    uint at = sums[from + lid] - n;\n"
+    "    uint sum;\n"
+    "    uint at = prefix_sum(lid, n, sum);\n"
     "    for (uint t = begin; t < end; ++t) {\n"
     "        tile_offset[t] = at;\n"
     "        at += tile_count[t];\n"
     "    }\n"
     "    if (lid == THREADS - 1u)\n"
-    "        total = sums[from + lid];\n"
+    "        total = sum;\n"
     "}\n";
 
 static const char bounds_shader[] =
