@@ -32,7 +32,8 @@ static const char usage[] =
     "                          .png sRGB; in a window, where screenshots go\n"
     "                          (and, with --frames, the last frame)\n"
     "  -r, --resolution WxH    frame size (default: the camera's)\n"
-    "      --timings           print per-pass GPU times (ms) on stdout\n"
+    "      --timings           print per-pass GPU times (ms) on stdout (each pass\n"
+    "                          is finished before its end time is taken)\n"
     "      --bake DIR          use the files baked for SCENE in DIR\n"
     "                          (NAME.vdb .skel .grid.vdb .seg .lot); a missing or\n"
     "                          bad one is reported and skipped\n"
@@ -178,7 +179,7 @@ static int parse_option(int option, const char *value, arguments *a)
         return parse_flc_option(option, value, a);
     switch (option) {
     case OPTION_HEADLESS: a->headless = 1; return 0;
-    case OPTION_TIMINGS: a->timings = 1; return 0;
+    case OPTION_TIMINGS: a->timings = a->renderer.finish_passes = 1; return 0;
     case OPTION_BAKE: a->bake = value; return 0;
     case OPTION_NO_SHADOWS: a->renderer.no_shadows = 1; return 0;
     case 'o': a->output = value; return 0;

@@ -65,6 +65,7 @@ gb_result gb_renderer_create(const gb_scene *scene, const gb_renderer_options *o
         return result;
     }
     gb_timings_create(&renderer->timings);
+    renderer->timings.finish_passes = options->finish_passes;
     return GB_OK;
 }
 

@@ -32,6 +32,9 @@ typedef struct gb_renderer_options {
     int width, height;          /* the frame's size, pixels (> 0) */
     gb_shadow_options shadow;   /* zeroed: defaults */
     int no_shadows;             /* debug: every light fully visible */
+    int finish_passes;          /* glFinish after each timed pass, so that its
+                                   timestamps hold its work on renderers that
+                                   defer it to the flush (llvmpipe); --timings */
     const gb_bake_files *bake;  /* the baked files found, or NULL; must outlive the renderer */
     gb_method_parameters parameters;
 } gb_renderer_options;

@@ -29,6 +29,8 @@ void gb_timings_begin(gb_timings *timings, gb_pass pass)
 
 void gb_timings_end(gb_timings *timings, gb_pass pass)
 {
+    if (timings->finish_passes)
+        glFinish();
     glQueryCounter(timings->queries[2 * pass + 1], GL_TIMESTAMP);
 }
 

@@ -41,6 +41,10 @@ typedef struct gb_timings {
     double first_gpu_ms, first_wall_ms;
     double total_gpu_ms, total_wall_ms; /* over the frames after the first */
     uint32_t frames;                /* all, the first included */
+    int finish_passes;              /* glFinish before each pass's end query:
+                                       llvmpipe rasterizes at the flush, so
+                                       without it a pass's fragments land in
+                                       whichever pass flushes next */
 } gb_timings;
 
 const char *gb_pass_name(gb_pass pass);
