@@ -57,6 +57,21 @@ typedef struct gb_implicit_bins {
 
 gb_result gb_implicit_bins_create(int n, gb_implicit_bins *bins, gb_error *error);
 void gb_implicit_bins_free(gb_implicit_bins *bins);
+
+/* (b - a) x (c - a) in double: twice the triangle's area along its normal. */
+static inline void gb_implicit_triangle_cross(const float *a, const float *b, const float *c,
+                                              double n[3])
+{
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k) {
+        u[k] = (double)b[k] - a[k];
+        v[k] = (double)c[k] - a[k];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+}
+
 /* The one bin of direction d (need not be unit), in [0, 6 n n); -1 for the
  * zero vector or a non-finite one. Ties between faces go to the lowest
  * axis; u or v exactly on a face's edge go to the last row or column.

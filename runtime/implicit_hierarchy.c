@@ -30,14 +30,7 @@ static void face_normal(const gb_scene *scene, uint32_t t, double n[3])
     const float *p[3];
     for (int k = 0; k < 3; ++k)
         p[k] = &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + k]];
-    double u[3], v[3];
-    for (int k = 0; k < 3; ++k) {
-        u[k] = (double)p[1][k] - p[0][k];
-        v[k] = (double)p[2][k] - p[0][k];
-    }
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
+    gb_implicit_triangle_cross(p[0], p[1], p[2], n);
     double length = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int k = 0; k < 3; ++k)
         n[k] = length > 0.0 ? n[k] / length : 0.0;

@@ -20,14 +20,8 @@ static void add_triangle(gb_implicit_model *model, const uint32_t e[3], double *
     const float *p[3];
     for (int k = 0; k < 3; ++k)
         p[k] = &model->vertices[3 * (size_t)e[k]];
-    double u[3], v[3], n[3];
-    for (int k = 0; k < 3; ++k) {
-        u[k] = (double)p[1][k] - p[0][k];
-        v[k] = (double)p[2][k] - p[0][k];
-    }
-    n[0] = u[1] * v[2] - u[2] * v[1];
-    n[1] = u[2] * v[0] - u[0] * v[2];
-    n[2] = u[0] * v[1] - u[1] * v[0];
+    double n[3];
+    gb_implicit_triangle_cross(p[0], p[1], p[2], n);
     double area = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
     for (int k = 0; k < 3; ++k) {
         model->nodes[e[k]].area += (float)(area / 3.0);
