@@ -114,23 +114,23 @@ static void fit_disk(const opening *o, gb_visibility_gate *gate)
     gate->radius = fmaxf(gate->radius, (float)radius);
 }
 
-/* Faces between empty voxels of two clusters, each added to the opening of
- * the nearest gate between them. */
-static void gather_faces(const gb_segmentation *s, const gb_topo_gates *gates,
-                         const float (*anchors)[3], const int32_t *voxel_clusters,
-                         const uint8_t *surface, opening *openings)
+/* Calls face(user, ijk, axis, a, b) for every face between an empty voxel
+ * of cluster a at ijk and one of another cluster b at ijk + 1 along axis
+ * (surface voxels, when marked, are not empty); face returns 0 to stop. */
+typedef int (*face_function)(void *user, const int32_t ijk[3], int axis, int32_t a, int32_t b);
+
+static void visit_cluster_faces(const gb_segmentation *s, const int32_t *voxel_clusters,
+                                const uint8_t *surface, face_function face, void *user)
 {
     const int32_t *n = s->grid_size;
     size_t stride[3] = {1, (size_t)n[0], (size_t)n[0] * (size_t)n[1]};
-    double h = s->voxel_size;
     for (int32_t z = 0; z < n[2]; ++z)
         for (int32_t y = 0; y < n[1]; ++y)
             for (int32_t x = 0; x < n[0]; ++x) {
                 size_t v = (size_t)x + (size_t)y * stride[1] + (size_t)z * stride[2];
-                int32_t a = voxel_clusters[v];
+                int32_t a = voxel_clusters[v], ijk[3] = {x, y, z};
                 if (a < 0 || (surface && surface[v]))
                     continue;
-                int32_t ijk[3] = {x, y, z};
                 for (int axis = 0; axis < 3; ++axis) {
                     if (ijk[axis] + 1 >= n[axis])
                         continue;
@@ -138,17 +138,58 @@ static void gather_faces(const gb_segmentation *s, const gb_topo_gates *gates,
                     int32_t b = voxel_clusters[w];
                     if (b < 0 || b == a || (surface && surface[w]))
                         continue;
-                    double centre[3], normal[3] = {0.0, 0.0, 0.0};
-                    for (int i = 0; i < 3; ++i)
-                        centre[i] = s->world_origin[i] +
-                                    (ijk[i] + 0.5 + (i == axis ? 0.5 : 0.0)) * h;
-                    uint32_t g = gate_between(s, gates, anchors, (uint32_t)a, (uint32_t)b, centre);
-                    if (g == UINT32_MAX)
-                        continue;
-                    normal[axis] = s->gates[g].clusters[0] == (uint32_t)a ? 1.0 : -1.0;
-                    add_face(&openings[g], centre, normal);
+                    if (!face(user, ijk, axis, a, b))
+                        return;
                 }
             }
+}
+
+typedef struct face_gathering {
+    const gb_segmentation *s;
+    const gb_topo_gates *gates;
+    const float (*anchors)[3];
+    opening *openings;
+} face_gathering;
+
+/* Adds the face to the opening of the nearest gate between its clusters. */
+static int gather_face(void *user, const int32_t ijk[3], int axis, int32_t a, int32_t b)
+{
+    face_gathering *f = user;
+    double centre[3], normal[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < 3; ++i)
+        centre[i] = f->s->world_origin[i] +
+                    (ijk[i] + 0.5 + (i == axis ? 0.5 : 0.0)) * f->s->voxel_size;
+    uint32_t g = gate_between(f->s, f->gates, f->anchors, (uint32_t)a, (uint32_t)b, centre);
+    if (g != UINT32_MAX) {
+        normal[axis] = f->s->gates[g].clusters[0] == (uint32_t)a ? 1.0 : -1.0;
+        add_face(&f->openings[g], centre, normal);
+    }
+    return 1;
+}
+
+typedef struct pair_list {
+    uint64_t *pairs;            /* a < b, packed a << 32 | b */
+    size_t used, capacity;
+    int out_of_memory;
+} pair_list;
+
+static int add_pair(void *user, const int32_t ijk[3], int axis, int32_t a, int32_t b)
+{
+    (void)ijk;
+    (void)axis;
+    pair_list *list = user;
+    if (list->used == list->capacity) {
+        uint64_t *grown = realloc(list->pairs, 2 * list->capacity * sizeof *grown);
+        if (!grown) {
+            list->out_of_memory = 1;
+            return 0;
+        }
+        list->pairs = grown;
+        list->capacity *= 2;
+    }
+    uint64_t lo = (uint64_t)(a < b ? a : b), hi = (uint64_t)(a < b ? b : a);
+    list->pairs[list->used++] = lo << 32 | hi;
+    return 1;
 }
 
 static int compare_u64(const void *a, const void *b)
@@ -162,47 +203,21 @@ static int compare_u64(const void *a, const void *b)
 static uint64_t *touching_pairs(const gb_segmentation *s, const int32_t *voxel_clusters,
                                 const uint8_t *surface, size_t *count)
 {
-    const int32_t *n = s->grid_size;
-    size_t stride[3] = {1, (size_t)n[0], (size_t)n[0] * (size_t)n[1]};
-    size_t used = 0, capacity = 1024;
-    uint64_t *pairs = malloc(capacity * sizeof *pairs);
-    for (int32_t z = 0; pairs && z < n[2]; ++z)
-        for (int32_t y = 0; pairs && y < n[1]; ++y)
-            for (int32_t x = 0; pairs && x < n[0]; ++x) {
-                size_t v = (size_t)x + (size_t)y * stride[1] + (size_t)z * stride[2];
-                int32_t a = voxel_clusters[v], ijk[3] = {x, y, z};
-                if (a < 0 || (surface && surface[v]))
-                    continue;
-                for (int axis = 0; axis < 3 && pairs; ++axis) {
-                    if (ijk[axis] + 1 >= n[axis])
-                        continue;
-                    size_t w = v + stride[axis];
-                    int32_t b = voxel_clusters[w];
-                    if (b < 0 || b == a || (surface && surface[w]))
-                        continue;
-                    uint64_t lo = (uint64_t)(a < b ? a : b), hi = (uint64_t)(a < b ? b : a);
-                    if (used == capacity) {
-                        uint64_t *grown = realloc(pairs, 2 * capacity * sizeof *pairs);
-                        if (!grown) {
-                            free(pairs);
-                            pairs = NULL;
-                            break;
-                        }
-                        pairs = grown;
-                        capacity *= 2;
-                    }
-                    pairs[used++] = lo << 32 | hi;
-                }
-            }
-    if (!pairs)
+    pair_list list = {malloc(1024 * sizeof *list.pairs), 0, 1024, 0};
+    if (!list.pairs)
         return NULL;
-    qsort(pairs, used, sizeof *pairs, compare_u64);
+    visit_cluster_faces(s, voxel_clusters, surface, add_pair, &list);
+    if (list.out_of_memory) {
+        free(list.pairs);
+        return NULL;
+    }
+    qsort(list.pairs, list.used, sizeof *list.pairs, compare_u64);
     size_t unique = 0;
-    for (size_t i = 0; i < used; ++i)
-        if (unique == 0 || pairs[unique - 1] != pairs[i])
-            pairs[unique++] = pairs[i];
+    for (size_t i = 0; i < list.used; ++i)
+        if (unique == 0 || list.pairs[unique - 1] != list.pairs[i])
+            list.pairs[unique++] = list.pairs[i];
     *count = unique;
-    return pairs;
+    return list.pairs;
 }
 
 static int has_gate(const gb_segmentation *s, uint32_t a, uint32_t b)
@@ -258,7 +273,8 @@ gb_result gb_topo_gates_fit_openings(gb_segmentation *s, const gb_topo_gates *ga
     }
     for (uint32_t g = 0; g < count; ++g)
         memcpy(anchors[g], s->gates[g].centre, sizeof anchors[g]);
-    gather_faces(s, gates, (const float (*)[3])anchors, voxel_clusters, surface, openings);
+    face_gathering gathering = {s, gates, (const float (*)[3])anchors, openings};
+    visit_cluster_faces(s, voxel_clusters, surface, gather_face, &gathering);
     for (uint32_t g = 0; g < count; ++g)
         if (openings[g].count > 0.0)
             fit_disk(&openings[g], &s->gates[g]);
