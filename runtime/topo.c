@@ -251,16 +251,22 @@ static int cluster_and_assign(topo_state *t, const gb_indirect_frame *frame,
     return ok;
 }
 
+gb_topo_frame_input gb_topo_frame_input_of_view(const gb_view *view, int width, int height)
+{
+    gb_topo_frame_input input = {.width = width, .height = height, .near = view->near};
+    gb_mat4 view_to_world = gb_view_inverse_matrix(view);
+    memcpy(input.view_to_world, view_to_world.m, sizeof input.view_to_world);
+    float tan_y = tanf(0.5f * view->fov_y * (float)M_PI / 180.0f);
+    input.tan_half_fov[0] = tan_y * (float)width / (float)height;
+    input.tan_half_fov[1] = tan_y;
+    return input;
+}
+
 static void topo_draw(void *state, const gb_indirect_frame *frame)
 {
     topo_state *t = state;
-    gb_topo_frame_input input = {.width = frame->width, .height = frame->height,
-                                 .near = frame->view->near};
-    gb_mat4 view_to_world = gb_view_inverse_matrix(frame->view);
-    memcpy(input.view_to_world, view_to_world.m, sizeof input.view_to_world);
-    float tan_y = tanf(0.5f * frame->view->fov_y * (float)M_PI / 180.0f);
-    input.tan_half_fov[0] = tan_y * (float)frame->width / (float)frame->height;
-    input.tan_half_fov[1] = tan_y;
+    gb_topo_frame_input input =
+        gb_topo_frame_input_of_view(frame->view, frame->width, frame->height);
     double start = gb_seconds();
     const gb_gbuffer *g = frame->gbuffer;
     gb_topo_cluster_pass_run(&t->cluster_pass, g->depth, g->normal, g->clusters, frame->width,

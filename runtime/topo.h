@@ -117,6 +117,9 @@ typedef struct gb_topo_frame_input {
     float near;
 } gb_topo_frame_input;
 
+/* The frame input of a view at width x height (depth, clusters NULL). */
+gb_topo_frame_input gb_topo_frame_input_of_view(const gb_view *view, int width, int height);
+
 typedef struct gb_geometry_clusters {
     uint32_t count, capacity;
     gb_geometry_cluster *clusters;

@@ -603,13 +603,10 @@ static void test_cluster_lookup_gpu(void)
         result = gb_scene_view(&scene, 0, &view, &error);
     CHECK(result == GB_OK, "GP: G-buffer and cluster pass made");
     if (result == GB_OK) {
-        gb_mat4 world_to_view = gb_view_matrix(&view), inverse = gb_view_inverse_matrix(&view);
+        gb_mat4 world_to_view = gb_view_matrix(&view);
         gb_mat4 projection = gb_view_projection(&view, W, H);
         gb_gbuffer_draw(&gbuffer, &gpu, &world_to_view, &projection);
-        float tan_y = tanf(0.5f * view.fov_y * (float)M_PI / 180.0f);
-        gb_topo_frame_input frame = {.width = W, .height = H, .near = view.near,
-                                     .tan_half_fov = {tan_y * W / H, tan_y}};
-        memcpy(frame.view_to_world, inverse.m, sizeof frame.view_to_world);
+        gb_topo_frame_input frame = gb_topo_frame_input_of_view(&view, W, H);
         gb_topo_cluster_pass_run(&pass, gbuffer.depth, gbuffer.normal, gbuffer.clusters, W, H,
                                  frame.view_to_world, frame.tan_half_fov, frame.near);
         int seen;
