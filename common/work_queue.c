@@ -1,6 +1,7 @@
 /* work_queue.c — gb_work_queue_run (work_queue.h), on gb_run_threads. */
 #include "work_queue.h"
 
+#include <pthread.h>
 #include <stdatomic.h>
 #include <unistd.h>
 #if defined(__SSE__)
@@ -12,12 +13,19 @@
 
 enum { MAX_THREADS = 64 };
 
+/* next_item and stop change only under the lock, and progress is called
+ * under it, so a stop asked for when item k is handed out is seen by every
+ * thread before item k + 1 can start: which items run does not depend on
+ * scheduling. Items are coarse (tiles, chunks), so one lock per item is
+ * nothing beside the item itself. */
 typedef struct queue_run {
     const gb_work_queue *queue;
     gb_work_item_function function;
     void *context;
-    atomic_uint_fast64_t next_item, items_done;
-    atomic_int stop;
+    pthread_mutex_t lock;
+    uint64_t next_item;
+    int stop;
+    atomic_uint_fast64_t items_done;
 } queue_run;
 
 static unsigned flush_denormals(void)
@@ -41,36 +49,40 @@ static void restore_denormals(unsigned saved)
 #endif
 }
 
-/* Runs the next item; 0 when none is left or the queue stopped. */
-static int run_next_item(queue_run *run)
-{
-    if (atomic_load(&run->stop))
-        return 0;
-    uint64_t item = atomic_fetch_add(&run->next_item, 1);
-    if (item >= run->queue->item_count)
-        return 0;
-    if (run->function(run->context, item))
-        atomic_store(&run->stop, 1);
-    atomic_fetch_add(&run->items_done, 1);
-    return 1;
-}
-
-static void report_progress(queue_run *run)
+/* The next item to run, or item_count when none is left or the queue
+ * stopped. The progress callback sees the fraction of items started and may
+ * stop the queue before this item starts. */
+static uint64_t take_item(queue_run *run)
 {
     const gb_work_queue *queue = run->queue;
-    double done = (double)atomic_load(&run->items_done) / (double)queue->item_count;
-    if (queue->progress && queue->progress(queue->progress_user, done))
-        atomic_store(&run->stop, 1);
+    pthread_mutex_lock(&run->lock);
+    uint64_t item = queue->item_count;
+    if (!run->stop && queue->progress &&
+        queue->progress(queue->progress_user, (double)run->next_item / (double)queue->item_count))
+        run->stop = 1;
+    if (!run->stop && run->next_item < queue->item_count)
+        item = run->next_item++;
+    pthread_mutex_unlock(&run->lock);
+    return item;
+}
+
+static void ask_to_stop(queue_run *run)
+{
+    pthread_mutex_lock(&run->lock);
+    run->stop = 1;
+    pthread_mutex_unlock(&run->lock);
 }
 
 static void work(void *context, int thread, int thread_count)
 {
-    (void)thread_count;
+    (void)thread, (void)thread_count;
     queue_run *run = context;
     unsigned saved = flush_denormals();
-    while (run_next_item(run))
-        if (thread == 0)
-            report_progress(run);
+    for (uint64_t item; (item = take_item(run)) < run->queue->item_count;) {
+        if (run->function(run->context, item))
+            ask_to_stop(run);
+        atomic_fetch_add(&run->items_done, 1);
+    }
     restore_denormals(saved);
 }
 
@@ -90,11 +102,13 @@ gb_result gb_work_queue_run(const gb_work_queue *queue, gb_work_item_function fu
                             void *context, int *threads_used)
 {
     queue_run run = {.queue = queue, .function = function, .context = context};
+    pthread_mutex_init(&run.lock, NULL);
     int threads = thread_count(queue);
     gb_run_threads(work, &run, threads);
+    pthread_mutex_destroy(&run.lock);
     if (threads_used)
         *threads_used = threads;
-    return atomic_load(&run.items_done) == queue->item_count && !atomic_load(&run.stop)
+    return atomic_load(&run.items_done) == queue->item_count && !run.stop
                ? GB_OK
                : GB_ERROR_INTERRUPTED;
 }

@@ -1,7 +1,11 @@
 /* work_queue.h — items 0 .. item_count-1 handed out one at a time to a few
- * threads (an atomic counter), for work whose items differ in cost: the
- * reference renderer's tiles, the photon tracer's chunks. The calling thread
- * works too and reports progress between its items. Every worker flushes
+ * threads, for work whose items differ in cost: the reference renderer's
+ * tiles, the photon tracer's chunks. The calling thread works too. Before an
+ * item is handed out, the progress callback is called (one call at a time,
+ * from whichever thread takes the item) with the fraction of items started;
+ * once it or an item asks to stop, no further item starts, so a stop asked
+ * for when item k is handed out means items k and later never run, whatever
+ * the scheduling. Every worker flushes
  * denormals to zero, as Embree advises for speed; all threads alike, so no
  * result depends on the thread count.
  *
@@ -24,7 +28,8 @@ typedef int (*gb_work_item_function)(void *context, uint64_t item);
 typedef struct gb_work_queue {
     uint64_t item_count;
     int threads;                    /* 0: one per processor */
-    gb_progress_callback progress;  /* may be NULL; nonzero stops the queue */
+    gb_progress_callback progress;  /* may be NULL; nonzero stops the queue;
+                                       called under the queue's lock */
     void *progress_user;
 } gb_work_queue;
 

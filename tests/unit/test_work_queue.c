@@ -27,6 +27,15 @@ static int stop_at_half(void *user, double fraction)
     return fraction >= 0.5;
 }
 
+/* Items 0 .. first_not_run-1 ran once each, the rest never. */
+static int ran_up_to(const counts *c, int first_not_run)
+{
+    for (int i = 0; i < ITEMS; ++i)
+        if (atomic_load(&c->runs[i]) != (i < first_not_run))
+            return 0;
+    return 1;
+}
+
 static int runs_once_each(const counts *c)
 {
     for (int i = 0; i < ITEMS; ++i)
@@ -56,15 +65,20 @@ int main(void)
     CHECK(atomic_load(&c.runs[10]) == 1 && atomic_load(&c.runs[11]) == 0,
           "no item starts after the stop (one thread)");
 
-    memset(&c, 0, sizeof c);
-    c.stop_at = -1;
-    int calls = 0;
-    gb_work_queue stopped = {.item_count = ITEMS, .threads = 2, .progress = stop_at_half,
-                             .progress_user = &calls};
-    CHECK(gb_work_queue_run(&stopped, count_item, &c, NULL) == GB_ERROR_INTERRUPTED,
-          "progress asking to stop interrupts the run");
-    CHECK(calls > 0 && atomic_load(&c.runs[ITEMS - 1]) == 0,
-          "progress was called and the last item never ran");
+    /* The callback sees the fraction started before each item is handed
+     * out; it asks to stop when item ITEMS/2 is next: exactly the first half
+     * runs, on any thread count and any scheduling. */
+    for (int threads = 1; threads <= 4; ++threads) {
+        memset(&c, 0, sizeof c);
+        c.stop_at = -1;
+        int calls = 0;
+        gb_work_queue stopped = {.item_count = ITEMS, .threads = threads,
+                                 .progress = stop_at_half, .progress_user = &calls};
+        CHECK(gb_work_queue_run(&stopped, count_item, &c, NULL) == GB_ERROR_INTERRUPTED,
+              "progress asking to stop interrupts the run");
+        CHECK_EQ_INT(calls, ITEMS / 2 + 1, "progress is called before each item and once to stop");
+        CHECK(ran_up_to(&c, ITEMS / 2), "the items before the stop ran once, none after");
+    }
 
     gb_work_queue empty = {.item_count = 0};
     int used = 0;
