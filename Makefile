@@ -2,7 +2,8 @@
 #
 #   make                 build every tool and the runtime into build/bin
 #   make test            install missing packages, build, run every test, then
-#                        the unit tests again under AddressSanitizer + UBSan
+#                        all of them again under the sanitizers, then the fuzzers
+#   make test-repeat N=  every test N times, counting failures (flakiness)
 #   make demo            install missing packages, build, bake and show the Cornell box
 #   make deps            apt-get install the Debian packages that are missing
 #   make bake SCENE=f    bake one scene into bake/ (pattern rules: make -j works)
@@ -11,6 +12,7 @@
 #   make install PREFIX=/usr/local
 #   make clean
 #
+# Programs are linked with $(CXX), since the library holds the C++ adapters.
 # Sources are found by their place: formats/*.c and *.cpp, common/*.c, tools/<name>/*.c
 # and runtime/*.c go into one static library; tools/<name>/main.c becomes
 # build/bin/<name>, runtime/main.c becomes build/bin/gbview; tests/unit/test_*.c
@@ -36,7 +38,7 @@ CXXFLAGS += -std=c++17 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS) \
   -Wno-deprecated-declarations
 LDFLAGS += -pthread -Wl,--as-needed $(SANITIZE_FLAGS)
 LDLIBS += -lopenvdb -ltbb -lOpenImageIO -lOpenImageIO_Util -lOpenMeshCore \
-  -lembree3 -lflann -lepoxy -lglfw -lEGL -lz -lm -lstdc++
+  -lembree3 -lflann -lepoxy -lglfw -lEGL -lz -lm
 
 TOOLS := $(patsubst tools/%/main.c,%,$(wildcard tools/*/main.c))
 PROGRAMS := $(TOOLS) $(if $(wildcard runtime/main.c),gbview)
@@ -48,7 +50,8 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(wildcard tests/unit/t
 FUZZ_TARGETS := $(patsubst tests/fuzz/%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
 BIN := $(BUILD)/bin
 
-.PHONY: all deps test check unit-tests demo bake bench fuzz install clean
+.PHONY: all deps test check check-optimised check-sanitized check-fuzz test-repeat unit-tests \
+  demo bake bench fuzz install clean
 .DELETE_ON_ERROR:
 .SECONDARY:
 
@@ -76,27 +79,62 @@ $(LIBRARY): $(LIBRARY_OBJECTS)
 
 $(BIN)/gbview: $(BUILD)/obj/runtime/main.o $(LIBRARY)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
 $(BIN)/%: $(BUILD)/obj/tools/%/main.o $(LIBRARY)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
 $(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(LIBRARY)
 	@mkdir -p $(@D)
-	$(CC) $(LDFLAGS) $^ $(LDLIBS) -o $@
+	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
 unit-tests: $(UNIT_TESTS)
 
-# The whole suite, then the unit tests again under the sanitizers.
-test: deps
-	$(MAKE) check
+# The whole suite: the unit tests and the CLI suite (tests/cli/*.t) on the
+# optimised build; then all of it again on a clang build with AddressSanitizer,
+# UBSan (also float-cast-overflow and float-divide-by-zero, which GCC's
+# "undefined" leaves out) and LeakSanitizer; then every fuzz target replays
+# its corpus and fuzzes for FUZZ_CHECK_SECONDS (the one clang build serves
+# both: its code carries libFuzzer's coverage instrumentation). Every stage runs and reports
+# even when an earlier one failed; check fails if any did.
+SANITIZED_BUILD = build/asan
+SANITIZED_FLAGS = address,undefined,float-cast-overflow,float-divide-by-zero,fuzzer-no-link
+SANITIZED_MAKE = BUILD=$(SANITIZED_BUILD) CC=clang CXX=clang++ OPT=-O1 SANITIZE=$(SANITIZED_FLAGS)
+SANITIZER_ENVIRONMENT = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
+  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  LSAN_OPTIONS=suppressions=$(CURDIR)/tests/leak_suppressions.txt:print_suppressions=0
+FUZZ_CHECK_SECONDS ?= 10
+SUITE = $(UNIT_TESTS) tests/cli/*.t
 
-check: all unit-tests
-	GB_BIN=$(abspath $(BIN)) GB_ROOT=$(CURDIR) prove --exec '' $(UNIT_TESTS) tests/cli/*.t
-	$(MAKE) BUILD=build/asan OPT=-O1 SANITIZE=address,undefined unit-tests
-	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
-	  GB_ROOT=$(CURDIR) prove --exec '' $(UNIT_TESTS:$(BUILD)/%=build/asan/%)
+JOBS ?= $(shell nproc)
+test: deps
+	$(MAKE) -j$(JOBS) check
+
+check:
+	@status=0; \
+	$(MAKE) check-optimised || status=1; \
+	$(MAKE) check-sanitized || status=1; \
+	$(MAKE) check-fuzz || status=1; \
+	[ $$status = 0 ] || echo "make check: a stage failed (see above)"; \
+	exit $$status
+
+check-optimised: all unit-tests
+	GB_BIN=$(abspath $(BIN)) GB_ROOT=$(CURDIR) prove --exec '' $(SUITE)
+
+check-sanitized:
+	$(MAKE) $(SANITIZED_MAKE) all unit-tests
+	$(SANITIZER_ENVIRONMENT) GB_BIN=$(abspath $(SANITIZED_BUILD))/bin GB_ROOT=$(CURDIR) \
+	  prove --exec '' $(UNIT_TESTS:$(BUILD)/%=$(SANITIZED_BUILD)/%) tests/cli/*.t
+
+check-fuzz:
+	$(MAKE) fuzz FUZZ_SECONDS=$(FUZZ_CHECK_SECONDS)
+
+# The unit tests N times each (N/20 for those over a second) and the CLI
+# suite N/20 times, counting failures: make test-repeat N=1000 (not in CI).
+N ?= 100
+test-repeat: all unit-tests
+	GB_BIN=$(abspath $(BIN)) GB_ROOT=$(CURDIR) sh tests/repeat.sh $(N) $(SUITE)
 
 # The demo: summarise the Cornell box, bake it, render it headless to demo/
 # with each method, and open the window when there is a display.
@@ -166,15 +204,20 @@ $(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(LIBRARY)
 bench: all $(BENCH_PROGRAMS)
 	@for b in bench/*.sh; do GB_BIN=$(abspath $(BIN)) sh $$b || exit 1; done
 
-# libFuzzer: the library is rebuilt with clang into build/fuzz.
+# libFuzzer: the fuzz targets are linked on the sanitized build (whose code
+# carries libFuzzer's coverage instrumentation); each replays its seeds
+# (tests/fuzz/corpus/T) and what earlier runs found (build/fuzz-corpus/T),
+# then fuzzes for FUZZ_SECONDS. A crash, leak or timeout fails.
 fuzz:
-	$(MAKE) BUILD=build/fuzz CC=clang CXX=clang++ OPT=-O1 \
-	  SANITIZE=fuzzer-no-link,address,undefined $(FUZZ_TARGETS:%=build/fuzz/fuzz/%)
+	$(MAKE) $(SANITIZED_MAKE) $(FUZZ_TARGETS:%=$(SANITIZED_BUILD)/fuzz/%)
 	@for t in $(FUZZ_TARGETS); do \
-	  mkdir -p build/fuzz/corpus/$$t; \
+	  mkdir -p build/fuzz-corpus/$$t; \
 	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
-	  build/fuzz/fuzz/$$t -max_total_time=$(FUZZ_SECONDS) build/fuzz/corpus/$$t \
-	    tests/fuzz/corpus/$$t || exit 1; \
+	  $(SANITIZER_ENVIRONMENT) $(SANITIZED_BUILD)/fuzz/$$t -max_total_time=$(FUZZ_SECONDS) \
+	    -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+	    build/fuzz-corpus/$$t tests/fuzz/corpus/$$t 2>build/fuzz-corpus/$$t.log \
+	    || { tail -60 build/fuzz-corpus/$$t.log; exit 1; }; \
+	  grep -E '^stat::(number_of_executed_units|new_units_added)|^#[0-9]+ +DONE' build/fuzz-corpus/$$t.log; \
 	done
 
 $(BUILD)/fuzz/%: $(BUILD)/obj/tests/fuzz/%.o $(LIBRARY)

@@ -73,8 +73,8 @@ if [ -x "$reference" ]; then
     ok "$(below "$shadowed" 0.004; echo $?)" "direct light: relative MSE below 0.004"
     ok "$(below "$unshadowed" 0.004 && echo 1 || echo 0)" "--no-shadows: not below 0.004"
 else
-    skip "$reference not built"
-    skip "$reference not built"
+    missing "$reference not built"
+    missing "$reference not built"
 fi
 
 # Baked files: a corrupt one and missing ones are reported, one line each.
@@ -105,8 +105,11 @@ ok "$([ $? = 0 ] && grep -q "^usage: gbview" "$dir/out"; echo $?)" "--help on st
 ok "$([ $? = 0 ] && grep -q "gbview (gibake)" "$dir/out"; echo $?)" "--version"
 
 # The window, on a virtual X server.
+# Mesa's GLX driver is unloaded at exit still holding a few hundred bytes;
+# preloaded, it stays mapped and LeakSanitizer can name (and waive) it.
+glx_driver=$(ls /usr/lib/*/dri/swrast_dri.so 2>/dev/null | head -1)
 if command -v xvfb-run >/dev/null 2>&1; then
-    xvfb-run -a "$tool" --frames 3 --resolution 64x64 --timings "$scene" \
+    xvfb-run -a env ${glx_driver:+LD_PRELOAD=$glx_driver} "$tool" --frames 3 --resolution 64x64 --timings "$scene" \
         -o "$dir/window.exr" >"$dir/out" 2>"$dir/err"
     status=$?
     [ $status = 0 ] || sed 's/^/# /' "$dir/err"
@@ -116,7 +119,7 @@ if command -v xvfb-run >/dev/null 2>&1; then
     ok "$([ "$(value max_error "$dir/same")" = 0 ]; echo $?)" \
         "with -o, its last frame is saved: the headless image"
 else
-    for i in 1 2 3; do skip "xvfb-run not installed (Debian package xvfb)"; done
+    for i in 1 2 3; do missing "xvfb-run not installed (Debian package xvfb)"; done
 fi
 
 tap_done

@@ -52,7 +52,7 @@ if [ -x "$reference" ]; then
     echo "# relative MSE of the indirect term to reference --mode indirect1: $error"
     ok "$(below "$error" 0.01; echo $?)" "indirect term: relative MSE below 0.01"
 else
-    skip "$reference not built"
+    missing "$reference not built"
 fi
 
 # A 1 x 1 x 1 box on a 4 x 4 ground plane, environment 1 1 1, no light: the
@@ -109,8 +109,8 @@ if [ -x "$reference" ]; then
     ok "$(below "$error" "$(awk -v b="$black" 'BEGIN { print b / 100 }')"; echo $?)" \
         "box under the sky: a hundredth of the direct pass's error"
 else
-    skip "$reference not built"
-    skip "$reference not built"
+    missing "$reference not built"
+    missing "$reference not built"
 fi
 
 # The box's links cost well under GB_IMPLICIT_FRAME_SECONDS: every frame
@@ -144,8 +144,8 @@ if [ -x "$reference" ] && command -v oiiotool >/dev/null 2>&1; then
     ok "$(below "$error" "$(awk -v b="$white" 'BEGIN { print b / 20 }')"; echo $?)" \
         "box under a sky map: the map's direction matters (a twentieth of the white sky's error)"
 else
-    skip "$reference or oiiotool missing"
-    skip "$reference or oiiotool missing"
+    missing "$reference or oiiotool missing"
+    missing "$reference or oiiotool missing"
 fi
 
 tap_done

@@ -66,7 +66,7 @@ if [ -x "$reference" ]; then
     echo "# relative MSE of the indirect term to reference --mode full --min-bounces 2: $error"
     ok "$(below "$error" 0.012; echo $?)" "indirect term: relative MSE below 0.012"
 else
-    skip "$reference not built"
+    missing "$reference not built"
 fi
 
 # A sun over a lone floor (Kd 0.8, the OBJ default; irradiance 2, cos θ =
@@ -110,7 +110,7 @@ if [ -x "$reference" ]; then
     ok "$(below "$error" 0.003; echo $?)" \
         "sun over a floor: the octree gives Kd/pi E cos(theta), relative MSE below 0.003"
 else
-    skip "$reference not built"
+    missing "$reference not built"
 fi
 
 # The same floor with the photons of indirect light only (the default): a

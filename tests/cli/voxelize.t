@@ -78,7 +78,7 @@ if command -v vdb_print >/dev/null 2>&1; then
         d && /Max value/ { exit !($3 == 7) }'; echo $?)" \
         "the largest distance is 7 voxels (the middle of the room)"
 else
-    for i in 1 2 3 4 5 6; do skip "vdb_print not installed (package libopenvdb-tools)"; done
+    for i in 1 2 3 4 5 6; do missing "vdb_print not installed (package libopenvdb-tools)"; done
 fi
 
 "$tool" -q -r 16 -j 1 "$dir/room.obj" -o "$dir/one.vdb" &&

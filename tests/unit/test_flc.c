@@ -152,8 +152,8 @@ static void test_tessellation(void)
         double sub = 2.0 / 3.0 * ratio * limit / ((double)c * c * m * m);
         ok &= m >= 2 && m % 2 == 0 && m <= GB_FLC_MAX_TESS_LEVEL && c <= 4 &&
               sub <= limit * (1 + 1e-9);
-        double bigger = 2.0 / 3.0 * ratio * limit / ((double)c * c * (m - 2) * (m - 2));
-        tight &= (m == 2 || bigger > limit) &&
+        /* the next even level down (none below 2) would leave sub-triangles over S̄_N */
+        tight &= (m == 2 || 2.0 / 3.0 * ratio * limit / ((double)c * c * (m - 2) * (m - 2)) > limit) &&
                  (c == 1 || sqrt(2.0 / 3.0 * ratio) > 64.0 * (c - 1));
     }
     CHECK(ok, "areas of S̄_N to 65536 S̄_N: even levels <= 64, sub-triangles <= S̄_N");

@@ -217,10 +217,8 @@ static void test_project_cornell(void)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/scenes/cornell/cornell.scene", root);
-    if (access(path, R_OK) != 0) {
-        printf("# scenes/cornell/cornell.scene absent: skipped\n");
+    if (!CHECK(access(path, R_OK) == 0, "scenes/cornell/cornell.scene is readable (GB_ROOT)"))
         return;
-    }
     gb_scene scene;
     if (!CHECK(load(path, NULL, &scene), "scenes/cornell/cornell.scene loads"))
         return;

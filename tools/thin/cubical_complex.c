@@ -2,6 +2,7 @@
  * the faces around a face. */
 #include "cubical_complex.h"
 
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -45,7 +46,9 @@ static void add_faces_of_cubes(gb_cubical_complex *complex)
     uint8_t table[256];
     for (unsigned mask = 0; mask < 256; ++mask)
         table[mask] = faces_of_cube_mask(mask);
-    const size_t sx = complex->step[0], sy = complex->step[1], sz = complex->step[2];
+    /* signed, so that p[-sx] steps back rather than wrapping around */
+    const ptrdiff_t sx = (ptrdiff_t)complex->step[0], sy = (ptrdiff_t)complex->step[1],
+                    sz = (ptrdiff_t)complex->step[2];
     for (int32_t z = 1; z < complex->size[2] - 1; ++z)
         for (int32_t y = 1; y < complex->size[1] - 1; ++y) {
             uint8_t *row = complex->faces + gb_cell_index(complex, 0, y, z);
