@@ -29,7 +29,7 @@ FUZZ_SECONDS ?= 20
 DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
   libopenvdb-dev libtbb-dev libembree-dev libflann-dev liblz4-dev libcgal-dev \
   libopenmesh-dev libopenimageio-dev libepoxy-dev libglfw3-dev libegl-dev \
-  libegl-mesa0 libgl1-mesa-dri xvfb xauth libopenvdb-tools openimageio-tools time
+  libegl-mesa0 libgl1-mesa-dri xvfb xauth libopenvdb-tools openimageio-tools time gnuplot-nox
 
 SANITIZE_FLAGS = $(if $(SANITIZE),-fsanitize=$(SANITIZE) -fno-sanitize-recover=all -fno-omit-frame-pointer)
 CPPFLAGS += -Iformats -Icommon -Itests -MMD -MP -D_GNU_SOURCE
@@ -161,25 +161,29 @@ THIN_FLAGS ?=
 SEGMENT_FLAGS ?=
 bake: $(BAKE)/$(SCENE_NAME).seg $(BAKE)/$(SCENE_NAME).lot
 
+# TIME_BAKE=1: each bake step also writes $(BAKE)/NAME.TOOL.time, GNU time's
+# "wall_s user_s sys_s peak_rss_KiB" (make report reads them); empty otherwise.
+timed = $(if $(TIME_BAKE),/usr/bin/time -f '%e %U %S %M' -o $(BAKE)/$*.$(1).time)
+
 $(BAKE)/%.vdb: %.scene $(BIN)/voxelize
 	@mkdir -p $(@D)
-	$(BIN)/voxelize $(VOXELIZE_FLAGS) $< -o $@
+	$(call timed,voxelize) $(BIN)/voxelize $(VOXELIZE_FLAGS) $< -o $@
 
 # thin writes both the skeleton and the nearest-node grid.
 $(BAKE)/%.skel $(BAKE)/%.grid.vdb: $(BAKE)/%.vdb $(BIN)/thin
-	$(BIN)/thin $(THIN_FLAGS) $< -o $(BAKE)/$*.skel --grid $(BAKE)/$*.grid.vdb
+	$(call timed,thin) $(BIN)/thin $(THIN_FLAGS) $< -o $(BAKE)/$*.skel --grid $(BAKE)/$*.grid.vdb
 
 $(BAKE)/%.seg: $(BAKE)/%.skel $(BIN)/segment
-	$(BIN)/segment $(SEGMENT_FLAGS) $< -o $@
+	$(call timed,segment) $(BIN)/segment $(SEGMENT_FLAGS) $< -o $@
 
 PHOTONS_FLAGS ?=
 $(BAKE)/%.phot: %.scene $(BIN)/photons
 	@mkdir -p $(@D)
-	$(BIN)/photons $(PHOTONS_FLAGS) $< -o $@
+	$(call timed,photons) $(BIN)/photons $(PHOTONS_FLAGS) $< -o $@
 
 CLUSTER_FLAGS ?=
 $(BAKE)/%.lot: %.scene $(BAKE)/%.phot $(BIN)/cluster
-	$(BIN)/cluster $(CLUSTER_FLAGS) $< $(BAKE)/$*.phot -o $@
+	$(call timed,cluster) $(BIN)/cluster $(CLUSTER_FLAGS) $< $(BAKE)/$*.phot -o $@
 
 # Reference images of SCENE, one per mode: make reference [SCENE=...] [REFERENCE_SPP=256]
 #   -> bake/NAME.{direct,indirect1,indirect1-unshadowed,full}.exr (+ .png)
@@ -214,7 +218,7 @@ fuzz:
 	  mkdir -p build/fuzz-corpus/$$t; \
 	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
 	  $(SANITIZER_ENVIRONMENT) $(SANITIZED_BUILD)/fuzz/$$t -max_total_time=$(FUZZ_SECONDS) \
-	    -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+	    -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build/fuzz-corpus/$$t- \
 	    build/fuzz-corpus/$$t tests/fuzz/corpus/$$t 2>build/fuzz-corpus/$$t.log \
 	    || { tail -60 build/fuzz-corpus/$$t.log; exit 1; }; \
 	  grep -E '^stat::(number_of_executed_units|new_units_added)|^#[0-9]+ +DONE' build/fuzz-corpus/$$t.log; \
@@ -230,5 +234,7 @@ install: all
 
 clean:
 	rm -rf build bake demo
+
+include bench/report.mk
 
 -include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
