@@ -1,0 +1,54 @@
+# report.mk — make report: every method's speed against its error, from a
+# sweep file (included by the Makefile; README, "make report").
+#
+#   make report [SWEEP=f] [FAST=1] [REPORT=dir] [BIN=dir]   -> $(REPORT)/index.html
+#   make readme-figures                                      the README's table
+#
+# bench/report_rules.sh turns the sweep into $(REPORT)/rules.mk: one rule per
+# bake configuration (a recursive make of the bake rules above into
+# $(REPORT)/bake/CONFIG, TIME_BAKE=1), per reference image and noise floor,
+# and per point (bench/report_point.sh); bench/report_finish.sh gathers the
+# rows into results.csv, the plots and index.html. make's timestamps make it
+# incremental: a second run with nothing changed bakes and renders nothing.
+# With BIN given on the command line the tools there are used as they are:
+# nothing is built, and every sub-make gets -o for each of them.
+
+REPORT ?= report
+SWEEP ?= $(if $(FAST),bench/report-fast.sweep,bench/report.sweep)
+REPORT_BIN_GIVEN := $(filter command line,$(origin BIN))
+REPORT_BIN := $(abspath $(BIN))
+REPORT_TOOL_NAMES := voxelize thin segment photons cluster reference imgdiff scene-info gbview
+# Prerequisites on the tools only when this make builds them.
+REPORT_TOOLS := $(if $(REPORT_BIN_GIVEN),,$(REPORT_TOOL_NAMES:%=$(BIN)/%))
+REPORT_OLD_TOOLS := $(if $(REPORT_BIN_GIVEN),$(REPORT_TOOL_NAMES:%=-o $(BIN)/%))
+report_tool = $(if $(REPORT_BIN_GIVEN),,$(BIN)/$(1))
+
+.PHONY: report report-bakes report-run readme-figures
+report:
+	$(if $(REPORT_BIN_GIVEN),,+$(MAKE) all)
+	+$(MAKE) --no-print-directory REPORT_STAGE=bake report-bakes
+	+$(MAKE) --no-print-directory REPORT_STAGE=run report-run
+
+ifneq ($(REPORT_STAGE),)
+# The rules of the sweep; make remakes this file first when the sweep or the
+# generator changed (and then reads it again).
+include $(REPORT)/rules.mk
+$(REPORT)/rules.mk: $(SWEEP) bench/report_rules.sh
+	@mkdir -p $(@D)
+	sh bench/report_rules.sh $(SWEEP) $(REPORT) >$@.tmp && mv $@.tmp $@
+
+report-run: $(REPORT)/results.csv
+	@echo "make report: $(REPORT)/index.html, $(REPORT)/results.csv"
+endif
+
+# Two stages. GNU make (4.3) remakes every target whose prerequisite had its
+# recipe run, even when that recipe left the file as it was; so a bake file
+# whose rule is a recursive make that always runs would re-render every point
+# on it. Stage "bake" runs the recursive make of each bake configuration
+# (phony report-bake/CONFIG, it does nothing when the bake is fresh) and the
+# references that need no bake; stage "run" then sees the bake files as plain
+# files with no rule, and renders only the points older than them.
+
+readme-figures:
+	+$(MAKE) report
+	sh bench/report_readme.sh $(REPORT)/readme-table.md README.md

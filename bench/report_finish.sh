@@ -1,0 +1,207 @@
+#!/bin/sh
+# report_finish.sh REPORT BIN SWEEP — the last step of make report: gathers
+# REPORT/points/*.csv in sweep order (REPORT/points.tsv) into results.csv,
+# the references and their noise floors into references.csv, each scene's
+# Pareto front (least error against reference --mode full for the frame
+# time) into pareto.csv, the plots (gnuplot, PNG and SVG) into plots/, the
+# page index.html and the README's table readme-table.md.
+#
+# A reference's comparison is void when its noise floor (relative MSE
+# between its seed-0 and seed-1 images) is not below the smallest error
+# measured against it: references.csv says "void", index.html says it.
+set -e
+report=$1 bin=$2 sweep=$3
+cd "$report"
+header="scene,scene_hash,method,point,resolution,frames,spp,vplspp,navg,tiling,bins,bounces,vpls,visibility,voxels,photons,depth,vdls,bake,bake_wall_s,bake_cpu_s,voxelize_wall_s,voxelize_cpu_s,voxelize_rss_kib,thin_wall_s,thin_cpu_s,thin_rss_kib,segment_wall_s,segment_cpu_s,segment_rss_kib,photons_wall_s,photons_cpu_s,photons_rss_kib,cluster_wall_s,cluster_cpu_s,cluster_rss_kib,bake_bytes,gbview_rss_kib,frame_ms,frame_first_ms,passes_ms,full_ref,full_rel_mse,full_mse_srgb8,full_psnr,full_max_error,full_floor_rel_mse,full_floor_mse_srgb8,full_within_2x_floor,own_ref,own_rel_mse,own_mse_srgb8,own_psnr,own_max_error,own_floor_rel_mse,own_floor_mse_srgb8,own_within_2x_floor,time_ms,status"
+{
+    echo "$header"
+    cut -f 1 points.tsv | while read -r id; do cat "points/$id.csv"; done
+} >results.csv.tmp
+
+# The references: floor and the smallest error compared with each.
+{
+    echo "reference,scene,mode,resolution,spp,seed0_wall_s,floor_rel_mse,floor_mse_srgb8,smallest_error,status"
+    while IFS="$(printf '\t')" read -r ref name mode res spp; do
+        floor=$(awk '$1 == "relative_mse" { print $2 }' "ref/$ref.floor")
+        floor8=$(awk '$1 == "mse_srgb8" { print $2 }' "ref/$ref.floor")
+        wall=$(awk '{ print $1 }' "ref/$ref-seed0.exr.time" 2>/dev/null | tail -n 1)
+        awk -F, -v ref="$ref" -v floor="$floor" -v floor8="$floor8" -v name="$name" -v mode="$mode" \
+            -v res="$res" -v spp="$spp" -v wall="$wall" '
+            NR > 1 && $42 == ref && (min == "" || $43 + 0 < min) { min = $43 + 0 }
+            NR > 1 && $50 == ref && (min == "" || $51 + 0 < min) { min = $51 + 0 }
+            END { printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", ref, name, mode, res, spp, wall, floor, floor8, min,
+                  (floor + 0 < min + 0 ? "ok" : "void") }' results.csv.tmp
+    done <refs.tsv
+} >references.csv.tmp
+
+# settings of a row (awk function shared below)
+settings='function settings(m,   s) {
+    if (m == "flc") s = "navg=" $9 " frames=" $6 ($10 + 0 ? " tiling=" $10 : "")
+    else if (m == "implicit") s = "bins=" $11 " bounces=" $12
+    else if (m == "topo") s = "vpls=" $13 " visibility=" $14 " voxels=" $15
+    else if (m == "octree") s = "photons=" $16 " depth=" $17 " vdls=" $18
+    else s = "-"
+    return s " " $5
+}'
+
+# Pareto front per scene: by frame ms, each point with less full error than
+# every faster one.
+awk -F, "$settings"'
+    NR > 1 && $59 == "ok" { n++; sc[n] = $1; ms[n] = $58 + 0; err[n] = $43 + 0; m[n] = $3; set[n] = settings($3); id[n] = $4; own[n] = $51; bk[n] = $20 }
+    END {
+        print "scene,method,settings,time_ms,full_rel_mse,own_rel_mse,bake_wall_s,point"
+        for (i = 1; i <= n; i++) if (!(sc[i] in done)) {
+            done[sc[i]] = 1; k = 0
+            for (j = 1; j <= n; j++) if (sc[j] == sc[i]) idx[++k] = j
+            for (a = 2; a <= k; a++) for (b = a; b > 1 && ms[idx[b]] < ms[idx[b - 1]]; b--) { t = idx[b]; idx[b] = idx[b - 1]; idx[b - 1] = t }
+            best = ""
+            for (a = 1; a <= k; a++) { j = idx[a]
+                if (best == "" || err[j] < best) { best = err[j]
+                    printf "%s,%s,%s,%s,%s,%s,%s,%s\n", sc[j], m[j], set[j], ms[j], err[j], own[j], bk[j], id[j] } }
+        }
+    }' results.csv.tmp >pareto.csv.tmp
+mv results.csv.tmp results.csv
+mv references.csv.tmp references.csv
+mv pareto.csv.tmp pareto.csv
+scenes=$(cut -f 2 points.tsv | awk '!seen[$0]++')
+
+# Plots.
+mkdir -p plots
+plots_ok=1
+if command -v gnuplot >/dev/null; then
+    for s in $scenes; do
+        for m in direct topo octree flc implicit; do
+            awk -F, -v s="$s" -v m="$m" 'NR > 1 && $59 == "ok" && $1 == s && $3 == m { print $58, $43, ($20 == "" ? 0 : $20) }' results.csv \
+                >"plots/$s-$m.dat"
+        done
+        awk -F, -v s="$s" 'NR > 1 && $1 == s { print $4, $5 }' pareto.csv >"plots/$s-pareto.dat"
+    done
+    awk -F, 'NR > 1 && $3 == "topo" && $20 != "" && !seen[$19]++ { print $15, $20, $37 }' results.csv | sort -n >plots/voxels.dat
+    awk -F, 'NR > 1 && $3 == "octree" && $20 != "" && !seen[$19]++ { print $16, $20, $37 }' results.csv | sort -n >plots/photons.dat
+    awk -F, 'NR > 1 && $59 == "ok" { split($5, r, "x"); print r[1] * r[2], $39, $1 "-" $3 }' results.csv | sort -n >plots/resolution.dat
+    awk -F, 'NR > 1 && $59 == "ok" && $3 == "topo" { print $13, $39 }' results.csv | sort -n >plots/vpls.dat
+    for term in png svg; do
+        if [ $term = png ]; then t="set terminal png size 800,560"; else t="set terminal svg size 800,560"; fi
+        for s in $scenes; do
+            plot= plot2=
+            for m in direct topo octree flc implicit; do
+                [ -s "plots/$s-$m.dat" ] || continue
+                plot="$plot${plot:+, }'plots/$s-$m.dat' using 1:2 with points pointsize 1.5 title '$m'"
+                plot2="$plot2${plot2:+, }'plots/$s-$m.dat' using (\$3 > 0 ? \$3 : 0.01):2 with points pointsize 1.5 title '$m'"
+            done
+            gnuplot <<EOF || plots_ok=0
+$t
+set output 'plots/$s-error-frame.$term'
+set title "$s: error against reference --mode full, for the frame time"
+set logscale xy
+set xlabel 'ms to the image (wall; flc: frames x frame ms)'
+set ylabel 'relative MSE'
+set key outside right
+plot $plot, 'plots/$s-pareto.dat' using 1:2 with steps linewidth 2 linecolor rgb 'black' title 'Pareto front'
+set output 'plots/$s-error-bake.$term'
+set title "$s: error against bake time (no bake: shown at 0.01 s)"
+set xlabel 'bake s (wall, every tool)'
+plot $plot2
+EOF
+        done
+        gnuplot <<EOF || plots_ok=0
+$t
+set logscale xy
+set key outside right
+set output 'plots/cost-voxels.$term'
+set title 'topo bake against voxel resolution'
+set xlabel 'voxelize -r'
+set ylabel 'bake s (wall)'
+set y2label 'bytes (.seg + .grid.vdb)'
+set y2tics
+set logscale y2
+plot 'plots/voxels.dat' using 1:2 with linespoints title 'bake s', '' using 1:3 axes x1y2 with linespoints title 'bytes'
+set output 'plots/cost-photons.$term'
+set title 'octree bake against photon count'
+set xlabel 'photons -n'
+set y2label 'bytes (.lot)'
+plot 'plots/photons.dat' using 1:2 with linespoints title 'bake s', '' using 1:3 axes x1y2 with linespoints title 'bytes'
+unset y2label
+unset y2tics
+set output 'plots/cost-resolution.$term'
+set title 'frame ms against pixels (every point)'
+set xlabel 'pixels'
+set ylabel 'frame ms'
+plot 'plots/resolution.dat' using 1:2 with points title 'points'
+set output 'plots/cost-vpls.$term'
+set title 'topo frame ms against VPL count'
+set xlabel 'VPLs'
+plot 'plots/vpls.dat' using 1:2 with points title 'topo'
+EOF
+    done 2>plots/gnuplot.log
+else
+    plots_ok=0
+    echo "report_finish.sh: gnuplot not found (Debian gnuplot-nox): no plots" >&2
+fi
+
+# The README table: each scene's Pareto front and the best under budgets.
+date=$(date -u +%Y-%m-%d)
+load=$(cut -d ' ' -f 1-3 /proc/loadavg 2>/dev/null || echo '?')
+awk -F, -v sweep="$sweep" -v date="$date" -v load="$load" '
+    FNR == 1 { file++ }
+    file == 1 && FNR > 1 { rows[++n] = $0 }
+    END {
+        printf "`make report SWEEP=%s` (bench/report_finish.sh from results.csv), %s, load average %s at the end. ", sweep, date, load
+        print "Each scene'"'"'s Pareto front: the points no faster point beats on relative MSE against `reference --mode full`; ms to the image, wall, on llvmpipe (flc: its frames times the frame ms).\n"
+        print "| scene | method | settings | ms to the image | rel. MSE vs full | rel. MSE vs own reference | bake s |"
+        print "|---|---|---|---:|---:|---:|---:|"
+        for (i = 1; i <= n; i++) { split(rows[i], f, ",")
+            printf "| %s | %s | %s | %.1f | %.5f | %.5f | %s |\n", f[1], f[2], f[3], f[4], f[5], f[6], (f[7] == "" ? "-" : f[7]) }
+    }' pareto.csv >readme-table.md
+
+# index.html
+esc() { sed -e 's/&/\&amp;/g' -e 's/</\&lt;/g' -e 's/>/\&gt;/g'; }
+{
+    cat <<EOF
+<!DOCTYPE html>
+<html><head><meta charset="utf-8"><title>gibake make report</title>
+<style>body{font-family:sans-serif;margin:1em 2em}table{border-collapse:collapse;font-size:80%}
+td,th{border:1px solid #ccc;padding:2px 5px;text-align:right}td:first-child{text-align:left}
+img.px{image-rendering:pixelated;width:160px}.void{color:#b00;font-weight:bold}</style></head><body>
+<h1>gibake: speed against error</h1>
+<p>Sweep <code>$(echo "$sweep" | esc)</code>, $(date -u '+%Y-%m-%d %H:%M UTC'), load average $load.
+Error: relative MSE of the frame (<code>--terms both</code>) against <code>reference --mode full</code>,
+and of the method's own term against its own reference (direct: <code>--mode direct</code>; flc: <code>indirect1-unshadowed</code>;
+implicit: <code>indirect1</code>; octree: <code>full --min-bounces 2</code>; topo: <code>reference --vpl</code> of the same VPLs).
+Frame ms: the mean <code>frame (wall)</code> of <code>gbview --timings</code> on llvmpipe (frames after the first; with one frame, the first, one-time passes included);
+ms to the image: the frame ms, times the frames for flc, which accumulates them. Plots, Pareto fronts and budgets use ms to the image.
+Timings were taken while other jobs may have shared the cores; the assertions of tests/cli/report.t never read them.
+Data: <a href="results.csv">results.csv</a>, <a href="references.csv">references.csv</a>, <a href="pareto.csv">pareto.csv</a>.
+Rows whose status is not ok (a failed or timed-out render) have no errors and are left out of the plots and fronts.</p>
+EOF
+    echo "<h2>Noise floors of the references</h2>"
+    awk -F, 'NR > 1 && $10 == "void" { printf "<p class=\"void\">comparison void: reference %s (noise floor %s) is not below the smallest error compared with it (%s)</p>\n", $1, $7, $9 }' references.csv
+    echo "<table><tr><th>reference</th><th>mode</th><th>size</th><th>spp</th><th>seed 0 s</th><th>floor rel. MSE</th><th>floor 8-bit MSE</th><th>smallest error</th><th>status</th></tr>"
+    awk -F, 'NR > 1 { printf "<tr><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td></tr>\n", $1, $3, $4, $5, $6, $7, $8, $9, $10 }' references.csv
+    echo "</table>"
+    for s in $scenes; do
+        echo "<h2>$s</h2>"
+        for budget in 50 200 1000; do
+            awk -F, -v s="$s" -v b="$budget" 'NR > 1 && $1 == s && $4 + 0 <= b { best = $2 ", " $3 ", " $4 " ms, rel. MSE " $5 }
+                END { printf "<p>best under %d ms a frame: %s</p>\n", b, (best == "" ? "none in the sweep" : best) }' pareto.csv
+        done
+        if [ $plots_ok = 1 ]; then
+            echo "<p><img src=\"plots/$s-error-frame.svg\" width=\"600\"> <img src=\"plots/$s-error-bake.svg\" width=\"600\"></p>"
+        fi
+        echo "<table><tr><th>point</th><th>frame</th><th>reference (full)</th><th>heatmap</th><th>ms to the image</th><th>rel. MSE full</th><th>own</th><th>status</th></tr>"
+        awk -F, -v s="$s" 'NR > 1 && $1 == s { printf "<tr><td>%s</td><td><img class=\"px\" src=\"img/%s.png\"></td><td><img class=\"px\" src=\"ref/%s-seed0.png\"></td><td><img class=\"px\" src=\"img/%s-heat.png\"></td><td>%s</td><td>%s%s</td><td>%s%s</td><td>%s</td></tr>\n", $4, $4, $42, $4, $58, $43, ($49 == 1 ? " (within 2× floor)" : ""), $51, ($57 == 1 ? " (within 2× floor)" : ""), $59 }' results.csv
+        echo "</table>"
+    done
+    if [ $plots_ok = 1 ]; then
+        echo "<h2>Cost scaling</h2><p>"
+        for p in voxels photons resolution vpls; do echo "<img src=\"plots/cost-$p.svg\" width=\"600\">"; done
+        echo "</p>"
+    fi
+    echo "<h2>Every point</h2><table><tr>"
+    head -n 1 results.csv | tr , '\n' | sed 's|.*|<th>&</th>|' | tr -d '\n'
+    echo "</tr>"
+    awk -F, 'NR > 1 { printf "<tr>"; for (i = 1; i <= NF; i++) printf "<td>%s</td>", $i; print "</tr>" }' results.csv | sed 's/"//g'
+    echo "</table></body></html>"
+} >index.html.tmp
+mv index.html.tmp index.html
+echo "report: $(($(wc -l <results.csv) - 1)) points, $(($(wc -l <references.csv) - 1)) references, $(grep -c ',void$' references.csv || true) void"

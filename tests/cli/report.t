@@ -1,0 +1,136 @@
+#!/bin/sh
+# report.t — make report FAST=1 (bench/report.mk) as CI runs it, with the
+# tools of $GB_BIN and the report in the scratch folder, then assertions on
+# its results.csv that hold whatever the machine's speed (no timing is
+# asserted): a row for every method on the Cornell box; every error finite;
+# on the two rooms (a wall between the light's room and the camera's) topo
+# with full visibility at most as wrong as without; FLC after 16 frames
+# better than after 1; octree and implicit better than direct light alone
+# against the full reference; every reference's noise floor below the
+# smallest error compared with it, or the report says the comparison is
+# void; the plots, gallery and page written; a second make report renders
+# nothing; a bad sweep line stops with its file and line. Prints TAP.
+#
+# GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
+
+GB_ROOT=${GB_ROOT:-.}
+GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+GB_BIN=$(cd "$GB_BIN" 2>/dev/null && pwd || echo "$GB_BIN")
+dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-report.XXXXXX") || exit 1
+trap 'rm -rf "$dir"' EXIT INT TERM
+. "$(dirname "$0")/tap.sh"
+
+for t in voxelize thin segment photons cluster reference imgdiff scene-info gbview; do
+    [ -x "$GB_BIN/$t" ] || { missing "$GB_BIN/$t not built"; tap_done; exit 1; }
+done
+command -v gnuplot >/dev/null || missing "gnuplot (Debian gnuplot-nox)"
+
+report=$dir/report
+# The report's own make: nothing inherited from a make that runs the suite.
+run_report() {
+    MAKEFLAGS= MAKELEVEL= MFLAGS= make -j2 --no-print-directory -C "$GB_ROOT" report FAST=1 \
+        BIN="$GB_BIN" REPORT="$report" >"$1" 2>&1
+}
+run_report "$dir/log1"
+status=$?
+ok $status "make report FAST=1 BIN=\$GB_BIN REPORT=scratch: exit 0"
+[ $status = 0 ] || sed 's/^/# /' "$dir/log1" | tail -30
+csv=$report/results.csv
+ok "$([ -s "$csv" ]; echo $?)" "results.csv written"
+
+# col NAME: the column number of NAME in results.csv's header
+col() { head -n 1 "$csv" | tr , '\n' | grep -nx "$1" | cut -d: -f1; }
+# err SCENE METHOD PATTERN COLUMN: COLUMN of the row of SCENE and METHOD
+# whose point id matches PATTERN (awk regular expression)
+err() {
+    awk -F, -v s="$1" -v m="$2" -v p="$3" -v c="$(col "$4")" \
+        'NR > 1 && $1 == s && $3 == m && $4 ~ p { print $c; exit }' "$csv"
+}
+
+for m in direct topo octree flc implicit; do
+    n=$(awk -F, -v m="$m" 'NR > 1 && $1 == "cornell" && $3 == m' "$csv" | wc -l)
+    ok "$([ "$n" -ge 1 ]; echo $?)" "a row for $m on the Cornell box ($n)"
+done
+
+bad=$(awk -F, -v st="$(col status)" 'NR > 1 && $st != "ok" { print $4 }' "$csv")
+ok "$([ -z "$bad" ] && [ "$(wc -l <"$csv")" -gt 1 ]; echo $?)" "every point rendered (status ok) ${bad:+: not $bad}"
+
+finite=$(awk -F, -v h="$(head -n 1 "$csv")" '
+    BEGIN { n = split(h, name, ","); for (i = 1; i <= n; i++) if (name[i] ~ /_(rel_mse|mse_srgb8|psnr|max_error)$/) want[i] = 1 }
+    NR > 1 { for (i in want) if ($i !~ /^[0-9.]+(e[-+]?[0-9]+)?$/) { print $4 " " name[i] "=" $i; exit } }' "$csv")
+ok "$([ -z "$finite" ]; echo $?)" "every error is a finite number ${finite:+(not: $finite)}"
+
+bake=$(awk -F, -v w="$(col bake_wall_s)" -v b="$(col bake_bytes)" \
+    'NR > 1 && ($3 == "topo" || $3 == "octree") && ($w == "" || $b + 0 <= 0) { print $4 }' "$csv")
+ok "$([ -z "$bake" ]; echo $?)" "topo and octree rows have bake seconds (TIME_BAKE) and bytes ${bake:+(not: $bake)}"
+
+none=$(err two-rooms topo visibilitynone own_rel_mse)
+full=$(err two-rooms topo visibilityfull own_rel_mse)
+none_f=$(err two-rooms topo visibilitynone full_rel_mse)
+full_f=$(err two-rooms topo visibilityfull full_rel_mse)
+echo "# two rooms, topo vs reference --vpl: no visibility $none, full $full; vs full: $none_f, $full_f"
+awk -v a="$full" -v b="$none" 'BEGIN { exit !(a != "" && b != "" && a + 0 <= b + 0) }'
+ok $? "two rooms: topo with full visibility at most the error of no visibility (same VPLs)"
+
+e1=$(err cornell flc -f1- own_rel_mse)
+e16=$(err cornell flc -f16- own_rel_mse)
+echo "# Cornell flc vs indirect1-unshadowed: 1 frame $e1, 16 frames $e16"
+below "$e16" "$e1"
+ok $? "flc: 16 frames below 1 frame"
+
+direct=$(err cornell direct . full_rel_mse)
+octree=$(err cornell octree . full_rel_mse)
+implicit=$(err cornell implicit . full_rel_mse)
+echo "# Cornell vs reference --mode full: direct $direct, octree $octree, implicit $implicit"
+below "$octree" "$direct"
+ok $? "octree below direct light alone against the full reference"
+below "$implicit" "$direct"
+ok $? "implicit below direct light alone against the full reference"
+
+refs=$report/references.csv
+wrong=$(awk -F, 'NR > 1 && ($7 == "" || $9 == "" || ($7 + 0 < $9 + 0) != ($10 == "ok")) { print $1 }' "$refs")
+ok "$([ -s "$refs" ] && [ -z "$wrong" ]; echo $?)" "references.csv: each floor against the smallest error it meets, ok or void ${wrong:+(not: $wrong)}"
+unsaid=
+for r in $(awk -F, 'NR > 1 && $10 == "void" { print $1 }' "$refs"); do
+    echo "# comparison void: $r"
+    grep -q "comparison void: reference $r " "$report/index.html" || unsaid="$unsaid $r"
+done
+ok "$([ -z "$unsaid" ]; echo $?)" "index.html states every void comparison ${unsaid:+(not:$unsaid)}"
+
+missing_img=
+for id in $(awk -F, 'NR > 1 { print $4 }' "$csv"); do
+    for f in "img/$id.png" "img/$id-heat.png"; do
+        [ -s "$report/$f" ] && grep -q "src=\"$f\"" "$report/index.html" || missing_img="$missing_img $f"
+    done
+done
+ok "$([ -z "$missing_img" ]; echo $?)" "gallery: every point's frame and heatmap, on the page ${missing_img:+(not:$missing_img)}"
+plots=0
+for s in cornell cornell-original two-rooms; do
+    for f in "$s-error-frame.png" "$s-error-frame.svg" "$s-error-bake.svg"; do
+        [ -s "$report/plots/$f" ] || plots=1
+    done
+done
+ok $plots "plots: error against ms and against bake time, PNG and SVG, per scene"
+n=$(grep -c "best under \(50\|200\|1000\) ms a frame" "$report/index.html")
+ok "$([ "$n" = 9 ]; echo $?)" "index.html: best under 50 / 200 / 1000 ms for each of the 3 scenes ($n lines)"
+rows=$(($(wc -l <"$report/pareto.csv") - 1))
+table=$(grep -c '^| [a-z]' "$report/readme-table.md")
+ok "$([ "$rows" -ge 3 ] && [ "$table" = "$((rows + 1))" ]; echo $?)" "readme-table.md: the Pareto fronts ($rows rows) and a caption"
+
+cp "$csv" "$dir/results.first"
+renders=$(wc -l <"$report/render.log")
+run_report "$dir/log2"
+ok $? "make report again: exit 0"
+again=$(grep -c "report: render" "$dir/log2")
+ok "$([ "$again" = 0 ] && [ "$(wc -l <"$report/render.log")" = "$renders" ]; echo $?)" \
+    "the second make report renders nothing ($again renders)"
+cmp -s "$csv" "$dir/results.first"
+ok $? "results.csv unchanged by the second run"
+
+printf 'scene c scenes/cornell/cornell.scene\nc flc navg=64 colour=red\n' >"$dir/bad.sweep"
+(cd "$GB_ROOT" && sh bench/report_rules.sh "$dir/bad.sweep" "$dir/bad") >/dev/null 2>"$dir/err"
+status=$?
+ok "$([ $status != 0 ] && grep -q "bad.sweep:2: unknown key \"colour\"" "$dir/err"; echo $?)" \
+    "a bad sweep line: fails, naming file:line and the key"
+
+tap_done
