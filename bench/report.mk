@@ -11,17 +11,24 @@
 # rows into results.csv, the plots and index.html. make's timestamps make it
 # incremental: a second run with nothing changed bakes and renders nothing.
 # With BIN given on the command line the tools there are used as they are:
-# nothing is built, and every sub-make gets -o for each of them.
+# nothing is built (no "make all"; in the bake sub-makes, REPORT_BAKE=1, the
+# tools are files without prerequisites, and each gets -o).
 
 REPORT ?= report
 SWEEP ?= $(if $(FAST),bench/report-fast.sweep,bench/report.sweep)
 REPORT_BIN_GIVEN := $(filter command line,$(origin BIN))
-REPORT_BIN := $(abspath $(BIN))
 REPORT_TOOL_NAMES := voxelize thin segment photons cluster reference imgdiff scene-info gbview
-# Prerequisites on the tools only when this make builds them.
-REPORT_TOOLS := $(if $(REPORT_BIN_GIVEN),,$(REPORT_TOOL_NAMES:%=$(BIN)/%))
 REPORT_OLD_TOOLS := $(if $(REPORT_BIN_GIVEN),$(REPORT_TOOL_NAMES:%=-o $(BIN)/%))
+# A rule's prerequisite on a tool, only when this make builds the tools.
 report_tool = $(if $(REPORT_BIN_GIVEN),,$(BIN)/$(1))
+# In the bake sub-makes with BIN given: the tools are files with no
+# prerequisites (make's -o alone would still remake what they are built from,
+# in $(BUILD), which may be another build's folder).
+ifneq ($(REPORT_BIN_GIVEN),)
+ifneq ($(REPORT_BAKE),)
+$(addprefix $(BIN)/,voxelize thin segment photons cluster): ;
+endif
+endif
 
 .PHONY: report report-bakes report-run readme-figures
 report:

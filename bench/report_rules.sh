@@ -93,14 +93,14 @@ $1 == "set" {
         bake = name "-v" p["voxels"]; bakefile = "$(REPORT)/bake/" bake "/" base ".seg"
         if (!(bake in bakes)) {
             bakes[bake] = 1
-            printf "report-bake/%s:\n\t+$(MAKE) --no-print-directory REPORT_STAGE= TIME_BAKE=1 $(REPORT_OLD_TOOLS) BAKE=$(REPORT)/bake/%s SCENE=%s VOXELIZE_FLAGS=\"-r %s\" %s $(REPORT)/bake/%s/%s.grid.vdb\n\n", bake, bake, file, p["voxels"], bakefile, bake, base
+            printf "report-bake/%s:\n\t+$(MAKE) --no-print-directory REPORT_STAGE= REPORT_BAKE=1 TIME_BAKE=1 $(REPORT_OLD_TOOLS) BAKE=$(REPORT)/bake/%s SCENE=%s VOXELIZE_FLAGS=\"-r %s\" %s $(REPORT)/bake/%s/%s.grid.vdb\n\n", bake, bake, file, p["voxels"], bakefile, bake, base
             bakelist = bakelist " report-bake/" bake
         }
     } else if (method == "octree") {
         bake = name "-p" p["photons"] "-d" p["depth"] "-k" p["vdls"]; bakefile = "$(REPORT)/bake/" bake "/" base ".lot"
         if (!(bake in bakes)) {
             bakes[bake] = 1
-            printf "report-bake/%s:\n\t+$(MAKE) --no-print-directory REPORT_STAGE= TIME_BAKE=1 $(REPORT_OLD_TOOLS) BAKE=$(REPORT)/bake/%s SCENE=%s PHOTONS_FLAGS=\"-n %s\" CLUSTER_FLAGS=\"--depth %s --vdls %s\" %s\n\n", bake, bake, file, p["photons"], p["depth"], p["vdls"], bakefile
+            printf "report-bake/%s:\n\t+$(MAKE) --no-print-directory REPORT_STAGE= REPORT_BAKE=1 TIME_BAKE=1 $(REPORT_OLD_TOOLS) BAKE=$(REPORT)/bake/%s SCENE=%s PHOTONS_FLAGS=\"-n %s\" CLUSTER_FLAGS=\"--depth %s --vdls %s\" %s\n\n", bake, bake, file, p["photons"], p["depth"], p["vdls"], bakefile
             bakelist = bakelist " report-bake/" bake
         }
     }

@@ -53,16 +53,16 @@ for m in direct topo octree flc implicit; do
 done
 
 bad=$(awk -F, -v st="$(col status)" 'NR > 1 && $st != "ok" { print $4 }' "$csv")
-ok "$([ -z "$bad" ] && [ "$(wc -l <"$csv")" -gt 1 ]; echo $?)" "every point rendered (status ok) ${bad:+: not $bad}"
+ok "$([ -z "$bad" ] && [ "$(wc -l <"$csv")" -gt 1 ]; echo $?)" "every point rendered (status ok)${bad:+ (not: $bad)}"
 
 finite=$(awk -F, -v h="$(head -n 1 "$csv")" '
     BEGIN { n = split(h, name, ","); for (i = 1; i <= n; i++) if (name[i] ~ /_(rel_mse|mse_srgb8|psnr|max_error)$/) want[i] = 1 }
     NR > 1 { for (i in want) if ($i !~ /^[0-9.]+(e[-+]?[0-9]+)?$/) { print $4 " " name[i] "=" $i; exit } }' "$csv")
-ok "$([ -z "$finite" ]; echo $?)" "every error is a finite number ${finite:+(not: $finite)}"
+ok "$([ -z "$finite" ]; echo $?)" "every error is a finite number${finite:+ (not: $finite)}"
 
 bake=$(awk -F, -v w="$(col bake_wall_s)" -v b="$(col bake_bytes)" \
     'NR > 1 && ($3 == "topo" || $3 == "octree") && ($w == "" || $b + 0 <= 0) { print $4 }' "$csv")
-ok "$([ -z "$bake" ]; echo $?)" "topo and octree rows have bake seconds (TIME_BAKE) and bytes ${bake:+(not: $bake)}"
+ok "$([ -z "$bake" ]; echo $?)" "topo and octree rows have bake seconds (TIME_BAKE) and bytes${bake:+ (not: $bake)}"
 
 none=$(err two-rooms topo visibilitynone own_rel_mse)
 full=$(err two-rooms topo visibilityfull own_rel_mse)
@@ -89,13 +89,13 @@ ok $? "implicit below direct light alone against the full reference"
 
 refs=$report/references.csv
 wrong=$(awk -F, 'NR > 1 && ($7 == "" || $9 == "" || ($7 + 0 < $9 + 0) != ($10 == "ok")) { print $1 }' "$refs")
-ok "$([ -s "$refs" ] && [ -z "$wrong" ]; echo $?)" "references.csv: each floor against the smallest error it meets, ok or void ${wrong:+(not: $wrong)}"
+ok "$([ -s "$refs" ] && [ -z "$wrong" ]; echo $?)" "references.csv: each floor against the smallest error it meets, ok or void${wrong:+ (not: $wrong)}"
 unsaid=
 for r in $(awk -F, 'NR > 1 && $10 == "void" { print $1 }' "$refs"); do
     echo "# comparison void: $r"
     grep -q "comparison void: reference $r " "$report/index.html" || unsaid="$unsaid $r"
 done
-ok "$([ -z "$unsaid" ]; echo $?)" "index.html states every void comparison ${unsaid:+(not:$unsaid)}"
+ok "$([ -z "$unsaid" ]; echo $?)" "index.html states every void comparison${unsaid:+ (not:$unsaid)}"
 
 missing_img=
 for id in $(awk -F, 'NR > 1 { print $4 }' "$csv"); do
@@ -103,7 +103,7 @@ for id in $(awk -F, 'NR > 1 { print $4 }' "$csv"); do
         [ -s "$report/$f" ] && grep -q "src=\"$f\"" "$report/index.html" || missing_img="$missing_img $f"
     done
 done
-ok "$([ -z "$missing_img" ]; echo $?)" "gallery: every point's frame and heatmap, on the page ${missing_img:+(not:$missing_img)}"
+ok "$([ -z "$missing_img" ]; echo $?)" "gallery: every point's frame and heatmap, on the page${missing_img:+ (not:$missing_img)}"
 plots=0
 for s in cornell cornell-original two-rooms; do
     for f in "$s-error-frame.png" "$s-error-frame.svg" "$s-error-bake.svg"; do
