@@ -166,6 +166,18 @@ static void put_plane(const gb_scene *scene, const gb_light *light, int size, fl
     out[29] = light->falloff_angle;
 }
 
+/* How far an area light's emitter sits off its triangle, toward its front:
+ * 1e-5 of the scene's diagonal, and at least 8 float ulps of its coordinates
+ * (2^-20 of their magnitude). Without that floor the lift rounds away far
+ * from the origin and the emitter's own triangle shadows the room: the
+ * Cornell box moved by 1e6 mm gave relative MSE 0.0075 against the unmoved
+ * box (with the floor: 1.1e-5). */
+static float emitter_lift(const gb_scene *scene, const float position[3])
+{
+    float magnitude = fmaxf(fabsf(position[0]), fmaxf(fabsf(position[1]), fabsf(position[2])));
+    return fmaxf(1e-5f * scene_diagonal(scene), 0x1p-20f * magnitude);
+}
+
 static gb_result fill_lights(const gb_scene *scene, const gb_shadow_options *options,
                              gb_shadow_maps *maps, gb_error *error)
 {
@@ -195,10 +207,9 @@ static gb_result fill_lights(const gb_scene *scene, const gb_shadow_options *opt
             put_plane(scene, light, maps->plane_size,
                       &maps->plane_data[PLANE_FLOATS * maps->plane_count++]);
     }
-    float lift = 1e-5f * scene_diagonal(scene);
     for (uint32_t i = 0; i < emitter_count; ++i) {
         const gb_point_emitter *e = &emitters[i];
-        float p[3];
+        float p[3], lift = emitter_lift(scene, e->position);
         for (int c = 0; c < 3; ++c)
             p[c] = e->position[c] + lift * e->normal[c];
         put_point(scene, p, e->intensity, e->normal,
