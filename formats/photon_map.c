@@ -133,8 +133,8 @@ static gb_result check_tracing(const gb_photon_map_header *h, uint64_t count, co
     return GB_OK;
 }
 
-static gb_result check_power_and_bounds(const gb_photon_map_header *h, const char *path,
-                                        gb_error *error)
+static gb_result check_power_and_bounds(const gb_photon_map_header *h, uint64_t count,
+                                        const char *path, gb_error *error)
 {
     double largest = 0.0;
     for (int k = 0; k < 3; ++k) {
@@ -143,8 +143,9 @@ static gb_result check_power_and_bounds(const gb_photon_map_header *h, const cha
                            "non-negative", path);
         largest = h->emitted_power[k] > largest ? h->emitted_power[k] : largest;
     }
-    if (!(largest > 0.0))
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: emitted power is zero", path);
+    if (!(largest > 0.0) && count > 0)     /* zero: a scene with no light, no photon */
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: emitted power is zero but %llu photons "
+                       "are stored", path, (unsigned long long)count);
     if (!is_finite3(h->bounds_min) || !is_finite3(h->bounds_max))
         return gb_fail(error, GB_ERROR_FORMAT, "%s: scene bounds are not finite", path);
     for (int k = 0; k < 3; ++k)
@@ -160,7 +161,7 @@ static gb_result check_header(const gb_photon_map *map, const char *path, gb_err
     if (result == GB_OK)
         result = check_tracing(h, map->count, path, error);
     if (result == GB_OK)
-        result = check_power_and_bounds(h, path, error);
+        result = check_power_and_bounds(h, map->count, path, error);
     return result;
 }
 

@@ -2,6 +2,7 @@
 
 #include <errno.h>
 #include <math.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -111,14 +112,97 @@ static void move_triangle(gb_scene *scene, uint32_t from, uint32_t to)
                 &scene->corner_texcoords[6 * (size_t)from], 6 * sizeof(float));
 }
 
+static int emits(const gb_material *material)
+{
+    return material->Ke[0] > 0 || material->Ke[1] > 0 || material->Ke[2] > 0;
+}
+
+/* Counts the emissive ones too: a zero-area light is named when the scene
+ * is found to have no light. */
 static void drop_degenerate_triangles(gb_scene *scene)
 {
     uint32_t kept = 0;
-    for (uint32_t t = 0; t < scene->triangle_count; ++t)
-        if (!is_degenerate(scene, t))
+    for (uint32_t t = 0; t < scene->triangle_count; ++t) {
+        if (!is_degenerate(scene, t)) {
             move_triangle(scene, t, kept++);
+        } else if (emits(&scene->materials[scene->triangle_material[t]])) {
+            if (scene->dropped_emissive_count++ == 0)
+                scene->dropped_emissive_material = scene->triangle_material[t];
+        }
+    }
     scene->dropped_triangle_count += scene->triangle_count - kept;
     scene->triangle_count = kept;
+}
+
+/* A triangle by its corners' positions, sorted: equal for two triangles
+ * with the same three corners, in any order or winding. */
+typedef struct corner_key {
+    float corners[9];
+    uint32_t triangle;
+} corner_key;
+
+static int compare_floats(const float *a, const float *b, int n)
+{
+    for (int i = 0; i < n; ++i)
+        if (a[i] != b[i])
+            return a[i] < b[i] ? -1 : 1;
+    return 0;
+}
+
+static int compare_keys(const void *a, const void *b)
+{
+    const corner_key *x = a, *y = b;
+    int order = compare_floats(x->corners, y->corners, 9);
+    return order ? order : (x->triangle > y->triangle) - (x->triangle < y->triangle);
+}
+
+static void make_key(const gb_scene *scene, uint32_t t, corner_key *key)
+{
+    const float *p[3];
+    for (int k = 0; k < 3; ++k)
+        p[k] = &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + k]];
+    for (int i = 0; i < 2; ++i)         /* sort the three corners */
+        for (int j = 0; j < 2 - i; ++j)
+            if (compare_floats(p[j], p[j + 1], 3) > 0) {
+                const float *swap = p[j];
+                p[j] = p[j + 1];
+                p[j + 1] = swap;
+            }
+    for (int k = 0; k < 9; ++k)
+        key->corners[k] = p[k / 3][k % 3] + 0.0f;   /* -0 as +0 */
+    key->triangle = t;
+}
+
+/* Drops every triangle with the same three corners as an earlier one: the
+ * same surface twice, which the methods that make lights or elements from
+ * the triangles (FLC, implicit visibility, the area lights) would count
+ * twice (FLC's indirect light came out 3x on a floor laid three times). */
+static gb_result drop_duplicate_triangles(gb_scene *scene, gb_error *error)
+{
+    if (scene->triangle_count < 2)
+        return GB_OK;
+    corner_key *keys = malloc(scene->triangle_count * sizeof *keys);
+    unsigned char *duplicate = calloc(scene->triangle_count, 1);
+    if (!keys || !duplicate) {
+        free(keys);
+        free(duplicate);
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", scene_name(scene));
+    }
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        make_key(scene, t, &keys[t]);
+    qsort(keys, scene->triangle_count, sizeof *keys, compare_keys);
+    for (uint32_t i = 1; i < scene->triangle_count; ++i)
+        if (compare_floats(keys[i].corners, keys[i - 1].corners, 9) == 0)
+            duplicate[keys[i].triangle] = 1;
+    uint32_t kept = 0;
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        if (!duplicate[t])
+            move_triangle(scene, t, kept++);
+    scene->duplicate_triangle_count += scene->triangle_count - kept;
+    scene->triangle_count = kept;
+    free(keys);
+    free(duplicate);
+    return GB_OK;
 }
 
 static void compute_bounds(gb_scene *scene)
@@ -134,11 +218,6 @@ static void compute_bounds(gb_scene *scene)
             scene->bounds_max[k] = fmaxf(scene->bounds_max[k], p[k]);
         }
     }
-}
-
-static int emits(const gb_material *material)
-{
-    return material->Ke[0] > 0 || material->Ke[1] > 0 || material->Ke[2] > 0;
 }
 
 static gb_result list_emissive_triangles(gb_scene *scene, gb_error *error)
@@ -307,6 +386,9 @@ gb_result gb_scene_finish(gb_scene *scene, gb_error *error)
     if (result != GB_OK)
         return result;
     drop_degenerate_triangles(scene);
+    result = drop_duplicate_triangles(scene, error);
+    if (result != GB_OK)
+        return result;
     if (scene->triangle_count == 0)
         return gb_fail(error, GB_ERROR_INVALID, "%s: no triangles (empty mesh%s)",
                        scene_name(scene), scene->dropped_triangle_count ? ", all degenerate"
@@ -317,6 +399,110 @@ gb_result gb_scene_finish(gb_scene *scene, gb_error *error)
         result = add_default_camera(scene, error);
     scene->hash = scene_hash(scene);
     return result;
+}
+
+/* ---- what the tools warn about ------------------------------------------------ */
+
+static int any_positive(const float colour[3])
+{
+    return colour[0] > 0 || colour[1] > 0 || colour[2] > 0;
+}
+
+static int environment_gives_light(const gb_scene *scene)
+{
+    if (!scene->environment_map)
+        return any_positive(scene->environment);
+    const gb_texture *map = &scene->environment_texture;
+    if (!map->rgb)
+        return 1;               /* not read: it may be bright */
+    for (size_t i = 0; i < (size_t)map->width * (size_t)map->height; ++i)
+        if (any_positive(&map->rgb[3 * i]))
+            return 1;
+    return 0;
+}
+
+static uint32_t lights_of_no_power(const gb_scene *scene, gb_light_type type)
+{
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < scene->light_count; ++i)
+        count += scene->lights[i].type == type && !any_positive(scene->lights[i].intensity);
+    return count;
+}
+
+static const char *plural(uint32_t count)
+{
+    return count == 1 ? "" : "s";
+}
+
+/* Appends ": " before the first detail, "; " before the others. */
+static void append_detail(char *why, size_t size, int *details, const char *format, ...)
+    __attribute__((format(printf, 4, 5)));
+
+static void append_detail(char *why, size_t size, int *details, const char *format, ...)
+{
+    size_t used = strlen(why);
+    if (used + 1 >= size)
+        return;
+    snprintf(why + used, size - used, "%s", (*details)++ ? "; " : ": ");
+    used = strlen(why);
+    va_list list;
+    va_start(list, format);
+    vsnprintf(why + used, size - used, format, list);
+    va_end(list);
+}
+
+int gb_scene_has_light(const gb_scene *scene, char *why, size_t size)
+{
+    /* gb_scene_finish dropped the zero-area ones: those left have power */
+    if (scene->emissive_count || environment_gives_light(scene))
+        return 1;
+    for (uint32_t i = 0; i < scene->light_count; ++i)
+        if (any_positive(scene->lights[i].intensity))
+            return 1;
+    if (!why || size == 0)
+        return 0;
+    snprintf(why, size, "no light (no emissive material, point, spot or directional light, "
+             "black environment)");
+    int details = 0;
+    if (scene->dropped_emissive_count)
+        append_detail(why, size, &details, "%u zero-area triangle%s of emissive material '%s' "
+                      "dropped", scene->dropped_emissive_count,
+                      plural(scene->dropped_emissive_count),
+                      scene->materials[scene->dropped_emissive_material].name);
+    static const char *const names[] = {"point", "spot", "directional"};
+    for (int type = GB_LIGHT_POINT; type <= GB_LIGHT_DIRECTIONAL; ++type) {
+        uint32_t count = lights_of_no_power(scene, (gb_light_type)type);
+        if (count)
+            append_detail(why, size, &details, "%u %s light%s of zero intensity", count,
+                          names[type], plural(count));
+    }
+    if (scene->environment_map)
+        append_detail(why, size, &details, "environment-map %s is black everywhere",
+                      scene->environment_map);
+    return 0;
+}
+
+int gb_scene_dropped_warning(const gb_scene *scene, char *text, size_t size)
+{
+    if (size)
+        text[0] = '\0';
+    if ((!scene->dropped_triangle_count && !scene->duplicate_triangle_count) || size == 0)
+        return 0;
+    int details = 0;
+    if (scene->dropped_triangle_count) {
+        snprintf(text, size, "%u degenerate triangle%s dropped", scene->dropped_triangle_count,
+                 plural(scene->dropped_triangle_count));
+        details = 1;
+    }
+    if (scene->dropped_emissive_count)
+        snprintf(text + strlen(text), size - strlen(text), " (%u of emissive material '%s')",
+                 scene->dropped_emissive_count,
+                 scene->materials[scene->dropped_emissive_material].name);
+    if (scene->duplicate_triangle_count)
+        snprintf(text + strlen(text), size - strlen(text), "%s%u duplicate triangle%s dropped "
+                 "(the same corners as another)", details ? "; " : "",
+                 scene->duplicate_triangle_count, plural(scene->duplicate_triangle_count));
+    return 1;
 }
 
 /* ---- loading ---------------------------------------------------------------- */

@@ -4,6 +4,7 @@
  * gb_scene_load reads a .scene file (formats/FORMATS.md, "Scene file") or a
  * mesh directly (.obj with its .mtl, .obj.gz, .ply, .off, .stl). Polygons are
  * triangulated, degenerate (zero-area) triangles are dropped and counted,
+ * so are duplicates (the same three corners as an earlier triangle),
  * triangles whose material emits (Ke > 0) are the scene's area lights.
  * Positions are indexed (shared between triangles); normals and texture
  * coordinates, when the file has them, are stored per triangle corner.
@@ -14,6 +15,7 @@
 #ifndef GB_SCENE_H
 #define GB_SCENE_H
 
+#include <stddef.h>
 #include <stdint.h>
 
 #include "result.h"
@@ -83,6 +85,10 @@ typedef struct gb_scene {
     float bounds_min[3], bounds_max[3];
     uint64_t hash;              /* content hash: geometry, materials, lights */
     uint32_t dropped_triangle_count; /* degenerate triangles dropped at load */
+    uint32_t dropped_emissive_count; /* of them, triangles of an emissive material */
+    uint32_t dropped_emissive_material; /* the material of the first of those */
+    uint32_t duplicate_triangle_count; /* triangles dropped at load for having the
+                                          same three corners as an earlier one */
     char *path;                 /* the file loaded */
     uint32_t undefined_material_count; /* OBJ usemtl names that no MTL defines:
                                           each got the default material */
@@ -105,10 +111,29 @@ void gb_material_set_default(gb_material *material, const char *name);
 /* Area of triangle t (world units squared). */
 double gb_triangle_area(const gb_scene *scene, uint32_t t);
 
+/* Whether anything in the scene gives light: an emissive triangle of nonzero
+ * power, a point, spot or directional light of nonzero intensity, or an
+ * environment that is not black (a map counts unless its pixels were loaded
+ * and are all black). The one place that decides it: every tool asks here.
+ * Returns 1 if so. If not, returns 0 and, when why is not NULL, writes the
+ * reason into why (size bytes, truncated): "no light (no emissive material,
+ * point, spot or directional light, black environment)", then what was
+ * found that gives none, e.g. ": 2 zero-area triangles of emissive material
+ * 'lamp' dropped; 1 point light of zero intensity". A scene with no light is
+ * valid: its right answer is black. */
+int gb_scene_has_light(const gb_scene *scene, char *why, size_t size);
+
+/* The warning about the triangles gb_scene_finish dropped, e.g. "3
+ * degenerate triangles dropped (2 of emissive material 'lamp'); 1 duplicate
+ * triangle dropped (the same corners as another)", into text (size bytes,
+ * truncated). Returns 0 and writes "" when none was. */
+int gb_scene_dropped_warning(const gb_scene *scene, char *text, size_t size);
+
 /* Recomputes bounds, emissive triangles and hash after a caller built or
  * changed a scene in memory (tests do this). Also what gb_scene_load does
  * after reading: checks indices, materials and finite positions, drops
- * degenerate triangles (counting them), fails on an empty mesh, adds the
+ * degenerate triangles and then triangles with the same three corners as an
+ * earlier one (counting both), fails on an empty mesh, adds the
  * default camera when there is none. A scene built with no materials
  * (material_count 0, triangle_material NULL) gets the default material. */
 gb_result gb_scene_finish(gb_scene *scene, gb_error *error);

@@ -14,6 +14,7 @@
 #include "image.h"
 #include "methods.h"
 #include "scene.h"
+#include "scene_warnings.h"
 #include "timings.h"
 #include "window.h"
 
@@ -290,16 +291,6 @@ static int parse_arguments(int argc, char **argv, arguments *a)
     return 0;
 }
 
-static void print_scene_warnings(const gb_scene *scene)
-{
-    if (scene->dropped_triangle_count)
-        fprintf(stderr, "gbview: warning: %u degenerate triangles dropped\n",
-                scene->dropped_triangle_count);
-    if (scene->undefined_material_count)
-        fprintf(stderr, "gbview: warning: %u materials used but not defined "
-                "(given the default grey)\n", scene->undefined_material_count);
-}
-
 /* One message per missing or bad baked file; never fatal. */
 static int check_bake(const gb_scene *scene, const arguments *a, gb_bake_files *files)
 {
@@ -388,8 +379,8 @@ int main(int argc, char **argv)
         fprintf(stderr, "gbview: %s\n", error.message);
         return 1;
     }
-    if (!a.quiet)
-        print_scene_warnings(&scene);
+    if (!a.quiet)      /* with no light every method draws black, as it should */
+        gb_scene_warn("gbview", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     gb_bake_files files;
     status = a.bake ? check_bake(&scene, &a, &files) : 0;
     a.renderer.bake = a.bake ? &files : NULL;

@@ -60,7 +60,8 @@ enum { GB_TOPO_NO_GATE = 0xffffffffu };
  * power (incoming flux) * Kd; it goes on in a cosine direction with
  * probability max(Kd) (Russian roulette, flux divided by it). Paths are
  * started until count VPLs exist; every power is divided by the number of
- * paths started. Deterministic for a seed. */
+ * paths started. Deterministic for a seed. Lights of no power (a scene
+ * with no light, gb_scene_has_light) give no VPL: set->count 0. */
 gb_result gb_topo_vpls_generate(const gb_scene *scene, uint32_t count, uint64_t seed,
                                 gb_vpl_set *set, gb_error *error);
 

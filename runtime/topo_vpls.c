@@ -69,9 +69,6 @@ static gb_result emitters_build(const gb_scene *scene, emitters *e, gb_error *er
     for (uint32_t i = 0; i < e->count; ++i)
         e->cdf[i + 1] = e->cdf[i] + (i == 0 ? e->table.total_power
                                             : light_power(scene, &scene->lights[i - 1]));
-    if (!(e->cdf[e->count] > 0.0))
-        return gb_fail(error, GB_ERROR_INVALID,
-                       "VPLs: the scene has no light to trace from");
     return GB_OK;
 }
 
@@ -232,7 +229,9 @@ gb_result gb_topo_vpls_generate(const gb_scene *scene, uint32_t count, uint64_t 
     if (result == GB_OK && !(set->vpls = calloc(count, sizeof *set->vpls)))
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "VPLs: out of memory");
     uint64_t paths = 0;
-    for (; result == GB_OK && set->count < count; ++paths) {
+    /* No light to trace from (gbview warned): no VPL, no indirect light. */
+    int dark = result == GB_OK && !(e.cdf[e.count] > 0.0);
+    for (; result == GB_OK && !dark && set->count < count; ++paths) {
         if (paths > 1000u * (uint64_t)count) {   /* light that never reaches a surface */
             result = gb_fail(error, GB_ERROR_INVALID,
                              "VPLs: %u paths from the lights hit no reflecting surface",

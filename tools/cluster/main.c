@@ -12,6 +12,7 @@
 #include "photon_map.h"
 #include "progress.h"
 #include "scene.h"
+#include "scene_warnings.h"
 
 static const char usage[] =
     "usage: cluster [options] SCENE IN.phot -o OUT.lot\n"
@@ -32,7 +33,7 @@ static const char usage[] =
     "      --seed N            k-means++ seed (default 0)\n"
     "  -t, --threads N         threads (default: every core)\n"
     "      --stats             print leaves, VDLs and seconds on stdout\n"
-    "  -q, --quiet             no progress bar\n"
+    "  -q, --quiet             no progress bar, no warnings\n"
     "  -h, --help              this help\n"
     "  -V, --version           the version\n";
 
@@ -214,6 +215,8 @@ static gb_result run(arguments *a, gb_error *error)
     gb_photon_map map;
     memset(&map, 0, sizeof map);
     gb_result result = gb_scene_load(a->scene, NULL, &scene, error);
+    if (result == GB_OK && !a->quiet)  /* no light: an empty map, an octree of no VDL */
+        gb_scene_warn("cluster", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     if (result == GB_OK)
         result = gb_photon_map_read(a->photons, &map, error);
     if (result == GB_OK)

@@ -134,13 +134,8 @@ gb_result gb_photon_emission_build(const gb_scene *scene, const gb_surface_table
     }
     find_bounding_sphere(scene, emission);
     add_emitters(scene, emission);
-    if (emission->emitter_count == 0) {
-        gb_photon_emission_free(emission);
-        return gb_fail(error, GB_ERROR_INVALID, "%s: no light to emit photons from (no "
-                       "emissive material, point, spot or directional light, black "
-                       "environment)", scene->path ? scene->path : "scene");
-    }
-    build_cdf(emission);
+    if (emission->emitter_count)    /* none: a dark scene, nothing to emit */
+        build_cdf(emission);
     return GB_OK;
 }
 

@@ -68,7 +68,8 @@ typedef struct gb_photon_ray {
 } gb_photon_ray;
 
 /* surfaces: the surface table of the scene, which must outlive the emission.
- * Fails with GB_ERROR_INVALID "SCENE: no light ..." when nothing emits. */
+ * A scene with no light (gb_scene_has_light) gets emitter_count 0 and power
+ * 0: gb_photon_emission_sample must not be called then. */
 gb_result gb_photon_emission_build(const gb_scene *scene, const gb_surface_table *surfaces,
                                    gb_photon_emission *emission, gb_error *error);
 void gb_photon_emission_free(gb_photon_emission *emission);

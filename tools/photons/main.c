@@ -12,6 +12,7 @@
 #include "photons.h"
 #include "progress.h"
 #include "scene.h"
+#include "scene_warnings.h"
 
 static const char usage[] =
     "usage: photons [options] SCENE -o OUT.phot\n"
@@ -33,7 +34,7 @@ static const char usage[] =
     "                          the whole run, byte for byte\n"
     "      --merge             join the shards given as arguments\n"
     "      --stats             print photons, rays and seconds on stdout\n"
-    "  -q, --quiet             no progress bar\n"
+    "  -q, --quiet             no progress bar, no warnings\n"
     "  -h, --help              this help\n"
     "  -V, --version           the version\n";
 
@@ -235,6 +236,8 @@ static gb_result run_trace(arguments *a, gb_error *error)
     gb_scene scene;
     gb_scene_options scene_options = {.load_textures = 1};
     gb_result result = gb_scene_load(a->inputs[0], &scene_options, &scene, error);
+    if (result == GB_OK && !a->quiet)  /* no light: an empty map, the right answer */
+        gb_scene_warn("photons", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     if (result == GB_OK)
         result = trace(a, &scene, error);
     gb_scene_free(&scene);

@@ -42,6 +42,8 @@ static int trace_chunk(void *context, uint64_t chunk)
     uint64_t end = job->end - begin > CHUNK_PHOTONS ? begin + CHUNK_PHOTONS : job->end;
     gb_photons_counters counters = {0};
     int stop = 0;
+    if (job->emission->emitter_count == 0)     /* no light: every photon is dark */
+        end = begin;
     for (uint64_t i = begin; i < end && !stop; ++i) {
         gb_random rng = gb_random_make(job->seed, i);
         gb_photon_ray ray;
@@ -162,7 +164,7 @@ static void free_tables(run_tables *t)
     gb_photon_emission_free(&t->emission);
 }
 
-/* The lights before the BVH: a scene with none fails before the build. */
+/* The lights, the surfaces and the BVH. */
 static gb_result build_tables(const gb_scene *scene, const gb_photons_options *options,
                               run_tables *t, gb_error *error)
 {

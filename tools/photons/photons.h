@@ -60,7 +60,8 @@ typedef struct gb_photons_stats {
 } gb_photons_stats;
 
 /* Traces the photons of options' shard into *map (allocated here). stats may
- * be NULL. Fails on a scene with no light (GB_ERROR_INVALID), bad options
+ * be NULL. A scene with no light gives a map of no photon and emitted power
+ * 0, the right answer (the tool warns). Fails on bad options
  * (GB_ERROR_ARGUMENT), or a progress callback asking to stop
  * (GB_ERROR_INTERRUPTED). */
 gb_result gb_photons_trace(const gb_scene *scene, const gb_photons_options *options,

@@ -12,6 +12,7 @@
 #include "progress.h"
 #include "reference.h"
 #include "scene.h"
+#include "scene_warnings.h"
 #include "vpl.h"
 
 static const char usage[] =
@@ -43,7 +44,7 @@ static const char usage[] =
     "      --png               also write OUT.png, sRGB, beside OUT.exr\n"
     "      --stats             print rays, seconds (wall, CPU) and rays per second\n"
     "                          on stdout\n"
-    "  -q, --quiet             no progress bar\n"
+    "  -q, --quiet             no progress bar, no warnings\n"
     "  -h, --help              this help\n"
     "  -V, --version           the version\n";
 
@@ -254,6 +255,8 @@ static gb_result run(arguments *a, gb_error *error)
     gb_result result = gb_scene_load(a->scene_path, &scene_options, &scene, error);
     if (result != GB_OK)
         return result;
+    if (!a->quiet)     /* with no light the image is black, as it should be */
+        gb_scene_warn("reference", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     gb_vpl_set vpls = {0};
     if (a->vpl_path) {
         result = gb_vpl_read(a->vpl_path, &vpls, error);

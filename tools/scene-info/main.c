@@ -6,13 +6,15 @@
 #include <stdlib.h>
 
 #include "scene.h"
+#include "scene_warnings.h"
 
 static const char usage[] =
     "usage: scene-info [--quiet] [--help] [--version] SCENE\n"
     "Loads SCENE (.scene, .obj, .obj.gz, .ply, .off or .stl) as every gibake tool\n"
     "does and prints a summary: triangles, vertices, materials, area lights and\n"
     "their emissive area, other lights, cameras, bounds and the content hash.\n"
-    "Warnings (degenerate triangles dropped, undefined materials) go to stderr.\n"
+    "Warnings (degenerate triangles dropped, undefined materials, no light) go to\n"
+    "stderr.\n"
     "\n"
     "  -q, --quiet     no warnings\n"
     "  -h, --help      this help\n"
@@ -65,16 +67,6 @@ static void print_summary(const gb_scene *scene)
     printf("hash            %016llx\n", (unsigned long long)scene->hash);
 }
 
-static void print_warnings(const gb_scene *scene)
-{
-    if (scene->dropped_triangle_count)
-        fprintf(stderr, "scene-info: warning: %u degenerate triangles dropped\n",
-                scene->dropped_triangle_count);
-    if (scene->undefined_material_count)
-        fprintf(stderr, "scene-info: warning: %u materials used but not defined "
-                "(given the default grey)\n", scene->undefined_material_count);
-}
-
 int main(int argc, char **argv)
 {
     static const struct option options[] = {
@@ -106,7 +98,7 @@ int main(int argc, char **argv)
     }
     print_summary(&scene);
     if (!quiet)
-        print_warnings(&scene);
+        gb_scene_warn("scene-info", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     gb_scene_free(&scene);
     return fflush(stdout) == 0 ? 0 : 1;
 }

@@ -11,6 +11,7 @@
 
 #include "progress.h"
 #include "scene.h"
+#include "scene_warnings.h"
 #include "segment.h"
 #include "segmentation.h"
 #include "skeleton.h"
@@ -34,7 +35,7 @@ static const char usage[] =
     "  -n, --pairs N          point pairs to evaluate (default 100000)\n"
     "      --seed S           random seed of the pairs (default 0)\n"
     "  -s, --stats            print counts and timings on stdout\n"
-    "  -q, --quiet            no progress bar\n"
+    "  -q, --quiet            no progress bar, no warnings\n"
     "  -h, --help             this help\n"
     "  -V, --version          the version\n";
 
@@ -226,6 +227,8 @@ static int load_evaluation_inputs(const arguments *args, gb_scene *scene, gb_seg
         fprintf(stderr, "segment: %s\n", error.message);
         return 1;
     }
+    if (!args->quiet)
+        gb_scene_warn("segment", scene, GB_WARN_GEOMETRY);
     return 0;
 }
 

@@ -10,6 +10,7 @@
 
 #include "progress.h"
 #include "scene.h"
+#include "scene_warnings.h"
 #include "voxel_grid.h"
 #include "voxelize.h"
 
@@ -24,7 +25,7 @@ static const char usage[] =
     "                         at most 2048); voxels are cubes\n"
     "      --pad N            empty voxels around the scene (default 2, at most 64)\n"
     "  -j, --threads N        threads (default 2)\n"
-    "  -q, --quiet            no progress bar\n"
+    "  -q, --quiet            no progress bar, no warnings\n"
     "  -h, --help             this help\n"
     "  -V, --version          the version\n";
 
@@ -130,6 +131,8 @@ static int voxelize_file(const arguments *parsed)
         gb_scene_free(&scene);
         return 1;
     }
+    if (!parsed->quiet)
+        gb_scene_warn("voxelize", &scene, GB_WARN_GEOMETRY);
     result = gb_voxelize_scene(&scene, &options, &grid, &error);
     if (result != GB_OK)
         fprintf(stderr, "voxelize: %s: %s\n", parsed->scene, error.message);
