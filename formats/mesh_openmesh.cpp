@@ -2,11 +2,10 @@
 // triangles (see mesh_openmesh.h). The only file that includes OpenMesh.
 
 #include "mesh_openmesh.h"
+#include "mesh_check.h"
 
-#include <cctype>
 #include <cstdlib>
 #include <cstring>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -24,18 +23,30 @@ namespace {
 // can be checked against the file's header, and fan-triangulated here.
 typedef OpenMesh::PolyMesh_ArrayKernelT<> Mesh;
 
-// OpenMesh reports problems on omerr(), which writes to std::cerr. While a
-// mesh is read, std::cerr's buffer is swapped for a string so the messages
-// become part of gibake's error (the library never prints).
+// OpenMesh reports problems on omerr(), which writes to std::cerr, and
+// notes on omlog() and omout() (std::clog, std::cout: "Unsupported keyword"
+// for each unknown word of a PLY header). While a mesh is read, std::cerr's
+// buffer is swapped for a string so the messages become part of gibake's
+// error, and the other two for one that is dropped (the library never
+// prints).
 class CerrCapture {
 public:
-    CerrCapture() : saved_(std::cerr.rdbuf(text_.rdbuf())) {}
-    ~CerrCapture() { std::cerr.rdbuf(saved_); }
+    CerrCapture()
+        : saved_(std::cerr.rdbuf(text_.rdbuf())), saved_log_(std::clog.rdbuf(dropped_.rdbuf())),
+          saved_out_(std::cout.rdbuf(dropped_.rdbuf()))
+    {
+    }
+    ~CerrCapture()
+    {
+        std::cerr.rdbuf(saved_);
+        std::clog.rdbuf(saved_log_);
+        std::cout.rdbuf(saved_out_);
+    }
     std::string text() const { return text_.str(); }
 
 private:
-    std::ostringstream text_;
-    std::streambuf *saved_;
+    std::ostringstream text_, dropped_;
+    std::streambuf *saved_, *saved_log_, *saved_out_;
 };
 
 // Number of lines of messages that contain phrase.
@@ -53,99 +64,6 @@ std::string first_line(const std::string &messages)
 {
     std::string line = messages.substr(0, messages.find('\n'));
     return line.empty() ? std::string("unreadable or unsupported file") : line;
-}
-
-bool ends_with(const std::string &text, const char *suffix)
-{
-    std::size_t n = std::strlen(suffix);
-    if (text.size() < n)
-        return false;
-    for (std::size_t i = 0; i < n; ++i)
-        if (std::tolower(static_cast<unsigned char>(text[text.size() - n + i])) != suffix[i])
-            return false;
-    return true;
-}
-
-// What a header declares; -1 where it does not say.
-struct Counts {
-    long long vertices = -1, faces = -1;
-};
-
-// "element vertex N" and "element face N" of a PLY header.
-Counts ply_counts(std::istream &in)
-{
-    Counts counts;
-    std::string line;
-    while (std::getline(in, line) && line.rfind("end_header", 0) != 0) {
-        std::istringstream words(line);
-        std::string element, name;
-        long long count;
-        if (!(words >> element >> name >> count) || element != "element")
-            continue;
-        if (name == "vertex")
-            counts.vertices = count;
-        else if (name == "face")
-            counts.faces = count;
-    }
-    return counts;
-}
-
-// The next word of an OFF file, skipping '#' comments.
-bool off_word(std::istream &in, std::string &word)
-{
-    while (in >> word) {
-        if (word[0] != '#')
-            return true;
-        std::getline(in, word);
-    }
-    return false;
-}
-
-long long to_count(const std::string &word)
-{
-    char *end;
-    long long count = std::strtoll(word.c_str(), &end, 10);
-    return *end == '\0' && !word.empty() ? count : -1;
-}
-
-long long big_endian_32(const unsigned char *bytes)
-{
-    return (long long)bytes[0] << 24 | bytes[1] << 16 | bytes[2] << 8 | bytes[3];
-}
-
-// "OFF" then the numbers of vertices, faces and edges (ASCII or binary).
-Counts off_counts(std::istream &in)
-{
-    Counts counts;
-    std::string keyword, vertices, faces;
-    if (!off_word(in, keyword) || !ends_with(keyword, "off") || !off_word(in, vertices))
-        return counts;
-    if (vertices == "BINARY") {
-        unsigned char bytes[8];
-        in.get();   // the end of the header line
-        if (in.read(reinterpret_cast<char *>(bytes), 8)) {
-            counts.vertices = big_endian_32(bytes);
-            counts.faces = big_endian_32(bytes + 4);
-        }
-        return counts;
-    }
-    counts.vertices = to_count(vertices);
-    if (off_word(in, faces))
-        counts.faces = to_count(faces);
-    return counts;
-}
-
-// What the file says it has; -1s for STL, which says nothing, and for a
-// header not understood (then OpenMesh's reading is trusted).
-Counts declared_counts(const char *path)
-{
-    std::ifstream in(path, std::ios::binary);
-    std::string name(path);
-    if (ends_with(name, ".ply"))
-        return ply_counts(in);
-    if (ends_with(name, ".off"))
-        return off_counts(in);
-    return Counts();
 }
 
 std::size_t triangle_count_of(const Mesh &mesh)
@@ -210,6 +128,10 @@ gb_result read(const char *path, float **positions, uint32_t *vertex_count,
                uint32_t **indices, uint32_t *triangle_count, uint32_t *skipped_faces,
                gb_error *error)
 {
+    gb_mesh_counts declared;
+    gb_result checked = gb_mesh_check_file(path, &declared, error);
+    if (checked != GB_OK)
+        return checked;
     Mesh mesh;
     OpenMesh::IO::Options options;
     std::string messages;
@@ -223,7 +145,6 @@ gb_result read(const char *path, float **positions, uint32_t *vertex_count,
         return gb_fail(error, GB_ERROR_PARSE, "%s: OpenMesh cannot read it: %s", path,
                        first_line(messages).c_str());
     std::size_t equal = count_lines_with(messages, "equal vertices");
-    Counts declared = declared_counts(path);
     if (declared.vertices > (long long)mesh.n_vertices())
         return gb_fail(error, GB_ERROR_PARSE, "%s: OpenMesh read %zu of %lld vertices", path,
                        mesh.n_vertices(), declared.vertices);

@@ -6,9 +6,14 @@
  * OpenMesh builds a half-edge mesh: a face that would make an edge
  * non-manifold is kept on its own copies of its vertices (so vertex_count
  * may exceed the file's), and a face that repeats a vertex is refused; those
- * are degenerate and counted in *skipped_faces. PLY and OFF headers say how
- * many faces follow: fewer read (a vertex index out of range, a malformed
- * number, a truncated file) is an error, as are fewer vertices read. OpenMesh's messages (std::cerr) are captured
+ * are degenerate and counted in *skipped_faces. Before OpenMesh reads the
+ * file, gb_mesh_check_file (mesh_check.h) walks its bytes as OpenMesh will
+ * and refuses what OpenMesh would misread, crash or loop on, or allocate
+ * for beyond what the file holds: a NaN, Inf or malformed number is named
+ * with its line and vertex ("file:line: vertex 3: y 'nan' is not finite"),
+ * as are counts the file cannot hold and vertex indices out of range. PLY
+ * and OFF headers say how many faces follow: fewer read is still an error,
+ * as are fewer vertices read. OpenMesh's messages (std::cerr) are captured
  * while reading, which is why reads must not run in parallel.
  *
  * On success the caller owns *positions (vertex_count * 3 floats) and
