@@ -4,6 +4,7 @@
 
 extern "C" {
 #include "image.h"
+#include "image_check.h"
 }
 
 #include <cerrno>
@@ -15,6 +16,7 @@ extern "C" {
 #include <string>
 #include <vector>
 
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <OpenImageIO/imageio.h>
@@ -64,21 +66,85 @@ void convert_to_linear(gb_image *image, int alpha_channel)
             }
 }
 
+// OpenImageIO's PNG reader keeps libpng's default error handler, which
+// prints "libpng error: ..." on stderr. While a PNG file is read, file
+// descriptor 2 points at a memory file instead, so that nothing is printed
+// (library code never prints) and what was printed can go in the message.
+// It is the process's descriptor: PNG reads must not run in parallel with
+// each other or with output on stderr (a sanitizer's report too goes there).
+class StderrCapture {
+public:
+    explicit StderrCapture(bool active)
+    {
+        if (!active)
+            return;
+        std::fflush(stderr);
+        capture_ = memfd_create("gibake-stderr", MFD_CLOEXEC);
+        saved_ = capture_ >= 0 ? dup(2) : -1;
+        if (saved_ < 0 || dup2(capture_, 2) < 0)
+            restore();
+    }
+    ~StderrCapture() { restore(); }
+
+    // The first line printed, or "".
+    std::string first_line()
+    {
+        restore();
+        char text[512] = {0};
+        ssize_t got = capture_ >= 0 ? pread(capture_, text, sizeof text - 1, 0) : 0;
+        std::string line(text, got > 0 ? static_cast<std::size_t>(got) : 0);
+        return line.substr(0, line.find('\n'));
+    }
+
+private:
+    void restore()
+    {
+        if (saved_ >= 0) {
+            std::fflush(stderr);
+            dup2(saved_, 2);
+            close(saved_);
+            saved_ = -1;
+        }
+    }
+
+    int capture_ = -1, saved_ = -1;
+};
+
+// OpenImageIO's message, else what its libraries printed.
+std::string read_error(const std::string &own, StderrCapture &capture)
+{
+    std::string printed = capture.first_line();
+    std::string message = own.empty() ? OIIO::geterror() : own;
+    if (message.empty() && !printed.empty())
+        return printed;
+    return last_error(message);
+}
+
+// The file is opened with the one reader of the format its bytes show
+// (image_check.h), after its size is checked against the file's.
 gb_result read_image(const char *path, gb_image *image, gb_error *error)
 {
+    gb_image_file file;
+    gb_result result = gb_image_check_file(path, &file, error);
+    if (result != GB_OK)
+        return result;
     // Colours stay as stored (PNG alpha is unassociated); OpenImageIO would
     // otherwise multiply them by alpha.
-    OIIO::ImageSpec config;
+    OIIO::ImageSpec config, spec;
     config.attribute("oiio:UnassociatedAlpha", 1);
-    auto input = OIIO::ImageInput::open(path, &config);
-    if (!input)
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, last_error("").c_str());
-    const OIIO::ImageSpec spec = input->spec();
-    gb_result result = gb_image_allocate(image, spec.width, spec.height, spec.nchannels, error);
+    StderrCapture capture(std::strcmp(file.format, "png") == 0);
+    auto input = OIIO::ImageInput::create(file.format);
+    if (!input || !input->open(path, spec, config))
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path,
+                       read_error(input ? input->geterror() : "", capture).c_str());
+    result = gb_image_check_size(path, &file, spec.width, spec.height, spec.depth,
+                                 spec.nchannels, error);
+    if (result == GB_OK)
+        result = gb_image_allocate(image, spec.width, spec.height, spec.nchannels, error);
     if (result != GB_OK)
         return result;
     if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image->pixels)) {
-        std::string message = last_error(input->geterror());
+        std::string message = read_error(input->geterror(), capture);
         gb_image_free(image);
         return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path, message.c_str());
     }
