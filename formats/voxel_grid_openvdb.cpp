@@ -9,6 +9,7 @@
 // which is what the grids' linear transform says.
 
 extern "C" {
+#include "voxel_check.h"
 #include "voxel_grid.h"
 }
 
@@ -17,6 +18,7 @@ extern "C" {
 #define IMATH_HALF_NO_LOOKUP_TABLE
 #include <openvdb/openvdb.h>
 #include <openvdb/io/File.h>
+#include <openvdb/io/Stream.h>
 #include <openvdb/tools/Prune.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -172,6 +174,16 @@ gb_result read_frame(const char *path, const openvdb::GridBase &grid, gb_voxel_g
         return gb_fail(error, GB_ERROR_FORMAT,
                        "%s: grid '%s': bad frame (grid_size %d x %d x %d, voxel_size %g)", path,
                        name, (int)size[0], (int)size[1], (int)size[2], voxel_size);
+    // The readers fill a dense array of the frame (5 bytes a voxel for the
+    // voxel file, 4 for an int32 grid): refused before it is allocated when
+    // it could never fit, rather than left to the allocator or the OOM killer.
+    double dense = 5.0 * (double)frame_voxel_count(&read);
+    double memory = (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGESIZE);
+    if (memory > 0 && dense > memory)
+        return gb_fail(error, GB_ERROR_UNSUPPORTED,
+                       "%s: grid '%s': grid_size %d x %d x %d needs %.1f GiB in memory, more "
+                       "than this machine's %.1f GiB", path, name, (int)size[0], (int)size[1],
+                       (int)size[2], dense / (1 << 30), memory / (1 << 30));
     const openvdb::math::Transform &transform = grid.transform();
     openvdb::Vec3d centre = transform.indexToWorld(openvdb::Vec3d(0, 0, 0));
     openvdb::Vec3d step = transform.indexToWorld(openvdb::Vec3d(1, 1, 1)) - centre;
@@ -539,22 +551,73 @@ gb_result write_grids(const char *path, const openvdb::GridPtrVec &grids, gb_err
 }
 
 // An open OpenVDB file, from which grids are read by name and type.
+// A read-only std::streambuf over the mapped file, seekable as OpenVDB's
+// stream reader wants.
+class MappedBuffer : public std::streambuf {
+public:
+    MappedBuffer(const void *bytes, size_t size)
+    {
+        char *begin = static_cast<char *>(const_cast<void *>(bytes));
+        setg(begin, begin, begin + size);
+    }
+
+protected:
+    pos_type seekoff(off_type offset, std::ios_base::seekdir way,
+                     std::ios_base::openmode which) override
+    {
+        off_type base = way == std::ios_base::beg ? 0
+                        : way == std::ios_base::cur ? gptr() - eback() : egptr() - eback();
+        return seekpos(pos_type(base + offset), which);
+    }
+    pos_type seekpos(pos_type position, std::ios_base::openmode which) override
+    {
+        off_type at = off_type(position);
+        if (!(which & std::ios_base::in) || at < 0 || at > egptr() - eback())
+            return pos_type(off_type(-1));
+        setg(eback(), eback() + at, egptr());
+        return position;
+    }
+};
+
+// The grids of an OpenVDB file, read by name and type. After the checksum,
+// the file is mapped, walked by gb_voxel_file_check (voxel_check.h: every
+// size and count OpenVDB will allocate or copy by is checked against the
+// file), and OpenVDB reads it through io::Stream from a std::istream that
+// throws on a read past its end, so that no count OpenVDB trusts can make
+// it go on reading zeros at the end of a damaged file.
 struct Reader {
     const char *path;
-    openvdb::io::File file;
+    void *mapping = MAP_FAILED;
+    size_t size = 0;
+    openvdb::GridPtrVecPtr grids;
 
-    explicit Reader(const char *path_) : path(path_), file(path_) {}
+    explicit Reader(const char *path_) : path(path_) {}
 
     gb_result open(gb_error *error)
     {
         gb_result result = check_file(path, error);
+        if (result == GB_OK)
+            result = map(error);
+        if (result == GB_OK)
+            result = gb_voxel_file_check(mapping, size, path, error);
         if (result != GB_OK)
             return result;
+        MappedBuffer buffer(mapping, size);
+        std::istream in(&buffer);
+        in.exceptions(std::ios_base::failbit | std::ios_base::badbit);
         try {
-            file.open(false);
+            openvdb::io::Stream stream(in, /*delayLoad=*/false);
+            grids = stream.getGrids();
+        } catch (const std::ios_base::failure &) {
+            return gb_fail(error, GB_ERROR_FORMAT, "%s: OpenVDB reads past the end of the file "
+                           "(a size or a count in it is wrong)", path);
+        } catch (const std::bad_alloc &) {
+            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
         } catch (const std::exception &e) {
             return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
         }
+        if (!grids)
+            return gb_fail(error, GB_ERROR_FORMAT, "%s: no grids", path);
         return GB_OK;
     }
 
@@ -562,13 +625,15 @@ struct Reader {
     gb_result read(const char *name, const char *type_name, typename GridType::Ptr *grid,
                    gb_error *error)
     {
-        try {
-            if (!file.hasGrid(name))
-                return gb_fail(error, GB_ERROR_FORMAT, "%s: no grid '%s'", path, name);
-            *grid = openvdb::gridPtrCast<GridType>(file.readGrid(name));
-        } catch (const std::exception &e) {
-            return gb_fail(error, GB_ERROR_FORMAT, "%s: grid '%s': %s", path, name, e.what());
-        }
+        openvdb::GridBase::Ptr found;
+        for (const openvdb::GridBase::Ptr &candidate : *grids)
+            if (candidate && candidate->getName() == name) {
+                found = candidate;
+                break;
+            }
+        if (!found)
+            return gb_fail(error, GB_ERROR_FORMAT, "%s: no grid '%s'", path, name);
+        *grid = openvdb::gridPtrCast<GridType>(found);
         if (!*grid)
             return gb_fail(error, GB_ERROR_FORMAT, "%s: grid '%s' is not a %s grid", path, name,
                            type_name);
@@ -577,11 +642,30 @@ struct Reader {
 
     ~Reader()
     {
-        try {
-            if (file.isOpen())
-                file.close();
-        } catch (...) {
+        grids.reset();
+        if (mapping != MAP_FAILED)
+            munmap(mapping, size);
+    }
+
+private:
+    gb_result map(gb_error *error)
+    {
+        int fd = ::open(path, O_RDONLY | O_CLOEXEC);
+        struct stat status;
+        if (fd < 0 || fstat(fd, &status) != 0) {
+            int saved = errno;
+            if (fd >= 0)
+                close(fd);
+            return gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(saved));
         }
+        size = (size_t)status.st_size;
+        mapping = size ? mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0) : MAP_FAILED;
+        int saved = errno;
+        close(fd);
+        if (mapping == MAP_FAILED)
+            return gb_fail(error, GB_ERROR_IO, "%s: %s", path,
+                           size ? std::strerror(saved) : "empty file");
+        return GB_OK;
     }
 };
 
@@ -626,7 +710,10 @@ gb_result read_voxel_grids(const char *path, Reader &reader, gb_voxel_grid *grid
         result = check_same_frame(path, *distance, &frame, error);
     if (result == GB_OK) {
         int32_t size[3] = {frame.size[0], frame.size[1], frame.size[2]};
-        result = gb_voxel_grid_allocate(&frame, size, error);
+        gb_error reason;
+        result = gb_voxel_grid_allocate(&frame, size, &reason);
+        if (result != GB_OK)
+            gb_fail(error, result, "%s: %s", path, reason.message);
     }
     if (result != GB_OK)
         return result;
