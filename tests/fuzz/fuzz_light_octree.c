@@ -9,8 +9,8 @@
  *
  * Every payload is CRC-checked by the container, so almost every mutation
  * would stop there: each input is parsed as it is, then again with its
- * checksums recomputed (the container layout of formats/FORMATS.md), which
- * lets the mutations reach the octree's own checks.
+ * checksums recomputed (fix_checksums.h), which lets the mutations reach
+ * the octree's own checks.
  */
 #include "light_octree.h"
 #include "photon_map.h"
@@ -19,7 +19,8 @@
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
-#include <zlib.h>
+
+#include "fix_checksums.h"
 
 static volatile float sink;
 
@@ -50,43 +51,6 @@ static float walk(const gb_light_octree *octree)
            (float)gb_light_octree_find_leaf(octree, nan);
 }
 
-static uint32_t get_u32(const unsigned char *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
-static uint64_t get_u64(const unsigned char *p)
-{
-    return get_u32(p) | (uint64_t)get_u32(p + 4) << 32;
-}
-
-static void put_u32(unsigned char *p, uint32_t v)
-{
-    for (int i = 0; i < 4; ++i)
-        p[i] = (unsigned char)(v >> (8 * i));
-}
-
-/* Recomputes the payload and header CRC-32s of a container (32-byte header,
- * 48-byte table entries: offset at 24, size at 32, CRC at 40; the header's
- * CRC at 28 covers its first 28 bytes and the table) where they fit. */
-static void fix_checksums(unsigned char *bytes, size_t size)
-{
-    if (size < 32)
-        return;
-    uint64_t count = get_u32(bytes + 24);
-    if (count > (size - 32) / 48)
-        return;
-    for (uint64_t i = 0; i < count; ++i) {
-        unsigned char *entry = bytes + 32 + i * 48;
-        uint64_t offset = get_u64(entry + 24), length = get_u64(entry + 32);
-        if (offset <= size && length <= size - offset && length <= UINT32_MAX)
-            put_u32(entry + 40, (uint32_t)crc32(crc32(0L, Z_NULL, 0), bytes + offset,
-                                                (uInt)length));
-    }
-    uLong crc = crc32(crc32(0L, Z_NULL, 0), bytes, 28);
-    put_u32(bytes + 28, (uint32_t)crc32(crc, bytes + 32, (uInt)(count * 48)));
-}
-
 static void parse(const unsigned char *aligned, size_t size)
 {
     gb_light_octree octree;
@@ -109,7 +73,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         return 0;
     memcpy(aligned, data, size);
     parse(aligned, size);
-    fix_checksums(aligned, size);
+    gb_fuzz_fix_container_checksums(aligned, size);
     parse(aligned, size);
     free(aligned);
     return 0;

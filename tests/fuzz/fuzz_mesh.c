@@ -1,0 +1,88 @@
+/* fuzz_mesh.c — libFuzzer target for the PLY, OFF and STL readers (the
+ * OpenMesh adapter, formats/mesh_openmesh.cpp, through gb_scene_load as the
+ * tools call it): any input gives either a scene whose indices, materials
+ * and areas hold, or an error "path: ...", never a crash, a leak or a read
+ * out of bounds (run under ASan/UBSan by `make fuzz`).
+ *
+ * OpenMesh chooses its reader by the file name, so the input is written to
+ * a file of a private temporary folder named after what it looks like:
+ * "fuzz.ply" when it starts with "ply", "fuzz.off" when its first word ends
+ * with "OFF" (OFF, COFF, NOFF, STOFF, ...), else "fuzz.stl" (ASCII or
+ * binary). Seeds: tests/fuzz/corpus/fuzz_mesh, ASCII and binary of each.
+ */
+#include <ctype.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "scene.h"
+
+static char folder[64];
+
+static void remove_folder(void)
+{
+    static const char *const names[] = {"fuzz.ply", "fuzz.off", "fuzz.stl"};
+    char path[128];
+    for (int i = 0; i < 3; ++i) {
+        snprintf(path, sizeof path, "%s/%s", folder, names[i]);
+        unlink(path);
+    }
+    rmdir(folder);
+}
+
+static const char *kind_of(const uint8_t *data, size_t size)
+{
+    if (size >= 3 && memcmp(data, "ply", 3) == 0)
+        return "ply";
+    size_t begin = 0, end;
+    while (begin < size && isspace(data[begin]))
+        ++begin;
+    for (end = begin; end < size && !isspace(data[end]) && data[end] != '#'; ++end)
+        ;
+    if (end - begin >= 3 && memcmp(data + end - 3, "OFF", 3) == 0)
+        return "off";
+    return "stl";
+}
+
+static void check_scene(const gb_scene *scene)
+{
+    for (size_t i = 0; i < 3 * (size_t)scene->triangle_count; ++i)
+        if (scene->indices[i] >= scene->vertex_count)
+            __builtin_trap();
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        if (scene->triangle_material[t] >= scene->material_count
+            || !(gb_triangle_area(scene, t) > 0))
+            __builtin_trap();
+    if (scene->material_count != 1 || scene->camera_count != 1)
+        __builtin_trap();
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    if (!folder[0]) {
+        snprintf(folder, sizeof folder, "/tmp/fuzz_mesh.XXXXXX");
+        if (!mkdtemp(folder))
+            abort();
+        atexit(remove_folder);
+    }
+    char path[128];
+    snprintf(path, sizeof path, "%s/fuzz.%s", folder, kind_of(data, size));
+    FILE *file = fopen(path, "wb");
+    if (!file || fwrite(data, 1, size, file) != size || fclose(file) != 0)
+        abort();
+    gb_scene scene;
+    gb_error error;
+    error.message[0] = '\0';
+    if (gb_scene_load(path, NULL, &scene, &error) == GB_OK) {
+        check_scene(&scene);
+        gb_scene_free(&scene);
+    } else {
+        size_t n = strlen(path);
+        if (strncmp(error.message, path, n) != 0 || error.message[n] != ':')
+            __builtin_trap(); /* every failure names the file */
+    }
+    return 0;
+}
