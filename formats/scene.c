@@ -134,77 +134,6 @@ static void drop_degenerate_triangles(gb_scene *scene)
     scene->triangle_count = kept;
 }
 
-/* A triangle by its corners' positions, sorted: equal for two triangles
- * with the same three corners, in any order or winding. */
-typedef struct corner_key {
-    float corners[9];
-    uint32_t triangle;
-} corner_key;
-
-static int compare_floats(const float *a, const float *b, int n)
-{
-    for (int i = 0; i < n; ++i)
-        if (a[i] != b[i])
-            return a[i] < b[i] ? -1 : 1;
-    return 0;
-}
-
-static int compare_keys(const void *a, const void *b)
-{
-    const corner_key *x = a, *y = b;
-    int order = compare_floats(x->corners, y->corners, 9);
-    return order ? order : (x->triangle > y->triangle) - (x->triangle < y->triangle);
-}
-
-static void make_key(const gb_scene *scene, uint32_t t, corner_key *key)
-{
-    const float *p[3];
-    for (int k = 0; k < 3; ++k)
-        p[k] = &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + k]];
-    for (int i = 0; i < 2; ++i)         /* sort the three corners */
-        for (int j = 0; j < 2 - i; ++j)
-            if (compare_floats(p[j], p[j + 1], 3) > 0) {
-                const float *swap = p[j];
-                p[j] = p[j + 1];
-                p[j + 1] = swap;
-            }
-    for (int k = 0; k < 9; ++k)
-        key->corners[k] = p[k / 3][k % 3] + 0.0f;   /* -0 as +0 */
-    key->triangle = t;
-}
-
-/* Drops every triangle with the same three corners as an earlier one: the
- * same surface twice, which the methods that make lights or elements from
- * the triangles (FLC, implicit visibility, the area lights) would count
- * twice (FLC's indirect light came out 3x on a floor laid three times). */
-static gb_result drop_duplicate_triangles(gb_scene *scene, gb_error *error)
-{
-    if (scene->triangle_count < 2)
-        return GB_OK;
-    corner_key *keys = malloc(scene->triangle_count * sizeof *keys);
-    unsigned char *duplicate = calloc(scene->triangle_count, 1);
-    if (!keys || !duplicate) {
-        free(keys);
-        free(duplicate);
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", scene_name(scene));
-    }
-    for (uint32_t t = 0; t < scene->triangle_count; ++t)
-        make_key(scene, t, &keys[t]);
-    qsort(keys, scene->triangle_count, sizeof *keys, compare_keys);
-    for (uint32_t i = 1; i < scene->triangle_count; ++i)
-        if (compare_floats(keys[i].corners, keys[i - 1].corners, 9) == 0)
-            duplicate[keys[i].triangle] = 1;
-    uint32_t kept = 0;
-    for (uint32_t t = 0; t < scene->triangle_count; ++t)
-        if (!duplicate[t])
-            move_triangle(scene, t, kept++);
-    scene->duplicate_triangle_count += scene->triangle_count - kept;
-    scene->triangle_count = kept;
-    free(keys);
-    free(duplicate);
-    return GB_OK;
-}
-
 static void compute_bounds(gb_scene *scene)
 {
     for (int k = 0; k < 3; ++k) {
@@ -386,9 +315,6 @@ gb_result gb_scene_finish(gb_scene *scene, gb_error *error)
     if (result != GB_OK)
         return result;
     drop_degenerate_triangles(scene);
-    result = drop_duplicate_triangles(scene, error);
-    if (result != GB_OK)
-        return result;
     if (scene->triangle_count == 0)
         return gb_fail(error, GB_ERROR_INVALID, "%s: no triangles (empty mesh%s)",
                        scene_name(scene), scene->dropped_triangle_count ? ", all degenerate"
@@ -486,22 +412,14 @@ int gb_scene_dropped_warning(const gb_scene *scene, char *text, size_t size)
 {
     if (size)
         text[0] = '\0';
-    if ((!scene->dropped_triangle_count && !scene->duplicate_triangle_count) || size == 0)
+    if (!scene->dropped_triangle_count || size == 0)
         return 0;
-    int details = 0;
-    if (scene->dropped_triangle_count) {
-        snprintf(text, size, "%u degenerate triangle%s dropped", scene->dropped_triangle_count,
-                 plural(scene->dropped_triangle_count));
-        details = 1;
-    }
+    snprintf(text, size, "%u degenerate triangle%s dropped", scene->dropped_triangle_count,
+             plural(scene->dropped_triangle_count));
     if (scene->dropped_emissive_count)
         snprintf(text + strlen(text), size - strlen(text), " (%u of emissive material '%s')",
                  scene->dropped_emissive_count,
                  scene->materials[scene->dropped_emissive_material].name);
-    if (scene->duplicate_triangle_count)
-        snprintf(text + strlen(text), size - strlen(text), "%s%u duplicate triangle%s dropped "
-                 "(the same corners as another)", details ? "; " : "",
-                 scene->duplicate_triangle_count, plural(scene->duplicate_triangle_count));
     return 1;
 }
 
