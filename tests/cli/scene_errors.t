@@ -95,8 +95,7 @@ expect_error "missing scene file" "$dir/absent.scene" \
     printf '0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n'
 } >"$dir/index.ply"
 expect_error "PLY index out of range" "$dir/index.ply" \
-    "$dir/index.ply: 1 of 1 faces unread: a vertex index out of range (3 vertices),\
- a malformed number or a truncated file"
+    "$dir/index.ply:13: face 0: vertex index 7 out of range (3 vertices)"
 
 # A good scene still works and warns about what it dropped.
 printf '%s\nf 1 2 3\nf 1 1 2\n' "$triangle" >"$dir/dropped.obj"
