@@ -578,7 +578,8 @@ static const char *item_name(const ply_element *e, unsigned long long i, char ou
     return out;
 }
 
-static gb_result walk_ascii_ply(reader *r, const ply_header *h, gb_error *error)
+static gb_result walk_ascii_ply(reader *r, const ply_header *h, gb_mesh_counts *counts,
+                                gb_error *error)
 {
     unsigned long long vertices = h->vertices > 0 ? (unsigned long long)h->vertices : 0;
     for (int i = 0, read = ply_elements_read(h); i < read; ++i) {
@@ -607,6 +608,7 @@ static gb_result walk_ascii_ply(reader *r, const ply_header *h, gb_error *error)
                     break;
                 case ROLE_CORNERS:
                     result = check_corners(r, t, where, &corners, error);
+                    counts->short_faces += result == GB_OK && corners < 3;
                     for (unsigned long long c = 0; result == GB_OK && c < corners; ++c)
                         result = next_token(r, &t) ? check_index(r, t, where, vertices, error)
                                                    : truncated(r, where, error);
@@ -627,7 +629,8 @@ static gb_result binary_truncated(const char *path, const char *where, gb_error 
     return gb_fail(error, GB_ERROR_FORMAT, "%s: the file ends in %s", path, where);
 }
 
-static gb_result walk_binary_ply(const reader *r, const ply_header *h, gb_error *error)
+static gb_result walk_binary_ply(const reader *r, const ply_header *h, gb_mesh_counts *counts,
+                                 gb_error *error)
 {
     unsigned long long vertices = h->vertices > 0 ? (unsigned long long)h->vertices : 0;
     const unsigned char *at = h->body, *end = r->end;
@@ -652,6 +655,7 @@ static gb_result walk_binary_ply(const reader *r, const ply_header *h, gb_error 
                         return gb_fail(error, GB_ERROR_FORMAT, "%s: %s: %llu corners, more "
                                        "than the rest of the file holds", r->path, where,
                                        (unsigned long long)corners);
+                    counts->short_faces += corners < 3;
                     for (uint64_t c = 0; c < corners; ++c, at += entry) {
                         uint64_t bits = get_uint(at, entry, be);
                         long long index = is_signed(p->type)
@@ -686,11 +690,11 @@ static gb_result check_ply(reader *r, gb_mesh_counts *counts, gb_error *error)
     if (result == GB_OK)
         result = check_ply_elements(r, h, error);
     if (result == GB_OK && h->binary) {
-        result = walk_binary_ply(r, h, error);
+        result = walk_binary_ply(r, h, counts, error);
     } else if (result == GB_OK) {
         r->at = h->body;
         r->line = h->body_line;
-        result = walk_ascii_ply(r, h, error);
+        result = walk_ascii_ply(r, h, counts, error);
     }
     counts->vertices = h->vertices;
     counts->faces = h->faces;
@@ -788,6 +792,7 @@ static gb_result walk_ascii_off(reader *r, const off_header *h, gb_mesh_counts *
         gb_result result = next_off_token(r, &t, where, error);
         if (result == GB_OK)
             result = check_corners(r, t, where, &corners, error);
+        counts->short_faces += result == GB_OK && corners < 3;
         for (unsigned long long c = 0; result == GB_OK && c < corners; ++c) {
             result = next_off_token(r, &t, where, error);
             if (result == GB_OK)
@@ -845,6 +850,7 @@ static gb_result walk_binary_off(const reader *r, const off_header *h, gb_mesh_c
             return gb_fail(error, GB_ERROR_FORMAT, "%s: face %llu: %llu corners, more than the "
                            "rest of the file holds", r->path, (unsigned long long)f,
                            (unsigned long long)corners);
+        counts->short_faces += corners < 3;
         for (uint64_t c = 0; c < corners; ++c, at += 4) {
             uint64_t index = get_uint(at, 4, 0);
             if (index >= vertices)
@@ -940,6 +946,7 @@ gb_result gb_mesh_check(const void *bytes, size_t size, const char *path,
 {
     reader r = {bytes, bytes, (const unsigned char *)bytes + size, path, 1};
     counts->vertices = counts->faces = -1;
+    counts->short_faces = 0;
     if (gb_path_has_suffix(path, ".ply"))
         return check_ply(&r, counts, error);
     if (gb_path_has_suffix(path, ".off"))
@@ -952,6 +959,7 @@ gb_result gb_mesh_check(const void *bytes, size_t size, const char *path,
 gb_result gb_mesh_check_file(const char *path, gb_mesh_counts *counts, gb_error *error)
 {
     counts->vertices = counts->faces = -1;
+    counts->short_faces = 0;
     int fd = open(path, O_RDONLY | O_CLOEXEC);
     if (fd < 0)
         return gb_fail(error, GB_ERROR_IO, "%s: %s", path, strerror(errno));

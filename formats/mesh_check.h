@@ -50,6 +50,8 @@ extern "C" {
 
 typedef struct gb_mesh_counts {
     long long vertices, faces;  /* -1: not declared */
+    long long short_faces;      /* faces of fewer than 3 corners (lines, points),
+                                   which OpenMesh drops without a word */
 } gb_mesh_counts;
 
 /* bytes of a file named path (.ply, .off or .stl, ignoring case). */

@@ -144,20 +144,25 @@ gb_result read(const char *path, float **positions, uint32_t *vertex_count,
     if (!read)
         return gb_fail(error, GB_ERROR_PARSE, "%s: OpenMesh cannot read it: %s", path,
                        first_line(messages).c_str());
+    // faces that repeat a vertex (OpenMesh says so) or have fewer than 3
+    // corners (dropped without a word) are degenerate: counted, not errors
     std::size_t equal = count_lines_with(messages, "equal vertices");
+    std::size_t degenerate = equal + static_cast<std::size_t>(declared.short_faces);
     if (declared.vertices > (long long)mesh.n_vertices())
         return gb_fail(error, GB_ERROR_PARSE, "%s: OpenMesh read %zu of %lld vertices", path,
                        mesh.n_vertices(), declared.vertices);
-    long long missing = declared.faces >= 0 ? declared.faces - (long long)(mesh.n_faces() + equal)
-                                            : 0;
+    long long missing =
+        declared.faces >= 0 ? declared.faces - (long long)(mesh.n_faces() + degenerate) : 0;
+    // numbers, indices and the file's length were checked before: what is
+    // missing, OpenMesh did not add
     if (missing > 0)
-        return gb_fail(error, GB_ERROR_INVALID, "%s: %lld of %lld faces unread: a vertex index "
-                       "out of range (%zu vertices), a malformed number or a truncated file",
-                       path, missing, declared.faces, mesh.n_vertices());
+        return gb_fail(error, GB_ERROR_INVALID, "%s: %lld of %lld faces unread: OpenMesh could "
+                       "not add them (%s)", path, missing, declared.faces,
+                       messages.empty() ? "it says nothing" : first_line(messages).c_str());
     if (count_lines_with(messages, "invalid vertex index"))
         return gb_fail(error, GB_ERROR_INVALID, "%s: faces with a vertex index out of range "
                        "(%zu vertices)", path, mesh.n_vertices());
-    *skipped_faces = static_cast<uint32_t>(equal);
+    *skipped_faces = static_cast<uint32_t>(degenerate);
     return copy_out(mesh, path, positions, vertex_count, indices, triangle_count, error);
 }
 

@@ -5,8 +5,9 @@
  *
  * OpenMesh builds a half-edge mesh: a face that would make an edge
  * non-manifold is kept on its own copies of its vertices (so vertex_count
- * may exceed the file's), and a face that repeats a vertex is refused; those
- * are degenerate and counted in *skipped_faces. Before OpenMesh reads the
+ * may exceed the file's), and a face that repeats a vertex is refused; those,
+ * and faces of fewer than 3 corners (lines, points), are degenerate and
+ * counted in *skipped_faces. Before OpenMesh reads the
  * file, gb_mesh_check_file (mesh_check.h) walks its bytes as OpenMesh will
  * and refuses what OpenMesh would misread, crash or loop on, or allocate
  * for beyond what the file holds: a NaN, Inf or malformed number is named

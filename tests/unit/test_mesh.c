@@ -260,6 +260,10 @@ static void test_guards(void)
           "OFF face count beyond the file (OpenMesh loops over it)");
     CHECK(check_fails("a.off", TEXT("4OFF\n"), GB_ERROR_UNSUPPORTED, "4OFF and nOFF"),
           "4OFF refused");
+    CHECK(load_fails("lines.off", TEXT("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n1 2\n"),
+                     GB_ERROR_INVALID, "lines.off: no triangles (empty mesh, all degenerate)"),
+          "OFF of a line and a point: degenerate faces, counted (was: faces unread, an index "
+          "out of range)");
     gb_mesh_counts counts;
     gb_error error;
     CHECK(gb_mesh_check(TEXT("OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n4 0 1 2 0\n"), "q.off", &counts,
