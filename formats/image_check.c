@@ -255,11 +255,13 @@ gb_result gb_image_check(const void *data, size_t size, const char *path,
         file->format = "tiff";
     else if (starts_with(bytes, size, "BM", 2))
         file->format = "bmp";
+    else if (size >= 2 && bytes[0] == 'P' && bytes[1] >= '1' && bytes[1] <= '6')
+        file->format = "pnm";   /* netpbm PBM/PGM/PPM, ASCII or binary: what a shell script writes */
     else if (gb_path_has_suffix(path, ".tga"))
         file->format = "targa";
     else
         return gb_fail(error, GB_ERROR_UNSUPPORTED, "%s: not an image gibake reads (PNG, "
-                       "JPEG, OpenEXR, Radiance HDR, TIFF, BMP or a .tga file)", path);
+                       "JPEG, OpenEXR, Radiance HDR, TIFF, BMP, PPM or a .tga file)", path);
     return GB_OK;
 }
 
