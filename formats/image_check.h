@@ -8,9 +8,9 @@
  * longjmp); and a header may declare any size. So:
  *
  *  - the format is found from the file's first bytes, and only PNG, JPEG,
- *    OpenEXR, Radiance HDR, TIFF and BMP are accepted (TGA, which has no
- *    magic, when the name ends in .tga); the adapter then opens the file
- *    with that one reader;
+ *    OpenEXR, Radiance HDR, TIFF, BMP and netpbm (P1-P6) are accepted (TGA,
+ *    which has no magic, when the name ends in .tga); the adapter then opens
+ *    the file with that one reader;
  *  - a PNG's chunks are walked up to IEND: each must lie inside the file;
  *  - an OpenEXR header is walked before the OpenEXR library allocates what
  *    it declares: every attribute (and a preview's or a string vector's
@@ -37,7 +37,7 @@ extern "C" {
 
 typedef struct gb_image_file {
     const char *format;         /* OpenImageIO's name: "png", "jpeg", "openexr", "hdr",
-                                   "tiff", "bmp" or "targa" (static strings) */
+                                   "tiff", "bmp", "pnm" or "targa" (static strings) */
     unsigned long long size;    /* bytes */
 } gb_image_file;
 

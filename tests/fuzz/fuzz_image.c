@@ -9,10 +9,12 @@
  * OpenImageIO and its format libraries are not instrumented, so ASan sees
  * only what their calls into the allocator and libc show).
  *
- * The input is written as "image" in a private temporary folder, beside a
- * one-quad OBJ whose material has map_Kd image and a scene file naming the
- * OBJ and environment-map image. Seeds: tests/fuzz/corpus/fuzz_image (tiny
- * PNG, EXR, HDR, TGA, JPEG written through OpenImageIO).
+ * The input is written as "image" in a private temporary folder (made and
+ * removed for each input: libFuzzer ends with _Exit, no atexit handler
+ * runs), beside a one-quad OBJ whose material has map_Kd image and a scene
+ * file naming the OBJ and environment-map image. Seeds:
+ * tests/fuzz/corpus/fuzz_image (tiny PNG, EXR, HDR, TGA, JPEG, PPM and PGM
+ * written through OpenImageIO, an ASCII PPM as the CLI tests write one).
  */
 #include <math.h>
 #include <sanitizer/common_interface_defs.h>
@@ -27,47 +29,44 @@
 #include "image.h"
 #include "scene.h"
 
-static char folder[64];
 static const char *const names[] = {"image", "quad.obj", "quad.mtl", "textured.scene"};
 static volatile double sink;
 
-static void path_in_folder(const char *name, char *path, size_t size)
+static void path_in_folder(const char *folder, const char *name, char *path, size_t size)
 {
     snprintf(path, size, "%s/%s", folder, name);
 }
 
-static void remove_folder(void)
+static void remove_folder(const char *folder)
 {
     char path[128];
     for (int i = 0; i < 4; ++i) {
-        path_in_folder(names[i], path, sizeof path);
+        path_in_folder(folder, names[i], path, sizeof path);
         unlink(path);
     }
     rmdir(folder);
 }
 
-static void write_file(const char *name, const void *data, size_t size)
+static void write_file(const char *folder, const char *name, const void *data, size_t size)
 {
     char path[128];
-    path_in_folder(name, path, sizeof path);
+    path_in_folder(folder, name, path, sizeof path);
     FILE *file = fopen(path, "wb");
     if (!file || fwrite(data, 1, size, file) != size || fclose(file) != 0)
         abort();
 }
 
-static void make_folder(void)
+static void make_folder(char *folder)
 {
     static const char obj[] = "mtllib quad.mtl\nusemtl tex\nv 0 0 0\nv 1 0 0\nv 1 1 0\n"
                               "v 0 1 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nf 1/1 2/2 3/3 4/4\n";
     static const char mtl[] = "newmtl tex\nKd 1 1 1\nmap_Kd image\n";
     static const char scene[] = "gibake-scene 1\nmesh quad.obj\nenvironment-map image\n";
-    snprintf(folder, sizeof folder, "/tmp/fuzz_image.XXXXXX");
     if (!mkdtemp(folder))
         abort();
-    atexit(remove_folder);
-    write_file(names[1], obj, sizeof obj - 1);
-    write_file(names[2], mtl, sizeof mtl - 1);
-    write_file(names[3], scene, sizeof scene - 1);
+    write_file(folder, names[1], obj, sizeof obj - 1);
+    write_file(folder, names[2], mtl, sizeof mtl - 1);
+    write_file(folder, names[3], scene, sizeof scene - 1);
 }
 
 static void check_failure(const char *path, const gb_error *error)
@@ -106,10 +105,10 @@ static void as_imgdiff_input(const char *path)
 }
 
 /* A texture and an environment map of a scene loaded with its textures. */
-static void as_texture_and_environment(void)
+static void as_texture_and_environment(const char *folder)
 {
     char path[128];
-    path_in_folder(names[3], path, sizeof path);
+    path_in_folder(folder, names[3], path, sizeof path);
     gb_scene_options options = {.load_textures = 1};
     gb_scene scene;
     gb_error error;
@@ -135,16 +134,19 @@ static void as_texture_and_environment(void)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    if (!folder[0]) {
+    static int reports_redirected;
+    if (!reports_redirected) {
         /* The adapter points descriptor 2 elsewhere while libpng may print:
          * sanitizer reports go to a copy of the real stderr. */
         __sanitizer_set_report_fd((void *)(intptr_t)dup(2));
-        make_folder();
+        reports_redirected = 1;
     }
-    char path[128];
-    write_file(names[0], data, size);
-    path_in_folder(names[0], path, sizeof path);
+    char folder[] = "/tmp/fuzz_image.XXXXXX", path[128];
+    make_folder(folder);
+    write_file(folder, names[0], data, size);
+    path_in_folder(folder, names[0], path, sizeof path);
     as_imgdiff_input(path);
-    as_texture_and_environment();
+    as_texture_and_environment(folder);
+    remove_folder(folder);
     return 0;
 }

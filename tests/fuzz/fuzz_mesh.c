@@ -5,7 +5,9 @@
  * out of bounds (run under ASan/UBSan by `make fuzz`).
  *
  * OpenMesh chooses its reader by the file name, so the input is written to
- * a file of a private temporary folder named after what it looks like:
+ * a file of a private temporary folder (made and removed for each input:
+ * libFuzzer ends with _Exit, no atexit handler runs) named after what it
+ * looks like:
  * "fuzz.ply" when it starts with "ply", "fuzz.off" when its first word ends
  * with "OFF" (OFF, COFF, NOFF, STOFF, ...), else "fuzz.stl" (ASCII or
  * binary). Seeds: tests/fuzz/corpus/fuzz_mesh, ASCII and binary of each.
@@ -20,18 +22,6 @@
 
 #include "scene.h"
 
-static char folder[64];
-
-static void remove_folder(void)
-{
-    static const char *const names[] = {"fuzz.ply", "fuzz.off", "fuzz.stl"};
-    char path[128];
-    for (int i = 0; i < 3; ++i) {
-        snprintf(path, sizeof path, "%s/%s", folder, names[i]);
-        unlink(path);
-    }
-    rmdir(folder);
-}
 
 static const char *kind_of(const uint8_t *data, size_t size)
 {
@@ -62,13 +52,9 @@ static void check_scene(const gb_scene *scene)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    if (!folder[0]) {
-        snprintf(folder, sizeof folder, "/tmp/fuzz_mesh.XXXXXX");
-        if (!mkdtemp(folder))
-            abort();
-        atexit(remove_folder);
-    }
-    char path[128];
+    char folder[] = "/tmp/fuzz_mesh.XXXXXX", path[128];
+    if (!mkdtemp(folder))
+        abort();
     snprintf(path, sizeof path, "%s/fuzz.%s", folder, kind_of(data, size));
     FILE *file = fopen(path, "wb");
     if (!file || fwrite(data, 1, size, file) != size || fclose(file) != 0)
@@ -84,5 +70,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
         if (strncmp(error.message, path, n) != 0 || error.message[n] != ':')
             __builtin_trap(); /* every failure names the file */
     }
+    unlink(path);
+    rmdir(folder);
     return 0;
 }

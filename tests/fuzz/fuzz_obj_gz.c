@@ -6,9 +6,10 @@
  * compressed stream (truncated, concatenated or corrupt members, trailing
  * bytes, plain text).
  *
- * The input is written as fuzz.obj.gz in a private temporary folder, beside
- * a fuzz.mtl (so that "mtllib fuzz.mtl" reads one) and read as a tool reads
- * it. A damaged deflate stream is nearly always caught by the gzip trailer's
+ * The input is written as fuzz.obj.gz in a private temporary folder (made
+ * and removed for each input: libFuzzer ends with _Exit, no atexit handler
+ * runs), beside a fuzz.mtl (so that "mtllib fuzz.mtl" reads one), and read
+ * as a tool reads it. A damaged deflate stream is nearly always caught by the gzip trailer's
  * CRC-32: each input is read as it is, then, when it is one gzip member
  * whose deflate stream decodes, again with its trailer (CRC-32 and length)
  * recomputed, which lets the mutations reach the OBJ parser through zlib.
@@ -25,19 +26,17 @@
 #include "obj.h"
 #include "scene.h"
 
-static char folder[64];
-
-static void path_in_folder(const char *name, char *path, size_t size)
+static void path_in_folder(const char *folder, const char *name, char *path, size_t size)
 {
     snprintf(path, size, "%s/%s", folder, name);
 }
 
-static void remove_folder(void)
+static void remove_folder(const char *folder)
 {
     char path[128];
-    path_in_folder("fuzz.obj.gz", path, sizeof path);
+    path_in_folder(folder, "fuzz.obj.gz", path, sizeof path);
     unlink(path);
-    path_in_folder("fuzz.mtl", path, sizeof path);
+    path_in_folder(folder, "fuzz.mtl", path, sizeof path);
     unlink(path);
     rmdir(folder);
 }
@@ -49,15 +48,13 @@ static void write_file(const char *path, const void *data, size_t size)
         abort();
 }
 
-static void make_folder(void)
+static void make_folder(char *folder)
 {
     static const char mtl[] = "newmtl white\nKd 0.7 0.7 0.7\nnewmtl light\nKe 10 10 10\n";
     char path[128];
-    snprintf(folder, sizeof folder, "/tmp/fuzz_obj_gz.XXXXXX");
     if (!mkdtemp(folder))
         abort();
-    atexit(remove_folder);
-    path_in_folder("fuzz.mtl", path, sizeof path);
+    path_in_folder(folder, "fuzz.mtl", path, sizeof path);
     write_file(path, mtl, sizeof mtl - 1);
 }
 
@@ -147,17 +144,17 @@ static void read_obj(const char *path, const uint8_t *data, size_t size)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    if (!folder[0])
-        make_folder();
-    char path[128];
-    path_in_folder("fuzz.obj.gz", path, sizeof path);
+    char folder[] = "/tmp/fuzz_obj_gz.XXXXXX", path[128];
+    make_folder(folder);
+    path_in_folder(folder, "fuzz.obj.gz", path, sizeof path);
     read_obj(path, data, size);
     uint8_t *copy = malloc(size + 1);
-    if (!copy)
-        return 0;
-    memcpy(copy, data, size);
-    if (fix_trailer(copy, size) && memcmp(copy, data, size) != 0)
-        read_obj(path, copy, size);
-    free(copy);
+    if (copy) {
+        memcpy(copy, data, size);
+        if (fix_trailer(copy, size) && memcmp(copy, data, size) != 0)
+            read_obj(path, copy, size);
+        free(copy);
+    }
+    remove_folder(folder);
     return 0;
 }
