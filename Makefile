@@ -219,6 +219,7 @@ fuzz:
 	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
 	  $(SANITIZER_ENVIRONMENT) $(SANITIZED_BUILD)/fuzz/$$t -max_total_time=$(FUZZ_SECONDS) \
 	    -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build/fuzz-corpus/$$t- \
+	    $$(sed -n 's/^max_len = /-max_len=/p' tests/fuzz/$$t.options 2>/dev/null) \
 	    build/fuzz-corpus/$$t tests/fuzz/corpus/$$t 2>build/fuzz-corpus/$$t.log \
 	    || { tail -60 build/fuzz-corpus/$$t.log; exit 1; }; \
 	  grep -E '^stat::(number_of_executed_units|new_units_added)|^#[0-9]+ +DONE' build/fuzz-corpus/$$t.log; \
