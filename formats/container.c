@@ -7,12 +7,13 @@
  * any input gives either a valid container or an error message. The layout
  * leaves no byte unchecked: changing any single byte of a file is detected.
  *
- * The writer builds the file under a temporary name beside the destination,
- * syncs it and renames it into place, so the final path holds either the old
- * file or the complete new one, never a part.
+ * The writer hands the bytes to the one output writer (output_file.h): a
+ * regular destination holds either the old file or the complete new one,
+ * never a part; a device, FIFO or "-" gets the bytes straight through.
  */
 #include "container.h"
 #include "little_endian.h"
+#include "output_file.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -584,24 +585,6 @@ static gb_result build_head(const gb_container_writer *writer, const char *path,
     return GB_OK;
 }
 
-static gb_result write_all(int fd, const void *data, uint64_t size, const char *path,
-                           gb_error *error)
-{
-    const unsigned char *bytes = data;
-    while (size > 0) {
-        size_t chunk = size > (1u << 30) ? (1u << 30) : (size_t)size;
-        ssize_t written = write(fd, bytes, chunk);
-        if (written < 0 && errno == EINTR)
-            continue;
-        if (written <= 0)
-            return gb_fail(error, GB_ERROR_IO, "%s: cannot write: %s", path,
-                           written < 0 ? strerror(errno) : "no progress");
-        bytes += written;
-        size -= (uint64_t)written;
-    }
-    return GB_OK;
-}
-
 static gb_result check_interrupt(const gb_container_writer *writer, const char *path,
                                  gb_error *error)
 {
@@ -610,105 +593,42 @@ static gb_result check_interrupt(const gb_container_writer *writer, const char *
     return GB_OK;
 }
 
-/* Writes header, table, padding and payloads to fd, asking the interrupter
- * before each payload and once at the end, then syncs the file. */
-static gb_result write_contents(const gb_container_writer *writer, int fd,
+/* Sizes are written in chunks that fit a size_t on any host. */
+static gb_result write_bytes(gb_output_file *out, const void *data, uint64_t size,
+                             gb_error *error)
+{
+    const unsigned char *bytes = data;
+    gb_result result = GB_OK;
+    while (size > 0 && result == GB_OK) {
+        size_t chunk = size > (1u << 30) ? (1u << 30) : (size_t)size;
+        result = gb_output_file_write(out, bytes, chunk, error);
+        bytes += chunk;
+        size -= chunk;
+    }
+    return result;
+}
+
+/* Writes header, table, padding and payloads to out, asking the interrupter
+ * before each payload and once at the end. */
+static gb_result write_contents(const gb_container_writer *writer, gb_output_file *out,
                                 const unsigned char *head, size_t head_size,
                                 const char *path, gb_error *error)
 {
     static const unsigned char zeros[ALIGNMENT];
-    gb_result result = write_all(fd, head, head_size, path, error);
+    gb_result result = write_bytes(out, head, head_size, error);
     uint64_t position = head_size;
     for (uint32_t i = 0; i < writer->count && result == GB_OK; ++i) {
         uint64_t offset = gb_get_u64(head + HEADER_SIZE + (size_t)i * ENTRY_SIZE + AT_OFFSET);
         result = check_interrupt(writer, path, error);
         if (result == GB_OK)
-            result = write_all(fd, zeros, offset - position, path, error);
+            result = write_bytes(out, zeros, offset - position, error);
         if (result == GB_OK)
-            result = write_all(fd, writer->sections[i].data, writer->sections[i].size,
-                               path, error);
+            result = write_bytes(out, writer->sections[i].data, writer->sections[i].size,
+                                 error);
         position = offset + writer->sections[i].size;
     }
     if (result == GB_OK)
         result = check_interrupt(writer, path, error);
-    if (result == GB_OK && fsync(fd) != 0)
-        result = gb_fail(error, GB_ERROR_IO, "%s: cannot sync: %s", path, strerror(errno));
-    return result;
-}
-
-/* mkstemp creates files readable by their owner only; give the final file
- * the mode any new file gets (0666 less the umask). The umask is read from
- * /proc, since umask() would change it, for a moment, for every thread. */
-static mode_t new_file_mode(void)
-{
-    mode_t mask = 022;
-    FILE *status = fopen("/proc/self/status", "r");
-    if (status) {
-        char line[256];
-        unsigned value;
-        while (fgets(line, sizeof line, status))
-            if (sscanf(line, "Umask: %o", &value) == 1) {
-                mask = (mode_t)value;
-                break;
-            }
-        fclose(status);
-    }
-    return 0666 & ~mask;
-}
-
-/* Creates "<path>.tmp.XXXXXX", writes the container into it and closes it;
- * on failure removes it. *temporary is malloc'ed, for the caller to free. */
-static gb_result write_temporary(const gb_container_writer *writer, const char *path,
-                                 const unsigned char *head, size_t head_size,
-                                 char **temporary, gb_error *error)
-{
-    static const char suffix[] = ".tmp.XXXXXX";
-    size_t length = strlen(path);
-    char *name = malloc(length + sizeof suffix);
-    if (!name)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    memcpy(name, path, length);
-    memcpy(name + length, suffix, sizeof suffix);
-    int fd = mkostemp(name, O_CLOEXEC);
-    if (fd < 0) {
-        gb_result result = gb_fail(error, GB_ERROR_IO,
-                                   "%s: cannot create a temporary file beside it: %s", path,
-                                   strerror(errno));
-        free(name);
-        return result;
-    }
-    gb_result result = GB_OK;
-    if (fchmod(fd, new_file_mode()) != 0)
-        result = gb_fail(error, GB_ERROR_IO, "%s: cannot set mode: %s", path, strerror(errno));
-    if (result == GB_OK)
-        result = write_contents(writer, fd, head, head_size, path, error);
-    if (close(fd) != 0 && result == GB_OK)
-        result = gb_fail(error, GB_ERROR_IO, "%s: cannot close: %s", path, strerror(errno));
-    if (result != GB_OK) {
-        unlink(name);
-        free(name);
-        return result;
-    }
-    *temporary = name;
-    return GB_OK;
-}
-
-/* Makes the rename durable. */
-static gb_result sync_folder(const char *path, gb_error *error)
-{
-    const char *slash = strrchr(path, '/');
-    char *folder = slash ? strndup(path, slash == path ? 1 : (size_t)(slash - path))
-                         : strdup(".");
-    if (!folder)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    gb_result result = GB_OK;
-    int fd = open(folder, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0 || (fsync(fd) != 0 && errno != EINVAL))
-        result = gb_fail(error, GB_ERROR_IO, "%s: written, but cannot sync its folder: %s",
-                         path, strerror(errno));
-    if (fd >= 0)
-        close(fd);
-    free(folder);
     return result;
 }
 
@@ -725,6 +645,9 @@ static gb_result check_writer(const gb_container_writer *writer, const char *pat
     return GB_OK;
 }
 
+/* The file goes through the one output writer (output_file.h): a temporary
+ * beside path, fsync, rename, fsync of the folder; straight through to a
+ * device, FIFO or "-". */
 gb_result gb_container_commit(gb_container_writer *writer, const char *path,
                               gb_error *error)
 {
@@ -736,20 +659,16 @@ gb_result gb_container_commit(gb_container_writer *writer, const char *path,
     result = build_head(writer, path, &head, &head_size, error);
     if (result != GB_OK)
         return result;
-    char *temporary = NULL;
-    result = write_temporary(writer, path, head, head_size, &temporary, error);
+    gb_output_file *out = NULL;
+    result = gb_output_file_open(path, GB_OUTPUT_FILE_STREAM, &out, error);
+    if (result == GB_OK)
+        result = write_contents(writer, out, head, head_size, path, error);
     free(head);
-    if (result != GB_OK)
+    if (result != GB_OK) {
+        gb_output_file_abort(out);
         return result;
-    if (rename(temporary, path) != 0) {
-        result = gb_fail(error, GB_ERROR_IO, "%s: cannot rename %s into place: %s", path,
-                         temporary, strerror(errno));
-        unlink(temporary);
     }
-    free(temporary);
-    if (result != GB_OK)
-        return result;
-    return sync_folder(path, error);
+    return gb_output_file_commit(out, error);
 }
 
 void gb_container_writer_destroy(gb_container_writer *writer)

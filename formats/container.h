@@ -8,11 +8,14 @@
  *   gb_container_writer *w = gb_container_writer_create("SKEL", 1);
  *   gb_container_add(w, "nodes", nodes, node_bytes);   // w keeps the pointer:
  *                                                      // data must live until commit
- *   gb_container_commit(w, "out.skel", &error);        // temp file, fsync, rename
+ *   gb_container_commit(w, "out.skel", &error);        // through output_file.h
  *   gb_container_writer_destroy(w);
- * A failed commit leaves nothing at the final path (and an existing file there
- * untouched). A process killed during a commit may leave a stray
- * "<path>.tmp.XXXXXX" beside it, never a partial file at the path.
+ * The file is written by the one output writer (formats/output_file.h): a
+ * failed commit leaves nothing at the final path (and an existing file there
+ * untouched); SIGINT or SIGTERM during a commit removes its temporary; a
+ * process killed by SIGKILL may leave a stray "<path>.tmp.XXXXXX" beside it,
+ * never a partial file at the path. A device, FIFO or "-" (standard output)
+ * is written straight through; a symlink is followed.
  *
  * Reading: gb_container_read maps the whole file and checks the magic, the
  * kind, every size, offset and checksum before returning; sections are then
@@ -69,11 +72,12 @@ gb_result gb_container_add(gb_container_writer *writer, const char *name,
  * callback may also report progress. NULL (the default) never interrupts. */
 void gb_container_writer_set_interrupt(gb_container_writer *writer,
                                        int (*interrupt)(void *user), void *user);
-/* Writes "<path>.tmp.XXXXXX" in path's folder, fsyncs it, renames it to path
- * and fsyncs the folder. On failure the temporary is removed, path is as it
- * was, and the message is "path: what is wrong" (one exception: when only the
- * last step, the folder's fsync, fails, the complete file is in place and the
- * message says "written, but cannot sync its folder"). The writer may commit
+/* Writes the container to path with gb_output_file (output_file.h):
+ * "<path>.tmp.XXXXXX" in path's folder, fsynced, renamed to path, the folder
+ * fsynced. On failure the temporary is removed, path is as it was, and the
+ * message is "path: what is wrong" (one exception: when only the last step,
+ * the folder's fsync, fails, the complete file is in place and the message
+ * says "written, but cannot sync its folder"). The writer may commit
  * again. */
 gb_result gb_container_commit(gb_container_writer *writer, const char *path,
                               gb_error *error);

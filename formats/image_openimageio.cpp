@@ -5,6 +5,7 @@
 extern "C" {
 #include "image.h"
 #include "image_check.h"
+#include "output_file.h"
 }
 
 #include <cerrno>
@@ -19,6 +20,7 @@ extern "C" {
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 namespace {
@@ -174,12 +176,26 @@ std::vector<std::uint8_t> to_srgb8(const gb_image *image)
     return bytes;
 }
 
-gb_result write_to(const char *temporary, const char *path, const gb_image *image,
-                   gb_error *error)
+// The OpenImageIO writer that path's extension names.
+gb_result create_output(const char *path, std::unique_ptr<OIIO::ImageOutput> *output,
+                        gb_error *error)
 {
-    auto output = OIIO::ImageOutput::create(path);
-    if (!output)
-        return gb_fail(error, GB_ERROR_UNSUPPORTED, "%s: %s", path, last_error("").c_str());
+    *output = OIIO::ImageOutput::create(path);
+    if (!*output) {
+        OIIO::geterror();  // taken: the message below says it
+        return gb_fail(error, GB_ERROR_UNSUPPORTED,
+                       "%s: unknown image format (the extension names it: .exr, .png, "
+                       ".jpg, .tif, .hdr, ...)",
+                       path);
+    }
+    return GB_OK;
+}
+
+// Encodes image with output into name (the output file, or the IO proxy's
+// memory when one is set).
+gb_result encode(OIIO::ImageOutput *output, const char *name, const char *path,
+                 const gb_image *image, gb_error *error)
+{
     bool as_float = writes_float(output->format_name());
     OIIO::ImageSpec spec(image->width, image->height, image->channels,
                          as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
@@ -189,7 +205,7 @@ gb_result write_to(const char *temporary, const char *path, const gb_image *imag
     }
     spec.attribute("oiio:ColorSpace", as_float ? "Linear" : "sRGB");
     spec.attribute("DateTime", "1970:01:01 00:00:00");  // same pixels, same bytes
-    bool written = output->open(temporary, spec);
+    bool written = output->open(name, spec);
     if (written && as_float)
         written = output->write_image(OIIO::TypeDesc::FLOAT, image->pixels);
     else if (written)
@@ -201,21 +217,40 @@ gb_result write_to(const char *temporary, const char *path, const gb_image *imag
     return GB_OK;
 }
 
+// Through the one output writer (output_file.h), opened before encoding so
+// that a bad path fails first. Formats with IO-proxy support (EXR, PNG, ...)
+// are encoded into memory and their bytes written by the output writer
+// (straight through to a device or FIFO); the others are written by
+// OpenImageIO into the output writer's temporary.
 gb_result write_image(const char *path, const gb_image *image, gb_error *error)
 {
     if (!image->pixels || image->width <= 0 || image->height <= 0 || image->channels <= 0)
         return gb_fail(error, GB_ERROR_ARGUMENT, "%s: no pixels to write", path);
-    std::string temporary = std::string(path) + ".tmp.XXXXXX";
-    int descriptor = mkstemp(&temporary[0]);
-    if (descriptor < 0)
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", temporary.c_str(), std::strerror(errno));
-    close(descriptor);
-    gb_result result = write_to(temporary.c_str(), path, image, error);
-    if (result == GB_OK && std::rename(temporary.c_str(), path) != 0)
-        result = gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
+    std::unique_ptr<OIIO::ImageOutput> output;
+    gb_result result = create_output(path, &output, error);
     if (result != GB_OK)
-        unlink(temporary.c_str());
-    return result;
+        return result;
+    OIIO::Filesystem::IOVecOutput memory;
+    bool in_memory = output->supports("ioproxy") && output->set_ioproxy(&memory);
+    gb_output_file *out = nullptr;
+    result = gb_output_file_open(path, in_memory ? GB_OUTPUT_FILE_STREAM : GB_OUTPUT_FILE_BY_NAME,
+                                 &out, error);
+    if (result != GB_OK)
+        return result;
+    try {
+        result = encode(output.get(), in_memory ? path : gb_output_file_name(out), path, image,
+                        error);
+        if (result == GB_OK && in_memory)
+            result = gb_output_file_write(out, memory.buffer().data(), memory.buffer().size(),
+                                          error);
+    } catch (const std::exception &e) {
+        result = gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+    }
+    if (result != GB_OK) {
+        gb_output_file_abort(out);
+        return result;
+    }
+    return gb_output_file_commit(out, error);
 }
 
 } // namespace
@@ -254,6 +289,17 @@ extern "C" gb_result gb_image_write(const char *path, const gb_image *image, gb_
 {
     try {
         return write_image(path, image, error);
+    } catch (const std::exception &e) {
+        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+    }
+}
+
+extern "C" gb_result gb_image_check_output(const char *path, gb_error *error)
+{
+    try {
+        std::unique_ptr<OIIO::ImageOutput> output;
+        gb_result result = create_output(path, &output, error);
+        return result == GB_OK ? gb_output_file_check(path, error) : result;
     } catch (const std::exception &e) {
         return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
     }

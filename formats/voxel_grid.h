@@ -38,7 +38,8 @@ gb_result gb_voxel_grid_allocate(gb_voxel_grid *grid, const int32_t size[3], gb_
 void gb_voxel_grid_free(gb_voxel_grid *grid);
 
 /* Writes grids "surface", "empty" and "distance" with the metadata of
- * FORMATS.md, through a temporary file and a rename. */
+ * FORMATS.md, through the one output writer (output_file.h: a temporary and
+ * a rename, or straight to a device, FIFO or "-"). */
 gb_result gb_voxel_grid_write(const char *path, const gb_voxel_grid *grid, gb_error *error);
 gb_result gb_voxel_grid_read(const char *path, gb_voxel_grid *grid, gb_error *error);
 
@@ -59,5 +60,12 @@ gb_result gb_voxel_grid_write_int32(const char *path, const gb_voxel_grid *frame
 gb_result gb_voxel_grid_read_int32(const char *path, const char *name,
                                    gb_voxel_grid *frame, int32_t **values,
                                    gb_error *error);
+
+/* The checksum that the voxel file held in bytes (size bytes, the whole
+ * file) should carry at bytes 21..56 (FORMATS.md, "Voxel file",
+ * "Checksum"), as 36 characters and a NUL in uuid; for tests and fuzz
+ * targets that mend a mutated file. Returns 0 (and writes nothing) when
+ * size is below 57. */
+int gb_voxel_file_checksum(const void *bytes, size_t size, char uuid[37]);
 
 #endif

@@ -9,6 +9,7 @@
 // which is what the grids' linear transform says.
 
 extern "C" {
+#include "output_file.h"
 #include "voxel_check.h"
 #include "voxel_grid.h"
 }
@@ -32,6 +33,7 @@ extern "C" {
 #include <cstdlib>
 #include <cstring>
 #include <exception>
+#include <fstream>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -45,7 +47,8 @@ namespace {
 
 const char *const VOXELIZE_CREATOR = "gibake-voxelize 0.1";
 const char *const INT32_CREATOR = "gibake 0.1";
-const int32_t FORMAT_VERSION = 1;
+// 2: the checksum covers the whole header and the length (1: bytes 57.. only).
+const int32_t FORMAT_VERSION = 2;
 const int32_t MAX_SIDE = 1 << 20;
 
 void initialize_openvdb()
@@ -391,40 +394,6 @@ bool for_each_active_voxel(const GridType &grid, const gb_voxel_grid *frame, Vis
 
 // ------------------------------------------------------- files
 
-// The temporary name beside path: "path.tmp.XXXXXX", created empty.
-gb_result create_temporary(const char *path, std::string *temporary, gb_error *error)
-{
-    std::string name = std::string(path) + ".tmp.XXXXXX";
-    int fd = mkstemp(&name[0]);
-    if (fd < 0)
-        return gb_fail(error, GB_ERROR_IO, "%s: cannot create a temporary file: %s", path,
-                       std::strerror(errno));
-    mode_t mask = umask(0);
-    umask(mask);
-    if (fchmod(fd, 0666 & ~mask) != 0) {
-        int saved = errno;
-        close(fd);
-        unlink(name.c_str());
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", name.c_str(), std::strerror(saved));
-    }
-    close(fd);
-    *temporary = name;
-    return GB_OK;
-}
-
-gb_result sync_file(const std::string &name, gb_error *error)
-{
-    int fd = open(name.c_str(), O_RDONLY);
-    if (fd < 0 || fsync(fd) != 0) {
-        int saved = errno;
-        if (fd >= 0)
-            close(fd);
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", name.c_str(), std::strerror(saved));
-    }
-    close(fd);
-    return GB_OK;
-}
-
 // Blosc (fast, and OpenVDB's own default) when this OpenVDB has it, else zip.
 uint32_t compression()
 {
@@ -433,121 +402,263 @@ uint32_t compression()
                                                           : openvdb::io::COMPRESS_ZIP);
 }
 
-// OpenVDB writes a random UUID in the file header (36 ASCII characters after
-// the magic, the file and library versions and the grid-offsets flag).
-// gibake replaces it with one made from a hash of the rest of the file: the
-// same grids then give the same bytes, and the UUID is the checksum that
-// readers verify before OpenVDB parses anything.
-const long UUID_OFFSET = 8 + 4 + 4 + 4 + 1;
-const int UUID_LENGTH = 36;
+// OpenVDB writes a random UUID in the file header: 36 ASCII characters at
+// bytes 21..56, after the magic (8 bytes), the file format version and the
+// library's major and minor versions (u32 each) and the grid-offsets flag (1
+// byte). gibake writes there instead a UUID made from every other byte of the
+// file and its length (FORMATS.md, "Voxel file", "Checksum"): the same grids
+// then give the same bytes, and the UUID is the checksum that readers verify
+// before OpenVDB parses anything.
+const size_t UUID_OFFSET = 8 + 4 + 4 + 4 + 1;
+const size_t UUID_LENGTH = 36;
+const size_t HEADER_BYTES = UUID_OFFSET + UUID_LENGTH;
+const size_t VERSION_CHARACTER = 14;   // the UUID's version digit
+const size_t READ_CHUNK = 1 << 20;
 
-bool looks_like_uuid(const char *text)
+bool looks_like_uuid(const unsigned char *text)
 {
-    for (int i = 0; i < UUID_LENGTH; ++i) {
+    for (size_t i = 0; i < UUID_LENGTH; ++i) {
         bool dash = i == 8 || i == 13 || i == 18 || i == 23;
-        if (dash ? text[i] != '-' : !std::isxdigit((unsigned char)text[i]))
+        if (dash ? text[i] != '-' : !std::isxdigit(text[i]))
             return false;
     }
     return true;
 }
 
-// The UUID (version 4 layout) made of two 64-bit lanes of a multiply-xorshift
-// hash over the rest of file, read from its current position.
-std::string content_uuid(FILE *file)
-{
-    uint64_t lane[2] = {0x9e3779b97f4a7c15ull, 0xc2b2ae3d27d4eb4full};
-    std::vector<unsigned char> buffer(1 << 20);
-    size_t got;
-    while ((got = std::fread(buffer.data(), 1, buffer.size(), file)) > 0)
-        for (size_t i = 0; i < got; i += 8) {
+// Two 64-bit lanes; each 8-byte little-endian word w of the bytes added (the
+// last one zero-padded) goes in as lane = (lane ^ w) * m, lane ^= lane >> 29.
+class ContentHash {
+public:
+    void add(const unsigned char *bytes, size_t size)
+    {
+        size_t i = 0;
+        for (; i < size && count_ != 0; ++i)
+            take(bytes[i]);
+        for (; i + 8 <= size; i += 8) {
             uint64_t word = 0;
-            std::memcpy(&word, &buffer[i], std::min<size_t>(8, got - i));
-            for (int l = 0; l < 2; ++l) {
-                lane[l] = (lane[l] ^ word) * (l ? 0xff51afd7ed558ccdull : 0xc4ceb9fe1a85ec53ull);
-                lane[l] ^= lane[l] >> 29;
-            }
+            for (int b = 7; b >= 0; --b)
+                word = word << 8 | bytes[i + b];
+            mix(word);
         }
-    char uuid[UUID_LENGTH + 1];
-    std::snprintf(uuid, sizeof uuid, "%08x-%04x-%04x-%04x-%012llx", (unsigned)(lane[0] >> 32),
-                  (unsigned)(lane[0] >> 16 & 0xffff), (unsigned)(0x4000 | (lane[0] & 0x0fff)),
-                  (unsigned)(0x8000 | (lane[1] >> 48 & 0x3fff)),
-                  (unsigned long long)(lane[1] & 0xffffffffffffull));
-    return uuid;
-}
-
-// Reads the header of file; false if it has no UUID where OpenVDB puts it.
-bool read_header(FILE *file, char header[UUID_OFFSET + UUID_LENGTH])
-{
-    return std::fread(header, 1, UUID_OFFSET + UUID_LENGTH, file)
-               == (size_t)(UUID_OFFSET + UUID_LENGTH)
-           && looks_like_uuid(header + UUID_OFFSET);
-}
-
-bool write_content_uuid(const std::string &name)
-{
-    FILE *file = std::fopen(name.c_str(), "r+b");
-    if (!file)
-        return false;
-    char header[UUID_OFFSET + UUID_LENGTH];
-    bool done = false;
-    if (read_header(file, header)) {
-        std::string uuid = content_uuid(file);
-        done = std::fseek(file, UUID_OFFSET, SEEK_SET) == 0
-               && std::fwrite(uuid.data(), 1, UUID_LENGTH, file) == (size_t)UUID_LENGTH;
+        for (; i < size; ++i)
+            take(bytes[i]);
     }
-    return (std::fclose(file) == 0) && done;
+
+    // Format 2 (UUID version 8): the file's length in bytes is one more word.
+    // Format 1 (version 4, gibake before format 2) had no length word.
+    std::string uuid(int format, uint64_t length)
+    {
+        if (count_ != 0)
+            mix(pending_);
+        pending_ = 0;
+        count_ = 0;
+        if (format >= 2)
+            mix(length);
+        unsigned version = format >= 2 ? 0x8000 : 0x4000;
+        char text[UUID_LENGTH + 1];
+        std::snprintf(text, sizeof text, "%08x-%04x-%04x-%04x-%012llx",
+                      (unsigned)(lane_[0] >> 32), (unsigned)(lane_[0] >> 16 & 0xffff),
+                      (unsigned)(version | (lane_[0] & 0x0fff)),
+                      (unsigned)(0x8000 | (lane_[1] >> 48 & 0x3fff)),
+                      (unsigned long long)(lane_[1] & 0xffffffffffffull));
+        return text;
+    }
+
+private:
+    void take(unsigned char byte)
+    {
+        pending_ |= (uint64_t)byte << (8 * count_);
+        if (++count_ == 8) {
+            mix(pending_);
+            pending_ = 0;
+            count_ = 0;
+        }
+    }
+
+    void mix(uint64_t word)
+    {
+        static const uint64_t multiplier[2] = {0xc4ceb9fe1a85ec53ull, 0xff51afd7ed558ccdull};
+        for (int l = 0; l < 2; ++l) {
+            lane_[l] = (lane_[l] ^ word) * multiplier[l];
+            lane_[l] ^= lane_[l] >> 29;
+        }
+    }
+
+    uint64_t lane_[2] = {0x9e3779b97f4a7c15ull, 0xc2b2ae3d27d4eb4full};
+    uint64_t pending_ = 0;
+    int count_ = 0;
+};
+
+// The checksums of the file open as fd (header already in header): format 2
+// over bytes 0..20, 57.. and the length; format 1 over bytes 57.. only.
+// False on a read error (errno set).
+bool content_uuids(int fd, const unsigned char *header, std::string *format2,
+                   std::string *format1)
+{
+    ContentHash current, older;
+    current.add(header, UUID_OFFSET);
+    std::vector<unsigned char> buffer(READ_CHUNK);
+    uint64_t length = HEADER_BYTES;
+    for (;;) {
+        ssize_t got = pread(fd, buffer.data(), buffer.size(), (off_t)length);
+        if (got < 0 && errno == EINTR)
+            continue;
+        if (got < 0)
+            return false;
+        if (got == 0)
+            break;
+        current.add(buffer.data(), (size_t)got);
+        if (format1)
+            older.add(buffer.data(), (size_t)got);
+        length += (uint64_t)got;
+    }
+    *format2 = current.uuid(2, length);
+    if (format1)
+        *format1 = older.uuid(1, length);
+    return true;
+}
+
+bool read_header(int fd, unsigned char header[HEADER_BYTES], size_t *got)
+{
+    *got = 0;
+    while (*got < HEADER_BYTES) {
+        ssize_t n = pread(fd, header + *got, HEADER_BYTES - *got, (off_t)*got);
+        if (n < 0 && errno == EINTR)
+            continue;
+        if (n < 0)
+            return false;
+        if (n == 0)
+            break;
+        *got += (size_t)n;
+    }
+    return true;
+}
+
+// Rewrites the UUID of the file name (just written for path) as its checksum.
+gb_result write_content_uuid(const char *path, const char *name, gb_error *error)
+{
+    int fd = open(name, O_RDWR | O_CLOEXEC);
+    if (fd < 0)
+        return gb_fail(error, GB_ERROR_IO, "%s: cannot reopen %s: %s", path, name,
+                       std::strerror(errno));
+    unsigned char header[HEADER_BYTES];
+    size_t got = 0;
+    std::string uuid;
+    gb_result result = GB_OK;
+    if (!read_header(fd, header, &got) || !content_uuids(fd, header, &uuid, nullptr))
+        result = gb_fail(error, GB_ERROR_IO, "%s: cannot read back: %s", path,
+                         std::strerror(errno));
+    else if (got != HEADER_BYTES || !looks_like_uuid(header + UUID_OFFSET))
+        result = gb_fail(error, GB_ERROR_IO, "%s: OpenVDB wrote no UUID at bytes 21..56", path);
+    else if (pwrite(fd, uuid.data(), UUID_LENGTH, (off_t)UUID_OFFSET) != (ssize_t)UUID_LENGTH)
+        result = gb_fail(error, GB_ERROR_IO, "%s: cannot write the checksum: %s", path,
+                         std::strerror(errno));
+    if (close(fd) != 0 && result == GB_OK)
+        result = gb_fail(error, GB_ERROR_IO, "%s: cannot write: %s", path, std::strerror(errno));
+    return result;
 }
 
 // Checks the magic, then the content UUID, of path.
 gb_result check_file(const char *path, gb_error *error)
 {
-    FILE *file = std::fopen(path, "rb");
-    if (!file)
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
         return gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
-    char header[UUID_OFFSET + UUID_LENGTH];
-    size_t got = std::fread(header, 1, sizeof header, file);
+    unsigned char header[HEADER_BYTES];
+    size_t got = 0;
     // OPENVDB_MAGIC as a little-endian int64.
-    const char magic[8] = {0x20, 0x42, 0x44, 0x56, 0, 0, 0, 0};
+    const unsigned char magic[8] = {0x20, 0x42, 0x44, 0x56, 0, 0, 0, 0};
+    std::string uuid, format1;
     gb_result result = GB_OK;
-    if (got < sizeof magic || std::memcmp(header, magic, sizeof magic) != 0)
+    const char *damaged = "%s: checksum does not match: the file is damaged or was not "
+                          "written by gibake";
+    if (!read_header(fd, header, &got))
+        result = gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
+    else if (got < sizeof magic || std::memcmp(header, magic, sizeof magic) != 0)
         result = gb_fail(error, GB_ERROR_FORMAT, "%s: not an OpenVDB file", path);
-    else if (got != sizeof header || !looks_like_uuid(header + UUID_OFFSET)
-             || content_uuid(file) != std::string(header + UUID_OFFSET, UUID_LENGTH))
-        result = gb_fail(error, GB_ERROR_CHECKSUM,
-                         "%s: checksum does not match: the file is damaged or was not "
-                         "written by gibake",
+    else if (got != HEADER_BYTES || !looks_like_uuid(header + UUID_OFFSET))
+        result = gb_fail(error, GB_ERROR_CHECKSUM, damaged, path);
+    else if (!content_uuids(fd, header, &uuid, &format1))
+        result = gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
+    else if (uuid.compare(0, UUID_LENGTH, (const char *)header + UUID_OFFSET, UUID_LENGTH) == 0)
+        result = GB_OK;
+    else if (header[UUID_OFFSET + VERSION_CHARACTER] == '4'
+             && format1.compare(0, UUID_LENGTH, (const char *)header + UUID_OFFSET,
+                                UUID_LENGTH) == 0)
+        result = gb_fail(error, GB_ERROR_UNSUPPORTED,
+                         "%s: written by an older gibake (voxel file format 1, whose "
+                         "checksum left out the header and the length): make it again "
+                         "(voxelize, or thin for a .grid.vdb)",
                          path);
-    std::fclose(file);
+    else
+        result = gb_fail(error, GB_ERROR_CHECKSUM, damaged, path);
+    close(fd);
     return result;
 }
 
-// Writes grids to path through a temporary file and a rename: on failure
-// nothing is left at path (or beside it) and an older file there is kept.
-gb_result write_grids(const char *path, const openvdb::GridPtrVec &grids, gb_error *error)
+// io::File::write never looks at its std::ofstream after writing, so a full
+// disk gave a truncated file and exit 0: the grids go through io::Archive's
+// own writer into a stream that is checked here.
+class CheckedArchive : public openvdb::io::Archive {
+public:
+    void write_to(std::ostream &stream, const openvdb::GridPtrVec &grids) const
+    {
+        openvdb::io::Archive::write(stream, grids, /*seekable=*/true);
+    }
+};
+
+gb_result write_archive(const char *path, const char *name, const openvdb::GridPtrVec &grids,
+                        gb_error *error)
 {
-    std::string temporary;
-    gb_result result = create_temporary(path, &temporary, error);
+    std::ofstream stream(name, std::ios_base::out | std::ios_base::binary
+                                   | std::ios_base::trunc);
+    if (!stream)
+        return gb_fail(error, GB_ERROR_IO, "%s: cannot open %s: %s", path, name,
+                       std::strerror(errno));
+    CheckedArchive archive;
+    archive.setCompression(compression());
+    errno = 0;
+    archive.write_to(stream, grids);
+    stream.close();
+    // the failed write(2) left its errno (ENOSPC, EFBIG, ...): the stream makes
+    // no other system call once it has failed
+    if (stream.fail())
+        return gb_fail(error, GB_ERROR_IO, "%s: cannot write: %s", path,
+                       errno ? std::strerror(errno) : "output stream error");
+    return GB_OK;
+}
+
+// Removes the output's temporary unless committed, exceptions included.
+struct OutputGuard {
+    gb_output_file *file = nullptr;
+    ~OutputGuard() { gb_output_file_abort(file); }
+    gb_result commit(gb_error *error)
+    {
+        gb_output_file *committed = file;
+        file = nullptr;
+        return gb_output_file_commit(committed, error);
+    }
+};
+
+// Opens path through the one output writer (output_file.h), then builds the
+// grids (make_grids()), writes them and the checksum into its file, and
+// commits: on failure nothing is left beside path and an older file there is
+// kept; a device or FIFO gets the bytes copied from a temporary in $TMPDIR.
+template <typename MakeGrids>
+gb_result write_grids(const char *path, MakeGrids make_grids, gb_error *error)
+{
+    OutputGuard out;
+    gb_result result = gb_output_file_open(path, GB_OUTPUT_FILE_BY_NAME, &out.file, error);
     if (result != GB_OK)
         return result;
-    try {
-        openvdb::io::File file(temporary);
-        file.setCompression(compression());
-        file.write(grids);
-        file.close();
-    } catch (const std::exception &e) {
-        unlink(temporary.c_str());
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+    const char *name = gb_output_file_name(out.file);
+    {
+        openvdb::GridPtrVec grids = make_grids();
+        result = write_archive(path, name, grids, error);
     }
-    if (!write_content_uuid(temporary)) {
-        unlink(temporary.c_str());
-        return gb_fail(error, GB_ERROR_IO, "%s: cannot rewrite the OpenVDB header", path);
-    }
-    result = sync_file(temporary, error);
-    if (result == GB_OK && std::rename(temporary.c_str(), path) != 0)
-        result = gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
-    if (result != GB_OK)
-        unlink(temporary.c_str());
-    return result;
+    if (result == GB_OK)
+        result = write_content_uuid(path, name, error);
+    return result == GB_OK ? out.commit(error) : result;
 }
 
 // An open OpenVDB file, from which grids are read by name and type.
@@ -770,14 +881,15 @@ gb_result write_voxel_grids(const char *path, const gb_voxel_grid *grid, bool re
                        path ? path : "(null)");
     try {
         initialize_openvdb();
-        VoxelGrids built = build_voxel_grids(grid, release);
-        attach_frame(*built.surface, grid, "surface", VOXELIZE_CREATOR);
-        attach_frame(*built.empty, grid, "empty", VOXELIZE_CREATOR);
-        attach_frame(*built.distance, grid, "distance", VOXELIZE_CREATOR);
-        built.distance->setGridClass(openvdb::GRID_UNKNOWN);
-        built.distance->setSaveFloatAsHalf(false);
-        openvdb::GridPtrVec grids{built.surface, built.empty, built.distance};
-        return write_grids(path, grids, error);
+        return write_grids(path, [&] {
+            VoxelGrids built = build_voxel_grids(grid, release);
+            attach_frame(*built.surface, grid, "surface", VOXELIZE_CREATOR);
+            attach_frame(*built.empty, grid, "empty", VOXELIZE_CREATOR);
+            attach_frame(*built.distance, grid, "distance", VOXELIZE_CREATOR);
+            built.distance->setGridClass(openvdb::GRID_UNKNOWN);
+            built.distance->setSaveFloatAsHalf(false);
+            return openvdb::GridPtrVec{built.surface, built.empty, built.distance};
+        }, error);
     } catch (const std::bad_alloc &) {
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     } catch (const std::exception &e) {
@@ -828,12 +940,13 @@ extern "C" gb_result gb_voxel_grid_write_int32(const char *path, const gb_voxel_
                        path ? path : "(null)");
     try {
         initialize_openvdb();
-        auto grid = dense_to_grid<openvdb::Int32Grid>(
-            frame, -1, [=](size_t index) { return values[index] >= 0; },
-            [=](size_t index) { return values[index]; });
-        attach_frame(*grid, frame, name, INT32_CREATOR);
-        openvdb::GridPtrVec grids{grid};
-        return write_grids(path, grids, error);
+        return write_grids(path, [&] {
+            auto grid = dense_to_grid<openvdb::Int32Grid>(
+                frame, -1, [=](size_t index) { return values[index] >= 0; },
+                [=](size_t index) { return values[index]; });
+            attach_frame(*grid, frame, name, INT32_CREATOR);
+            return openvdb::GridPtrVec{grid};
+        }, error);
     } catch (const std::bad_alloc &) {
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     } catch (const std::exception &e) {
@@ -885,4 +998,16 @@ extern "C" gb_result gb_voxel_grid_read_int32(const char *path, const char *name
     } catch (const std::exception &e) {
         return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
     }
+}
+
+extern "C" int gb_voxel_file_checksum(const void *bytes, size_t size, char uuid[37])
+{
+    if (!bytes || size < HEADER_BYTES)
+        return 0;
+    const unsigned char *file = static_cast<const unsigned char *>(bytes);
+    ContentHash hash;
+    hash.add(file, UUID_OFFSET);
+    hash.add(file + HEADER_BYTES, size - HEADER_BYTES);
+    std::memcpy(uuid, hash.uuid(2, size).c_str(), UUID_LENGTH + 1);
+    return 1;
 }

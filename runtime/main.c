@@ -13,6 +13,7 @@
 #include "headless.h"
 #include "image.h"
 #include "methods.h"
+#include "output_file.h"
 #include "scene.h"
 #include "scene_warnings.h"
 #include "timings.h"
@@ -372,6 +373,12 @@ int main(int argc, char **argv)
     if (gb_method_check(a.method, &error) != GB_OK) {
         fprintf(stderr, "gbview: %s\n", error.message);
         return 2;
+    }
+    const char *vpls = a.renderer.parameters.write_vpls;
+    if ((a.output && gb_image_check_output(a.output, &error) != GB_OK) ||
+        (vpls && gb_output_file_check(vpls, &error) != GB_OK)) {
+        fprintf(stderr, "gbview: %s\n", error.message);
+        return 1;
     }
     gb_scene scene;
     gb_scene_options scene_options = {.load_textures = 1};

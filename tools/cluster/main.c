@@ -9,6 +9,7 @@
 
 #include "cluster.h"
 #include "light_octree.h"
+#include "output_file.h"
 #include "photon_map.h"
 #include "progress.h"
 #include "scene.h"
@@ -235,7 +236,7 @@ int main(int argc, char **argv)
     if (status)
         return status < 0 ? 0 : status;
     gb_error error;
-    if (run(&a, &error) != GB_OK) {
+    if (gb_output_file_check(a.output, &error) != GB_OK || run(&a, &error) != GB_OK) {
         fprintf(stderr, "cluster: %s\n", error.message);
         return 1;
     }

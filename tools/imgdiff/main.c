@@ -135,7 +135,9 @@ int main(int argc, char **argv)
         return status < 0 ? 0 : status;
     gb_image images[3] = {{0}, {0}, {0}};
     gb_error error;
-    gb_result result = compare(&a, images, &error);
+    gb_result result = a.heatmap ? gb_image_check_output(a.heatmap, &error) : GB_OK;
+    if (result == GB_OK)
+        result = compare(&a, images, &error);
     for (int i = 0; i < 3; ++i)
         gb_image_free(&images[i]);
     if (result != GB_OK) {

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "output_file.h"
 #include "photon_map.h"
 #include "photons.h"
 #include "progress.h"
@@ -280,7 +281,8 @@ int main(int argc, char **argv)
     if (status)
         return status < 0 ? 0 : status;
     gb_error error;
-    if ((a.merge ? run_merge(&a, &error) : run_trace(&a, &error)) != GB_OK) {
+    if (gb_output_file_check(a.output, &error) != GB_OK ||
+        (a.merge ? run_merge(&a, &error) : run_trace(&a, &error)) != GB_OK) {
         fprintf(stderr, "photons: %s\n", error.message);
         return 1;
     }

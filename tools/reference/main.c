@@ -221,6 +221,20 @@ static gb_result write_images(const arguments *a, const gb_image *image, gb_erro
     return result;
 }
 
+/* Before rendering: each image's format and folder. */
+static gb_result check_outputs(const arguments *a, gb_error *error)
+{
+    gb_result result = gb_image_check_output(a->output, error);
+    if (result != GB_OK || !a->png)
+        return result;
+    char *path = png_path(a->output);
+    if (!path)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory");
+    result = gb_image_check_output(path, error);
+    free(path);
+    return result;
+}
+
 static void print_stats(const gb_reference_stats *stats)
 {
     printf("rays %" PRIu64 "\nseconds %.3f\ncpu_seconds %.3f\nbuild_seconds %.3f\n"
@@ -278,7 +292,7 @@ int main(int argc, char **argv)
     if (status)
         return status < 0 ? 0 : status;
     gb_error error;
-    if (run(&a, &error) != GB_OK) {
+    if (check_outputs(&a, &error) != GB_OK || run(&a, &error) != GB_OK) {
         fprintf(stderr, "reference: %s\n", error.message);
         return 1;
     }

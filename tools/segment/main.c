@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "output_file.h"
 #include "progress.h"
 #include "scene.h"
 #include "scene_warnings.h"
@@ -271,6 +272,11 @@ int main(int argc, char **argv)
     int parsed = parse_arguments(argc, argv, &args);
     if (parsed)
         return parsed - 1;
+    gb_error error;
+    if (!args.evaluate && gb_output_file_check(args.output, &error) != GB_OK) {
+        fprintf(stderr, "segment: %s\n", error.message);
+        return 1;
+    }
     int status = args.evaluate ? run_evaluate(&args) : run_segment(&args);
     if (fflush(stdout) != 0)
         status = 1;

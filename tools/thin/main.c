@@ -7,8 +7,10 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
+#include "output_file.h"
 #include "progress.h"
 #include "skeleton.h"
 #include "thin.h"
@@ -136,7 +138,8 @@ static int write_outputs(const arguments *args, const gb_voxel_grid *grid,
     }
     if (gb_skeleton_write(args->output, skeleton, &error)) {
         fprintf(stderr, "thin: %s\n", error.message);
-        if (args->grid)
+        struct stat status;  /* never a device, a FIFO or a symlink */
+        if (args->grid && lstat(args->grid, &status) == 0 && S_ISREG(status.st_mode))
             unlink(args->grid);
         return 1;
     }
@@ -192,6 +195,12 @@ int main(int argc, char **argv)
     int parsed = parse_arguments(argc, argv, &args);
     if (parsed)
         return parsed - 1;
+    gb_error error;
+    if (gb_output_file_check(args.output, &error) != GB_OK ||
+        (args.grid && gb_output_file_check(args.grid, &error) != GB_OK)) {
+        fprintf(stderr, "thin: %s\n", error.message);
+        return 1;
+    }
     int status = run(&args);
     if (fflush(stdout) != 0)
         status = 1;

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "output_file.h"
 #include "progress.h"
 #include "scene.h"
 #include "scene_warnings.h"
@@ -152,5 +153,10 @@ int main(int argc, char **argv)
     int status = parse_arguments(argc, argv, &parsed);
     if (status != 0)
         return status < 0 ? 0 : status;
+    gb_error error;
+    if (gb_output_file_check(parsed.output, &error) != GB_OK) {
+        fprintf(stderr, "voxelize: %s\n", error.message);
+        return 1;
+    }
     return voxelize_file(&parsed);
 }
