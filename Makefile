@@ -29,7 +29,7 @@ FUZZ_SECONDS ?= 20
 DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
   libopenvdb-dev libtbb-dev libembree-dev libflann-dev liblz4-dev libcgal-dev \
   libopenmesh-dev libopenimageio-dev libepoxy-dev libglfw3-dev libegl-dev \
-  libegl-mesa0 libgl1-mesa-dri xvfb xauth libopenvdb-tools openimageio-tools time gnuplot-nox
+  libegl-mesa0 libgl1-mesa-dri xvfb xauth libopenvdb-tools openimageio-tools time strace gnuplot-nox
 
 SANITIZE_FLAGS = $(if $(SANITIZE),-fsanitize=$(SANITIZE) -fno-sanitize-recover=all -fno-omit-frame-pointer)
 CPPFLAGS += -Iformats -Icommon -Itests -MMD -MP -D_GNU_SOURCE

@@ -105,7 +105,9 @@ static GLuint buffer_of(const void *data, GLsizeiptr size)
 {
     GLuint buffer;
     glCreateBuffers(1, &buffer);
-    glNamedBufferData(buffer, size > 0 ? size : 16, data, GL_DYNAMIC_DRAW);
+    /* an empty array still gets a small buffer to bind, uninitialised: its
+     * data pointer may hold fewer than 16 bytes */
+    glNamedBufferData(buffer, size > 0 ? size : 16, size > 0 ? data : NULL, GL_DYNAMIC_DRAW);
     return buffer;
 }
 

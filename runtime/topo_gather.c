@@ -143,7 +143,7 @@ static GLuint buffer_of(const void *data, GLsizeiptr size)
 {
     GLuint buffer;
     glCreateBuffers(1, &buffer);
-    glNamedBufferData(buffer, size > 0 ? size : 16, data, GL_DYNAMIC_DRAW);
+    glNamedBufferData(buffer, size > 0 ? size : 16, size > 0 ? data : NULL, GL_DYNAMIC_DRAW);
     return buffer;
 }
 
