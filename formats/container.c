@@ -12,6 +12,7 @@
  * never a part; a device, FIFO or "-" gets the bytes straight through.
  */
 #include "container.h"
+#include "mapped_file.h"
 #include "little_endian.h"
 #include "output_file.h"
 
@@ -371,55 +372,23 @@ gb_result gb_container_parse(const void *bytes, size_t size, const char *path,
     return GB_OK;
 }
 
-/* Opens path and maps it read-only; *mapping stays NULL for an empty file. */
-static gb_result map_file(const char *path, void **mapping, size_t *size, gb_error *error)
-{
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, strerror(errno));
-    struct stat status;
-    gb_result result = GB_OK;
-    if (fstat(fd, &status) != 0)
-        result = gb_fail(error, GB_ERROR_IO, "%s: %s", path, strerror(errno));
-    else if (S_ISDIR(status.st_mode))
-        result = gb_fail(error, GB_ERROR_IO, "%s: is a folder, not a file", path);
-    else if (!S_ISREG(status.st_mode))
-        result = gb_fail(error, GB_ERROR_IO, "%s: not a regular file", path);
-    else if ((uintmax_t)status.st_size > SIZE_MAX)
-        result = gb_fail(error, GB_ERROR_IO, "%s: too large to map", path);
-    *mapping = NULL;
-    *size = result == GB_OK ? (size_t)status.st_size : 0;
-    if (result == GB_OK && *size > 0) {
-        void *address = mmap(NULL, *size, PROT_READ, MAP_PRIVATE, fd, 0);
-        if (address == MAP_FAILED)
-            result = gb_fail(error, GB_ERROR_IO, "%s: cannot map: %s", path, strerror(errno));
-        else
-            *mapping = address;
-    }
-    close(fd);
-    return result;
-}
-
 gb_result gb_container_read(const char *path, const char *expected_kind,
                             gb_container *out, gb_error *error)
 {
     if (!path || !out)
         return gb_fail(error, GB_ERROR_ARGUMENT, "gb_container_read: no path or no container");
     memset(out, 0, sizeof *out);
-    void *mapping;
-    size_t size;
-    gb_result result = map_file(path, &mapping, &size, error);
+    gb_mapped_file file;
+    gb_result result = gb_mapped_file_open(path, &file, error);
     if (result != GB_OK)
         return result;
-    result = gb_container_parse(mapping ? mapping : (const void *)"", size, path,
-                                expected_kind, out, error);
+    result = gb_container_parse(file.bytes, file.size, path, expected_kind, out, error);
     if (result != GB_OK) {
-        if (mapping)
-            munmap(mapping, size);
+        gb_mapped_file_close(&file);
         return result;
     }
-    out->mapping = mapping;
-    out->mapping_size = size;
+    out->mapping = file.mapping;
+    out->mapping_size = file.size;
     return GB_OK;
 }
 

@@ -1,13 +1,11 @@
 /* image_check.c — the format, the PNG chunks and the declared size of an
  * image file, checked before OpenImageIO reads it (see image_check.h). */
 #include "image_check.h"
+#include "mapped_file.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <stdint.h>
 #include <string.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "text.h"
@@ -269,31 +267,15 @@ gb_result gb_image_check_file(const char *path, gb_image_file *file, gb_error *e
 {
     file->format = NULL;
     file->size = 0;
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, strerror(errno));
-    struct stat status;
-    if (fstat(fd, &status) != 0) {
-        int saved = errno;
-        close(fd);
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, strerror(saved));
-    }
-    if (!S_ISREG(status.st_mode)) {
-        close(fd);
-        return gb_fail(error, GB_ERROR_IO, "%s: not a regular file", path);
-    }
-    size_t size = (size_t)status.st_size;
-    if (size == 0) {
-        close(fd);
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: empty file", path);
-    }
-    void *mapping = mmap(NULL, size, PROT_READ, MAP_PRIVATE, fd, 0);
-    int saved = errno;
-    close(fd);
-    if (mapping == MAP_FAILED)
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, strerror(saved));
-    gb_result result = gb_image_check(mapping, size, path, file, error);
-    munmap(mapping, size);
+    gb_mapped_file mapped;
+    gb_result result = gb_mapped_file_open(path, &mapped, error);
+    if (result != GB_OK)
+        return result;
+    if (mapped.size == 0)
+        result = gb_fail(error, GB_ERROR_FORMAT, "%s: empty file", path);
+    else
+        result = gb_image_check(mapped.bytes, mapped.size, path, file, error);
+    gb_mapped_file_close(&mapped);
     return result;
 }
 

@@ -4,16 +4,14 @@
  * count, an index or a number is checked exactly where OpenMesh will use
  * it. */
 #include "mesh_check.h"
+#include "mapped_file.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include "text.h"
@@ -960,30 +958,11 @@ gb_result gb_mesh_check_file(const char *path, gb_mesh_counts *counts, gb_error 
 {
     counts->vertices = counts->faces = -1;
     counts->short_faces = 0;
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, strerror(errno));
-    struct stat status;
-    if (fstat(fd, &status) != 0) {
-        int saved = errno;
-        close(fd);
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, strerror(saved));
-    }
-    if (!S_ISREG(status.st_mode)) {
-        close(fd);
-        return gb_fail(error, GB_ERROR_IO, "%s: not a regular file", path);
-    }
-    size_t size = (size_t)status.st_size;
-    if (size == 0) {
-        close(fd);
-        return gb_mesh_check("", 0, path, counts, error);
-    }
-    void *mapping = mmap(NULL, size, PROT_READ, MAP_PRIVATE, fd, 0);
-    int saved = errno;
-    close(fd);
-    if (mapping == MAP_FAILED)
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, strerror(saved));
-    gb_result result = gb_mesh_check(mapping, size, path, counts, error);
-    munmap(mapping, size);
+    gb_mapped_file mapped;
+    gb_result result = gb_mapped_file_open(path, &mapped, error);
+    if (result != GB_OK)
+        return result;
+    result = gb_mesh_check(mapped.bytes, mapped.size, path, counts, error);
+    gb_mapped_file_close(&mapped);
     return result;
 }
