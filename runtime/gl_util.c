@@ -125,6 +125,14 @@ gb_result gb_gl_program(const char *name, const char *vertex, const char *fragme
     return result;
 }
 
+GLuint gb_gl_buffer(const void *data, GLsizeiptr size)
+{
+    GLuint buffer;
+    glCreateBuffers(1, &buffer);
+    glNamedBufferData(buffer, size > 0 ? size : 16, size > 0 ? data : NULL, GL_DYNAMIC_DRAW);
+    return buffer;
+}
+
 GLuint gb_gl_texture_2d(GLenum internal_format, int width, int height)
 {
     GLuint texture;

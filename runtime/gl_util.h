@@ -38,6 +38,11 @@ gb_result gb_gl_require_45(gb_error *error);
 gb_result gb_gl_program(const char *name, const char *vertex, const char *fragment,
                         GLuint *program, gb_error *error);
 
+/* A storage buffer holding size bytes of data (GL_DYNAMIC_DRAW); an empty
+ * array still gets a 16-byte buffer to bind, uninitialised, since data may
+ * hold fewer than 16 bytes. */
+GLuint gb_gl_buffer(const void *data, GLsizeiptr size);
+
 /* A 2-D texture of internal format, one level, nearest filtering, clamped. */
 GLuint gb_gl_texture_2d(GLenum internal_format, int width, int height);
 

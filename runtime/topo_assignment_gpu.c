@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gl_util.h"
 #include "topo.h"
 
 #define GLSL_LA_COMMON                                                              \
@@ -101,16 +102,6 @@ static const char write_shader[] =
     "    ++n;\n"
     "}\n";
 
-static GLuint buffer_of(const void *data, GLsizeiptr size)
-{
-    GLuint buffer;
-    glCreateBuffers(1, &buffer);
-    /* an empty array still gets a small buffer to bind, uninitialised: its
-     * data pointer may hold fewer than 16 bytes */
-    glNamedBufferData(buffer, size > 0 ? size : 16, size > 0 ? data : NULL, GL_DYNAMIC_DRAW);
-    return buffer;
-}
-
 gb_result gb_topo_la_gpu_create(const gb_vpl_set *vpls, const int32_t *vpl_cluster,
                                 const gb_topo_gates *gates, gb_topo_la_gpu *la, gb_error *error)
 {
@@ -122,10 +113,10 @@ gb_result gb_topo_la_gpu_create(const gb_vpl_set *vpls, const int32_t *vpl_clust
     if (result != GB_OK)
         return result;
     la->vpl_count = vpls->count;
-    la->vpl_cluster = buffer_of(vpl_cluster, (GLsizeiptr)(vpls->count * sizeof(int32_t)));
-    la->group_offsets = buffer_of(gates->group_offsets,
+    la->vpl_cluster = gb_gl_buffer(vpl_cluster, (GLsizeiptr)(vpls->count * sizeof(int32_t)));
+    la->group_offsets = gb_gl_buffer(gates->group_offsets,
                                   (GLsizeiptr)((gates->cluster_count + 1) * sizeof(uint32_t)));
-    la->clusters = buffer_of(NULL, 16);
+    la->clusters = gb_gl_buffer(NULL, 16);
     return GB_OK;
 }
 

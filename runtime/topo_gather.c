@@ -139,14 +139,6 @@ static const char fragment_shader[] =
     "    radiance = vec4(L, 1.0);\n"
     "}\n";
 
-static GLuint buffer_of(const void *data, GLsizeiptr size)
-{
-    GLuint buffer;
-    glCreateBuffers(1, &buffer);
-    glNamedBufferData(buffer, size > 0 ? size : 16, size > 0 ? data : NULL, GL_DYNAMIC_DRAW);
-    return buffer;
-}
-
 static GLuint route_buffer(const gb_topo_gates *gates)
 {
     uint32_t *data = calloc((size_t)gates->route_count * 4 + 4, sizeof *data);
@@ -157,7 +149,7 @@ static GLuint route_buffer(const gb_topo_gates *gates)
         data[4 * i + 1] = gates->routes[i].gates[1];
         data[4 * i + 2] = gates->routes[i].target;
     }
-    GLuint buffer = buffer_of(data, (GLsizeiptr)(gates->route_count * 4 * sizeof *data));
+    GLuint buffer = gb_gl_buffer(data, (GLsizeiptr)(gates->route_count * 4 * sizeof *data));
     free(data);
     return buffer;
 }
@@ -172,7 +164,7 @@ static GLuint group_buffer(const gb_topo_gates *gates)
         data[4 * i + 1] = gates->groups[i].first;
         data[4 * i + 2] = gates->groups[i].count;
     }
-    GLuint buffer = buffer_of(data, (GLsizeiptr)(gates->group_count * 4 * sizeof *data));
+    GLuint buffer = gb_gl_buffer(data, (GLsizeiptr)(gates->group_count * 4 * sizeof *data));
     free(data);
     return buffer;
 }
@@ -187,7 +179,7 @@ static GLuint vpl_buffer(const gb_vpl_set *vpls)
         memcpy(&data[12 * i + 4], vpls->vpls[i].normal, 3 * sizeof(float));
         memcpy(&data[12 * i + 8], vpls->vpls[i].power, 3 * sizeof(float));
     }
-    GLuint buffer = buffer_of(data, (GLsizeiptr)(vpls->count * 12 * sizeof *data));
+    GLuint buffer = gb_gl_buffer(data, (GLsizeiptr)(vpls->count * 12 * sizeof *data));
     free(data);
     return buffer;
 }
@@ -202,7 +194,7 @@ static GLuint gate_buffer(const gb_segmentation *s)
         data[8 * i + 3] = s->gates[i].radius;
         memcpy(&data[8 * i + 4], s->gates[i].normal, 3 * sizeof(float));
     }
-    GLuint buffer = buffer_of(data, (GLsizeiptr)(s->gate_count * 8 * sizeof *data));
+    GLuint buffer = gb_gl_buffer(data, (GLsizeiptr)(s->gate_count * 8 * sizeof *data));
     free(data);
     return buffer;
 }
@@ -221,8 +213,8 @@ gb_result gb_topo_gather_create(const gb_vpl_set *vpls, const gb_segmentation *s
     pass->gate_buffer = gate_buffer(s);
     pass->route_buffer = route_buffer(gates);
     pass->group_buffer = group_buffer(gates);
-    pass->range_buffer = buffer_of(NULL, 16);
-    pass->entry_buffer = buffer_of(NULL, 16);
+    pass->range_buffer = gb_gl_buffer(NULL, 16);
+    pass->entry_buffer = gb_gl_buffer(NULL, 16);
     if (!pass->vpl_buffer || !pass->gate_buffer || !pass->route_buffer || !pass->group_buffer)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "IL: out of memory");
     pass->vpl_count = vpls->count;
