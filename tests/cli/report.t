@@ -19,6 +19,9 @@ GB_BIN=$(cd "$GB_BIN" 2>/dev/null && pwd || echo "$GB_BIN")
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-report.XXXXXX") || exit 1
 trap 'rm -rf "$dir"' EXIT INT TERM
 . "$(dirname "$0")/tap.sh"
+# No time limit on a render (timeout 0): under the sanitizers or a loaded
+# machine a slow render must still finish, never fail by the clock.
+export REPORT_TIMEOUT=0
 
 for t in voxelize thin segment photons cluster reference imgdiff scene-info gbview; do
     [ -x "$GB_BIN/$t" ] || { missing "$GB_BIN/$t not built"; tap_done; exit 1; }
