@@ -414,6 +414,28 @@ const gb_section *gb_container_find(const gb_container *container, const char *n
     return NULL;
 }
 
+gb_result gb_container_find_array(const gb_container *container, const char *name,
+                                  uint64_t count, uint64_t element_size, unsigned alignment,
+                                  const char *path, const gb_section **out, gb_error *error)
+{
+    const gb_section *section = gb_container_find(container, name);
+    *out = NULL;
+    if (!section)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"%s\" section", path, name);
+    if ((element_size && count > UINT64_MAX / element_size) ||
+        section->size != count * element_size)
+        return gb_fail(error, GB_ERROR_FORMAT,
+                       "%s: \"%s\" section has %llu bytes, %llu x %llu expected", path, name,
+                       (unsigned long long)section->size, (unsigned long long)count,
+                       (unsigned long long)element_size);
+    if (alignment > 1 && (uintptr_t)section->data % alignment)
+        return gb_fail(error, GB_ERROR_ARGUMENT,
+                       "%s: \"%s\" section is not %u-byte aligned in memory", path, name,
+                       alignment);
+    *out = section;
+    return GB_OK;
+}
+
 void gb_container_close(gb_container *container)
 {
     if (!container)

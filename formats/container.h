@@ -97,6 +97,15 @@ gb_result gb_container_check_version(const gb_container *container, const char *
                                      uint32_t newest, gb_error *error);
 /* NULL when the container has no section of that name. */
 const gb_section *gb_container_find(const gb_container *container, const char *name);
+/* The section `name` as an array of count elements of element_size bytes,
+ * in *out. Fails (GB_ERROR_FORMAT) with "path: no "name" section" or
+ * "path: "name" section has N bytes, C x S = M expected"; with alignment
+ * above 1 (16 for a caller that uses the array in place), also when the
+ * section's data is not that aligned in memory (GB_ERROR_ARGUMENT: a
+ * gb_container_parse buffer that was not). */
+gb_result gb_container_find_array(const gb_container *container, const char *name,
+                                  uint64_t count, uint64_t element_size, unsigned alignment,
+                                  const char *path, const gb_section **out, gb_error *error);
 void gb_container_close(gb_container *container);
 
 #endif

@@ -237,45 +237,34 @@ gb_result gb_light_octree_write(const char *path, const gb_light_octree *octree,
 
 /* ---- reading ---- */
 
-static gb_result find_array(const gb_container *container, const char *name, uint64_t count,
-                            uint64_t element_size, const char *path, const void **data,
-                            gb_error *error)
+/* The section's data, or NULL when it was not found. */
+static const void *data_of(const gb_section *section)
 {
-    const gb_section *section = gb_container_find(container, name);
-    if (!section)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"%s\" section", path, name);
-    if (section->size != count * element_size)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: %s section is %llu bytes, expected %llu",
-                       path, name, (unsigned long long)section->size,
-                       (unsigned long long)(count * element_size));
-    if ((uintptr_t)section->data % ALIGNMENT)
-        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: %s section is not 16-byte aligned in "
-                       "memory", path, name);
-    *data = section->data;
-    return GB_OK;
+    return section ? section->data : NULL;
 }
 
 static gb_result view_sections(const gb_container *container, const char *path,
                                gb_light_octree *octree, gb_error *error)
 {
-    const void *header = NULL, *nodes = NULL, *leaves = NULL, *vdls = NULL;
-    gb_result result = find_array(container, "header", 1, sizeof octree->header, path,
-                                  &header, error);
+    const gb_section *header, *nodes = NULL, *leaves = NULL, *vdls = NULL;
+    gb_result result = gb_container_find_array(container, "header", 1, sizeof octree->header,
+                                               ALIGNMENT, path, &header, error);
     if (result != GB_OK)
         return result;
-    memcpy(&octree->header, header, sizeof octree->header);
+    memcpy(&octree->header, header->data, sizeof octree->header);
     const gb_light_octree_header *h = &octree->header;
-    result = find_array(container, "nodes", h->node_count, sizeof *octree->nodes, path,
-                        &nodes, error);
+    result = gb_container_find_array(container, "nodes", h->node_count, sizeof *octree->nodes,
+                                     ALIGNMENT, path, &nodes, error);
     if (result == GB_OK)
-        result = find_array(container, "leaves", h->leaf_count, sizeof *octree->leaves, path,
-                            &leaves, error);
+        result = gb_container_find_array(container, "leaves", h->leaf_count,
+                                         sizeof *octree->leaves, ALIGNMENT, path, &leaves,
+                                         error);
     if (result == GB_OK)
-        result = find_array(container, "vdls", h->vdl_count, sizeof *octree->vdls, path,
-                            &vdls, error);
-    octree->nodes = nodes;
-    octree->leaves = leaves;
-    octree->vdls = vdls;
+        result = gb_container_find_array(container, "vdls", h->vdl_count, sizeof *octree->vdls,
+                                         ALIGNMENT, path, &vdls, error);
+    octree->nodes = data_of(nodes);
+    octree->leaves = data_of(leaves);
+    octree->vdls = data_of(vdls);
     return result;
 }
 

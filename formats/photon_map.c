@@ -311,12 +311,11 @@ gb_result gb_photon_map_write(const char *path, const gb_photon_map *map, gb_err
 static gb_result decode_header(const gb_container *container, const char *path,
                                gb_photon_map *map, gb_error *error)
 {
-    const gb_section *section = gb_container_find(container, "header");
-    if (!section)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"header\" section", path);
-    if (section->size != HEADER_SIZE)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: header is %llu bytes, expected %d", path,
-                       (unsigned long long)section->size, HEADER_SIZE);
+    const gb_section *section;
+    gb_result result = gb_container_find_array(container, "header", 1, HEADER_SIZE, 1, path,
+                                               &section, error);
+    if (result != GB_OK)
+        return result;
     const unsigned char *bytes = section->data;
     gb_photon_map_header *h = &map->header;
     if (gb_get_u32(bytes + AT_RESERVED_A) || gb_get_u64(bytes + AT_RESERVED_B))
@@ -340,42 +339,32 @@ static gb_result decode_header(const gb_container *container, const char *path,
     return GB_OK;
 }
 
-/* The section `name` as an array of count elements of element_size bytes. */
-static gb_result find_array(const gb_container *container, const char *name, uint64_t count,
-                            uint64_t element_size, const char *path, const void **data,
-                            gb_error *error)
+/* The section's data, or NULL when it was not found. */
+static const void *data_of(const gb_section *section)
 {
-    const gb_section *section = gb_container_find(container, name);
-    if (!section)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"%s\" section", path, name);
-    if (count > UINT64_MAX / element_size || section->size != count * element_size)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: %s section is %llu bytes, expected %llu "
-                       "bytes per photon for %llu photons", path, name,
-                       (unsigned long long)section->size, (unsigned long long)element_size,
-                       (unsigned long long)count);
-    if ((uintptr_t)section->data % ALIGNMENT)
-        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: %s section is not 16-byte aligned in "
-                       "memory", path, name);
-    *data = section->data;
-    return GB_OK;
+    return section ? section->data : NULL;
 }
 
 static gb_result view_arrays(const gb_container *container, const char *path,
                              gb_photon_map *map, gb_error *error)
 {
-    const void *positions = NULL, *powers = NULL, *directions = NULL, *normals = NULL;
+    const gb_section *positions = NULL, *powers = NULL, *directions = NULL, *normals = NULL;
     uint64_t n = map->count;
-    gb_result result = find_array(container, "positions", n, 12, path, &positions, error);
+    gb_result result = gb_container_find_array(container, "positions", n, 12, ALIGNMENT, path,
+                                               &positions, error);
     if (result == GB_OK)
-        result = find_array(container, "powers", n, 12, path, &powers, error);
+        result = gb_container_find_array(container, "powers", n, 12, ALIGNMENT, path, &powers,
+                                         error);
     if (result == GB_OK)
-        result = find_array(container, "directions", n, 4, path, &directions, error);
+        result = gb_container_find_array(container, "directions", n, 4, ALIGNMENT, path,
+                                         &directions, error);
     if (result == GB_OK)
-        result = find_array(container, "normals", n, 4, path, &normals, error);
-    map->positions = positions;
-    map->powers = powers;
-    map->directions = directions;
-    map->normals = normals;
+        result = gb_container_find_array(container, "normals", n, 4, ALIGNMENT, path, &normals,
+                                         error);
+    map->positions = data_of(positions);
+    map->powers = data_of(powers);
+    map->directions = data_of(directions);
+    map->normals = data_of(normals);
     return result;
 }
 

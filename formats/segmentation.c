@@ -367,21 +367,6 @@ gb_result gb_segmentation_write(const char *path, const gb_segmentation *segment
 
 /* ---- decoding ---- */
 
-static gb_result find_sized(const gb_container *c, const char *name, uint64_t count,
-                            uint64_t item_size, const char *path, const gb_section **section,
-                            gb_error *error)
-{
-    *section = gb_container_find(c, name);
-    if (!*section)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"%s\" section", path, name);
-    if ((*section)->size != count * item_size)
-        return gb_fail(error, GB_ERROR_FORMAT,
-                       "%s: \"%s\" has %llu bytes, the header needs %llu", path, name,
-                       (unsigned long long)(*section)->size,
-                       (unsigned long long)(count * item_size));
-    return GB_OK;
-}
-
 static gb_result allocate_arrays(gb_segmentation *s, const char *path, gb_error *error)
 {
     s->nodes = malloc(s->node_count ? (size_t)s->node_count * sizeof *s->nodes : 1);
@@ -399,15 +384,20 @@ static gb_result decode_arrays(const gb_container *c, const char *path, gb_segme
                                gb_error *error)
 {
     const gb_section *nodes, *edges, *clusters, *map, *gates;
-    gb_result result = find_sized(c, "nodes", s->node_count, NODE_SIZE, path, &nodes, error);
+    gb_result result =
+        gb_container_find_array(c, "nodes", s->node_count, NODE_SIZE, 1, path, &nodes, error);
     if (!result)
-        result = find_sized(c, "edges", s->edge_count, EDGE_SIZE, path, &edges, error);
+        result = gb_container_find_array(c, "edges", s->edge_count, EDGE_SIZE, 1, path, &edges,
+                                         error);
     if (!result)
-        result = find_sized(c, "clusters", s->node_count, CLUSTER_SIZE, path, &clusters, error);
+        result = gb_container_find_array(c, "clusters", s->node_count, CLUSTER_SIZE, 1, path,
+                                         &clusters, error);
     if (!result)
-        result = find_sized(c, "node_map", s->skeleton_node_count, MAP_SIZE, path, &map, error);
+        result = gb_container_find_array(c, "node_map", s->skeleton_node_count, MAP_SIZE, 1,
+                                         path, &map, error);
     if (!result)
-        result = find_sized(c, "gates", s->gate_count, GATE_SIZE, path, &gates, error);
+        result = gb_container_find_array(c, "gates", s->gate_count, GATE_SIZE, 1, path, &gates,
+                                         error);
     if (!result)
         result = allocate_arrays(s, path, error);
     if (result)
@@ -429,7 +419,7 @@ static gb_result decode_container(const gb_container *c, const char *path, gb_se
     if (result)
         return result;
     const gb_section *header;
-    result = find_sized(c, "header", 1, HEADER_SIZE, path, &header, error);
+    result = gb_container_find_array(c, "header", 1, HEADER_SIZE, 1, path, &header, error);
     if (result)
         return result;
     if (gb_get_u32((const uint8_t *)header->data + 84) != 0)

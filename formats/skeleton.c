@@ -169,28 +169,9 @@ gb_result gb_skeleton_write(const char *path, const gb_skeleton *skeleton, gb_er
     return result;
 }
 
-static gb_result find_section(const gb_container *c, const char *name, const char *path,
-                              const gb_section **section, gb_error *error)
-{
-    *section = gb_container_find(c, name);
-    if (!*section)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"%s\" section", path, name);
-    return GB_OK;
-}
-
 static gb_result decode_arrays(const gb_section *nodes, const gb_section *edges,
                                const char *path, gb_skeleton *s, gb_error *error)
 {
-    if (nodes->size != (uint64_t)s->node_count * NODE_SIZE)
-        return gb_fail(error, GB_ERROR_FORMAT,
-                       "%s: \"nodes\" has %llu bytes, %u nodes need %llu", path,
-                       (unsigned long long)nodes->size, s->node_count,
-                       (unsigned long long)s->node_count * NODE_SIZE);
-    if (edges->size != (uint64_t)s->edge_count * EDGE_SIZE)
-        return gb_fail(error, GB_ERROR_FORMAT,
-                       "%s: \"edges\" has %llu bytes, %u edges need %llu", path,
-                       (unsigned long long)edges->size, s->edge_count,
-                       (unsigned long long)s->edge_count * EDGE_SIZE);
     s->nodes = malloc(s->node_count ? (size_t)s->node_count * sizeof *s->nodes : 1);
     s->edges = malloc(s->edge_count ? (size_t)s->edge_count * 2 * sizeof *s->edges : 1);
     if (!s->nodes || !s->edges)
@@ -213,18 +194,17 @@ static gb_result decode_container(const gb_container *c, const char *path, gb_sk
     const gb_section *header, *nodes, *edges;
     gb_result result = gb_container_check_version(c, path, GB_SKELETON_VERSION, error);
     if (!result)
-        result = find_section(c, "header", path, &header, error);
-    if (!result)
-        result = find_section(c, "nodes", path, &nodes, error);
-    if (!result)
-        result = find_section(c, "edges", path, &edges, error);
+        result = gb_container_find_array(c, "header", 1, HEADER_SIZE, 1, path, &header, error);
     if (result)
         return result;
-    if (header->size != HEADER_SIZE)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: \"header\" has %llu bytes, expected %d",
-                       path, (unsigned long long)header->size, HEADER_SIZE);
     decode_header(header->data, s);
-    result = decode_arrays(nodes, edges, path, s, error);
+    result = gb_container_find_array(c, "nodes", s->node_count, NODE_SIZE, 1, path, &nodes,
+                                     error);
+    if (!result)
+        result = gb_container_find_array(c, "edges", s->edge_count, EDGE_SIZE, 1,
+                                         path, &edges, error);
+    if (!result)
+        result = decode_arrays(nodes, edges, path, s, error);
     if (!result)
         result = gb_skeleton_validate(s, path, error);
     return result;

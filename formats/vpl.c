@@ -100,12 +100,11 @@ gb_result gb_vpl_write(const char *path, const gb_vpl_set *set, gb_error *error)
 static gb_result read_header(const gb_container *container, const char *path, gb_vpl_set *set,
                              gb_error *error)
 {
-    const gb_section *header = gb_container_find(container, "header");
-    if (!header)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"header\" section", path);
-    if (header->size != HEADER_SIZE)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: header is %llu bytes, expected %d", path,
-                       (unsigned long long)header->size, HEADER_SIZE);
+    const gb_section *header;
+    gb_result result = gb_container_find_array(container, "header", 1, HEADER_SIZE, 1, path,
+                                               &header, error);
+    if (result != GB_OK)
+        return result;
     const unsigned char *bytes = header->data;
     if (gb_get_u32(bytes + 4) != 0)
         return gb_fail(error, GB_ERROR_FORMAT, "%s: reserved header field is not zero", path);
@@ -117,13 +116,11 @@ static gb_result read_header(const gb_container *container, const char *path, gb
 static gb_result read_vpls(const gb_container *container, const char *path, gb_vpl_set *set,
                            gb_error *error)
 {
-    const gb_section *vpls = gb_container_find(container, "vpls");
-    if (!vpls)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: no \"vpls\" section", path);
-    if (vpls->size != (uint64_t)set->count * VPL_SIZE)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: vpls section is %llu bytes, expected %llu "
-                       "for %u VPLs", path, (unsigned long long)vpls->size,
-                       (unsigned long long)set->count * VPL_SIZE, (unsigned)set->count);
+    const gb_section *vpls;
+    gb_result result = gb_container_find_array(container, "vpls", set->count, VPL_SIZE, 1, path,
+                                               &vpls, error);
+    if (result != GB_OK)
+        return result;
     set->vpls = malloc(set->count ? (size_t)set->count * sizeof *set->vpls : 1);
     if (!set->vpls)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
