@@ -193,24 +193,16 @@ typedef struct step_times {
     double update, create, refine, illuminate, total, wall;
 } step_times;
 
-/* CPU seconds of the process (both gathering threads count). */
-static double cpu_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 static gb_result run(const gb_scene *scene, float element_size, int bins_n, int frames,
                      int bounces, int deforming, gb_error *error)
 {
     gb_implicit_model m;
     gb_implicit_bins bins;
-    double prepare = cpu_seconds();
+    double prepare = gb_cpu_seconds();
     gb_result result = gb_implicit_model_create(scene, element_size, &m, error);
     if (result != GB_OK)
         return result;
-    prepare = cpu_seconds() - prepare;
+    prepare = gb_cpu_seconds() - prepare;
     result = gb_implicit_bins_create(bins_n, &bins, error);
     gb_implicit_solution solution;
     if (result == GB_OK)
@@ -226,16 +218,16 @@ static gb_result run(const gb_scene *scene, float element_size, int bins_n, int 
         if (deforming)
             deform(&m, rest, f);
         gb_implicit_links links;
-        double wall = gb_seconds(), t0 = cpu_seconds();
+        double wall = gb_seconds(), t0 = gb_cpu_seconds();
         result = gb_implicit_update_elements(&m, error);
-        double t1 = cpu_seconds();
+        double t1 = gb_cpu_seconds();
         if (result == GB_OK)
             result = gb_implicit_create_links(&m, &bins, &options, &links, NULL, error);
         if (result != GB_OK)
             break;
-        double t2 = cpu_seconds();
+        double t2 = gb_cpu_seconds();
         gb_implicit_illuminate(scene, &m, &links, bounces, &solution);
-        double t3 = cpu_seconds();
+        double t3 = gb_cpu_seconds();
         sum.wall += gb_seconds() - wall;
         sum.update += t1 - t0;
         sum.create += links.cpu.create;
@@ -280,7 +272,7 @@ int main(int argc, char **argv)
     gb_error error;
     gb_result result = GB_OK;
     gb_scene scene;
-    clock_t cpu = clock();
+    double cpu = gb_cpu_seconds();
     double wall = gb_seconds();
     header();
     if (strcmp(argv[1], "table") == 0) {
@@ -309,6 +301,6 @@ int main(int argc, char **argv)
         return 1;
     }
     fprintf(stderr, "implicit_steps: %.1f s wall, %.1f s CPU\n", gb_seconds() - wall,
-            (double)(clock() - cpu) / CLOCKS_PER_SEC);
+            gb_cpu_seconds() - cpu);
     return 0;
 }

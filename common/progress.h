@@ -26,5 +26,7 @@ void gb_progress_end(gb_progress *progress);
 
 /* Seconds from an arbitrary start (monotonic clock). */
 double gb_seconds(void);
+/* CPU seconds the process has used, every thread counted. */
+double gb_cpu_seconds(void);
 
 #endif

@@ -978,14 +978,6 @@ static double lap(const flc_state *s, double *start)
     return ms;
 }
 
-/* The process's CPU time, ms. */
-static double cpu_ms(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
-}
-
 /* Pass 3. */
 static void resolve(flc_state *s)
 {
@@ -1036,7 +1028,7 @@ static void flc_draw(void *state, const gb_indirect_frame *frame)
     glClearNamedFramebufferfv(s->splat_framebuffer, GL_COLOR, 0, zero);
     double start = 0.0;
     lap(s, &start);
-    double cpu_start = s->measuring ? cpu_ms() : 0.0;
+    double cpu_start = s->measuring ? 1e3 * gb_cpu_seconds() : 0.0;
     run_regular(s, frame);
     double regular = lap(s, &start);
     run_divergent(s, frame);
@@ -1048,7 +1040,7 @@ static void flc_draw(void *state, const gb_indirect_frame *frame)
         s->times.regular_ms += regular;
         s->times.divergent_ms += divergent;
         s->times.resolve_ms += lap(s, &start);
-        s->times.cpu_ms += cpu_ms() - cpu_start;
+        s->times.cpu_ms += 1e3 * gb_cpu_seconds() - cpu_start;
         s->times.frames++;
         uint32_t made = 0;
         if (s->triangle_count > s->regular_count)

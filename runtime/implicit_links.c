@@ -395,14 +395,6 @@ static gb_result compact(const linker *l, gb_implicit_links *links, gb_error *er
     return result;
 }
 
-/* CPU seconds of the process, for the statistics. */
-static double process_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
 static float smallest_extent(const gb_implicit_model *m)
 {
     float size = 0.0f;
@@ -439,24 +431,24 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
     if (!l.target || !l.distance)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
     if (result == GB_OK) {
-        double wall = gb_seconds(), cpu = process_seconds();
+        double wall = gb_seconds(), cpu = gb_cpu_seconds();
         memset(l.target, 0xff, slots * sizeof *l.target);
         int hierarchical = !options || options->hierarchical;
         create_hierarchical_links(&l, hierarchical);
         links->created = l.created;
-        double created_wall = gb_seconds(), created_cpu = process_seconds();
+        double created_wall = gb_seconds(), created_cpu = gb_cpu_seconds();
         links->wall.create = created_wall - wall;
         links->cpu.create = created_cpu - cpu;
         if (hierarchical)
             result = refine_and_push_down(&l, error);
         links->wall.refine = gb_seconds() - created_wall;
-        links->cpu.refine = process_seconds() - created_cpu;
+        links->cpu.refine = gb_cpu_seconds() - created_cpu;
     }
     if (result == GB_OK) {
-        double wall = gb_seconds(), cpu = process_seconds();
+        double wall = gb_seconds(), cpu = gb_cpu_seconds();
         result = compact(&l, links, error);
         links->wall.compact = gb_seconds() - wall;
-        links->cpu.compact = process_seconds() - cpu;
+        links->cpu.compact = gb_cpu_seconds() - cpu;
     }
     if (result == GB_OK && bin_targets) {
         *bin_targets = l.target;

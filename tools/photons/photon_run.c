@@ -179,13 +179,6 @@ static gb_result build_tables(const gb_scene *scene, const gb_photons_options *o
     return result;
 }
 
-static double process_cpu_seconds(void)
-{
-    struct timespec now;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-    return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
-}
-
 typedef struct run_times {
     double seconds, cpu_seconds, build_seconds;
 } run_times;
@@ -241,10 +234,10 @@ gb_result gb_photons_trace(const gb_scene *scene, const gb_photons_options *opti
     gb_photon_shard_range(job.emitted_count, options->shard_index,
                           options->shard_count ? options->shard_count : 1, &job.first,
                           &job.end);
-    double traced = gb_seconds(), cpu = process_cpu_seconds();
+    double traced = gb_seconds(), cpu = gb_cpu_seconds();
     int threads = 1;
     result = trace_job(&job, options, &threads, map, error);
-    run_times times = {gb_seconds() - traced, process_cpu_seconds() - cpu, traced - start};
+    run_times times = {gb_seconds() - traced, gb_cpu_seconds() - cpu, traced - start};
     fill_stats(&job, &times, threads, stats);
     if (result == GB_OK)
         fill_header(scene, options, &tracer, &job, &map->header);

@@ -193,13 +193,6 @@ static void release(renderer *r)
     gb_light_table_free(&r->lights);
 }
 
-static double process_cpu_seconds(void)
-{
-    struct timespec now;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &now);
-    return (double)now.tv_sec + 1e-9 * (double)now.tv_nsec;
-}
-
 static gb_result render_image(renderer *r, const gb_reference_options *options,
                               const settings *settings, gb_image *image,
                               gb_reference_stats *stats, gb_error *error)
@@ -213,10 +206,10 @@ static gb_result render_image(renderer *r, const gb_reference_options *options,
         .tiles_x = (settings->width + TILE_SIZE - 1) / TILE_SIZE,
     };
     job.tile_count = job.tiles_x * ((settings->height + TILE_SIZE - 1) / TILE_SIZE);
-    double start = gb_seconds(), cpu_start = process_cpu_seconds();
+    double start = gb_seconds(), cpu_start = gb_cpu_seconds();
     gb_result result = run_threads(&job, options, error);
     stats->seconds = gb_seconds() - start;
-    stats->cpu_seconds = process_cpu_seconds() - cpu_start;
+    stats->cpu_seconds = gb_cpu_seconds() - cpu_start;
     stats->rays = atomic_load(&job.rays);
     stats->nonfinite_samples = atomic_load(&job.nonfinite);
     stats->samples = (uint64_t)settings->width * (uint64_t)settings->height * settings->spp;
