@@ -15,9 +15,9 @@ float gb_radical_inverse2(uint32_t i)
     return (float)(i >> 8) * 0x1p-24f;
 }
 
-static gb_float3 corner(const gb_scene *scene, uint32_t t, int k)
+static gb_vec3 corner(const gb_scene *scene, uint32_t t, int k)
 {
-    return gb_float3_load(&scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + k]]);
+    return gb_vec3_load(&scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + k]]);
 }
 
 static double mean_emission(const gb_scene *scene, uint32_t t)
@@ -56,22 +56,22 @@ static uint32_t find_interval(const double *cumulative, uint32_t count, double u
 }
 
 /* Uniform by area: the square-root map of (u, v) onto triangle t. */
-static gb_float3 point_on_triangle(const gb_scene *scene, uint32_t t, float u, float v)
+static gb_vec3 point_on_triangle(const gb_scene *scene, uint32_t t, float u, float v)
 {
     float s = sqrtf(u);
-    gb_float3 a = corner(scene, t, 0), b = corner(scene, t, 1), c = corner(scene, t, 2);
-    gb_float3 p = gb_float3_scale(a, 1.0f - s);
-    p = gb_float3_add(p, gb_float3_scale(b, s * (1.0f - v)));
-    return gb_float3_add(p, gb_float3_scale(c, s * v));
+    gb_vec3 a = corner(scene, t, 0), b = corner(scene, t, 1), c = corner(scene, t, 2);
+    gb_vec3 p = gb_vec3_scale(a, 1.0f - s);
+    p = gb_vec3_add(p, gb_vec3_scale(b, s * (1.0f - v)));
+    return gb_vec3_add(p, gb_vec3_scale(c, s * v));
 }
 
 static void make_emitter(const gb_scene *scene, uint32_t t, double probability, uint32_t count,
                          float u, float v, gb_point_emitter *e)
 {
-    gb_float3 a = corner(scene, t, 0);
-    gb_float3 normal = gb_float3_normalize(gb_float3_cross(gb_float3_sub(corner(scene, t, 1), a),
-                                                           gb_float3_sub(corner(scene, t, 2), a)));
-    gb_float3 p = point_on_triangle(scene, t, u, v);
+    gb_vec3 a = corner(scene, t, 0);
+    gb_vec3 normal = gb_vec3_normalize(gb_vec3_cross(gb_vec3_sub(corner(scene, t, 1), a),
+                                                     gb_vec3_sub(corner(scene, t, 2), a)));
+    gb_vec3 p = point_on_triangle(scene, t, u, v);
     e->position[0] = p.x, e->position[1] = p.y, e->position[2] = p.z;
     e->normal[0] = normal.x, e->normal[1] = normal.y, e->normal[2] = normal.z;
     double scale = gb_triangle_area(scene, t) / (count * probability);

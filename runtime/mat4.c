@@ -3,52 +3,6 @@
 #include <math.h>
 #include <string.h>
 
-gb_float3 gb_float3_make(float x, float y, float z)
-{
-    return (gb_float3){x, y, z};
-}
-
-gb_float3 gb_float3_load(const float v[3])
-{
-    return (gb_float3){v[0], v[1], v[2]};
-}
-
-gb_float3 gb_float3_add(gb_float3 a, gb_float3 b)
-{
-    return (gb_float3){a.x + b.x, a.y + b.y, a.z + b.z};
-}
-
-gb_float3 gb_float3_sub(gb_float3 a, gb_float3 b)
-{
-    return (gb_float3){a.x - b.x, a.y - b.y, a.z - b.z};
-}
-
-gb_float3 gb_float3_scale(gb_float3 a, float s)
-{
-    return (gb_float3){a.x * s, a.y * s, a.z * s};
-}
-
-float gb_float3_dot(gb_float3 a, gb_float3 b)
-{
-    return a.x * b.x + a.y * b.y + a.z * b.z;
-}
-
-gb_float3 gb_float3_cross(gb_float3 a, gb_float3 b)
-{
-    return (gb_float3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-
-float gb_float3_length(gb_float3 a)
-{
-    return sqrtf(gb_float3_dot(a, a));
-}
-
-gb_float3 gb_float3_normalize(gb_float3 a)
-{
-    float length = gb_float3_length(a);
-    return length > 1e-30f ? gb_float3_scale(a, 1.0f / length) : gb_float3_make(0, 0, 0);
-}
-
 gb_mat4 gb_mat4_identity(void)
 {
     gb_mat4 r = {{0}};
@@ -69,7 +23,7 @@ gb_mat4 gb_mat4_multiply(const gb_mat4 *a, const gb_mat4 *b)
     return r;
 }
 
-static void set_row(gb_mat4 *m, int row, gb_float3 v, float w)
+static void set_row(gb_mat4 *m, int row, gb_vec3 v, float w)
 {
     m->m[0 * 4 + row] = v.x;
     m->m[1 * 4 + row] = v.y;
@@ -77,30 +31,29 @@ static void set_row(gb_mat4 *m, int row, gb_float3 v, float w)
     m->m[3 * 4 + row] = w;
 }
 
-gb_mat4 gb_mat4_view(gb_float3 position, gb_float3 forward, gb_float3 right, gb_float3 up)
+gb_mat4 gb_mat4_view(gb_vec3 position, gb_vec3 forward, gb_vec3 right, gb_vec3 up)
 {
     gb_mat4 r = gb_mat4_identity();
-    set_row(&r, 0, right, -gb_float3_dot(right, position));
-    set_row(&r, 1, up, -gb_float3_dot(up, position));
-    gb_float3 back = gb_float3_scale(forward, -1.0f);
-    set_row(&r, 2, back, -gb_float3_dot(back, position));
+    set_row(&r, 0, right, -gb_vec3_dot(right, position));
+    set_row(&r, 1, up, -gb_vec3_dot(up, position));
+    gb_vec3 back = gb_vec3_scale(forward, -1.0f);
+    set_row(&r, 2, back, -gb_vec3_dot(back, position));
     return r;
 }
 
-static void set_column(gb_mat4 *m, int column, gb_float3 v)
+static void set_column(gb_mat4 *m, int column, gb_vec3 v)
 {
     m->m[column * 4 + 0] = v.x;
     m->m[column * 4 + 1] = v.y;
     m->m[column * 4 + 2] = v.z;
 }
 
-gb_mat4 gb_mat4_view_inverse(gb_float3 position, gb_float3 forward, gb_float3 right,
-                             gb_float3 up)
+gb_mat4 gb_mat4_view_inverse(gb_vec3 position, gb_vec3 forward, gb_vec3 right, gb_vec3 up)
 {
     gb_mat4 r = gb_mat4_identity();
     set_column(&r, 0, right);
     set_column(&r, 1, up);
-    set_column(&r, 2, gb_float3_scale(forward, -1.0f));
+    set_column(&r, 2, gb_vec3_scale(forward, -1.0f));
     set_column(&r, 3, position);
     return r;
 }
@@ -141,11 +94,11 @@ gb_mat4 gb_mat4_orthographic(float left, float right, float bottom, float top, f
     return r;
 }
 
-gb_float3 gb_mat4_transform_point(const gb_mat4 *m, gb_float3 p)
+gb_vec3 gb_mat4_transform_point(const gb_mat4 *m, gb_vec3 p)
 {
     float v[4];
     for (int row = 0; row < 4; ++row)
         v[row] = m->m[row] * p.x + m->m[4 + row] * p.y + m->m[8 + row] * p.z + m->m[12 + row];
     float inv_w = v[3] != 0.0f ? 1.0f / v[3] : 1.0f;
-    return gb_float3_make(v[0] * inv_w, v[1] * inv_w, v[2] * inv_w);
+    return gb_vec3_make(v[0] * inv_w, v[1] * inv_w, v[2] * inv_w);
 }

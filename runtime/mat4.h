@@ -1,6 +1,6 @@
-/* mat4.h — the 4x4 matrices and 3-vectors of the runtime, column-major as
- * OpenGL takes them (m[column * 4 + row]), so a gb_mat4 goes to
- * glUniformMatrix4fv with transpose GL_FALSE.
+/* mat4.h — the 4x4 matrices of the runtime, column-major as OpenGL takes
+ * them (m[column * 4 + row]), so a gb_mat4 goes to glUniformMatrix4fv with
+ * transpose GL_FALSE. Its 3-vectors are common/vec3.h's.
  *
  * Projections use reversed depth (near -> 1, far or infinity -> 0) with
  * glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE): a float depth buffer then
@@ -9,33 +9,19 @@
 #ifndef GB_MAT4_H
 #define GB_MAT4_H
 
+#include "vec3.h"
+
 typedef struct gb_mat4 {
     float m[16];
 } gb_mat4;
-
-typedef struct gb_float3 {
-    float x, y, z;
-} gb_float3;
-
-gb_float3 gb_float3_make(float x, float y, float z);
-gb_float3 gb_float3_load(const float v[3]);
-gb_float3 gb_float3_add(gb_float3 a, gb_float3 b);
-gb_float3 gb_float3_sub(gb_float3 a, gb_float3 b);
-gb_float3 gb_float3_scale(gb_float3 a, float s);
-float gb_float3_dot(gb_float3 a, gb_float3 b);
-gb_float3 gb_float3_cross(gb_float3 a, gb_float3 b);
-float gb_float3_length(gb_float3 a);
-/* a / |a|, or the zero vector when a is (almost) zero. */
-gb_float3 gb_float3_normalize(gb_float3 a);
 
 gb_mat4 gb_mat4_identity(void);
 gb_mat4 gb_mat4_multiply(const gb_mat4 *a, const gb_mat4 *b);
 /* World to view of an eye at position looking along forward (unit), with
  * right and up unit and orthogonal to it: the view looks down -z. */
-gb_mat4 gb_mat4_view(gb_float3 position, gb_float3 forward, gb_float3 right, gb_float3 up);
+gb_mat4 gb_mat4_view(gb_vec3 position, gb_vec3 forward, gb_vec3 right, gb_vec3 up);
 /* Its inverse (view to world), the transpose of the rotation. */
-gb_mat4 gb_mat4_view_inverse(gb_float3 position, gb_float3 forward, gb_float3 right,
-                             gb_float3 up);
+gb_mat4 gb_mat4_view_inverse(gb_vec3 position, gb_vec3 forward, gb_vec3 right, gb_vec3 up);
 /* Perspective, reversed depth, infinite far plane: depth = near / -z. */
 gb_mat4 gb_mat4_perspective_infinite(float fov_y_degrees, float aspect, float near);
 /* Perspective, reversed depth, between near and far. */
@@ -45,6 +31,6 @@ gb_mat4 gb_mat4_perspective(float fov_y_degrees, float aspect, float near, float
 gb_mat4 gb_mat4_orthographic(float left, float right, float bottom, float top, float near,
                              float far);
 /* m times the point (x, y, z, 1), divided by w. */
-gb_float3 gb_mat4_transform_point(const gb_mat4 *m, gb_float3 p);
+gb_vec3 gb_mat4_transform_point(const gb_mat4 *m, gb_vec3 p);
 
 #endif

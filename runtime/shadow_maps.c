@@ -50,24 +50,24 @@ static const float cube_faces[6][2][3] = {
     {{0, -1, 0}, {0, 0, -1}}, {{0, 0, 1}, {0, -1, 0}}, {{0, 0, -1}, {0, -1, 0}},
 };
 
-static gb_float3 bounds_corner(const gb_scene *scene, int k)
+static gb_vec3 bounds_corner(const gb_scene *scene, int k)
 {
-    return gb_float3_make(k & 1 ? scene->bounds_max[0] : scene->bounds_min[0],
-                          k & 2 ? scene->bounds_max[1] : scene->bounds_min[1],
-                          k & 4 ? scene->bounds_max[2] : scene->bounds_min[2]);
+    return gb_vec3_make(k & 1 ? scene->bounds_max[0] : scene->bounds_min[0],
+                        k & 2 ? scene->bounds_max[1] : scene->bounds_min[1],
+                        k & 4 ? scene->bounds_max[2] : scene->bounds_min[2]);
 }
 
 static float scene_diagonal(const gb_scene *scene)
 {
-    return gb_float3_length(gb_float3_sub(bounds_corner(scene, 7), bounds_corner(scene, 0)));
+    return gb_vec3_length(gb_vec3_sub(bounds_corner(scene, 7), bounds_corner(scene, 0)));
 }
 
 /* The distance from p to the farthest corner of the bounds, a little more. */
-static float range_from(const gb_scene *scene, gb_float3 p)
+static float range_from(const gb_scene *scene, gb_vec3 p)
 {
     float range = 0.0f;
     for (int k = 0; k < 8; ++k)
-        range = fmaxf(range, gb_float3_length(gb_float3_sub(bounds_corner(scene, k), p)));
+        range = fmaxf(range, gb_vec3_length(gb_vec3_sub(bounds_corner(scene, k), p)));
     return 1.01f * range + 1e-3f * scene_diagonal(scene) + 1e-20f;
 }
 
@@ -80,7 +80,7 @@ static void put_point(const gb_scene *scene, const float position[3], const floa
                       const float *normal, float *out)
 {
     put3(out, position);
-    out[3] = range_from(scene, gb_float3_load(position));
+    out[3] = range_from(scene, gb_vec3_load(position));
     put3(out + 4, intensity);
     out[7] = normal ? 1.0f : 0.0f;
     if (normal)
@@ -88,20 +88,20 @@ static void put_point(const gb_scene *scene, const float position[3], const floa
 }
 
 /* An axis far from forward: the up of a light's view. */
-static gb_float3 some_up(gb_float3 forward)
+static gb_vec3 some_up(gb_vec3 forward)
 {
-    return fabsf(forward.y) < 0.9f ? gb_float3_make(0, 1, 0) : gb_float3_make(1, 0, 0);
+    return fabsf(forward.y) < 0.9f ? gb_vec3_make(0, 1, 0) : gb_vec3_make(1, 0, 0);
 }
 
 typedef struct light_frame {
-    gb_float3 position, forward, right, up;
+    gb_vec3 position, forward, right, up;
 } light_frame;
 
-static light_frame make_frame(gb_float3 position, gb_float3 forward, gb_float3 up_hint)
+static light_frame make_frame(gb_vec3 position, gb_vec3 forward, gb_vec3 up_hint)
 {
-    light_frame f = {position, gb_float3_normalize(forward), {0, 0, 0}, {0, 0, 0}};
-    f.right = gb_float3_normalize(gb_float3_cross(f.forward, up_hint));
-    f.up = gb_float3_cross(f.right, f.forward);
+    light_frame f = {position, gb_vec3_normalize(forward), {0, 0, 0}, {0, 0, 0}};
+    f.right = gb_vec3_normalize(gb_vec3_cross(f.forward, up_hint));
+    f.up = gb_vec3_cross(f.right, f.forward);
     return f;
 }
 
@@ -111,21 +111,21 @@ static gb_mat4 frame_view(const light_frame *f)
 }
 
 /* Orthographic over the scene's bounds seen along direction. */
-static gb_mat4 directional_matrix(const gb_scene *scene, gb_float3 direction, int size,
+static gb_mat4 directional_matrix(const gb_scene *scene, gb_vec3 direction, int size,
                                   float *texel)
 {
     float diagonal = scene_diagonal(scene);
-    gb_float3 centre = gb_float3_scale(gb_float3_add(bounds_corner(scene, 0),
-                                                     bounds_corner(scene, 7)), 0.5f);
-    gb_float3 forward = gb_float3_normalize(direction);
-    light_frame f = make_frame(gb_float3_sub(centre, gb_float3_scale(forward, diagonal)),
+    gb_vec3 centre =
+        gb_vec3_scale(gb_vec3_add(bounds_corner(scene, 0), bounds_corner(scene, 7)), 0.5f);
+    gb_vec3 forward = gb_vec3_normalize(direction);
+    light_frame f = make_frame(gb_vec3_sub(centre, gb_vec3_scale(forward, diagonal)),
                                forward, some_up(forward));
     gb_mat4 view = frame_view(&f);
-    gb_float3 low = {INFINITY, INFINITY, INFINITY}, high = {-INFINITY, -INFINITY, -INFINITY};
+    gb_vec3 low = {INFINITY, INFINITY, INFINITY}, high = {-INFINITY, -INFINITY, -INFINITY};
     for (int k = 0; k < 8; ++k) {
-        gb_float3 p = gb_mat4_transform_point(&view, bounds_corner(scene, k));
-        low = gb_float3_make(fminf(low.x, p.x), fminf(low.y, p.y), fminf(low.z, p.z));
-        high = gb_float3_make(fmaxf(high.x, p.x), fmaxf(high.y, p.y), fmaxf(high.z, p.z));
+        gb_vec3 p = gb_mat4_transform_point(&view, bounds_corner(scene, k));
+        low = gb_vec3_make(fminf(low.x, p.x), fminf(low.y, p.y), fminf(low.z, p.z));
+        high = gb_vec3_make(fmaxf(high.x, p.x), fmaxf(high.y, p.y), fmaxf(high.z, p.z));
     }
     float margin = 1e-3f * diagonal + 1e-20f;
     gb_mat4 projection = gb_mat4_orthographic(low.x - margin, high.x + margin, low.y - margin,
@@ -138,8 +138,8 @@ static gb_mat4 directional_matrix(const gb_scene *scene, gb_float3 direction, in
 /* Perspective over the spot's cone. */
 static gb_mat4 spot_matrix(const gb_scene *scene, const gb_light *light, int size, float *texel)
 {
-    gb_float3 position = gb_float3_load(light->position);
-    gb_float3 forward = gb_float3_normalize(gb_float3_load(light->direction));
+    gb_vec3 position = gb_vec3_load(light->position);
+    gb_vec3 forward = gb_vec3_normalize(gb_vec3_load(light->direction));
     light_frame f = make_frame(position, forward, some_up(forward));
     gb_mat4 view = frame_view(&f);
     float fov = fminf(2.0f * fmaxf(light->cone_angle, light->falloff_angle) + 2.0f, 170.0f);
@@ -153,12 +153,12 @@ static void put_plane(const gb_scene *scene, const gb_light *light, int size, fl
 {
     float texel = 0.0f;
     gb_mat4 matrix = light->type == GB_LIGHT_DIRECTIONAL
-                         ? directional_matrix(scene, gb_float3_load(light->direction), size, &texel)
+                         ? directional_matrix(scene, gb_vec3_load(light->direction), size, &texel)
                          : spot_matrix(scene, light, size, &texel);
     memcpy(out, matrix.m, sizeof matrix.m);
     put3(out + 16, light->position);
     out[19] = light->type == GB_LIGHT_DIRECTIONAL ? 1.0f : 0.0f;
-    gb_float3 direction = gb_float3_normalize(gb_float3_load(light->direction));
+    gb_vec3 direction = gb_vec3_normalize(gb_vec3_load(light->direction));
     out[20] = direction.x, out[21] = direction.y, out[22] = direction.z;
     out[23] = texel;
     put3(out + 24, light->intensity);
@@ -288,7 +288,7 @@ static void set_matrix(GLuint program, const char *name, const gb_mat4 *m)
 static void draw_cube(gb_shadow_maps *maps, const gb_gpu_scene *scene, uint32_t light)
 {
     const float *data = &maps->point_data[POINT_FLOATS * light];
-    gb_float3 position = gb_float3_load(data);
+    gb_vec3 position = gb_vec3_load(data);
     float range = data[3];
     gb_mat4 projection = gb_mat4_perspective(90.0f, 1.0f, 1e-4f * range, range);
     GLuint program = maps->cube_program;
@@ -296,8 +296,8 @@ static void draw_cube(gb_shadow_maps *maps, const gb_gpu_scene *scene, uint32_t 
                        position.y, position.z);
     glProgramUniform1f(program, glGetUniformLocation(program, "range"), range);
     for (int face = 0; face < 6; ++face) {
-        light_frame f = make_frame(position, gb_float3_load(cube_faces[face][0]),
-                                   gb_float3_load(cube_faces[face][1]));
+        light_frame f = make_frame(position, gb_vec3_load(cube_faces[face][0]),
+                                   gb_vec3_load(cube_faces[face][1]));
         gb_mat4 view = frame_view(&f);
         gb_mat4 view_projection = gb_mat4_multiply(&projection, &view);
         set_matrix(program, "view_projection", &view_projection);

@@ -2,21 +2,21 @@
 
 #include <math.h>
 
-static void set_basis(gb_view *view, gb_float3 forward)
+static void set_basis(gb_view *view, gb_vec3 forward)
 {
-    view->forward = gb_float3_normalize(forward);
-    view->right = gb_float3_normalize(gb_float3_cross(view->forward, view->world_up));
-    view->up = gb_float3_cross(view->right, view->forward);
+    view->forward = gb_vec3_normalize(forward);
+    view->right = gb_vec3_normalize(gb_vec3_cross(view->forward, view->world_up));
+    view->up = gb_vec3_cross(view->right, view->forward);
 }
 
 gb_result gb_view_from_camera(const gb_camera *camera, float scene_size, gb_view *view,
                               gb_error *error)
 {
-    gb_float3 position = gb_float3_load(camera->position);
-    gb_float3 forward = gb_float3_sub(gb_float3_load(camera->target), position);
-    gb_float3 up = gb_float3_normalize(gb_float3_load(camera->up));
-    gb_float3 right = gb_float3_normalize(gb_float3_cross(gb_float3_normalize(forward), up));
-    if (gb_float3_length(right) == 0.0f || !isfinite(right.x + right.y + right.z))
+    gb_vec3 position = gb_vec3_load(camera->position);
+    gb_vec3 forward = gb_vec3_sub(gb_vec3_load(camera->target), position);
+    gb_vec3 up = gb_vec3_normalize(gb_vec3_load(camera->up));
+    gb_vec3 right = gb_vec3_normalize(gb_vec3_cross(gb_vec3_normalize(forward), up));
+    if (gb_vec3_length(right) == 0.0f || !isfinite(right.x + right.y + right.z))
         return gb_fail(error, GB_ERROR_INVALID,
                        "camera: the target is on the position or up is along the view");
     if (!(camera->fov_y > 0.0f && camera->fov_y < 180.0f))
@@ -47,27 +47,26 @@ gb_mat4 gb_view_projection(const gb_view *view, int width, int height)
 
 void gb_view_move(gb_view *view, float forward, float right, float up)
 {
-    view->position = gb_float3_add(view->position, gb_float3_scale(view->forward, forward));
-    view->position = gb_float3_add(view->position, gb_float3_scale(view->right, right));
-    view->position = gb_float3_add(view->position, gb_float3_scale(view->world_up, up));
+    view->position = gb_vec3_add(view->position, gb_vec3_scale(view->forward, forward));
+    view->position = gb_vec3_add(view->position, gb_vec3_scale(view->right, right));
+    view->position = gb_vec3_add(view->position, gb_vec3_scale(view->world_up, up));
 }
 
 /* Rodrigues: v turned by angle about the unit axis. */
-static gb_float3 rotate(gb_float3 v, gb_float3 axis, float angle)
+static gb_vec3 rotate(gb_vec3 v, gb_vec3 axis, float angle)
 {
     float c = cosf(angle), s = sinf(angle);
-    gb_float3 r = gb_float3_scale(v, c);
-    r = gb_float3_add(r, gb_float3_scale(gb_float3_cross(axis, v), s));
-    return gb_float3_add(r, gb_float3_scale(axis, gb_float3_dot(axis, v) * (1.0f - c)));
+    gb_vec3 r = gb_vec3_scale(v, c);
+    r = gb_vec3_add(r, gb_vec3_scale(gb_vec3_cross(axis, v), s));
+    return gb_vec3_add(r, gb_vec3_scale(axis, gb_vec3_dot(axis, v) * (1.0f - c)));
 }
 
 void gb_view_turn(gb_view *view, float yaw, float pitch)
 {
-    gb_float3 forward = rotate(view->forward, view->world_up, yaw);
-    gb_float3 pitched = rotate(forward, gb_float3_normalize(gb_float3_cross(forward,
-                                                                             view->world_up)),
-                               pitch);
-    if (fabsf(gb_float3_dot(pitched, view->world_up)) < 0.99f)
+    gb_vec3 forward = rotate(view->forward, view->world_up, yaw);
+    gb_vec3 pitched =
+        rotate(forward, gb_vec3_normalize(gb_vec3_cross(forward, view->world_up)), pitch);
+    if (fabsf(gb_vec3_dot(pitched, view->world_up)) < 0.99f)
         forward = pitched;
     set_basis(view, forward);
 }

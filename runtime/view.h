@@ -11,11 +11,11 @@
 #include "scene.h"
 
 typedef struct gb_view {
-    gb_float3 position;
-    gb_float3 forward, right, up;   /* unit, orthogonal */
-    gb_float3 world_up;             /* the camera's up: yaw turns about it */
-    float fov_y;                    /* degrees */
-    float near;                     /* near plane, world units */
+    gb_vec3 position;
+    gb_vec3 forward, right, up; /* unit, orthogonal */
+    gb_vec3 world_up;           /* the camera's up: yaw turns about it */
+    float fov_y;                /* degrees */
+    float near;                 /* near plane, world units */
 } gb_view;
 
 /* The view of camera; scene_size (the diagonal of the scene's bounds) sets

@@ -93,19 +93,19 @@ static void test_area_light_samples(const gb_scene *scene)
 static void test_matrices(void)
 {
     gb_mat4 p = gb_mat4_perspective_infinite(90.0f, 2.0f, 0.5f);
-    gb_float3 near = gb_mat4_transform_point(&p, gb_float3_make(0, 0, -0.5f));
-    gb_float3 far = gb_mat4_transform_point(&p, gb_float3_make(0, 0, -1e6f));
+    gb_vec3 near = gb_mat4_transform_point(&p, gb_vec3_make(0, 0, -0.5f));
+    gb_vec3 far = gb_mat4_transform_point(&p, gb_vec3_make(0, 0, -1e6f));
     CHECK_NEAR(near.z, 1.0, 1e-6, "reversed depth: 1 on the near plane");
     CHECK(far.z > 0.0f && far.z < 1e-6f, "reversed depth: toward 0 far away");
-    gb_float3 corner = gb_mat4_transform_point(&p, gb_float3_make(2, 1, -1));
+    gb_vec3 corner = gb_mat4_transform_point(&p, gb_vec3_make(2, 1, -1));
     CHECK_NEAR(corner.x, 1.0, 1e-6, "aspect 2: x at tan(45) x 2 is the right edge");
     CHECK_NEAR(corner.y, 1.0, 1e-6, "fov 90: y at tan(45) is the top edge");
     gb_mat4 o = gb_mat4_orthographic(-1, 1, -2, 2, 1, 3);
-    CHECK_NEAR(gb_mat4_transform_point(&o, gb_float3_make(0, 0, -1)).z, 1.0, 1e-6,
+    CHECK_NEAR(gb_mat4_transform_point(&o, gb_vec3_make(0, 0, -1)).z, 1.0, 1e-6,
                "orthographic: depth 1 on the near plane");
-    CHECK_NEAR(gb_mat4_transform_point(&o, gb_float3_make(0, 0, -3)).z, 0.0, 1e-6,
+    CHECK_NEAR(gb_mat4_transform_point(&o, gb_vec3_make(0, 0, -3)).z, 0.0, 1e-6,
                "orthographic: depth 0 on the far plane");
-    gb_float3 position = {1, 2, 3}, forward = {0, 0, -1}, right = {1, 0, 0}, up = {0, 1, 0};
+    gb_vec3 position = {1, 2, 3}, forward = {0, 0, -1}, right = {1, 0, 0}, up = {0, 1, 0};
     gb_mat4 view = gb_mat4_view(position, forward, right, up);
     gb_mat4 inverse = gb_mat4_view_inverse(position, forward, right, up);
     gb_mat4 product = gb_mat4_multiply(&inverse, &view);
