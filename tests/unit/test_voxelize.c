@@ -808,7 +808,7 @@ static void test_threads_and_progress(void)
         char what[80];
         snprintf(what, sizeof what, "progress asking to stop at call %d cancels the work",
                  stop_after);
-        CHECK(result == GB_ERROR_ARGUMENT && strstr(error.message, "cancelled")
+        CHECK(result == GB_ERROR_INTERRUPTED && strstr(error.message, "interrupted")
                   && cancelled.surface == NULL && stopping.calls == stop_after, what);
     }
     gb_voxel_grid_free(&one);

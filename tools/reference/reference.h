@@ -27,7 +27,7 @@
  *
  * Options: a zeroed gb_reference_options means the defaults. The progress
  * callback gets the fraction of tiles done; returning nonzero cancels the
- * render, which then fails with GB_ERROR_ARGUMENT ("rendering cancelled").
+ * render, which then fails with GB_ERROR_INTERRUPTED.
  */
 #ifndef GB_REFERENCE_H
 #define GB_REFERENCE_H

@@ -101,7 +101,7 @@ static gb_result run_threads(render_job *job, const gb_reference_options *option
                            .progress = options->progress,
                            .progress_user = options->progress_user};
     if (gb_work_queue_run(&queue, render_tile, job, NULL) != GB_OK)
-        return gb_fail(error, GB_ERROR_INTERRUPTED, "reference: rendering cancelled");
+        return gb_fail(error, GB_ERROR_INTERRUPTED, "reference: interrupted");
     return GB_OK;
 }
 

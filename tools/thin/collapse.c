@@ -418,7 +418,7 @@ gb_result gb_collapse_run(gb_collapse *collapse, gb_progress_callback progress,
         double done = collapse->cubes ? (double)collapse->cubes_removed / (double)collapse->cubes
                                       : 1.0;
         if (progress && progress(progress_user, done))
-            return gb_fail(error, GB_ERROR_IO, "interrupted");
+            return gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
     }
     return GB_OK;
 }

@@ -233,7 +233,7 @@ static gb_result sweep_to_fixed_point(geodesic *g, int pairs, int *settled,
         changed |= sweep(&w, 1);
         *settled = !changed;
         if (progress && progress(progress_user, (pair + 1.0) / (pairs + 1.0)))
-            result = gb_fail(error, GB_ERROR_IO, "interrupted");
+            result = gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
     }
     free(w.changed);
     free(w.swept[0]);
@@ -287,7 +287,7 @@ static gb_result report(slab *s)
         return GB_OK;
     double fraction = (double)s->settled / (double)(s->empty_count + 1);
     if (s->progress(s->progress_user, fraction < 1.0 ? fraction : 1.0))
-        return gb_fail(&s->error, GB_ERROR_IO, "interrupted");
+        return gb_fail(&s->error, GB_ERROR_INTERRUPTED, "interrupted");
     return GB_OK;
 }
 

@@ -184,7 +184,7 @@ static gb_result chessboard_opening(const gb_cubical_complex *complex, uint32_t 
             result = spread_balls(&front, level, error);
         if (!result && progress &&
             progress(progress_user, 0.5 + 0.5 * (double)n / (double)sorted.count))
-            result = gb_fail(error, GB_ERROR_IO, "interrupted");
+            result = gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
     }
     gb_cell_list_free(&front.now);
     gb_cell_list_free(&front.next);
@@ -220,7 +220,7 @@ gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_comp
         chessboard_distance(complex, persistence->maps);
         persistence->largest_distance = largest_distance(persistence->maps, cells);
         if (progress && progress(progress_user, 0.5))
-            result = gb_fail(error, GB_ERROR_IO, "interrupted");
+            result = gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
     }
     if (!result)
         result = chessboard_opening(complex, persistence->maps, persistence->largest_distance,

@@ -242,6 +242,6 @@ gb_result gb_distance_transform(gb_voxel_grid *grid, const gb_voxelize_options *
     if (!allocated)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "distance: out of memory");
     if (stopped || (options.progress && options.progress(options.progress_user, 1.0)))
-        return gb_fail(error, GB_ERROR_ARGUMENT, "distance: cancelled");
+        return gb_fail(error, GB_ERROR_INTERRUPTED, "distance: interrupted");
     return GB_OK;
 }

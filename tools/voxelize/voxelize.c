@@ -313,9 +313,9 @@ static gb_result mark_surface(gb_voxel_grid *grid, const double reference[3],
     memcpy(job.reference_voxel, reference_voxel, sizeof job.reference_voxel);
     gb_run_threads(mark_slabs, &job, options->thread_count);
     if (atomic_load(&job.stop))
-        return gb_fail(error, GB_ERROR_ARGUMENT, "voxelize: cancelled");
+        return gb_fail(error, GB_ERROR_INTERRUPTED, "voxelize: interrupted");
     if (options->progress && options->progress(options->progress_user, 1.0))
-        return gb_fail(error, GB_ERROR_ARGUMENT, "voxelize: cancelled");
+        return gb_fail(error, GB_ERROR_INTERRUPTED, "voxelize: interrupted");
     return GB_OK;
 }
 

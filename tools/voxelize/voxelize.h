@@ -48,7 +48,7 @@ typedef struct gb_voxelize_options {
     gb_progress_callback progress;/* NULL: no report; called from the calling
                                      thread with the fraction done; nonzero
                                      stops the work, which then fails with
-                                     GB_ERROR_ARGUMENT ("cancelled") */
+                                     GB_ERROR_INTERRUPTED */
     void *progress_user;
 } gb_voxelize_options;
 
