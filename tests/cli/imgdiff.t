@@ -40,6 +40,30 @@ ok "$([ "$(value mse_srgb8 "$dir/out")" = 0 ] && [ "$(value rmse "$dir/out")" = 
 ok "$([ "$(value pixels "$dir/out")" = 1 ] && [ "$(value mse_srgb8 "$dir/out")" = 0 ]; echo $?)" \
     "--mask leaves out the black pixel, the one that differs"
 
+# --fail-above E: exit 1 (one line on stderr) when relative_mse > E, else 0;
+# --quiet prints nothing either way.
+"$tool" "$dir/a.ppm" "$dir/b.ppm" >"$dir/out"
+error=$(value relative_mse "$dir/out")
+below=$(awk -v e="$error" 'BEGIN { print e * 0.99 }')
+above=$(awk -v e="$error" 'BEGIN { print e * 1.01 }')
+"$tool" --fail-above "$below" "$dir/a.ppm" "$dir/b.ppm" >"$dir/out" 2>"$dir/err"
+status=$?
+ok "$([ $status = 1 ] && grep -q '^relative_mse ' "$dir/out" &&
+    [ "$(cat "$dir/err")" = "imgdiff: relative_mse $error is above $below" ]; echo $?)" \
+    "--fail-above just below the error ($below < $error): exit 1, measures printed, one line why"
+"$tool" --fail-above "$above" "$dir/a.ppm" "$dir/b.ppm" >/dev/null 2>"$dir/err"
+ok "$([ $? = 0 ] && [ ! -s "$dir/err" ]; echo $?)" "--fail-above just above the error: exit 0"
+"$tool" --quiet --fail-above "$below" "$dir/a.ppm" "$dir/b.ppm" >"$dir/out" 2>"$dir/err"
+status=$?
+ok "$([ $status = 1 ] && [ ! -s "$dir/out" ] && [ ! -s "$dir/err" ]; echo $?)" \
+    "--quiet --fail-above: exit 1 and nothing printed"
+"$tool" -q "$dir/a.ppm" "$dir/b.ppm" >"$dir/out" 2>"$dir/err"
+ok "$([ $? = 0 ] && [ ! -s "$dir/out" ] && [ ! -s "$dir/err" ]; echo $?)" "-q: exit 0, nothing printed"
+"$tool" --fail-above -1 "$dir/a.ppm" "$dir/b.ppm" >/dev/null 2>"$dir/err"
+status=$?
+ok "$([ $status = 2 ] && grep -q 'fail-above: "-1" is not a number of at least 0' "$dir/err"; echo $?)" \
+    "--fail-above -1: usage error, exit 2 (got $status)"
+
 "$tool" --heatmap "$dir/heat.png" "$dir/a.ppm" "$dir/b.ppm" >/dev/null
 ok "$([ -s "$dir/heat.png" ]; echo $?)" "--heatmap writes a PNG"
 

@@ -24,24 +24,30 @@ static const char usage[] =
     "      --heatmap OUT.png     write the per-pixel error as colours, black (none)\n"
     "                            to white (the 99th percentile, or --heatmap-scale)\n"
     "      --heatmap-scale E     the linear error shown white\n"
+    "      --fail-above E        exit 1 when relative_mse is above E (a test's threshold)\n"
+    "  -q, --quiet               print nothing (the exit status tells)\n"
     "  -h, --help                this help\n"
     "  -V, --version             the version\n";
 
 typedef struct arguments {
     const char *image, *reference, *mask, *heatmap;
     double heatmap_scale;
+    double fail_above;          /* INFINITY: never fail on the error; NaN fails */
+    int quiet;
 } arguments;
 
-enum { OPTION_HEATMAP = 256, OPTION_HEATMAP_SCALE };
+enum { OPTION_HEATMAP = 256, OPTION_HEATMAP_SCALE, OPTION_FAIL_ABOVE };
 
-static int parse_scale(const char *text, double *scale)
+/* A finite number above minimum (or equal to it when closed). */
+static int parse_number(const char *text, double minimum, int closed, double *number)
 {
     char *end;
     errno = 0;
     double value = strtod(text, &end);
-    if (errno || end == text || *end || !(value > 0.0) || !isfinite(value))
+    if (errno || end == text || *end || !isfinite(value) ||
+        !(value > minimum || (closed && value == minimum)))
         return 0;
-    *scale = value;
+    *number = value;
     return 1;
 }
 
@@ -52,25 +58,34 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"mask", required_argument, NULL, 'm'},
         {"heatmap", required_argument, NULL, OPTION_HEATMAP},
         {"heatmap-scale", required_argument, NULL, OPTION_HEATMAP_SCALE},
+        {"fail-above", required_argument, NULL, OPTION_FAIL_ABOVE},
+        {"quiet", no_argument, NULL, 'q'},
         {"help", no_argument, NULL, 'h'},
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
     int option;
-    while ((option = getopt_long(argc, argv, "m:hV", options, NULL)) != -1) {
+    while ((option = getopt_long(argc, argv, "m:qhV", options, NULL)) != -1) {
         if (option == 'h')
             return fputs(usage, stdout) == EOF ? 1 : -1;
         if (option == 'V')
             return puts("imgdiff (gibake) 0.1") == EOF ? 1 : -1;
         if (option == 'm')
             a->mask = optarg;
+        else if (option == 'q')
+            a->quiet = 1;
         else if (option == OPTION_HEATMAP)
             a->heatmap = optarg;
-        else if (option == OPTION_HEATMAP_SCALE && parse_scale(optarg, &a->heatmap_scale))
+        else if (option == OPTION_HEATMAP_SCALE &&
+                 parse_number(optarg, 0.0, 0, &a->heatmap_scale))
+            continue;
+        else if (option == OPTION_FAIL_ABOVE && parse_number(optarg, 0.0, 1, &a->fail_above))
             continue;
         else {
-            if (option == OPTION_HEATMAP_SCALE)
-                fprintf(stderr, "imgdiff: bad --heatmap-scale \"%s\"\n", optarg);
+            if (option == OPTION_HEATMAP_SCALE || option == OPTION_FAIL_ABOVE)
+                fprintf(stderr, "imgdiff: --%s: \"%s\" is not a number %s\n",
+                        option == OPTION_FAIL_ABOVE ? "fail-above" : "heatmap-scale", optarg,
+                        option == OPTION_FAIL_ABOVE ? "of at least 0" : "above 0");
             return fputs(usage, stderr), 2;
         }
     }
@@ -109,7 +124,8 @@ static gb_result write_heatmap(const arguments *a, const gb_image *image,
     return result;
 }
 
-static gb_result compare(const arguments *a, gb_image images[3], gb_error *error)
+static gb_result compare(const arguments *a, gb_image images[3], gb_image_error *measures,
+                         gb_error *error)
 {
     gb_result result = gb_image_read(a->image, &images[0], error);
     if (result == GB_OK)
@@ -117,32 +133,40 @@ static gb_result compare(const arguments *a, gb_image images[3], gb_error *error
     if (result == GB_OK && a->mask)
         result = gb_image_read(a->mask, &images[2], error);
     const gb_image *mask = a->mask ? &images[2] : NULL;
-    gb_image_error measures;
     if (result == GB_OK)
-        result = gb_image_error_compute(&images[0], &images[1], mask, &measures, error);
+        result = gb_image_error_compute(&images[0], &images[1], mask, measures, error);
     if (result == GB_OK && a->heatmap)
         result = write_heatmap(a, &images[0], &images[1], mask, error);
-    if (result == GB_OK)
-        print_error(&measures);
+    if (result == GB_OK && !a->quiet)
+        print_error(measures);
     return result;
 }
 
 int main(int argc, char **argv)
 {
-    arguments a = {0};
+    arguments a = {.fail_above = INFINITY};
     int status = parse_arguments(argc, argv, &a);
     if (status)
         return status < 0 ? 0 : status;
     gb_image images[3] = {{0}, {0}, {0}};
     gb_error error;
+    gb_image_error measures;
     gb_result result = a.heatmap ? gb_image_check_output(a.heatmap, &error) : GB_OK;
     if (result == GB_OK)
-        result = compare(&a, images, &error);
+        result = compare(&a, images, &measures, &error);
     for (int i = 0; i < 3; ++i)
         gb_image_free(&images[i]);
     if (result != GB_OK) {
         fprintf(stderr, "imgdiff: %s\n", error.message);
         return 1;
     }
-    return fflush(stdout) == 0 ? 0 : 1;
+    if (fflush(stdout) != 0)
+        return 1;
+    if (isfinite(a.fail_above) && !(measures.relative_mse <= a.fail_above)) {
+        if (!a.quiet)
+            fprintf(stderr, "imgdiff: relative_mse %.6g is above %g\n", measures.relative_mse,
+                    a.fail_above);
+        return 1;
+    }
+    return 0;
 }
