@@ -289,6 +289,11 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         return 2;
     }
     a->scene_path = argv[optind];
+    if (a->headless && !a->output && !a->timings && !a->renderer.parameters.write_vpls) {
+        fprintf(stderr, "gbview: --headless writes nothing without -o FILE, --timings or "
+                        "--write-vpls\n");
+        return 2;
+    }
     return 0;
 }
 

@@ -93,9 +93,11 @@ ok "$([ ! -e "$dir/missing.png" ]; echo $?)" "a failed run writes no image"
 expect_failure "an unknown method" 2 "unknown method 'radiosity'" \
     --headless --method radiosity "$scene"
 expect_failure "octree without a bake folder" 1 "octree: needs a light octree" \
-    --headless --method octree "$scene"
+    --headless --method octree "$scene" -o "$dir/octree.png"
 expect_failure "a camera the scene lacks" 1 "^gbview: camera 3" \
-    --headless --camera 3 "$scene"
+    --headless --camera 3 "$scene" -o "$dir/camera3.png"
+expect_failure "--headless with nothing to write" 2 "writes nothing without -o" \
+    --headless "$scene"
 expect_failure "a bad resolution" 2 "bad value \"0x5\"" \
     --headless --resolution 0x5 "$scene"
 
