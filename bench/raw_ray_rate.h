@@ -1,8 +1,10 @@
-/* raw_ray_rate.h — the yardstick of the ray-tracing benchmarks: Embree's
- * raw rtcIntersect1 rate on incoherent random rays (origins uniform in the
- * scene's bounds, directions uniform), RAYS_PER_THREAD rays a thread, timed
- * in wall and process CPU time. Bench code, included by the bench programs
- * that compare a tool's rate with it in the same run.
+/* raw_ray_rate.h — the incoherent yardstick of the ray-tracing benchmarks:
+ * Embree's raw rtcIntersect1 rate on incoherent random rays (origins uniform
+ * in the scene's bounds, directions uniform), RAYS_PER_THREAD rays a thread,
+ * timed in wall and process CPU time. Bench code, included by the bench
+ * programs that compare a tool's rate with it in the same run: like for
+ * like for photons_rate (photons' rays are incoherent); for reference_rate
+ * only context, its like-for-like yardstick is bench/raw_path_rate.h.
  */
 #ifndef GB_RAW_RAY_RATE_H
 #define GB_RAW_RAY_RATE_H

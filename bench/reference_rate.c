@@ -1,19 +1,30 @@
-/* reference_rate — rays per second of the reference renderer against
- * Embree's raw rate on the same scene, in the same run.
+/* reference_rate — rays per second of the reference renderer against raw
+ * Embree on the same scene, in the same run, with two yardsticks.
  *
- *   reference_rate [--threads N] [--spp N] [--resolution WxH] SCENE...
+ *   reference_rate [--threads N] [--spp N] [--resolution WxH] [--rounds N] SCENE...
  *
- * For each scene: the raw rate is rtcIntersect1 on incoherent rays (origins
- * uniform in the scene's bounds, directions uniform on the sphere, drawn in
- * advance), on N threads, on an Embree scene built exactly as the reference
- * builds it (high quality, robust). The reference rate is every ray it
- * traces (rtcIntersect1 and rtcOccluded1) over its rendering time, in full
- * mode (path tracing) on the scene's first camera. Both are measured in
- * --rounds alternating rounds, in wall time and in process CPU time (which
- * other processes sharing the cores disturb less), and the medians printed,
- * one line per scene:
- *   scene triangles threads raw ref ratio raw_cpu ref_cpu ratio_cpu
- * (Mrays per second; *_cpu: Mrays per CPU-second times the thread count).
+ * The reference rate is every ray it traces (rtcIntersect1 and rtcOccluded1)
+ * over its rendering time, in full mode (path tracing) on the scene's first
+ * camera. The yardsticks, both on N threads on an Embree scene built exactly
+ * as the reference builds it (high quality, robust):
+ *   path  the main one, like for like (bench/raw_path_rate.h): raw
+ *         rtcIntersect1 / rtcOccluded1 on the rays the reference's paths are
+ *         made of (camera rays through the same pixels, samples and tiles,
+ *         at each hit the same shadow rays toward the lights, one cosine
+ *         bounce), with no shading; paths stop after 3 bounces, where the
+ *         reference's Russian roulette starts, so they can be a little
+ *         shorter than the reference's: both rays-per-sample are printed;
+ *   raw   for context (bench/raw_ray_rate.h): rtcIntersect1 alone on
+ *         incoherent rays (origins uniform in the scene's bounds, directions
+ *         uniform on the sphere, drawn in advance), which the reference's
+ *         coherent camera rays and cheap shadow rays can outrun.
+ * All three are measured in --rounds alternating rounds, in wall time and in
+ * process CPU time (which other processes sharing the cores disturb less),
+ * and the medians printed, one line per scene:
+ *   scene triangles threads ref path ratio raw ratio_raw
+ *         ref_cpu path_cpu ratio_cpu raw_cpu ratio_raw_cpu ref_rays path_rays
+ * (Mrays per second; *_cpu: Mrays per CPU-second times the thread count;
+ * ratio: ref / path, ratio_raw: ref / raw; *_rays: rays per camera sample).
  */
 #include <getopt.h>
 #include <math.h>
@@ -23,22 +34,23 @@
 #include <string.h>
 #include <time.h>
 
+#include "raw_path_rate.h"
 #include "raw_ray_rate.h"
 #include "../tools/reference/reference.h"
 #include "progress.h"
 #include "random.h"
 
-enum { MAX_ROUNDS = 15 };
-
+enum { MAX_ROUNDS = 15, COLUMNS = 12 };
 
 static rate reference_rate(const gb_scene *scene, const gb_reference_options *options,
-                           gb_error *error)
+                           double *rays_per_sample, gb_error *error)
 {
     gb_image image;
     gb_reference_stats stats;
     if (gb_reference_render(scene, options, &image, &stats, error) != GB_OK)
         return (rate){-1, -1};
     gb_image_free(&image);
+    *rays_per_sample = (double)stats.rays / (double)stats.samples;
     double mrays = 1e-6 * (double)stats.rays;
     return (rate){mrays / stats.seconds, mrays / stats.cpu_seconds * options->threads};
 }
@@ -55,22 +67,38 @@ static double median(double *values, int count)
     return count % 2 ? values[count / 2] : 0.5 * (values[count / 2 - 1] + values[count / 2]);
 }
 
-/* Medians over the rounds of raw, reference and their ratio, wall and CPU. */
-static int measure(const gb_scene *scene, const gb_reference_options *options, int rounds,
-                   double out[6], gb_error *error)
+/* The columns of one round: reference, path yardstick, ratio, raw
+ * yardstick, ratio, the same five in CPU time, then rays per sample. */
+static int measure_round(const gb_scene *scene, const gb_reference_options *options,
+                         double row[COLUMNS], gb_error *error)
 {
-    double values[6][MAX_ROUNDS];
+    double ref_rays = 0, path_rays = 0;
+    rate raw = raw_rate(scene, options->threads, error);
+    rate path = raw.wall > 0 ? raw_path_rate(scene, options, &path_rays, error) : raw;
+    rate ref = path.wall > 0 ? reference_rate(scene, options, &ref_rays, error) : path;
+    if (ref.wall <= 0)
+        return 0;
+    double columns[COLUMNS] = {ref.wall, path.wall, ref.wall / path.wall,
+                               raw.wall, ref.wall / raw.wall,
+                               ref.cpu, path.cpu, ref.cpu / path.cpu,
+                               raw.cpu, ref.cpu / raw.cpu,
+                               ref_rays, path_rays};
+    memcpy(row, columns, sizeof columns);
+    return 1;
+}
+
+/* Medians over the rounds of every column. */
+static int measure(const gb_scene *scene, const gb_reference_options *options, int rounds,
+                   double out[COLUMNS], gb_error *error)
+{
+    double values[COLUMNS][MAX_ROUNDS], row[COLUMNS];
     for (int r = 0; r < rounds; ++r) {
-        rate raw = raw_rate(scene, options->threads, error);
-        rate reference = raw.wall > 0 ? reference_rate(scene, options, error) : raw;
-        if (reference.wall <= 0)
+        if (!measure_round(scene, options, row, error))
             return 0;
-        double row[6] = {raw.wall, reference.wall, reference.wall / raw.wall,
-                         raw.cpu, reference.cpu, reference.cpu / raw.cpu};
-        for (int k = 0; k < 6; ++k)
+        for (int k = 0; k < COLUMNS; ++k)
             values[k][r] = row[k];
     }
-    for (int k = 0; k < 6; ++k)
+    for (int k = 0; k < COLUMNS; ++k)
         out[k] = median(values[k], rounds);
     return 1;
 }
@@ -84,12 +112,13 @@ static int bench_scene(const char *path, gb_reference_options *options, int roun
         fprintf(stderr, "reference_rate: %s\n", error.message);
         return 1;
     }
-    double m[6];
+    double m[COLUMNS];
     int measured = measure(&scene, options, rounds, m, &error);
     if (measured) {
         const char *name = strrchr(path, '/');
-        printf("%-16s %8u %2d %7.2f %7.2f %6.2f %8.2f %8.2f %6.2f\n", name ? name + 1 : path,
-               scene.triangle_count, options->threads, m[0], m[1], m[2], m[3], m[4], m[5]);
+        printf("%-16s %8u %2d %6.2f %6.2f %5.2f %6.2f %5.2f %7.2f %7.2f %5.2f %7.2f %5.2f "
+               "%6.1f %6.1f\n", name ? name + 1 : path, scene.triangle_count, options->threads,
+               m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11]);
         fflush(stdout);
     } else {
         fprintf(stderr, "reference_rate: %s\n", error.message);
@@ -126,8 +155,9 @@ int main(int argc, char **argv)
     if (options.threads < 1 || options.threads > MAX_THREADS || options.spp < 1 ||
         rounds < 1 || rounds > MAX_ROUNDS || optind >= argc)
         return fputs("reference_rate: bad arguments\n", stderr), 2;
-    printf("%-16s %8s %2s %7s %7s %6s %8s %8s %6s\n", "# scene", "tris", "th", "raw", "ref",
-           "ratio", "raw_cpu", "ref_cpu", "ratio");
+    printf("%-16s %8s %2s %6s %6s %5s %6s %5s %7s %7s %5s %7s %5s %6s %6s\n", "# scene", "tris",
+           "th", "ref", "path", "ratio", "raw", "r_raw", "ref_cpu", "pathcpu", "ratio",
+           "raw_cpu", "r_raw", "r_rays", "p_rays");
     int status = 0;
     for (int i = optind; i < argc; ++i)
         status |= bench_scene(argv[i], &options, rounds);
