@@ -1,0 +1,251 @@
+/* cli.c — option values and usage errors of every tool (cli.h). */
+
+#include "cli.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char version[] = "0.1";
+
+/* The last line of every usage error; returns GB_EXIT_USAGE. */
+static int print_try_line(const char *tool)
+{
+    fprintf(stderr, "Try '%s --help' for more information.\n", tool);
+    return GB_EXIT_USAGE;
+}
+
+/* Digits only, at least one, at most max_digits, within text[0..length). */
+static int is_digits(const char *text, size_t length, size_t max_digits)
+{
+    if (length == 0 || length > max_digits)
+        return 0;
+    for (size_t i = 0; i < length; ++i)
+        if (text[i] < '0' || text[i] > '9')
+            return 0;
+    return 1;
+}
+
+/* A side of WxH or a part of I/N: digits up to the stop character. */
+static int parse_part(const char *text, size_t length, uint64_t high, uint64_t *value)
+{
+    if (!is_digits(text, length, 19))
+        return 0;
+    errno = 0;
+    unsigned long long parsed = strtoull(text, NULL, 10);
+    if (errno || parsed > high)
+        return 0;
+    *value = parsed;
+    return 1;
+}
+
+/* A '-' at most, then digits. */
+static int parse_signed(const char *text, long *value)
+{
+    const char *digits = text[0] == '-' ? text + 1 : text;
+    if (!is_digits(digits, strlen(digits), 19))
+        return 0;
+    errno = 0;
+    long parsed = strtol(text, NULL, 10);
+    if (errno)
+        return 0;
+    *value = parsed;
+    return 1;
+}
+
+int gb_cli_integer(const char *tool, const char *option, const char *text, long low,
+                   long high, long *value)
+{
+    long parsed;
+    if (!parse_signed(text, &parsed) || parsed < low || parsed > high) {
+        fprintf(stderr, "%s: --%s: '%s' is not an integer in %ld..%ld\n", tool, option, text,
+                low, high);
+        return print_try_line(tool);
+    }
+    *value = parsed;
+    return GB_EXIT_SUCCESS;
+}
+
+int gb_cli_unsigned(const char *tool, const char *option, const char *text, uint64_t low,
+                    uint64_t high, uint64_t *value)
+{
+    uint64_t parsed;
+    if (!parse_part(text, strlen(text), high, &parsed) || parsed < low) {
+        fprintf(stderr, "%s: --%s: '%s' is not an integer in %llu..%llu\n", tool, option, text,
+                (unsigned long long)low, (unsigned long long)high);
+        return print_try_line(tool);
+    }
+    *value = parsed;
+    return GB_EXIT_SUCCESS;
+}
+
+/* strtod's numbers, but no leading space, no inf, no nan: a sign, a digit
+ * or a point first. */
+static int parse_finite(const char *text, double *value)
+{
+    const char *first = text[0] == '-' || text[0] == '+' ? text + 1 : text;
+    if (!((*first >= '0' && *first <= '9') || *first == '.'))
+        return 0;
+    char *end;
+    errno = 0;
+    double parsed = strtod(text, &end);
+    if (errno || end == text || *end || !isfinite(parsed))
+        return 0;
+    *value = parsed;
+    return 1;
+}
+
+int gb_cli_number(const char *tool, const char *option, const char *text, double low,
+                  double high, double *value)
+{
+    double parsed;
+    if (!parse_finite(text, &parsed) || !(parsed >= low && parsed <= high)) {
+        fprintf(stderr, "%s: --%s: '%s' is not a number in [%g, %g]\n", tool, option, text, low,
+                high);
+        return print_try_line(tool);
+    }
+    *value = parsed;
+    return GB_EXIT_SUCCESS;
+}
+
+int gb_cli_float(const char *tool, const char *option, const char *text, double low,
+                 double high, float *value)
+{
+    double parsed;
+    int status = gb_cli_number(tool, option, text, low, high, &parsed);
+    if (status == GB_EXIT_SUCCESS)
+        *value = (float)parsed;
+    return status;
+}
+
+int gb_cli_size(const char *tool, const char *option, const char *text, int max_side,
+                int *width, int *height)
+{
+    const char *x = strchr(text, 'x');
+    uint64_t w, h;
+    if (!x || !parse_part(text, (size_t)(x - text), (uint64_t)max_side, &w) ||
+        !parse_part(x + 1, strlen(x + 1), (uint64_t)max_side, &h) || w < 1 || h < 1) {
+        fprintf(stderr, "%s: --%s: '%s' is not WxH with each side in 1..%d\n", tool, option,
+                text, max_side);
+        return print_try_line(tool);
+    }
+    *width = (int)w;
+    *height = (int)h;
+    return GB_EXIT_SUCCESS;
+}
+
+int gb_cli_fraction(const char *tool, const char *option, const char *text, uint32_t *index,
+                    uint32_t *count)
+{
+    const char *slash = strchr(text, '/');
+    uint64_t i, n;
+    if (!slash || !parse_part(text, (size_t)(slash - text), UINT32_MAX, &i) ||
+        !parse_part(slash + 1, strlen(slash + 1), UINT32_MAX, &n) || i >= n) {
+        fprintf(stderr, "%s: --%s: '%s' is not I/N with I in 0..N-1\n", tool, option, text);
+        return print_try_line(tool);
+    }
+    *index = (uint32_t)i;
+    *count = (uint32_t)n;
+    return GB_EXIT_SUCCESS;
+}
+
+int gb_cli_choice(const char *tool, const char *option, const char *text,
+                  const char *const *names, int count, int *index)
+{
+    for (int i = 0; i < count; ++i)
+        if (strcmp(text, names[i]) == 0) {
+            *index = i;
+            return GB_EXIT_SUCCESS;
+        }
+    fprintf(stderr, "%s: --%s: '%s' is not one of ", tool, option, text);
+    for (int i = 0; i < count; ++i)
+        fprintf(stderr, "%s%s", names[i], i + 1 < count ? ", " : "\n");
+    return print_try_line(tool);
+}
+
+int gb_cli_usage_error(const char *tool, const char *format, ...)
+{
+    va_list arguments;
+    va_start(arguments, format);
+    fprintf(stderr, "%s: ", tool);
+    vfprintf(stderr, format, arguments);
+    fputc('\n', stderr);
+    va_end(arguments);
+    return print_try_line(tool);
+}
+
+/* The long option NAME[0..length) names: the exact one, else the only one
+ * it abbreviates; *matches counts the candidates. */
+static const struct option *find_long_option(const struct option *options, const char *name,
+                                             size_t length, int *matches)
+{
+    const struct option *found = NULL;
+    *matches = 0;
+    for (const struct option *o = options; o->name; ++o) {
+        if (strncmp(o->name, name, length) != 0)
+            continue;
+        if (strlen(o->name) == length) {
+            *matches = 1;
+            return o;
+        }
+        found = o;
+        ++*matches;
+    }
+    return *matches == 1 ? found : NULL;
+}
+
+static const struct option *find_short_option(const struct option *options, int letter)
+{
+    for (const struct option *o = options; o->name; ++o)
+        if (o->val == letter)
+            return o;
+    return NULL;
+}
+
+/* A long option's error: optind is past its word, optopt is 0 (unknown,
+ * ambiguous) or its value (a value missing or given to a flag). Returns 0
+ * when the error was not about that word. */
+static int report_long_option(const char *tool, const char *word,
+                              const struct option *options)
+{
+    size_t length = strcspn(word + 2, "=");
+    int matches;
+    const struct option *o = find_long_option(options, word + 2, length, &matches);
+    if (optopt != 0 && !(o && o->val == optopt))
+        return 0;
+    int shown = (int)(length + 2);
+    if (optopt == 0 && matches > 1)
+        gb_cli_usage_error(tool, "option '%.*s' is ambiguous", shown, word);
+    else if (optopt == 0)
+        gb_cli_usage_error(tool, "unknown option '%.*s'", shown, word);
+    else if (o->has_arg == no_argument)
+        gb_cli_usage_error(tool, "option '--%s' takes no value", o->name);
+    else
+        gb_cli_usage_error(tool, "option '--%s' needs a value", o->name);
+    return 1;
+}
+
+int gb_cli_option_error(const char *tool, char **argv, const struct option *options)
+{
+    const char *word = optind > 0 ? argv[optind - 1] : NULL;
+    if (word && strncmp(word, "--", 2) == 0 && word[2] &&
+        report_long_option(tool, word, options))
+        return GB_EXIT_USAGE;
+    const struct option *o = find_short_option(options, optopt);
+    if (o && o->has_arg == required_argument)
+        return gb_cli_usage_error(tool, "option '-%c' needs a value", optopt);
+    return gb_cli_usage_error(tool, "unknown option '-%c'", optopt);
+}
+
+int gb_cli_help(const char *text)
+{
+    return fputs(text, stdout) == EOF ? GB_EXIT_FAILURE : GB_EXIT_SUCCESS;
+}
+
+int gb_cli_version(const char *tool)
+{
+    return printf("%s (gibake) %s\n", tool, version) < 0 ? GB_EXIT_FAILURE : GB_EXIT_SUCCESS;
+}

@@ -1,0 +1,80 @@
+/* cli.h — the option values and usage errors every tool's main() shares,
+ * so that every command reports a bad value the same way (git's
+ * parse-options habit). A main parses with getopt_long, sets opterr = 0,
+ * and hands each value to one of these functions.
+ *
+ * Exit codes, for every tool: 0 success, 1 failure (a file, the work),
+ * 2 usage (a bad option, a bad value, a missing argument).
+ *
+ * Every parse function returns GB_EXIT_SUCCESS (and stores the value) or,
+ * after printing a usage error on stderr, GB_EXIT_USAGE (the value
+ * untouched). A usage error is one line naming what is wrong, then one
+ * line pointing at the help:
+ *     TOOL: --OPTION: 'TEXT' is not an integer in LOW..HIGH
+ *     TOOL: --OPTION: 'TEXT' is not a number in [LOW, HIGH]
+ *     TOOL: --OPTION: 'TEXT' is not WxH with each side in 1..MAX
+ *     TOOL: --OPTION: 'TEXT' is not I/N with I in 0..N-1
+ *     TOOL: --OPTION: 'TEXT' is not one of A, B, C
+ *     TOOL: unknown option '--foo'          (gb_cli_option_error)
+ *     TOOL: WHAT                            (gb_cli_usage_error)
+ *     Try 'TOOL --help' for more information.
+ * never the whole help. The caller returns the status from main().
+ * The help and the version go to stdout (gb_cli_help, gb_cli_version).
+ * Nothing else here prints. The caller owns every string passed in; TOOL
+ * is the bare name ("voxelize"), OPTION the long name without its dashes.
+ */
+#ifndef GB_CLI_H
+#define GB_CLI_H
+
+#include <getopt.h>
+#include <stdint.h>
+
+enum {
+    GB_EXIT_SUCCESS = 0,
+    GB_EXIT_FAILURE = 1,
+    GB_EXIT_USAGE = 2,
+    GB_CLI_GO_ON = -1,      /* a parse_arguments() result: not an exit, run */
+};
+
+/* The largest side of an image (reference, gbview --resolution WxH). */
+#define GB_CLI_MAX_IMAGE_SIDE 16384
+
+/* A strict decimal integer (digits, one optional leading '-') in low..high. */
+int gb_cli_integer(const char *tool, const char *option, const char *text, long low,
+                   long high, long *value);
+/* The same for unsigned 64-bit values (seeds, photon counts); no sign. */
+int gb_cli_unsigned(const char *tool, const char *option, const char *text, uint64_t low,
+                    uint64_t high, uint64_t *value);
+/* A finite decimal number in [low, high]. */
+int gb_cli_number(const char *tool, const char *option, const char *text, double low,
+                  double high, double *value);
+int gb_cli_float(const char *tool, const char *option, const char *text, double low,
+                 double high, float *value);
+/* WxH, each side a strict decimal integer in 1..max_side. */
+int gb_cli_size(const char *tool, const char *option, const char *text, int max_side,
+                int *width, int *height);
+/* I/N, strict decimal integers with 0 <= I < N <= UINT32_MAX. */
+int gb_cli_fraction(const char *tool, const char *option, const char *text, uint32_t *index,
+                    uint32_t *count);
+/* One of names[0..count-1]; *index is its place. */
+int gb_cli_choice(const char *tool, const char *option, const char *text,
+                  const char *const *names, int count, int *index);
+
+/* Prints "TOOL: WHAT" (WHAT a printf format) and the Try line; returns
+ * GB_EXIT_USAGE. */
+int gb_cli_usage_error(const char *tool, const char *format, ...)
+    __attribute__((format(printf, 2, 3)));
+/* getopt_long returned '?' (opterr = 0): reports the option it refused,
+ * from optopt, optind and argv, as "unknown option '--foo'" (or '-x'),
+ * "option '--output' needs a value", "option '--quiet' takes no value" or
+ * "option '--s' is ambiguous", then the Try line; returns GB_EXIT_USAGE.
+ * options is the table given to getopt_long. */
+int gb_cli_option_error(const char *tool, char **argv, const struct option *options);
+
+/* The help on stdout; GB_EXIT_SUCCESS, or GB_EXIT_FAILURE if it could not
+ * be written. */
+int gb_cli_help(const char *text);
+/* "TOOL (gibake) VERSION" on stdout; as gb_cli_help. */
+int gb_cli_version(const char *tool);
+
+#endif
