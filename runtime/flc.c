@@ -571,47 +571,8 @@ static const char *flc_prelude(char *text, size_t size)
     return text;
 }
 
-/* Compiles and links the stages of one program (types[i], the NULL-ended
- * parts[i] of its source). */
-static gb_result build_program(const char *name, const GLenum *types,
-                               const char *const *const *parts, int count, GLuint *program,
-                               gb_error *error)
-{
-    char log[2048] = "";
-    GLint ok = 1;
-    *program = glCreateProgram();
-    for (int i = 0; i < count && ok; ++i) {
-        GLsizei part_count = 0;
-        while (parts[i][part_count])
-            ++part_count;
-        GLuint shader = glCreateShader(types[i]);
-        glShaderSource(shader, part_count, parts[i], NULL);
-        glCompileShader(shader);
-        glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-        if (!ok)
-            glGetShaderInfoLog(shader, sizeof log, NULL, log);
-        glAttachShader(*program, shader);
-        glDeleteShader(shader);
-    }
-    if (ok) {
-        glLinkProgram(*program);
-        glGetProgramiv(*program, GL_LINK_STATUS, &ok);
-        if (!ok)
-            glGetProgramInfoLog(*program, sizeof log, NULL, log);
-    }
-    if (ok)
-        return GB_OK;
-    glDeleteProgram(*program);
-    *program = 0;
-    return gb_fail(error, GB_ERROR_UNSUPPORTED, "flc: %s shader: %s", name, log);
-}
-
 static gb_result build_programs(flc_state *s, gb_error *error)
 {
-    static const GLenum compute[] = {GL_COMPUTE_SHADER};
-    static const GLenum splat[] = {GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER};
-    static const GLenum tess[] = {GL_VERTEX_SHADER, GL_TESS_CONTROL_SHADER,
-                                  GL_TESS_EVALUATION_SHADER, GL_GEOMETRY_SHADER};
     char prelude[256];
     const char *pre = flc_prelude(prelude, sizeof prelude);
     const char *generate[] = {pre, "layout(local_size_x = 64) in;\n", generate_common,
@@ -623,17 +584,21 @@ static gb_result build_programs(flc_state *s, gb_error *error)
     const char *tess_control[] = {tess_control_shader, NULL};
     const char *tess_evaluation[] = {pre, tess_evaluation_shader, NULL};
     const char *tess_geometry[] = {pre, generate_common, tess_geometry_main, NULL};
-    const char *const *generate_parts[] = {generate};
-    const char *const *splat_parts[] = {splat_vertex, splat_geometry, splat_fragment};
-    const char *const *tess_parts[] = {tess_vertex, tess_control, tess_evaluation,
-                                       tess_geometry};
-    gb_result result = build_program("VPL generation", compute, generate_parts, 1,
-                                     &s->generate_program, error);
+    const gb_gl_stage generation[] = {{GL_COMPUTE_SHADER, generate}};
+    const gb_gl_stage splatting[] = {{GL_VERTEX_SHADER, splat_vertex},
+                                     {GL_GEOMETRY_SHADER, splat_geometry},
+                                     {GL_FRAGMENT_SHADER, splat_fragment}};
+    const gb_gl_stage tessellation[] = {{GL_VERTEX_SHADER, tess_vertex},
+                                        {GL_TESS_CONTROL_SHADER, tess_control},
+                                        {GL_TESS_EVALUATION_SHADER, tess_evaluation},
+                                        {GL_GEOMETRY_SHADER, tess_geometry}};
+    gb_result result = gb_gl_program_stages("flc VPL generation", generation, 1,
+                                            &s->generate_program, error);
     if (result == GB_OK)
-        result = build_program("splatting", splat, splat_parts, 3, &s->splat_program, error);
+        result = gb_gl_program_stages("flc splatting", splatting, 3, &s->splat_program, error);
     if (result == GB_OK)
-        result = build_program("divergent tessellation", tess, tess_parts, 4,
-                               &s->tess_program, error);
+        result = gb_gl_program_stages("flc divergent tessellation", tessellation, 4,
+                                      &s->tess_program, error);
     if (result == GB_OK)
         result = gb_gl_program("flc untile and blur", gb_gl_fullscreen_vertex_shader,
                                resolve_shader, &s->resolve_program, error);

@@ -72,57 +72,81 @@ gb_result gb_gl_require_45(gb_error *error)
     return GB_OK;
 }
 
-static gb_result compile(const char *name, GLenum stage, const char *source, GLuint *shader,
-                         gb_error *error)
+static const char *stage_name(GLenum type)
 {
-    *shader = glCreateShader(stage);
-    glShaderSource(*shader, 1, &source, NULL);
-    glCompileShader(*shader);
-    GLint ok = GL_FALSE;
-    glGetShaderiv(*shader, GL_COMPILE_STATUS, &ok);
-    if (ok)
-        return GB_OK;
-    char log[768];
-    glGetShaderInfoLog(*shader, sizeof log, NULL, log);
-    glDeleteShader(*shader);
-    *shader = 0;
-    return gb_fail(error, GB_ERROR_INVALID, "shader %s (%s): %s", name,
-                   stage == GL_VERTEX_SHADER ? "vertex" : "fragment", log);
+    switch (type) {
+    case GL_VERTEX_SHADER: return "vertex";
+    case GL_TESS_CONTROL_SHADER: return "tessellation control";
+    case GL_TESS_EVALUATION_SHADER: return "tessellation evaluation";
+    case GL_GEOMETRY_SHADER: return "geometry";
+    case GL_FRAGMENT_SHADER: return "fragment";
+    case GL_COMPUTE_SHADER: return "compute";
+    default: return "unknown";
+    }
 }
 
-static gb_result link(const char *name, GLuint program, gb_error *error)
+/* Compiles one stage and attaches it to program. */
+static gb_result attach_stage(const char *name, const gb_gl_stage *stage, GLuint program,
+                              gb_error *error)
 {
-    glLinkProgram(program);
+    GLsizei part_count = 0;
+    while (stage->parts[part_count])
+        ++part_count;
+    GLuint shader = glCreateShader(stage->type);
+    glShaderSource(shader, part_count, stage->parts, NULL);
+    glCompileShader(shader);
     GLint ok = GL_FALSE;
-    glGetProgramiv(program, GL_LINK_STATUS, &ok);
-    if (ok)
-        return GB_OK;
-    char log[768];
-    glGetProgramInfoLog(program, sizeof log, NULL, log);
-    return gb_fail(error, GB_ERROR_INVALID, "program %s: %s", name, log);
+    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+    char log[1024] = "";
+    if (!ok)
+        glGetShaderInfoLog(shader, sizeof log, NULL, log);
+    else
+        glAttachShader(program, shader);
+    glDeleteShader(shader);
+    return ok ? GB_OK
+              : gb_fail(error, GB_ERROR_INVALID, "shader %s (%s): %s", name,
+                        stage_name(stage->type), log);
+}
+
+gb_result gb_gl_program_stages(const char *name, const gb_gl_stage *stages, int count,
+                               GLuint *program, gb_error *error)
+{
+    *program = glCreateProgram();
+    gb_result result = GB_OK;
+    for (int i = 0; i < count && result == GB_OK; ++i)
+        result = attach_stage(name, &stages[i], *program, error);
+    if (result == GB_OK) {
+        glLinkProgram(*program);
+        GLint ok = GL_FALSE;
+        glGetProgramiv(*program, GL_LINK_STATUS, &ok);
+        char log[1024] = "";
+        if (!ok) {
+            glGetProgramInfoLog(*program, sizeof log, NULL, log);
+            result = gb_fail(error, GB_ERROR_INVALID, "program %s: %s", name, log);
+        }
+    }
+    if (result != GB_OK) {
+        glDeleteProgram(*program);
+        *program = 0;
+    }
+    return result;
 }
 
 gb_result gb_gl_program(const char *name, const char *vertex, const char *fragment,
                         GLuint *program, gb_error *error)
 {
-    GLuint shaders[2] = {0, 0};
-    *program = 0;
-    gb_result result = compile(name, GL_VERTEX_SHADER, vertex, &shaders[0], error);
-    if (result == GB_OK)
-        result = compile(name, GL_FRAGMENT_SHADER, fragment, &shaders[1], error);
-    if (result == GB_OK) {
-        *program = glCreateProgram();
-        glAttachShader(*program, shaders[0]);
-        glAttachShader(*program, shaders[1]);
-        result = link(name, *program, error);
-    }
-    glDeleteShader(shaders[0]);
-    glDeleteShader(shaders[1]);
-    if (result != GB_OK && *program) {
-        glDeleteProgram(*program);
-        *program = 0;
-    }
-    return result;
+    const char *vertex_parts[] = {vertex, NULL}, *fragment_parts[] = {fragment, NULL};
+    const gb_gl_stage stages[] = {{GL_VERTEX_SHADER, vertex_parts},
+                                  {GL_FRAGMENT_SHADER, fragment_parts}};
+    return gb_gl_program_stages(name, stages, 2, program, error);
+}
+
+gb_result gb_gl_compute_program(const char *name, const char *source, GLuint *program,
+                                gb_error *error)
+{
+    const char *parts[] = {source, NULL};
+    const gb_gl_stage stage = {GL_COMPUTE_SHADER, parts};
+    return gb_gl_program_stages(name, &stage, 1, program, error);
 }
 
 GLuint gb_gl_buffer(const void *data, GLsizeiptr size)

@@ -33,10 +33,24 @@ gb_result gb_gl_check(gb_gl_errors *errors, const char *where, gb_error *error);
 /* Fails (GB_ERROR_UNSUPPORTED) below OpenGL 4.5. */
 gb_result gb_gl_require_45(gb_error *error);
 
-/* A program from GLSL sources (the "#version 450 core" line included);
- * name is used in messages, which carry the compiler's log. */
+/* One stage of a program: its type (GL_VERTEX_SHADER, GL_COMPUTE_SHADER,
+ * ...) and its GLSL source in pieces, NULL-ended (the "#version 450 core"
+ * line first), concatenated by the compiler. */
+typedef struct gb_gl_stage {
+    GLenum type;
+    const char *const *parts;
+} gb_gl_stage;
+
+/* The one program builder: compiles and links count stages. name is used in
+ * messages (GB_ERROR_INVALID), which carry the compiler's or linker's log. */
+gb_result gb_gl_program_stages(const char *name, const gb_gl_stage *stages, int count,
+                               GLuint *program, gb_error *error);
+/* A vertex + fragment program, each from one source. */
 gb_result gb_gl_program(const char *name, const char *vertex, const char *fragment,
                         GLuint *program, gb_error *error);
+/* A compute program from one source. */
+gb_result gb_gl_compute_program(const char *name, const char *source, GLuint *program,
+                                gb_error *error);
 
 /* A storage buffer holding size bytes of data (GL_DYNAMIC_DRAW); an empty
  * array still gets a 16-byte buffer to bind, uninitialised, since data may

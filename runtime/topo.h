@@ -262,10 +262,6 @@ gb_result gb_topo_assign(const gb_geometry_clusters *clusters, const gb_vpl_set 
                          gb_topo_assignment *out, gb_error *error);
 void gb_topo_assignment_free(gb_topo_assignment *assignment);
 
-/* A compute program from one GLSL source; name for messages. */
-gb_result gb_topo_compute_program(const char *name, const char *source, GLuint *program,
-                                  gb_error *error);
-
 /* ---- IL (topo_gather.c) ------------------------------------------------ */
 typedef struct gb_topo_gather_pass {
     GLuint program, empty_vertex_array;

@@ -106,10 +106,10 @@ gb_result gb_topo_la_gpu_create(const gb_vpl_set *vpls, const int32_t *vpl_clust
                                 const gb_topo_gates *gates, gb_topo_la_gpu *la, gb_error *error)
 {
     memset(la, 0, sizeof *la);
-    gb_result result = gb_topo_compute_program("LA count", count_shader, &la->count_program,
+    gb_result result = gb_gl_compute_program("LA count", count_shader, &la->count_program,
                                                error);
     if (result == GB_OK)
-        result = gb_topo_compute_program("LA write", write_shader, &la->write_program, error);
+        result = gb_gl_compute_program("LA write", write_shader, &la->write_program, error);
     if (result != GB_OK)
         return result;
     la->vpl_count = vpls->count;

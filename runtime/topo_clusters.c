@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "gbuffer.h"
+#include "gl_util.h"
 #include "topo.h"
 
 /* The fragment moves off its surface along its geometric normal ng until it
@@ -192,39 +193,11 @@ static const char compute_shader[] =
     "    imageStore(clusters, pixel, uvec4(c >= 0 ? uint(c) : NO_CLUSTER, NO_CLUSTER, 0u, 0u));\n"
     "}\n";
 
-gb_result gb_topo_compute_program(const char *name, const char *source, GLuint *program,
-                                  gb_error *error)
-{
-    GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-    glShaderSource(shader, 1, &source, NULL);
-    glCompileShader(shader);
-    GLint ok = 0;
-    glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-    char log[1024] = "";
-    if (!ok) {
-        glGetShaderInfoLog(shader, sizeof log, NULL, log);
-        glDeleteShader(shader);
-        return gb_fail(error, GB_ERROR_INVALID, "%s: compute shader: %s", name, log);
-    }
-    *program = glCreateProgram();
-    glAttachShader(*program, shader);
-    glLinkProgram(*program);
-    glDeleteShader(shader);
-    glGetProgramiv(*program, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        glGetProgramInfoLog(*program, sizeof log, NULL, log);
-        glDeleteProgram(*program);
-        *program = 0;
-        return gb_fail(error, GB_ERROR_INVALID, "%s: link: %s", name, log);
-    }
-    return GB_OK;
-}
-
 gb_result gb_topo_cluster_pass_create(const gb_segmentation *s, const int32_t *voxel_clusters,
                                       gb_topo_cluster_pass *pass, gb_error *error)
 {
     memset(pass, 0, sizeof *pass);
-    gb_result result = gb_topo_compute_program("visibility clusters", compute_shader,
+    gb_result result = gb_gl_compute_program("visibility clusters", compute_shader,
                                                &pass->program, error);
     if (result != GB_OK)
         return result;

@@ -33,6 +33,7 @@
 #include <string.h>
 
 #include "gbuffer.h"
+#include "gl_util.h"
 #include "topo.h"
 
 _Static_assert(GB_TOPO_TILE == 32, "the shaders' TILE is GB_TOPO_TILE");
@@ -357,12 +358,12 @@ static GLuint new_buffer(GLsizeiptr size)
 gb_result gb_topo_iugc_gpu_create(gb_topo_iugc_gpu *iugc, gb_error *error)
 {
     memset(iugc, 0, sizeof *iugc);
-    gb_result result = gb_topo_compute_program("IUGC tiles", tile_shader, &iugc->tile_program,
+    gb_result result = gb_gl_compute_program("IUGC tiles", tile_shader, &iugc->tile_program,
                                                error);
     if (result == GB_OK)
-        result = gb_topo_compute_program("IUGC scan", scan_shader, &iugc->scan_program, error);
+        result = gb_gl_compute_program("IUGC scan", scan_shader, &iugc->scan_program, error);
     if (result == GB_OK)
-        result = gb_topo_compute_program("IUGC bounds", bounds_shader, &iugc->bounds_program,
+        result = gb_gl_compute_program("IUGC bounds", bounds_shader, &iugc->bounds_program,
                                          error);
     if (result != GB_OK) {
         gb_topo_iugc_gpu_destroy(iugc);
