@@ -2,13 +2,13 @@
  * a window, or renders it headless into an image (the headers in runtime/). This file
  * only parses options. */
 
-#include <errno.h>
 #include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "bake_files.h"
+#include "cli.h"
 #include "flc.h"
 #include "headless.h"
 #include "image.h"
@@ -99,83 +99,73 @@ enum {
     OPTION_BOUNCES,
 };
 
-static int parse_long(const char *text, long low, long high, long *value)
+/* An integer option value in low..high into an int field. */
+static int parse_int(const char *option, const char *value, long low, long high, int *field)
 {
-    char *end;
-    errno = 0;
-    long parsed = strtol(text, &end, 10);
-    if (errno || end == text || *end || parsed < low || parsed > high)
-        return 0;
-    *value = parsed;
-    return 1;
+    long number;
+    int status = gb_cli_integer("gbview", option, value, low, high, &number);
+    if (status == 0)
+        *field = (int)number;
+    return status;
 }
 
-static int parse_resolution(const char *text, int *width, int *height)
-{
-    char *x = strchr(text, 'x');
-    long w, h;
-    if (!x || x - text > 15)
-        return 0;
-    char first[16];
-    memcpy(first, text, (size_t)(x - text));
-    first[x - text] = '\0';
-    if (!parse_long(first, 1, 16384, &w) || !parse_long(x + 1, 1, 16384, &h))
-        return 0;
-    *width = (int)w;
-    *height = (int)h;
-    return 1;
-}
-
-static int bad_value(const char *option, const char *value)
-{
-    fprintf(stderr, "gbview: %s: bad value \"%s\"\n", option, value);
-    return 2;
-}
-
-static int parse_float(const char *text, double low, double high, float *value)
-{
-    char *end;
-    errno = 0;
-    double parsed = strtod(text, &end);
-    if (errno || end == text || *end || !(parsed >= low && parsed <= high))
-        return 0;
-    *value = (float)parsed;
-    return 1;
-}
-
-/* The options of flc (runtime/flc.h). */
+/* The options of flc (runtime/flc.h); 0, else the exit status. */
 static int parse_flc_option(int option, const char *value, arguments *a)
 {
     gb_method_parameters *p = &a->renderer.parameters;
-    long number;
     switch (option) {
-    case OPTION_FLC_NAVG:
-        return parse_float(value, 1.0, 1e6, &p->flc_n_avg) ? 0 : bad_value("--navg", value);
-    case OPTION_FLC_MU:
-        return parse_float(value, 1.01, 1e3, &p->flc_mu) ? 0 : bad_value("--mu", value);
+    case OPTION_FLC_NAVG: return gb_cli_float("gbview", "navg", value, 1.0, 1e6, &p->flc_n_avg);
+    case OPTION_FLC_MU: return gb_cli_float("gbview", "mu", value, 1.01, 1e3, &p->flc_mu);
     case OPTION_FLC_EPSILON:
-        return parse_float(value, 1e-30, 1e30, &p->flc_epsilon) ? 0
-                                                                 : bad_value("--epsilon", value);
-    case OPTION_FLC_LEVELS:
-        if (!parse_long(value, 1, 16, &number))
-            return bad_value("--levels", value);
-        p->flc_levels = (int)number;
-        return 0;
-    case OPTION_FLC_NO_DECIMATION:
-        p->flc_levels = GB_FLC_NO_DECIMATION;
-        return 0;
-    default:
-        if (!parse_long(value, 0, 4, &number))
-            return bad_value("--tiling", value);
-        p->flc_tiling = (int)number;
-        return 0;
+        return gb_cli_float("gbview", "epsilon", value, 1e-30, 1e30, &p->flc_epsilon);
+    case OPTION_FLC_LEVELS: return parse_int("levels", value, 1, 16, &p->flc_levels);
+    case OPTION_FLC_NO_DECIMATION: p->flc_levels = GB_FLC_NO_DECIMATION; return 0;
+    default: return parse_int("tiling", value, 0, 4, &p->flc_tiling);
     }
 }
 
-/* 0 when the options are parsed, else the exit status (2 usage, 0 help). */
+static int parse_terms(const char *value, gb_terms *terms)
+{
+    const char *names[GB_TERMS_COUNT];
+    for (int t = 0; t < GB_TERMS_COUNT; ++t)
+        names[t] = t == GB_TERMS_BOTH ? "both" : gb_terms_name((gb_terms)t);
+    int chosen;
+    int status = gb_cli_choice("gbview", "terms", value, names, GB_TERMS_COUNT, &chosen);
+    if (status == 0)
+        *terms = (gb_terms)chosen;
+    return status;
+}
+
+/* The options of the methods and of the renderer; 0, else the exit status. */
+static int parse_renderer_option(int option, const char *value, arguments *a)
+{
+    static const char *const visibilities[] = {"full", "clusters", "none"};
+    gb_method_parameters *p = &a->renderer.parameters;
+    int status;
+    switch (option) {
+    case 'r':
+        return gb_cli_size("gbview", "resolution", value, GB_CLI_MAX_IMAGE_SIDE,
+                           &a->renderer.width, &a->renderer.height);
+    case OPTION_AREA_SAMPLES:
+        status = parse_int("area-samples", value, 0, 4096, &a->renderer.shadow.area_samples);
+        if (status == 0 && a->renderer.shadow.area_samples == 0)
+            a->renderer.shadow.area_samples = -1;  /* the renderer's "none" */
+        return status;
+    case OPTION_SHADOW_SIZE: return parse_int("shadow-size", value, 16, 16384,
+                                              &a->renderer.shadow.size);
+    case OPTION_VPLS: return parse_int("vpls", value, 1, 1L << 24, &p->vpls);
+    case OPTION_TERMS: return parse_terms(value, &a->renderer.terms);
+    case OPTION_BINS: return parse_int("bins", value, 1, 64, &p->bins);
+    case OPTION_BOUNCES: return parse_int("bounces", value, 1, 8, &p->bounces);
+    default:
+        return gb_cli_choice("gbview", "topo-visibility", value, visibilities, 3,
+                             &p->topo_visibility);
+    }
+}
+
+/* One option into a; 0, else the exit status. */
 static int parse_option(int option, const char *value, arguments *a)
 {
-    long number;
     gb_error error;
     if (option >= OPTION_FLC_NAVG && option <= OPTION_FLC_TILING)
         return parse_flc_option(option, value, a);
@@ -184,68 +174,22 @@ static int parse_option(int option, const char *value, arguments *a)
     case OPTION_TIMINGS: a->timings = a->renderer.finish_passes = 1; return 0;
     case OPTION_BAKE: a->bake = value; return 0;
     case OPTION_NO_SHADOWS: a->renderer.no_shadows = 1; return 0;
+    case OPTION_WRITE_VPLS: a->renderer.parameters.write_vpls = value; return 0;
     case 'o': a->output = value; return 0;
-    case OPTION_SUPERSAMPLE:
-        return parse_long(value, 1, 16, &a->supersample) ? 0 : bad_value("--supersample", value);
     case 'q': a->quiet = 1; return 0;
-    case 'c': return parse_long(value, 0, 1L << 30, &a->camera) ? 0 : bad_value("--camera", value);
-    case 'f': return parse_long(value, 1, 1L << 30, &a->frames) ? 0 : bad_value("--frames", value);
-    case 'r':
-        return parse_resolution(value, &a->renderer.width, &a->renderer.height)
-                   ? 0 : bad_value("--resolution", value);
-    case OPTION_AREA_SAMPLES:
-        if (!parse_long(value, 0, 4096, &number))
-            return bad_value("--area-samples", value);
-        a->renderer.shadow.area_samples = number ? (int)number : -1;
-        return 0;
-    case OPTION_SHADOW_SIZE:
-        if (!parse_long(value, 16, 16384, &number))
-            return bad_value("--shadow-size", value);
-        a->renderer.shadow.size = (int)number;
-        return 0;
+    case OPTION_SUPERSAMPLE:
+        return gb_cli_integer("gbview", "supersample", value, 1, 16, &a->supersample);
+    case 'c': return gb_cli_integer("gbview", "camera", value, 0, 1L << 30, &a->camera);
+    case 'f': return gb_cli_integer("gbview", "frames", value, 1, 1L << 30, &a->frames);
     case 'm':
         if (gb_method_parse(value, &a->method, &error) == GB_OK)
             return 0;
-        fprintf(stderr, "gbview: %s\n", error.message);
-        return 2;
-    case OPTION_VPLS:
-        if (!parse_long(value, 1, 1L << 24, &number))
-            return bad_value("--vpls", value);
-        a->renderer.parameters.vpls = (int)number;
-        return 0;
-    case OPTION_TERMS:
-        for (int t = 0; t < GB_TERMS_COUNT; ++t)
-            if (strcmp(value, t == GB_TERMS_BOTH ? "both" : gb_terms_name((gb_terms)t)) == 0) {
-                a->renderer.terms = (gb_terms)t;
-                return 0;
-            }
-        return bad_value("--terms", value);
-    case OPTION_WRITE_VPLS: a->renderer.parameters.write_vpls = value; return 0;
-    case OPTION_BINS:
-        if (!parse_long(value, 1, 64, &number))
-            return bad_value("--bins", value);
-        a->renderer.parameters.bins = (int)number;
-        return 0;
-    case OPTION_BOUNCES:
-        if (!parse_long(value, 1, 8, &number))
-            return bad_value("--bounces", value);
-        a->renderer.parameters.bounces = (int)number;
-        return 0;
-    case OPTION_TOPO_VISIBILITY: {
-        static const char *const modes[] = {"full", "clusters", "none"};
-        for (int m = 0; m < 3; ++m)
-            if (strcmp(value, modes[m]) == 0) {
-                a->renderer.parameters.topo_visibility = m;
-                return 0;
-            }
-        return bad_value("--topo-visibility", value);
-    }
-    case 'h': fputs(usage, stdout); return -1;
-    case 'V': puts("gbview (gibake) 0.1"); return -1;
-    default: fputs(usage, stderr); return 2;
+        return gb_cli_usage_error("gbview", "%s", error.message);
+    default: return parse_renderer_option(option, value, a);
     }
 }
 
+/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
 static int parse_arguments(int argc, char **argv, arguments *a)
 {
     static const struct option options[] = {
@@ -278,23 +222,25 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option;
+    int option, status;
+    opterr = 0;
     while ((option = getopt_long(argc, argv, "c:m:f:o:r:qhV", options, NULL)) != -1) {
-        int status = parse_option(option, optarg, a);
-        if (status)
+        if (option == 'h')
+            return gb_cli_help(usage);
+        if (option == 'V')
+            return gb_cli_version("gbview");
+        if (option == '?')
+            return gb_cli_option_error("gbview", argv, options);
+        if ((status = parse_option(option, optarg, a)) != 0)
             return status;
     }
-    if (optind != argc - 1) {
-        fprintf(stderr, "gbview: expected one SCENE\n%s", usage);
-        return 2;
-    }
+    if (optind != argc - 1)
+        return gb_cli_usage_error("gbview", "expected one SCENE");
     a->scene_path = argv[optind];
-    if (a->headless && !a->output && !a->timings && !a->renderer.parameters.write_vpls) {
-        fprintf(stderr, "gbview: --headless writes nothing without -o FILE, --timings or "
-                        "--write-vpls\n");
-        return 2;
-    }
-    return 0;
+    if (a->headless && !a->output && !a->timings && !a->renderer.parameters.write_vpls)
+        return gb_cli_usage_error("gbview", "--headless writes nothing without -o FILE, "
+                                            "--timings or --write-vpls");
+    return GB_CLI_GO_ON;
 }
 
 /* One message per missing or bad baked file; never fatal. */
@@ -371,14 +317,12 @@ int main(int argc, char **argv)
     arguments a;
     memset(&a, 0, sizeof a);
     int status = parse_arguments(argc, argv, &a);
-    if (status)
-        return status < 0 ? 0 : status;
+    if (status != GB_CLI_GO_ON)
+        return status;
     gb_error error;
     a.renderer.method = a.method;
-    if (gb_method_check(a.method, &error) != GB_OK) {
-        fprintf(stderr, "gbview: %s\n", error.message);
-        return 2;
-    }
+    if (gb_method_check(a.method, &error) != GB_OK)
+        return gb_cli_usage_error("gbview", "%s", error.message);
     const char *vpls = a.renderer.parameters.write_vpls;
     if ((a.output && gb_image_check_output(a.output, &error) != GB_OK) ||
         (vpls && gb_output_file_check(vpls, &error) != GB_OK)) {

@@ -1,12 +1,11 @@
 /* cluster — the light octree of a scene from its photon map (cluster.h). */
 
-#include <errno.h>
 #include <getopt.h>
-#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli.h"
 #include "cluster.h"
 #include "light_octree.h"
 #include "output_file.h"
@@ -46,100 +45,53 @@ typedef struct arguments {
 
 enum { OPTION_VDLS = 256, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED, OPTION_STATS };
 
-static int parse_unsigned(const char *text, uint64_t low, uint64_t high, uint64_t *value)
-{
-    char *end;
-    errno = 0;
-    unsigned long long parsed = strtoull(text, &end, 10);
-    if (errno || end == text || *end || text[0] == '-' || parsed < low || parsed > high)
-        return 0;
-    *value = parsed;
-    return 1;
-}
-
-static int parse_float(const char *text, float low, float high, float *value)
-{
-    char *end;
-    errno = 0;
-    float parsed = strtof(text, &end);
-    if (errno || end == text || *end || !isfinite(parsed) || parsed < low || parsed > high)
-        return 0;
-    *value = parsed;
-    return 1;
-}
-
-/* Stores one option with a value; returns 0 when the value is bad. */
-static int parse_value(int option, const char *text, arguments *a)
+/* An unsigned option value in 1..high into an unsigned field. */
+static int parse_small(const char *option, const char *text, uint64_t high, unsigned *field)
 {
     uint64_t value;
+    int status = gb_cli_unsigned("cluster", option, text, 1, high, &value);
+    if (status == 0)
+        *field = (unsigned)value;
+    return status;
+}
+
+/* One option with a value into a; 0, else the exit status. */
+static int parse_value(int option, const char *text, arguments *a)
+{
     gb_cluster_options *o = &a->cluster;
+    unsigned threads;
+    int status;
     switch (option) {
-    case 'o':
-        a->output = text;
-        return 1;
-    case 'd':
-        return parse_unsigned(text, 1, GB_LIGHT_OCTREE_MAX_DEPTH, &value) &&
-               (o->depth = (unsigned)value, 1);
-    case 'k':
-        return parse_unsigned(text, 1, 100000, &value) && (o->knn = (unsigned)value, 1);
-    case 'r':
-        return parse_float(text, 1e-30f, 1e30f, &o->radius);
-    case OPTION_VDLS:
-        return parse_unsigned(text, 1, GB_LIGHT_OCTREE_MAX_VDLS, &value) &&
-               (o->vdls_max = (unsigned)value, 1);
+    case 'd': return parse_small("depth", text, GB_LIGHT_OCTREE_MAX_DEPTH, &o->depth);
+    case 'k': return parse_small("knn", text, 100000, &o->knn);
+    case 'r': return gb_cli_float("cluster", "radius", text, 1e-30, 1e30, &o->radius);
+    case OPTION_VDLS: return parse_small("vdls", text, GB_LIGHT_OCTREE_MAX_VDLS, &o->vdls_max);
     case OPTION_SPREAD:
+        status = gb_cli_float("cluster", "max-spread", text, 0.0, 180.0, &o->max_spread);
         /* 0 means "always K_max", which the library spells as negative */
-        return parse_float(text, 0.0f, 180.0f, &o->max_spread) &&
-               (o->max_spread = o->max_spread == 0.0f ? -1.0f : o->max_spread, 1);
-    case OPTION_RESTARTS:
-        return parse_unsigned(text, 1, 64, &value) && (o->restarts = (unsigned)value, 1);
-    case OPTION_SEED:
-        return parse_unsigned(text, 0, UINT64_MAX, &o->seed);
-    case 't':
-        return parse_unsigned(text, 1, 256, &value) && (o->threads = (int)value, 1);
+        if (status == 0 && o->max_spread == 0.0f)
+            o->max_spread = -1.0f;
+        return status;
+    case OPTION_RESTARTS: return parse_small("restarts", text, 64, &o->restarts);
+    case OPTION_SEED: return gb_cli_unsigned("cluster", "seed", text, 0, UINT64_MAX, &o->seed);
+    default:
+        if ((status = parse_small("threads", text, 256, &threads)) == 0)
+            o->threads = (int)threads;
+        return status;
     }
-    return 0;
 }
 
-static int parse_option(int option, const char *text, arguments *a, const char *name)
-{
-    if (option == 'q') {
-        a->quiet = 1;
-        return 1;
-    }
-    if (option == OPTION_STATS) {
-        a->stats = 1;
-        return 1;
-    }
-    if (parse_value(option, text, a))
-        return 1;
-    fprintf(stderr, "cluster: bad value \"%s\" for option %s\n", text ? text : "", name);
-    return 0;
-}
-
-/* The long name of an option, for messages. */
-static const char *option_name(const struct option *options, int option)
-{
-    static char short_name[3] = "-?";
-    for (const struct option *o = options; o->name; ++o)
-        if (o->val == option)
-            return o->name;
-    short_name[1] = (char)option;
-    return short_name;
-}
-
+/* GB_CLI_GO_ON, else the exit status. */
 static int check_arguments(arguments *a, int argc, char **argv)
 {
-    if (!a->output || argc - optind != 2) {
-        fprintf(stderr, "cluster: expected SCENE IN.phot and -o OUT.lot\n%s", usage);
-        return 2;
-    }
+    if (!a->output || argc - optind != 2)
+        return gb_cli_usage_error("cluster", "expected SCENE IN.phot and -o OUT.lot");
     a->scene = argv[optind];
     a->photons = argv[optind + 1];
-    return 0;
+    return GB_CLI_GO_ON;
 }
 
-/* 0: go on; -1: done (help, version); otherwise the exit status. */
+/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
 static int parse_arguments(int argc, char **argv, arguments *a)
 {
     static const struct option options[] = {
@@ -158,14 +110,20 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option;
+    int option, status;
+    opterr = 0;
     while ((option = getopt_long(argc, argv, "o:d:k:r:t:qhV", options, NULL)) != -1) {
-        if (option == 'h')
-            return fputs(usage, stdout) == EOF ? 1 : -1;
-        if (option == 'V')
-            return puts("cluster (gibake) 0.1") == EOF ? 1 : -1;
-        if (option == '?' || !parse_option(option, optarg, a, option_name(options, option)))
-            return fputs(usage, stderr), 2;
+        switch (option) {
+        case 'o': a->output = optarg; break;
+        case 'q': a->quiet = 1; break;
+        case OPTION_STATS: a->stats = 1; break;
+        case 'h': return gb_cli_help(usage);
+        case 'V': return gb_cli_version("cluster");
+        case '?': return gb_cli_option_error("cluster", argv, options);
+        default:
+            if ((status = parse_value(option, optarg, a)) != 0)
+                return status;
+        }
     }
     return check_arguments(a, argc, argv);
 }
@@ -233,8 +191,8 @@ int main(int argc, char **argv)
 {
     arguments a = {0};
     int status = parse_arguments(argc, argv, &a);
-    if (status)
-        return status < 0 ? 0 : status;
+    if (status != GB_CLI_GO_ON)
+        return status;
     gb_error error;
     if (gb_output_file_check(a.output, &error) != GB_OK || run(&a, &error) != GB_OK) {
         fprintf(stderr, "cluster: %s\n", error.message);

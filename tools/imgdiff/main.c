@@ -1,11 +1,11 @@
 /* imgdiff — how far an image is from a reference (tools/imgdiff/image_error.h). */
 
-#include <errno.h>
 #include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "cli.h"
 #include "image.h"
 #include "image_error.h"
 
@@ -38,20 +38,10 @@ typedef struct arguments {
 
 enum { OPTION_HEATMAP = 256, OPTION_HEATMAP_SCALE, OPTION_FAIL_ABOVE };
 
-/* A finite number above minimum (or equal to it when closed). */
-static int parse_number(const char *text, double minimum, int closed, double *number)
-{
-    char *end;
-    errno = 0;
-    double value = strtod(text, &end);
-    if (errno || end == text || *end || !isfinite(value) ||
-        !(value > minimum || (closed && value == minimum)))
-        return 0;
-    *number = value;
-    return 1;
-}
+/* The largest --heatmap-scale and --fail-above: any error a test can meet. */
+#define MAX_ERROR 1e30
 
-/* 0: go on; -1: done (help, version); otherwise the exit status. */
+/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
 static int parse_arguments(int argc, char **argv, arguments *a)
 {
     static const struct option options[] = {
@@ -64,38 +54,33 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option;
+    int option, status = 0;
+    opterr = 0;
     while ((option = getopt_long(argc, argv, "m:qhV", options, NULL)) != -1) {
-        if (option == 'h')
-            return fputs(usage, stdout) == EOF ? 1 : -1;
-        if (option == 'V')
-            return puts("imgdiff (gibake) 0.1") == EOF ? 1 : -1;
-        if (option == 'm')
-            a->mask = optarg;
-        else if (option == 'q')
-            a->quiet = 1;
-        else if (option == OPTION_HEATMAP)
-            a->heatmap = optarg;
-        else if (option == OPTION_HEATMAP_SCALE &&
-                 parse_number(optarg, 0.0, 0, &a->heatmap_scale))
-            continue;
-        else if (option == OPTION_FAIL_ABOVE && parse_number(optarg, 0.0, 1, &a->fail_above))
-            continue;
-        else {
-            if (option == OPTION_HEATMAP_SCALE || option == OPTION_FAIL_ABOVE)
-                fprintf(stderr, "imgdiff: --%s: \"%s\" is not a number %s\n",
-                        option == OPTION_FAIL_ABOVE ? "fail-above" : "heatmap-scale", optarg,
-                        option == OPTION_FAIL_ABOVE ? "of at least 0" : "above 0");
-            return fputs(usage, stderr), 2;
+        switch (option) {
+        case 'm': a->mask = optarg; break;
+        case 'q': a->quiet = 1; break;
+        case OPTION_HEATMAP: a->heatmap = optarg; break;
+        case OPTION_HEATMAP_SCALE:  /* 0 would show every error white */
+            status = gb_cli_number("imgdiff", "heatmap-scale", optarg, 1e-30, MAX_ERROR,
+                                   &a->heatmap_scale);
+            break;
+        case OPTION_FAIL_ABOVE:
+            status = gb_cli_number("imgdiff", "fail-above", optarg, 0.0, MAX_ERROR,
+                                   &a->fail_above);
+            break;
+        case 'h': return gb_cli_help(usage);
+        case 'V': return gb_cli_version("imgdiff");
+        default: return gb_cli_option_error("imgdiff", argv, options);
         }
+        if (status)
+            return status;
     }
-    if (optind != argc - 2) {
-        fprintf(stderr, "imgdiff: expected IMAGE and REFERENCE\n%s", usage);
-        return 2;
-    }
+    if (optind != argc - 2)
+        return gb_cli_usage_error("imgdiff", "expected IMAGE and REFERENCE");
     a->image = argv[optind];
     a->reference = argv[optind + 1];
-    return 0;
+    return GB_CLI_GO_ON;
 }
 
 static void print_error(const gb_image_error *e)
@@ -146,8 +131,8 @@ int main(int argc, char **argv)
 {
     arguments a = {.fail_above = INFINITY};
     int status = parse_arguments(argc, argv, &a);
-    if (status)
-        return status < 0 ? 0 : status;
+    if (status != GB_CLI_GO_ON)
+        return status;
     gb_image images[3] = {{0}, {0}, {0}};
     gb_error error;
     gb_image_error measures;

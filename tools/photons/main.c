@@ -1,13 +1,13 @@
 /* photons — traces the photon map of a scene with Embree (photons.h), or
  * merges the shards of a run. */
 
-#include <errno.h>
 #include <getopt.h>
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli.h"
 #include "output_file.h"
 #include "photon_map.h"
 #include "photons.h"
@@ -49,108 +49,65 @@ typedef struct arguments {
 
 enum { OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS };
 
-static int parse_unsigned(const char *text, uint64_t low, uint64_t high, uint64_t *value)
+/* An unsigned option value at most high into an unsigned field. */
+static int parse_small(const char *option, const char *text, uint64_t high, unsigned *field)
 {
-    char *end;
-    errno = 0;
-    unsigned long long parsed = strtoull(text, &end, 10);
-    if (errno || end == text || *end || text[0] == '-' || parsed < low || parsed > high)
-        return 0;
-    *value = parsed;
-    return 1;
-}
-
-static int parse_shard(const char *text, gb_photons_options *o)
-{
-    unsigned index, count;
-    int consumed = 0;
-    if (text[0] == '-' || sscanf(text, "%u/%u%n", &index, &count, &consumed) != 2 ||
-        text[consumed] || count < 1 || index >= count || strchr(text, '-'))
-        return 0;
-    o->shard_index = index;
-    o->shard_count = count;
-    return 1;
+    uint64_t value;
+    int status = gb_cli_unsigned("photons", option, text, 1, high, &value);
+    if (status == 0)
+        *field = (unsigned)value;
+    return status;
 }
 
 static int parse_store(const char *text, gb_photons_options *o)
 {
-    if (strcmp(text, "indirect") == 0)
-        o->store = GB_PHOTON_STORE_INDIRECT;
-    else if (strcmp(text, "all") == 0)
-        o->store = GB_PHOTON_STORE_ALL;
-    else
-        return 0;
-    return 1;
+    static const char *const stores[] = {"indirect", "all"};
+    int store;
+    int status = gb_cli_choice("photons", "store", text, stores, 2, &store);
+    if (status == 0)
+        o->store = store == 0 ? GB_PHOTON_STORE_INDIRECT : GB_PHOTON_STORE_ALL;
+    return status;
 }
 
-/* Stores one option with a value; returns 0 when the value is bad. */
-static int parse_value(int option, const char *text, arguments *a)
+/* One option into a; 0, else the exit status. */
+static int parse_option(int option, const char *text, arguments *a)
 {
-    uint64_t value;
+    unsigned threads;
+    int status;
     switch (option) {
-    case 'o':
-        a->output = text;
-        return 1;
+    case 'o': a->output = text; return 0;
+    case OPTION_MERGE: a->merge = 1; return 0;
+    case OPTION_STATS: a->stats = 1; return 0;
+    case 'q': a->quiet = 1; return 0;
     case 'n':
-        return parse_unsigned(text, 1, GB_PHOTONS_MAX_COUNT, &a->trace.count);
-    case 'b':
-        return parse_unsigned(text, 1, GB_PHOTON_MAX_BOUNCES, &value) &&
-               (a->trace.bounces = (unsigned)value, 1);
+        return gb_cli_unsigned("photons", "count", text, 1, GB_PHOTONS_MAX_COUNT,
+                               &a->trace.count);
+    case 'b': return parse_small("bounces", text, GB_PHOTON_MAX_BOUNCES, &a->trace.bounces);
     case 't':
-        return parse_unsigned(text, 1, 256, &value) && (a->trace.threads = (int)value, 1);
+        if ((status = parse_small("threads", text, 256, &threads)) == 0)
+            a->trace.threads = (int)threads;
+        return status;
     case OPTION_SEED:
-        return parse_unsigned(text, 0, UINT64_MAX, &a->trace.seed);
-    case OPTION_STORE:
-        return parse_store(text, &a->trace);
-    case OPTION_SHARD:
-        return parse_shard(text, &a->trace);
+        return gb_cli_unsigned("photons", "seed", text, 0, UINT64_MAX, &a->trace.seed);
+    case OPTION_STORE: return parse_store(text, &a->trace);
+    default:
+        return gb_cli_fraction("photons", "shard", text, &a->trace.shard_index,
+                               &a->trace.shard_count);
     }
-    return 0;
 }
 
-static int parse_option(int option, const char *text, arguments *a, const char *name)
-{
-    switch (option) {
-    case OPTION_MERGE:
-        a->merge = 1;
-        return 1;
-    case OPTION_STATS:
-        a->stats = 1;
-        return 1;
-    case 'q':
-        a->quiet = 1;
-        return 1;
-    }
-    if (parse_value(option, text, a))
-        return 1;
-    fprintf(stderr, "photons: bad value \"%s\" for option %s\n", text ? text : "", name);
-    return 0;
-}
-
-/* 0: go on; otherwise the exit status. */
+/* GB_CLI_GO_ON, else the exit status. */
 static int check_arguments(arguments *a, int argc, char **argv)
 {
     a->inputs = argv + optind;
     a->input_count = argc - optind;
-    if (!a->output || a->input_count < 1 || (!a->merge && a->input_count != 1)) {
-        fprintf(stderr, "photons: expected %s and -o OUT\n%s",
-                a->merge ? "the shards to merge" : "one SCENE", usage);
-        return 2;
-    }
-    return 0;
+    if (!a->output || a->input_count < 1 || (!a->merge && a->input_count != 1))
+        return gb_cli_usage_error("photons", "expected %s and -o OUT",
+                                  a->merge ? "the shards to merge" : "one SCENE");
+    return GB_CLI_GO_ON;
 }
 
-/* The long name of an option, for messages. */
-static const char *option_name(const struct option *options, int option)
-{
-    static char short_name[3] = "-?";
-    for (const struct option *o = options; o->name; ++o)
-        if (o->val == option)
-            return o->name;
-    short_name[1] = (char)option;
-    return short_name;
-}
-
+/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
 static int parse_arguments(int argc, char **argv, arguments *a)
 {
     static const struct option options[] = {
@@ -168,14 +125,17 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option;
+    int option, status;
+    opterr = 0;
     while ((option = getopt_long(argc, argv, "o:n:b:t:qhV", options, NULL)) != -1) {
         if (option == 'h')
-            return fputs(usage, stdout) == EOF ? 1 : -1;
+            return gb_cli_help(usage);
         if (option == 'V')
-            return puts("photons (gibake) 0.1") == EOF ? 1 : -1;
-        if (option == '?' || !parse_option(option, optarg, a, option_name(options, option)))
-            return fputs(usage, stderr), 2;
+            return gb_cli_version("photons");
+        if (option == '?')
+            return gb_cli_option_error("photons", argv, options);
+        if ((status = parse_option(option, optarg, a)) != 0)
+            return status;
     }
     return check_arguments(a, argc, argv);
 }
@@ -278,8 +238,8 @@ int main(int argc, char **argv)
 {
     arguments a = {0};
     int status = parse_arguments(argc, argv, &a);
-    if (status)
-        return status < 0 ? 0 : status;
+    if (status != GB_CLI_GO_ON)
+        return status;
     gb_error error;
     if (gb_output_file_check(a.output, &error) != GB_OK ||
         (a.merge ? run_merge(&a, &error) : run_trace(&a, &error)) != GB_OK) {

@@ -1,13 +1,13 @@
 /* reference — renders a camera of a scene with Embree: the ground truth every
  * gibake method measures its error against (tools/reference/reference.h). */
 
-#include <errno.h>
 #include <getopt.h>
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli.h"
 #include "image.h"
 #include "progress.h"
 #include "reference.h"
@@ -56,112 +56,72 @@ typedef struct arguments {
 
 enum { OPTION_VPL = 256, OPTION_SEED, OPTION_MIN_BOUNCES, OPTION_PNG, OPTION_STATS };
 
-static int parse_int(const char *text, long low, long high, long *value)
-{
-    char *end;
-    errno = 0;
-    long parsed = strtol(text, &end, 10);
-    if (errno || end == text || *end || parsed < low || parsed > high)
-        return 0;
-    *value = parsed;
-    return 1;
-}
-
-static int parse_seed(const char *text, uint64_t *seed)
-{
-    char *end;
-    errno = 0;
-    unsigned long long parsed = strtoull(text, &end, 10);
-    if (errno || end == text || *end || text[0] == '-')
-        return 0;
-    *seed = parsed;
-    return 1;
-}
-
-static int parse_resolution(const char *text, int *width, int *height)
-{
-    int w, h, consumed = 0;
-    if (sscanf(text, "%dx%d%n", &w, &h, &consumed) != 2 || text[consumed] || w < 1 || h < 1)
-        return 0;
-    *width = w;
-    *height = h;
-    return 1;
-}
-
-/* Stores one numeric option; returns 0 (and says why) when it is bad. */
-static int parse_number(int option, const char *text, arguments *a)
+/* An integer option value in low..high into an int field. */
+static int parse_int(const char *option, const char *text, long low, long high, int *field)
 {
     long value;
-    switch (option) {
-    case 's':
-        return parse_int(text, 1, 1L << 30, &value) && (a->render.spp = (int)value, 1);
-    case 'c':
-        return parse_int(text, 0, UINT32_MAX, &value) &&
-               (a->render.camera = (uint32_t)value, 1);
-    case 't':
-        return parse_int(text, 1, 256, &value) && (a->render.threads = (int)value, 1);
-    case 'b':
-        return parse_int(text, 1, 1 << 20, &value) && (a->render.bounces = (int)value, 1);
-    case OPTION_MIN_BOUNCES:
-        return parse_int(text, 0, 1 << 20, &value) && (a->render.min_bounces = (int)value, 1);
-    case OPTION_SEED:
-        return parse_seed(text, &a->render.seed);
-    case 'r':
-        return parse_resolution(text, &a->render.width, &a->render.height);
-    }
-    return 0;
+    int status = gb_cli_integer("reference", option, text, low, high, &value);
+    if (status == 0)
+        *field = (int)value;
+    return status;
 }
 
+/* One numeric option into a; 0, else the exit status. */
+static int parse_number(int option, const char *text, arguments *a)
+{
+    gb_reference_options *r = &a->render;
+    long camera;
+    int status;
+    switch (option) {
+    case 's': return parse_int("spp", text, 1, 1L << 30, &r->spp);
+    case 't': return parse_int("threads", text, 1, 256, &r->threads);
+    case 'b': return parse_int("bounces", text, 1, 1 << 20, &r->bounces);
+    case OPTION_MIN_BOUNCES: return parse_int("min-bounces", text, 0, 1 << 20, &r->min_bounces);
+    case OPTION_SEED: return gb_cli_unsigned("reference", "seed", text, 0, UINT64_MAX, &r->seed);
+    case 'r':
+        return gb_cli_size("reference", "resolution", text, GB_CLI_MAX_IMAGE_SIDE, &r->width,
+                           &r->height);
+    default:
+        if ((status = gb_cli_integer("reference", "camera", text, 0, UINT32_MAX, &camera)) == 0)
+            r->camera = (uint32_t)camera;
+        return status;
+    }
+}
+
+/* One option into a; 0, else the exit status. */
 static int parse_option(int option, const char *text, arguments *a)
 {
     gb_error error;
     switch (option) {
-    case 'o':
-        a->output = text;
-        return 1;
+    case 'o': a->output = text; return 0;
+    case OPTION_VPL: a->vpl_path = text; return 0;
+    case OPTION_PNG: a->png = 1; return 0;
+    case OPTION_STATS: a->stats = 1; return 0;
+    case 'q': a->quiet = 1; return 0;
     case 'm':
         a->mode_given = 1;
         if (gb_reference_mode_parse(text, &a->render.mode, &error) == GB_OK)
-            return 1;
-        fprintf(stderr, "reference: %s\n", error.message);
-        return 0;
-    case OPTION_VPL:
-        a->vpl_path = text;
-        return 1;
-    case OPTION_PNG:
-        a->png = 1;
-        return 1;
-    case OPTION_STATS:
-        a->stats = 1;
-        return 1;
-    case 'q':
-        a->quiet = 1;
-        return 1;
+            return 0;
+        return gb_cli_usage_error("reference", "%s", error.message);
+    default: return parse_number(option, text, a);
     }
-    if (parse_number(option, text, a))
-        return 1;
-    fprintf(stderr, "reference: bad value \"%s\" for option -%c\n", text ? text : "",
-            option < 256 ? option : '-');
-    return 0;
 }
 
-/* 0: go on; otherwise the exit status. */
+/* GB_CLI_GO_ON, else the exit status. */
 static int check_arguments(arguments *a, int argc, char **argv)
 {
-    if (optind != argc - 1 || !a->output) {
-        fprintf(stderr, "reference: expected one SCENE and -o OUT\n%s", usage);
-        return 2;
-    }
+    if (optind != argc - 1 || !a->output)
+        return gb_cli_usage_error("reference", "expected one SCENE and -o OUT");
     a->scene_path = argv[optind];
     if (a->vpl_path && !a->mode_given)
         a->render.mode = GB_REFERENCE_VPL;
-    if ((a->render.mode == GB_REFERENCE_VPL) != (a->vpl_path != NULL)) {
-        fprintf(stderr, "reference: --vpl FILE goes with --mode vpl, and only with it\n");
-        return 2;
-    }
-    return 0;
+    if ((a->render.mode == GB_REFERENCE_VPL) != (a->vpl_path != NULL))
+        return gb_cli_usage_error("reference", "--vpl FILE goes with --mode vpl, and only "
+                                               "with it");
+    return GB_CLI_GO_ON;
 }
 
+/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
 static int parse_arguments(int argc, char **argv, arguments *a)
 {
     static const struct option options[] = {
@@ -182,14 +142,17 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option;
+    int option, status;
+    opterr = 0;
     while ((option = getopt_long(argc, argv, "o:m:s:c:r:t:b:qhV", options, NULL)) != -1) {
         if (option == 'h')
-            return fputs(usage, stdout) == EOF ? 1 : -1;
+            return gb_cli_help(usage);
         if (option == 'V')
-            return puts("reference (gibake) 0.1") == EOF ? 1 : -1;
-        if (option == '?' || !parse_option(option, optarg, a))
-            return fputs(usage, stderr), 2;
+            return gb_cli_version("reference");
+        if (option == '?')
+            return gb_cli_option_error("reference", argv, options);
+        if ((status = parse_option(option, optarg, a)) != 0)
+            return status;
     }
     return check_arguments(a, argc, argv);
 }
@@ -289,8 +252,8 @@ int main(int argc, char **argv)
 {
     arguments a = {0};
     int status = parse_arguments(argc, argv, &a);
-    if (status)
-        return status < 0 ? 0 : status;
+    if (status != GB_CLI_GO_ON)
+        return status;
     gb_error error;
     if (check_outputs(&a, &error) != GB_OK || run(&a, &error) != GB_OK) {
         fprintf(stderr, "reference: %s\n", error.message);

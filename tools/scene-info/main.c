@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "cli.h"
 #include "scene.h"
 #include "scene_warnings.h"
 
@@ -76,20 +77,19 @@ int main(int argc, char **argv)
         {NULL, 0, NULL, 0},
     };
     int quiet = 0, option;
+    opterr = 0;
     while ((option = getopt_long(argc, argv, "qhV", options, NULL)) != -1) {
         if (option == 'q')
             quiet = 1;
         else if (option == 'h')
-            return fputs(usage, stdout) == EOF;
+            return gb_cli_help(usage);
         else if (option == 'V')
-            return puts("scene-info (gibake) 0.1") == EOF;
+            return gb_cli_version("scene-info");
         else
-            return fputs(usage, stderr), 2;
+            return gb_cli_option_error("scene-info", argv, options);
     }
-    if (optind != argc - 1) {
-        fprintf(stderr, "scene-info: expected one SCENE\n%s", usage);
-        return 2;
-    }
+    if (optind != argc - 1)
+        return gb_cli_usage_error("scene-info", "expected one SCENE");
     gb_scene scene;
     gb_error error;
     if (gb_scene_load(argv[optind], NULL, &scene, &error) != GB_OK) {

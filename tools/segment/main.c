@@ -3,12 +3,12 @@
  * the measure of how well they predict visibility (--evaluate). Parses the
  * command line, reads the inputs, calls the library, writes the outputs. */
 
-#include <errno.h>
 #include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "cli.h"
 #include "output_file.h"
 #include "progress.h"
 #include "scene.h"
@@ -49,90 +49,52 @@ typedef struct arguments {
     int evaluate, quiet, stats;
 } arguments;
 
-/* 0 on success, -1 after a message. */
-static int parse_number(const char *text, const char *option, double low, double high,
-                        double *value)
-{
-    char *end;
-    errno = 0;
-    *value = strtod(text, &end);
-    if (end == text || *end || errno || !(*value >= low && *value <= high)) {
-        fprintf(stderr, "segment: %s: not a number in [%g, %g]: \"%s\"\n", option, low, high,
-                text);
-        return -1;
-    }
-    return 0;
-}
-
-/* A strict decimal integer in [low, high], or -1 after a message. */
-static int parse_integer(const char *text, const char *option, unsigned long long low,
-                         unsigned long long high, unsigned long long *value)
-{
-    char *end;
-    errno = 0;
-    *value = strtoull(text, &end, 10);
-    if (end == text || *end || errno || text[0] == '-' || *value < low || *value > high) {
-        fprintf(stderr, "segment: %s: not an integer in [%llu, %llu]: \"%s\"\n", option, low,
-                high, text);
-        return -1;
-    }
-    return 0;
-}
-
-static int parse_option(int option, arguments *args)
+/* One option into args; 0, else the exit status. */
+static int parse_option(int option, const char *text, arguments *args)
 {
     double value;
-    unsigned long long count;
+    uint64_t pairs;
+    int status = 0;
     switch (option) {
-    case 'o': args->output = optarg; return 0;
-    case 'a':
-        if (parse_number(optarg, "--alpha", 0.0, 100.0, &value))
-            return 3;
-        /* in the options struct 0 means the default; negative means 0 */
-        args->options.alpha = value == 0.0 ? -1.0 : value;
-        return 0;
+    case 'o': args->output = text; return 0;
     case 'e': args->evaluate = 1; return 0;
-    case 'n':
-        if (parse_integer(optarg, "--pairs", 1, UINT32_MAX, &count))
-            return 3;
-        args->evaluate_options.pairs = (uint32_t)count;
-        return 0;
-    case OPTION_SEED:
-        if (parse_integer(optarg, "--seed", 0, UINT64_MAX, &count))
-            return 3;
-        args->evaluate_options.seed = count;
-        return 0;
     case 's': args->stats = 1; return 0;
     case 'q': args->quiet = 1; return 0;
-    case 'h': return fputs(usage, stdout) == EOF ? 2 : 1;
-    case 'V': return puts("segment (gibake) 0.1") == EOF ? 2 : 1;
-    default: fputs(usage, stderr); return 3;
+    case 'a':
+        if ((status = gb_cli_number("segment", "alpha", text, 0.0, 100.0, &value)) == 0)
+            /* in the options struct 0 means the default; negative means 0 */
+            args->options.alpha = value == 0.0 ? -1.0 : value;
+        return status;
+    case 'n':
+        if ((status = gb_cli_unsigned("segment", "pairs", text, 1, UINT32_MAX, &pairs)) == 0)
+            args->evaluate_options.pairs = (uint32_t)pairs;
+        return status;
+    default:
+        return gb_cli_unsigned("segment", "seed", text, 0, UINT64_MAX,
+                               &args->evaluate_options.seed);
     }
 }
 
+/* GB_CLI_GO_ON, else the exit status. */
 static int check_positionals(int argc, char **argv, arguments *args)
 {
     int count = argc - optind;
     if (args->evaluate) {
-        if (count != 3 || args->output) {
-            fprintf(stderr, "segment: --evaluate expects SCENE IN.seg GRID.vdb and no -o\n%s",
-                    usage);
-            return 3;
-        }
+        if (count != 3 || args->output)
+            return gb_cli_usage_error("segment",
+                                      "--evaluate expects SCENE IN.seg GRID.vdb and no -o");
         args->scene = argv[optind];
         args->input = argv[optind + 1];
         args->grid = argv[optind + 2];
-        return 0;
+        return GB_CLI_GO_ON;
     }
-    if (count != 1 || !args->output) {
-        fprintf(stderr, "segment: expected one IN.skel and -o OUT.seg\n%s", usage);
-        return 3;
-    }
+    if (count != 1 || !args->output)
+        return gb_cli_usage_error("segment", "expected one IN.skel and -o OUT.seg");
     args->input = argv[optind];
-    return 0;
+    return GB_CLI_GO_ON;
 }
 
-/* 0: go on; otherwise the exit code + 1 (0 for --help and --version). */
+/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
 static int parse_arguments(int argc, char **argv, arguments *args)
 {
     static const struct option options[] = {
@@ -147,10 +109,16 @@ static int parse_arguments(int argc, char **argv, arguments *args)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option;
+    int option, status;
+    opterr = 0;
     while ((option = getopt_long(argc, argv, "o:a:en:sqhV", options, NULL)) != -1) {
-        int status = parse_option(option, args);
-        if (status)
+        if (option == 'h')
+            return gb_cli_help(usage);
+        if (option == 'V')
+            return gb_cli_version("segment");
+        if (option == '?')
+            return gb_cli_option_error("segment", argv, options);
+        if ((status = parse_option(option, optarg, args)) != 0)
             return status;
     }
     return check_positionals(argc, argv, args);
@@ -270,8 +238,8 @@ int main(int argc, char **argv)
     arguments args;
     memset(&args, 0, sizeof args);
     int parsed = parse_arguments(argc, argv, &args);
-    if (parsed)
-        return parsed - 1;
+    if (parsed != GB_CLI_GO_ON)
+        return parsed;
     gb_error error;
     if (!args.evaluate && gb_output_file_check(args.output, &error) != GB_OK) {
         fprintf(stderr, "segment: %s\n", error.message);

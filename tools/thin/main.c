@@ -10,6 +10,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "cli.h"
 #include "output_file.h"
 #include "progress.h"
 #include "skeleton.h"
@@ -42,19 +43,36 @@ typedef struct arguments {
     int quiet, stats;
 } arguments;
 
-/* A number from text, or -1 on error (after a message). */
-static int parse_number(const char *text, const char *option, double *value)
+/* One option with a value into args; 0, else the exit status. */
+static int parse_value(int option, const char *text, arguments *args)
 {
-    char *end;
-    *value = strtod(text, &end);
-    if (end == text || *end || !(*value >= 0.0) || *value > 1e6) {
-        fprintf(stderr, "thin: %s: not a number in [0, 1e6]: \"%s\"\n", option, text);
-        return -1;
+    double value;
+    long threads;
+    int status;
+    switch (option) {
+    case 'o': args->output = text; return 0;
+    case 'g': args->grid = text; return 0;
+    case 'p':
+        if ((status = gb_cli_number("thin", "persistence", text, 0.0, 1e6, &value)) != 0)
+            return status;
+        /* in the options struct 0 means the default; negative means 0 */
+        args->options.persistence = value == 0.0 ? -1.0 : value;
+        return 0;
+    case 'l':
+        if ((status = gb_cli_number("thin", "min-lifespan", text, 0.0, 1e6, &value)) != 0)
+            return status;
+        args->options.min_lifespan = value == 0.0 ? -1.0 : value;
+        return 0;
+    default:
+        if ((status = gb_cli_integer("thin", "threads", text, 1, GB_THIN_MAX_THREADS,
+                                     &threads)) != 0)
+            return status;
+        args->options.threads = (int)threads;
+        return 0;
     }
-    return 0;
 }
 
-/* 0: go on; otherwise the exit code + 1 (0 for --help and --version). */
+/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
 static int parse_arguments(int argc, char **argv, arguments *args)
 {
     static const struct option options[] = {
@@ -69,46 +87,24 @@ static int parse_arguments(int argc, char **argv, arguments *args)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    double value;
-    int option;
+    int option, status;
+    opterr = 0;
     while ((option = getopt_long(argc, argv, "o:g:p:l:j:sqhV", options, NULL)) != -1) {
         switch (option) {
-        case 'o': args->output = optarg; break;
-        case 'g': args->grid = optarg; break;
-        case 'p':
-            if (parse_number(optarg, "--persistence", &value))
-                return 3;
-            /* in the options struct 0 means the default; negative means 0 */
-            args->options.persistence = value == 0.0 ? -1.0 : value;
-            break;
-        case 'l':
-            if (parse_number(optarg, "--min-lifespan", &value))
-                return 3;
-            args->options.min_lifespan = value == 0.0 ? -1.0 : value;
-            break;
-        case 'j':
-            if (parse_number(optarg, "--threads", &value))
-                return 3;
-            if (value < 1 || value > GB_THIN_MAX_THREADS || value != (int)value) {
-                fprintf(stderr, "thin: --threads: not a whole number in 1..%d: \"%s\"\n",
-                        GB_THIN_MAX_THREADS, optarg);
-                return 3;
-            }
-            args->options.threads = (int)value;
-            break;
         case 's': args->stats = 1; break;
         case 'q': args->quiet = 1; break;
-        case 'h': return fputs(usage, stdout) == EOF ? 2 : 1;
-        case 'V': return puts("thin (gibake) 0.1") == EOF ? 2 : 1;
-        default: fputs(usage, stderr); return 3;
+        case 'h': return gb_cli_help(usage);
+        case 'V': return gb_cli_version("thin");
+        case '?': return gb_cli_option_error("thin", argv, options);
+        default:
+            if ((status = parse_value(option, optarg, args)) != 0)
+                return status;
         }
     }
-    if (optind != argc - 1 || !args->output) {
-        fprintf(stderr, "thin: expected one IN.vdb and -o OUT.skel\n%s", usage);
-        return 3;
-    }
+    if (optind != argc - 1 || !args->output)
+        return gb_cli_usage_error("thin", "expected one IN.vdb and -o OUT.skel");
     args->input = argv[optind];
-    return 0;
+    return GB_CLI_GO_ON;
 }
 
 static void print_stats(const gb_skeleton *s, const gb_thin_stats *stats)
@@ -193,8 +189,8 @@ int main(int argc, char **argv)
     arguments args;
     memset(&args, 0, sizeof args);
     int parsed = parse_arguments(argc, argv, &args);
-    if (parsed)
-        return parsed - 1;
+    if (parsed != GB_CLI_GO_ON)
+        return parsed;
     gb_error error;
     if (gb_output_file_check(args.output, &error) != GB_OK ||
         (args.grid && gb_output_file_check(args.grid, &error) != GB_OK)) {

@@ -2,12 +2,11 @@
  * distances (noel-biri-2014, section IV.A; formats/FORMATS.md, "Voxel
  * file"). Parses the command line and calls tools/voxelize/voxelize.h. */
 
-#include <errno.h>
 #include <getopt.h>
-#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "cli.h"
 #include "output_file.h"
 #include "progress.h"
 #include "scene.h"
@@ -38,22 +37,21 @@ typedef struct arguments {
     int quiet;
 } arguments;
 
-/* Strict decimal integer in low..high, or -1 after printing the error. */
-static long parse_count(const char *text, const char *name, long low, long high)
+/* One option with a value into parsed; 0, else the exit status. */
+static int parse_value(int option, const char *text, arguments *parsed)
 {
-    char *end;
-    errno = 0;
-    long value = strtol(text, &end, 10);
-    if (errno || end == text || *end || value < low || value > high) {
-        fprintf(stderr, "voxelize: %s: '%s' is not an integer in %ld..%ld\n", name, text, low,
-                high);
-        return -1;
+    switch (option) {
+    case 'o': parsed->output = text; return 0;
+    case 'r':
+        return gb_cli_integer("voxelize", "resolution", text, 1, GB_VOXELIZE_MAX_RESOLUTION,
+                              &parsed->resolution);
+    case OPTION_PAD:
+        return gb_cli_integer("voxelize", "pad", text, 0, GB_VOXELIZE_MAX_PAD, &parsed->pad);
+    default: return gb_cli_integer("voxelize", "threads", text, 1, 64, &parsed->threads);
     }
-    return value;
 }
 
-/* Returns 0 to go on, else the exit status (after --help and --version: 0,
- * written as -1). */
+/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
 static int parse_arguments(int argc, char **argv, arguments *parsed)
 {
     static const struct option options[] = {
@@ -68,42 +66,25 @@ static int parse_arguments(int argc, char **argv, arguments *parsed)
     };
     *parsed = (arguments){NULL, NULL, GB_VOXELIZE_DEFAULT_RESOLUTION, GB_VOXELIZE_DEFAULT_PAD,
                           GB_VOXELIZE_DEFAULT_THREADS, 0};
-    int option;
+    int option, status;
+    opterr = 0;
     while ((option = getopt_long(argc, argv, "o:r:j:qhV", options, NULL)) != -1) {
         switch (option) {
-        case 'o': parsed->output = optarg; break;
-        case 'r':
-            parsed->resolution = parse_count(optarg, "--resolution", 1,
-                                             GB_VOXELIZE_MAX_RESOLUTION);
-            if (parsed->resolution < 0)
-                return 2;
-            break;
-        case OPTION_PAD:
-            parsed->pad = parse_count(optarg, "--pad", 0, GB_VOXELIZE_MAX_PAD);
-            if (parsed->pad < 0)
-                return 2;
-            break;
-        case 'j':
-            parsed->threads = parse_count(optarg, "--threads", 1, 64);
-            if (parsed->threads < 0)
-                return 2;
-            break;
         case 'q': parsed->quiet = 1; break;
-        case 'h': return fputs(usage, stdout) == EOF ? 1 : -1;
-        case 'V': return puts("voxelize (gibake) 0.1") == EOF ? 1 : -1;
-        default: fputs(usage, stderr); return 2;
+        case 'h': return gb_cli_help(usage);
+        case 'V': return gb_cli_version("voxelize");
+        case '?': return gb_cli_option_error("voxelize", argv, options);
+        default:
+            if ((status = parse_value(option, optarg, parsed)) != 0)
+                return status;
         }
     }
-    if (optind != argc - 1) {
-        fprintf(stderr, "voxelize: expected one SCENE\n%s", usage);
-        return 2;
-    }
-    if (!parsed->output) {
-        fprintf(stderr, "voxelize: no output file: give -o OUT.vdb\n");
-        return 2;
-    }
+    if (optind != argc - 1)
+        return gb_cli_usage_error("voxelize", "expected one SCENE");
+    if (!parsed->output)
+        return gb_cli_usage_error("voxelize", "no output file: give -o OUT.vdb");
     parsed->scene = argv[optind];
-    return 0;
+    return GB_CLI_GO_ON;
 }
 
 /* The bar shows voxelizing as 90 % of the work and writing as the rest. */
@@ -151,8 +132,8 @@ int main(int argc, char **argv)
 {
     arguments parsed;
     int status = parse_arguments(argc, argv, &parsed);
-    if (status != 0)
-        return status < 0 ? 0 : status;
+    if (status != GB_CLI_GO_ON)
+        return status;
     gb_error error;
     if (gb_output_file_check(parsed.output, &error) != GB_OK) {
         fprintf(stderr, "voxelize: %s\n", error.message);
