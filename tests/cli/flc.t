@@ -79,10 +79,10 @@ ok $? "--navg 64 --mu 3 --levels 4 --epsilon 5"
 "$imgdiff" "$dir/both.exr" "$dir/direct.exr" >"$dir/added"
 ok "$([ "$(value max_error "$dir/added")" != 0 ]; echo $?)" "--terms both adds the indirect light"
 
-expect_failure "--tiling 9" 2 "bad value \"9\"" $flc --tiling 9 "$scene"
-expect_failure "--mu 1" 2 "bad value \"1\"" $flc --mu 1 "$scene"
-expect_failure "--navg 0" 2 "bad value \"0\"" $flc --navg 0 "$scene"
-expect_failure "--levels 17" 2 "bad value \"17\"" $flc --levels 17 "$scene"
+expect_failure "--tiling 9" 2 "^gbview: --tiling: '9' is not an integer in 0\.\.4$" $flc --tiling 9 "$scene"
+expect_failure "--mu 1" 2 "^gbview: --mu: '1' is not a number in \[1\.01, 1000\]$" $flc --mu 1 "$scene"
+expect_failure "--navg 0" 2 "^gbview: --navg: '0' is not a number in \[1, 1e+06\]$" $flc --navg 0 "$scene"
+expect_failure "--levels 17" 2 "^gbview: --levels: '17' is not an integer in 1\.\.16$" $flc --levels 17 "$scene"
 
 "$tool" --help >"$dir/out"
 ok "$(grep -q -- "--navg" "$dir/out" && grep -q -- "--tiling" "$dir/out"; echo $?)" \

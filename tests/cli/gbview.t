@@ -98,7 +98,7 @@ expect_failure "a camera the scene lacks" 1 "^gbview: camera 3" \
     --headless --camera 3 "$scene" -o "$dir/camera3.png"
 expect_failure "--headless with nothing to write" 2 "writes nothing without -o" \
     --headless "$scene"
-expect_failure "a bad resolution" 2 "bad value \"0x5\"" \
+expect_failure "a bad resolution" 2 "^gbview: --resolution: '0x5' is not WxH with each side in 1\.\.16384$" \
     --headless --resolution 0x5 "$scene"
 
 "$tool" --help >"$dir/out"

@@ -61,7 +61,7 @@ ok "$([ $status = 1 ] && [ ! -s "$dir/out" ] && [ ! -s "$dir/err" ]; echo $?)" \
 ok "$([ $? = 0 ] && [ ! -s "$dir/out" ] && [ ! -s "$dir/err" ]; echo $?)" "-q: exit 0, nothing printed"
 "$tool" --fail-above -1 "$dir/a.ppm" "$dir/b.ppm" >/dev/null 2>"$dir/err"
 status=$?
-ok "$([ $status = 2 ] && grep -q 'fail-above: "-1" is not a number of at least 0' "$dir/err"; echo $?)" \
+ok "$([ $status = 2 ] && grep -qx "imgdiff: --fail-above: '-1' is not a number in \[0, 1e+30\]" "$dir/err"; echo $?)" \
     "--fail-above -1: usage error, exit 2 (got $status)"
 
 "$tool" --heatmap "$dir/heat.png" "$dir/a.ppm" "$dir/b.ppm" >/dev/null

@@ -37,7 +37,7 @@ ok "$([ "$(value max_error "$dir/same")" = 0 ]; echo $?)" "rendering twice: iden
 "$imgdiff" "$dir/two.exr" "$dir/a.exr" >"$dir/diff"
 ok "$([ "$(value max_error "$dir/diff")" != 0 ]; echo $?)" "--bounces 2 adds light"
 "$tool" $small --bins 0 "$scene" >"$dir/out" 2>"$dir/err"
-ok "$([ $? = 2 ] && grep -q 'bad value "0"' "$dir/err"; echo $?)" "--bins 0: a usage error"
+ok "$([ $? = 2 ] && grep -qx "gbview: --bins: '0' is not an integer in 1\.\.64" "$dir/err"; echo $?)" "--bins 0: a usage error"
 
 # The indirect term against the reference's one-bounce indirect light.
 # Measured at 128x128, 6x12x12 bins, 1 bounce: 0.0036 (a black image: 0.040);

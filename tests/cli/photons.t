@@ -63,13 +63,13 @@ ok "$(grep -q "^photons: .*dark.scene: warning: no light" "$dir/err"; echo $?)" 
 ok "$([ -s "$dir/dark.phot" ] && [ "$(value stored "$dir/out")" = 0 ]; echo $?)" \
     "... and an empty map"
 
-expect_failure "a bad store mode" 2 "bad value \"some\" for option store" \
+expect_failure "a bad store mode" 2 "^photons: --store: 'some' is not one of indirect, all$" \
     --store some "$scene" -o "$dir/x.phot"
-expect_failure "shard 4 of 4" 2 "bad value \"4/4\" for option shard" \
+expect_failure "shard 4 of 4" 2 "^photons: --shard: '4/4' is not I/N with I in 0\.\.N-1$" \
     --shard 4/4 "$scene" -o "$dir/x.phot"
-expect_failure "zero photons" 2 "bad value \"0\" for option count" \
+expect_failure "zero photons" 2 "^photons: --count: '0' is not an integer in 1\.\.1099511627776$" \
     --count 0 "$scene" -o "$dir/x.phot"
-expect_failure "256 bounces" 2 "bad value \"256\" for option bounces" \
+expect_failure "256 bounces" 2 "^photons: --bounces: '256' is not an integer in 1\.\.255$" \
     --bounces 256 "$scene" -o "$dir/x.phot"
 expect_failure "no output" 2 "expected one SCENE and -o OUT" "$scene"
 

@@ -53,7 +53,7 @@ expect_failure "a camera the scene lacks" 1 "^reference: .*no camera 3" \
     --quiet --camera 3 "$scene" -o "$dir/x.exr"
 expect_failure "a VPL file that is not one" 1 "^reference: .*direct.png" \
     --quiet --vpl "$dir/direct.png" "$scene" -o "$dir/x.exr"
-expect_failure "a bad resolution" 2 "bad value \"0x5\"" \
+expect_failure "a bad resolution" 2 "^reference: --resolution: '0x5' is not WxH with each side in 1\.\.16384$" \
     --resolution 0x5 "$scene" -o "$dir/x.exr"
 
 "$tool" --help >"$dir/out"

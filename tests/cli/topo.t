@@ -60,7 +60,7 @@ for v in clusters none; do
 done
 "$GB_BIN/gbview" $small --bake "$bake" --topo-visibility sometimes "$scene" -o "$dir/x.exr" \
     2>"$dir/err"
-ok "$([ $? = 2 ] && grep -q 'topo-visibility' "$dir/err"; echo $?)" \
+ok "$([ $? = 2 ] && grep -qx "gbview: --topo-visibility: 'sometimes' is not one of full, clusters, none" "$dir/err"; echo $?)" \
     "--topo-visibility sometimes: usage error"
 "$GB_BIN/gbview" --headless --resolution 96x96 --quiet --terms indirect "$scene" \
     -o "$dir/black.exr"
