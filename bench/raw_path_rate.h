@@ -8,7 +8,7 @@
  *   - camera rays through the reference's pixels, samples and order: 16x16
  *     tiles handed out to the threads by the same work queue, pixels in row
  *     order in a tile, spp samples a pixel jittered from the pixel's PCG32
- *     stream, directions from gb_camera_direction (tools/reference/camera.h);
+ *     stream, directions from gb_camera_direction (common/camera.h);
  *   - at each hit, the reference's shadow rays (rtcOccluded1): one toward a
  *     point of an area light picked by gb_light_table_sample, and one toward
  *     each point, spot and directional light that gb_delta_light_arriving
@@ -46,7 +46,7 @@
 #include <stdint.h>
 
 #include "raw_ray_rate.h"
-#include "../tools/reference/camera.h"
+#include "camera.h"
 #include "../tools/reference/reference.h"
 #include "embree_scene.h"
 #include "light_sampling.h"

@@ -1,5 +1,7 @@
 #include "view.h"
 
+#include "camera.h"
+
 #include <math.h>
 
 static void set_basis(gb_view *view, gb_vec3 forward)
@@ -12,19 +14,15 @@ static void set_basis(gb_view *view, gb_vec3 forward)
 gb_result gb_view_from_camera(const gb_camera *camera, float scene_size, gb_view *view,
                               gb_error *error)
 {
-    gb_vec3 position = gb_vec3_load(camera->position);
-    gb_vec3 forward = gb_vec3_sub(gb_vec3_load(camera->target), position);
-    gb_vec3 up = gb_vec3_normalize(gb_vec3_load(camera->up));
-    gb_vec3 right = gb_vec3_normalize(gb_vec3_cross(gb_vec3_normalize(forward), up));
-    if (gb_vec3_length(right) == 0.0f || !isfinite(right.x + right.y + right.z))
-        return gb_fail(error, GB_ERROR_INVALID,
-                       "camera: the target is on the position or up is along the view");
-    if (!(camera->fov_y > 0.0f && camera->fov_y < 180.0f))
-        return gb_fail(error, GB_ERROR_INVALID, "camera: field of view %g is not in (0, 180)",
-                       (double)camera->fov_y);
-    view->position = position;
-    view->world_up = up;
-    set_basis(view, forward);
+    gb_camera_frame frame;
+    gb_result result = gb_camera_frame_make(camera, 1, 1, &frame, error);
+    if (result != GB_OK)
+        return result;
+    view->position = frame.position;
+    view->forward = frame.forward;
+    view->right = frame.right;
+    view->up = frame.up;
+    view->world_up = gb_vec3_normalize(gb_vec3_load(camera->up));
     view->fov_y = camera->fov_y;
     view->near = scene_size > 0.0f && isfinite(scene_size) ? 1e-4f * scene_size : 1e-3f;
     return GB_OK;

@@ -1,7 +1,8 @@
-/* view.h — the eye the runtime renders from: a pinhole camera as
- * tools/reference sees it (right = cross(forward, up), fov_y spans the image
- * height whatever its width, pixel (0, 0) at the top left of the written
- * image), plus the fly-camera moves of the window.
+/* view.h — the eye the runtime renders from: the pinhole camera of
+ * common/camera.h, whose frame it starts from (right = cross(forward, up),
+ * fov_y spans the image height whatever its width, pixel (0, 0) at the top
+ * left of the written image), as GL matrices, plus the fly-camera moves of
+ * the window.
  */
 #ifndef GB_VIEW_H
 #define GB_VIEW_H

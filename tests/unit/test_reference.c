@@ -7,7 +7,7 @@
 #include <math.h>
 #include <string.h>
 
-#include "../../tools/reference/camera.h"
+#include "camera.h"
 #include "../../tools/reference/integrator.h"
 #include "light_sampling.h"
 #include "../../tools/reference/reference.h"

@@ -1,9 +1,12 @@
-/* camera.h — primary rays of a pinhole gb_camera: pixel (x, y) counts from
- * the top-left corner, the image's right is cross(forward, up), and fov_y
- * spans the image height whatever its width.
+/* camera.h — the one pinhole camera of the toolchain: the frame of a
+ * gb_camera and its primary rays. Pixel (x, y) counts from the top-left
+ * corner, the image's right is cross(forward, up), and fov_y spans the image
+ * height whatever its width. The reference renderer traces these rays; the
+ * runtime's view (runtime/view.h) takes its basis from the same frame, so
+ * both project a point to the same pixel (tests/unit/test_runtime.c).
  */
-#ifndef GB_REFERENCE_CAMERA_H
-#define GB_REFERENCE_CAMERA_H
+#ifndef GB_CAMERA_H
+#define GB_CAMERA_H
 
 #include "scene.h"
 #include "vec3.h"
