@@ -2,7 +2,7 @@
 # sweep file (included by the Makefile; README, "make report").
 #
 #   make report [SWEEP=f] [FAST=1] [REPORT=dir] [BIN=dir]   -> $(REPORT)/index.html
-#   make readme-figures                                      the README's table
+#   make readme-figures                                      the README's tables
 #
 # bench/report_rules.sh turns the sweep into $(REPORT)/rules.mk: one rule per
 # bake configuration (a recursive make of the bake rules above into
@@ -58,4 +58,5 @@ endif
 
 readme-figures:
 	+$(MAKE) report
-	sh bench/report_readme.sh $(REPORT)/readme-table.md README.md
+	sh bench/report_readme.sh $(REPORT)/readme-table.md README.md report
+	sh bench/report_readme.sh $(REPORT)/readme-segment-table.md README.md segment

@@ -3,8 +3,10 @@
 # REPORT/points/*.csv in sweep order (REPORT/points.tsv) into results.csv,
 # the references and their noise floors into references.csv, each scene's
 # Pareto front (least error against reference --mode full for the frame
-# time) into pareto.csv, the plots (gnuplot, PNG and SVG) into plots/, the
-# page index.html and the README's table readme-table.md.
+# time) into pareto.csv, each topo bake's segment --evaluate into
+# segments.csv, the plots (gnuplot, PNG and SVG) into plots/, the page
+# index.html and the README's tables readme-table.md and
+# readme-segment-table.md.
 #
 # A reference's comparison is void when its noise floor (relative MSE
 # between its seed-0 and seed-1 images) is not below the smallest error
@@ -60,6 +62,19 @@ awk -F, "$settings"'
                     printf "%s,%s,%s,%s,%s,%s,%s,%s\n", sc[j], m[j], set[j], ms[j], err[j], own[j], bk[j], id[j] } }
         }
     }' results.csv.tmp >pareto.csv.tmp
+# segment --evaluate of each topo bake (bake/CONFIG/segment-evaluate.txt).
+{
+    echo "scene,voxels,bake,pairs,visible,unlocated,clusters,gates,same_cluster_precision,same_cluster_recall,one_gate_precision,one_gate_recall,seconds"
+    while IFS="$(printf '\t')" read -r bake name voxels; do
+        awk -v name="$name" -v voxels="$voxels" -v bake="$bake" '
+            $1 == "pairs" { pairs = $2 } $1 == "visible" { visible = $2 } $1 == "unlocated" { unlocated = $2 }
+            $1 == "clusters" { clusters = $2 } $1 == "gates" { gates = $2 } $1 == "seconds" { seconds = $2 }
+            $1 == "same-cluster" { sp = $2; sr = $3 } $1 == "one-gate" { gp = $2; gr = $3 }
+            END { printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", name, voxels, bake, pairs, visible, unlocated,
+                  clusters, gates, sp, sr, gp, gr, seconds }' "bake/$bake/segment-evaluate.txt"
+    done <segments.tsv
+} >segments.csv.tmp
+mv segments.csv.tmp segments.csv
 mv results.csv.tmp results.csv
 mv references.csv.tmp references.csv
 mv pareto.csv.tmp pareto.csv
@@ -154,6 +169,19 @@ awk -F, -v sweep="$sweep" -v date="$date" -v load="$load" '
             printf "| %s | %s | %s | %.1f | %.5f | %.5f | %s |\n", f[1], f[2], f[3], f[4], f[5], f[6], (f[7] == "" ? "-" : f[7]) }
     }' pareto.csv >readme-table.md
 
+# The README's segment table, from segments.csv.
+awk -F, -v sweep="$sweep" -v date="$date" '
+    NR == 1 { next }
+    { rows[++n] = $0 }
+    END {
+        if (n == 0) exit
+        printf "`make report SWEEP=%s` (bench/report_finish.sh from segments.csv), %s: `segment --evaluate --pairs 100000 --seed 0` of each topo bake (the bake rules'"'"' default options).\n\n", sweep, date
+        print "| scene | voxelize -r | clusters / gates | visible pairs | same-cluster precision / recall | one-gate precision / recall |"
+        print "|---|---:|---|---:|---|---|"
+        for (i = 1; i <= n; i++) { split(rows[i], f, ",")
+            printf "| %s | %s | %s / %s | %s | %s / %s | %s / %s |\n", f[1], f[2], f[7], f[8], f[5], f[9], f[10], f[11], f[12] }
+    }' segments.csv >readme-segment-table.md
+
 # index.html
 esc() { sed -e 's/&/\&amp;/g' -e 's/</\&lt;/g' -e 's/>/\&gt;/g'; }
 {
@@ -196,6 +224,13 @@ EOF
         echo "<h2>Cost scaling</h2><p>"
         for p in voxels photons resolution vpls; do echo "<img src=\"plots/cost-$p.svg\" width=\"600\">"; done
         echo "</p>"
+    fi
+    if [ "$(wc -l <segments.csv)" -gt 1 ]; then
+        echo "<h2>Segmentation (segment --evaluate, 100 000 pairs)</h2><table><tr>"
+        head -n 1 segments.csv | tr , '\n' | sed 's|.*|<th>&</th>|' | tr -d '\n'
+        echo "</tr>"
+        awk -F, 'NR > 1 { printf "<tr>"; for (i = 1; i <= NF; i++) printf "<td>%s</td>", $i; print "</tr>" }' segments.csv
+        echo "</table>"
     fi
     echo "<h2>Every point</h2><table><tr>"
     head -n 1 results.csv | tr , '\n' | sed 's|.*|<th>&</th>|' | tr -d '\n'

@@ -1,8 +1,9 @@
 #!/bin/sh
 # report_rules.sh SWEEP REPORT — turns a sweep file into the make fragment
 # of make report (on stdout; bench/report.mk writes it to REPORT/rules.mk)
-# and writes REPORT/points.tsv and REPORT/refs.tsv, the points and reference
-# images in sweep order, which bench/report_finish.sh reads.
+# and writes REPORT/points.tsv, REPORT/refs.tsv and REPORT/segments.tsv, the
+# points, reference images and topo bakes (each gets a segment --evaluate) in
+# sweep order, which bench/report_finish.sh reads.
 #
 # The sweep, one line each ('#' starts a comment):
 #   scene NAME FILE              declares a scene
@@ -26,7 +27,8 @@ set -e
 sweep=$1 report=$2
 [ -r "$sweep" ] || { echo "report_rules.sh: $sweep: cannot read the sweep" >&2; exit 1; }
 mkdir -p "$report"
-awk -v sweep="$sweep" -v points="$report/points.tsv.tmp" -v refs="$report/refs.tsv.tmp" '
+awk -v sweep="$sweep" -v points="$report/points.tsv.tmp" -v refs="$report/refs.tsv.tmp" \
+    -v segments="$report/segments.tsv.tmp" '
 function fail(msg) { printf "%s:%d: %s\n", sweep, NR, msg > "/dev/stderr"; failed = 1; exit 1 }
 function number(k, v) { if (v !~ /^[0-9]+$/ || v + 0 < 1) fail(k " wants a positive whole number, not \"" v "\"") }
 BEGIN {
@@ -95,6 +97,11 @@ $1 == "set" {
             bakes[bake] = 1
             printf "report-bake/%s:\n\t+$(MAKE) --no-print-directory REPORT_STAGE= REPORT_BAKE=1 TIME_BAKE=1 $(REPORT_OLD_TOOLS) BAKE=$(REPORT)/bake/%s SCENE=%s VOXELIZE_FLAGS=\"-r %s\" %s $(REPORT)/bake/%s/%s.grid.vdb\n\n", bake, bake, file, p["voxels"], bakefile, bake, base
             bakelist = bakelist " report-bake/" bake
+            # segment --evaluate of this bake (for the segment table of the README).
+            evaluation = "$(REPORT)/bake/" bake "/segment-evaluate.txt"
+            printf "%s: %s $(REPORT)/bake/%s/%s.grid.vdb $(call report_tool,segment)\n\t$(BIN)/segment --evaluate --quiet --pairs 100000 --seed 0 %s %s $(REPORT)/bake/%s/%s.grid.vdb >$@.tmp && mv $@.tmp $@\n\n", evaluation, bakefile, bake, base, file, bakefile, bake, base
+            evaluations = evaluations " " evaluation
+            print bake "\t" name "\t" p["voxels"] > segments
         }
     } else if (method == "octree") {
         bake = name "-p" p["photons"] "-d" p["depth"] "-k" p["vdls"]; bakefile = "$(REPORT)/bake/" bake "/" base ".lot"
@@ -154,12 +161,14 @@ function reference(name, file, res, mode, spp, vpls, what,    id, flags, s) {
 END {
     if (failed) exit 1
     if (npoints == 0) { printf "%s: no points\n", sweep > "/dev/stderr"; exit 1 }
-    printf "REPORT_POINT_FILES :=%s\nREPORT_FLOORS :=%s\n\n", pointfiles, floors
+    printf "REPORT_POINT_FILES :=%s\nREPORT_FLOORS :=%s\nREPORT_EVALUATIONS :=%s\n\n", pointfiles, floors, evaluations
     # Stage 1 (bench/report.mk): every bake, and the references that need none.
     printf ".PHONY:%s\nreport-bakes:%s%s\n\n", bakelist, bakelist, plainfloors
-    print "$(REPORT)/results.csv: bench/report_finish.sh $(REPORT)/rules.mk $(REPORT_POINT_FILES) $(REPORT_FLOORS)"
+    print "$(REPORT)/results.csv: bench/report_finish.sh $(REPORT)/rules.mk $(REPORT_POINT_FILES) $(REPORT_FLOORS) $(REPORT_EVALUATIONS)"
     print "\tsh bench/report_finish.sh $(REPORT) $(BIN) \"$(SWEEP)\""
 }
 ' "$sweep"
 mv "$report/points.tsv.tmp" "$report/points.tsv"
 mv "$report/refs.tsv.tmp" "$report/refs.tsv"
+touch "$report/segments.tsv.tmp"
+mv "$report/segments.tsv.tmp" "$report/segments.tsv"

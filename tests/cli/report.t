@@ -8,7 +8,8 @@
 # better than after 1; octree and implicit better than direct light alone
 # against the full reference; every reference's noise floor below the
 # smallest error compared with it, or the report says the comparison is
-# void; the plots, gallery and page written; a second make report renders
+# void; segment --evaluate of each topo bake, better than chance on the two
+# rooms; the plots, gallery and page written; a second make report renders
 # nothing; a bad sweep line stops with its file and line. Prints TAP.
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
@@ -99,6 +100,24 @@ for r in $(awk -F, 'NR > 1 && $10 == "void" { print $1 }' "$refs"); do
     grep -q "comparison void: reference $r " "$report/index.html" || unsaid="$unsaid $r"
 done
 ok "$([ -z "$unsaid" ]; echo $?)" "index.html states every void comparison${unsaid:+ (not:$unsaid)}"
+
+# segment --evaluate of each topo bake: a row each, fractions in [0, 1]; on
+# the two rooms "same cluster" predicts visibility better than chance (its
+# precision above the fraction of all pairs that see each other).
+segments=$report/segments.csv
+bakes=$(awk -F, 'NR > 1 && $3 == "topo" { print $19 }' "$csv" | sort -u | wc -l)
+bad=$(awk -F, 'NR > 1 && ($4 != 100000 || $7 < 1) { print $3 }
+    NR > 1 { for (i = 5; i <= 12; i++) if (i != 7 && i != 8 && !($i >= 0 && $i <= 1 && $i != "")) { print $3; next } }' "$segments")
+ok "$([ "$(($(wc -l <"$segments") - 1))" = "$bakes" ] && [ -z "$bad" ]; echo $?)" \
+    "segments.csv: a segment --evaluate row for each of the $bakes topo bakes, fractions in [0, 1]${bad:+ (not: $bad)}"
+read -r visible precision <<EOF2
+$(awk -F, 'NR > 1 && $1 == "two-rooms" { print $5, $9 }' "$segments")
+EOF2
+echo "# two rooms: visible pairs $visible, same-cluster precision $precision"
+below "$visible" "$precision"
+ok $? "two rooms: same cluster predicts visibility better than chance"
+grep -q '^| two-rooms | ' "$report/readme-segment-table.md"
+ok $? "readme-segment-table.md: the two rooms' row"
 
 missing_img=
 for id in $(awk -F, 'NR > 1 { print $4 }' "$csv"); do
