@@ -30,6 +30,9 @@ DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
   libopenvdb-dev libtbb-dev libembree-dev libflann-dev liblz4-dev libcgal-dev \
   libopenmesh-dev libopenimageio-dev libepoxy-dev libglfw3-dev libegl-dev \
   libegl-mesa0 libgl1-mesa-dri xvfb xauth libopenvdb-tools openimageio-tools time strace gnuplot-nox
+# What make bench needs beside: scikit-image's skeletonize_3d, thin's peer
+# in bench/thin.sh (for Debian's /usr/bin/python3).
+BENCH_DEB_PACKAGES = python3-skimage python3-openvdb
 
 SANITIZE_FLAGS = $(if $(SANITIZE),-fsanitize=$(SANITIZE) -fno-sanitize-recover=all -fno-omit-frame-pointer)
 CPPFLAGS += -Iformats -Icommon -Itests -MMD -MP -D_GNU_SOURCE
@@ -50,8 +53,8 @@ UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(wildcard tests/unit/t
 FUZZ_TARGETS := $(patsubst tests/fuzz/%.c,%,$(wildcard tests/fuzz/fuzz_*.c))
 BIN := $(BUILD)/bin
 
-.PHONY: all deps test check check-optimised check-sanitized check-fuzz test-repeat unit-tests \
-  demo bake bench fuzz install clean
+.PHONY: all deps bench-deps test check check-optimised check-sanitized check-fuzz test-repeat \
+  unit-tests demo bake bench fuzz install clean
 .DELETE_ON_ERROR:
 .SECONDARY:
 
@@ -105,7 +108,11 @@ SANITIZER_ENVIRONMENT = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 \
   UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   LSAN_OPTIONS=suppressions=$(CURDIR)/tests/leak_suppressions.txt:print_suppressions=0
 FUZZ_CHECK_SECONDS ?= 10
-SUITE = $(UNIT_TESTS) tests/cli/*.t
+# prove runs JOBS tests at a time, in this order: the slowest first, so that
+# no long test starts last and runs alone.
+SLOW_TESTS = tests/cli/hard_cases.t tests/cli/report.t tests/cli/output.t
+CLI_TESTS = $(SLOW_TESTS) $(filter-out $(SLOW_TESTS),$(wildcard tests/cli/*.t))
+SUITE = $(CLI_TESTS) $(UNIT_TESTS)
 
 JOBS ?= $(shell nproc)
 test: deps
@@ -120,12 +127,12 @@ check:
 	exit $$status
 
 check-optimised: all unit-tests
-	GB_BIN=$(abspath $(BIN)) GB_ROOT=$(CURDIR) prove --exec '' $(SUITE)
+	GB_BIN=$(abspath $(BIN)) GB_ROOT=$(CURDIR) prove -j$(JOBS) --timer --exec '' $(SUITE)
 
 check-sanitized:
 	$(MAKE) $(SANITIZED_MAKE) all unit-tests
 	$(SANITIZER_ENVIRONMENT) GB_BIN=$(abspath $(SANITIZED_BUILD))/bin GB_ROOT=$(CURDIR) \
-	  prove --exec '' $(UNIT_TESTS:$(BUILD)/%=$(SANITIZED_BUILD)/%) tests/cli/*.t
+	  prove -j$(JOBS) --timer --exec '' $(SUITE:$(BUILD)/%=$(SANITIZED_BUILD)/%)
 
 check-fuzz:
 	$(MAKE) fuzz FUZZ_SECONDS=$(FUZZ_CHECK_SECONDS)
@@ -205,25 +212,31 @@ $(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(LIBRARY)
 	@mkdir -p $(@D)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-bench: all $(BENCH_PROGRAMS)
+bench-deps:
+	@$(MAKE) --no-print-directory deps DEB_PACKAGES="$(BENCH_DEB_PACKAGES)"
+
+bench: bench-deps all $(BENCH_PROGRAMS)
 	@for b in bench/*.sh; do GB_BIN=$(abspath $(BIN)) sh $$b || exit 1; done
 
 # libFuzzer: the fuzz targets are linked on the sanitized build (whose code
 # carries libFuzzer's coverage instrumentation); each replays its seeds
 # (tests/fuzz/corpus/T) and what earlier runs found (build/fuzz-corpus/T),
 # then fuzzes for FUZZ_SECONDS. A crash, leak or timeout fails.
-fuzz:
+# With make -j, targets fuzz side by side (fuzz-run/T, one each).
+.PHONY: fuzz-build $(FUZZ_TARGETS:%=fuzz-run/%)
+fuzz: $(FUZZ_TARGETS:%=fuzz-run/%)
+fuzz-build:
 	$(MAKE) $(SANITIZED_MAKE) $(FUZZ_TARGETS:%=$(SANITIZED_BUILD)/fuzz/%)
-	@for t in $(FUZZ_TARGETS); do \
-	  mkdir -p build/fuzz-corpus/$$t; \
-	  echo "fuzz: $$t for $(FUZZ_SECONDS) s"; \
-	  $(SANITIZER_ENVIRONMENT) $(SANITIZED_BUILD)/fuzz/$$t -max_total_time=$(FUZZ_SECONDS) \
-	    -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build/fuzz-corpus/$$t- \
-	    $$(sed -n 's/^max_len = /-max_len=/p' tests/fuzz/$$t.options 2>/dev/null) \
-	    build/fuzz-corpus/$$t tests/fuzz/corpus/$$t 2>build/fuzz-corpus/$$t.log \
-	    || { tail -60 build/fuzz-corpus/$$t.log; exit 1; }; \
-	  grep -E '^stat::(number_of_executed_units|new_units_added)|^#[0-9]+ +DONE' build/fuzz-corpus/$$t.log; \
-	done
+$(FUZZ_TARGETS:%=fuzz-run/%): fuzz-run/%: fuzz-build
+	@mkdir -p build/fuzz-corpus/$*
+	@echo "fuzz: $* for $(FUZZ_SECONDS) s"
+	@$(SANITIZER_ENVIRONMENT) $(SANITIZED_BUILD)/fuzz/$* -max_total_time=$(FUZZ_SECONDS) \
+	  -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 -artifact_prefix=build/fuzz-corpus/$*- \
+	  $$(sed -n 's/^max_len = /-max_len=/p' tests/fuzz/$*.options 2>/dev/null) \
+	  build/fuzz-corpus/$* tests/fuzz/corpus/$* 2>build/fuzz-corpus/$*.log \
+	  || { tail -60 build/fuzz-corpus/$*.log; exit 1; }
+	@grep -E '^stat::(number_of_executed_units|new_units_added)|^#[0-9]+ +DONE' \
+	  build/fuzz-corpus/$*.log | sed 's/^/$*: /'
 
 $(BUILD)/fuzz/%: $(BUILD)/obj/tests/fuzz/%.o $(LIBRARY)
 	@mkdir -p $(@D)
