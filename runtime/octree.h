@@ -1,9 +1,8 @@
 /* octree.h — the light octree (Vivianloc 2007, §3.2, §4.2) as a GI method
  * of the runtime (indirect_method.h); runtime/octree.c.
  *
- * create  borrows the light octree (NAME.lot, from cluster) of the bake
- *         (runtime/bake.h), uploads its node pool, leaves and VDLs as
- *         shader storage buffers.
+ * create  reads NAME.lot from the bake folder (cluster), uploads its node
+ *         pool, leaves and VDLs as shader storage buffers.
  * draw    one full-screen pass over the G-buffer: per pixel, the world
  *         point x, walked from the root to the leaves of the 8 leaf cells
  *         around it (δ node fetches each, Figure 6), their VDL sums
