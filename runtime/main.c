@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bake.h"
+#include "bake_files.h"
 #include "cli.h"
 #include "flc.h"
 #include "headless.h"
@@ -243,22 +243,17 @@ static int parse_arguments(int argc, char **argv, arguments *a)
     return GB_CLI_GO_ON;
 }
 
-/* The bake of a->bake (*bake NULL without --bake); one message per missing
- * or bad file, never fatal. 0, else the exit status. */
-static int open_bake(const gb_scene *scene, const arguments *a, gb_bake **bake)
+/* One message per missing or bad baked file; never fatal. */
+static int check_bake(const gb_scene *scene, const arguments *a, gb_bake_files *files)
 {
     gb_error error;
-    *bake = NULL;
-    if (!a->bake)
-        return 0;
-    if (gb_bake_open(scene, a->scene_path, a->bake, bake, &error) != GB_OK) {
+    if (gb_bake_files_check(scene, a->scene_path, a->bake, files, &error) != GB_OK) {
         fprintf(stderr, "gbview: %s\n", error.message);
         return 1;
     }
     for (int kind = 0; kind < GB_BAKE_KIND_COUNT; ++kind)
-        if (gb_bake_problem(*bake, (gb_bake_kind)kind))
-            fprintf(stderr, "gbview: warning: skipped: %s\n",
-                    gb_bake_problem(*bake, (gb_bake_kind)kind));
+        if (files->has_problem[kind])
+            fprintf(stderr, "gbview: warning: skipped: %s\n", files->problems[kind].message);
     return 0;
 }
 
@@ -342,12 +337,11 @@ int main(int argc, char **argv)
     }
     if (!a.quiet)      /* with no light every method draws black, as it should */
         gb_scene_warn("gbview", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
-    gb_bake *bake;
-    status = open_bake(&scene, &a, &bake);
-    a.renderer.bake = bake;
+    gb_bake_files files;
+    status = a.bake ? check_bake(&scene, &a, &files) : 0;
+    a.renderer.bake = a.bake ? &files : NULL;
     if (status == 0)
         status = run(&scene, &a);
-    gb_bake_release(bake);
     gb_scene_free(&scene);
     return status;
 }

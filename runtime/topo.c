@@ -1,9 +1,8 @@
 /* topo.c — gb_topo_method: VPL indirect light with implicit visibility
  * through visibility clusters and gates (Noël & Biri 2014, §V). Load time:
- * the bake's .seg and .grid.vdb (borrowed from the gb_bake, bake.h), the
- * gates' disks fitted to the openings between clusters when the bake has
- * the voxels (.vdb; topo_gate_openings.c), the VPLs (topo_vpls.c) and their
- * clusters.
+ * the bake's .seg and .grid.vdb, the gates' disks fitted to the openings
+ * between clusters when the bake has the voxels (.vdb; topo_gate_openings.c),
+ * the VPLs (topo_vpls.c) and their clusters.
  * Each frame: visibility cluster per fragment (GPU compute), IUGC (GPU
  * compute, topo_geometry_clusters_gpu.c; with GB_TOPO_IUGC=cpu in the
  * environment, gb_topo_geometry_clusters_build on the G-buffer read back),
@@ -42,7 +41,7 @@ typedef struct topo_state {
     gb_topo_pass_times times;
 } topo_state;
 
-static gb_result need_bake(const gb_bake *bake, gb_error *error)
+static gb_result need_bake(const gb_bake_files *bake, gb_error *error)
 {
     if (!bake)
         return gb_fail(error, GB_ERROR_ARGUMENT,
@@ -50,85 +49,65 @@ static gb_result need_bake(const gb_bake *bake, gb_error *error)
                        "and NAME.seg: thin --grid, segment)");
     const gb_bake_kind kinds[] = {GB_BAKE_NEAREST_NODE, GB_BAKE_SEGMENTS};
     for (int i = 0; i < 2; ++i)
-        if (gb_bake_problem(bake, kinds[i]))
-            return gb_fail(error, GB_ERROR_ARGUMENT, "method topo: %s",
-                           gb_bake_problem(bake, kinds[i]));
+        if (!bake->usable[kinds[i]])
+            return bake->has_problem[kinds[i]]
+                       ? gb_fail(error, GB_ERROR_ARGUMENT, "method topo: %s",
+                                 bake->problems[kinds[i]].message)
+                       : gb_fail(error, GB_ERROR_ARGUMENT,
+                                 "method topo needs %s in the bake folder",
+                                 bake->paths[kinds[i]]);
     return GB_OK;
-}
-
-static gb_result copy_array(void **copy, const void *array, size_t count, size_t size)
-{
-    *copy = NULL;
-    if (count == 0)
-        return GB_OK;
-    if (!(*copy = malloc(count * size)))
-        return GB_ERROR_OUT_OF_MEMORY;
-    memcpy(*copy, array, count * size);
-    return GB_OK;
-}
-
-/* A copy of the bake's segmentation that the gate openings below may change
- * (they add gates and refit disks: bake work still done at load). */
-static gb_result copy_segmentation(const gb_segmentation *s, gb_segmentation *copy,
-                                   gb_error *error)
-{
-    *copy = *s;
-    void *nodes, *edges, *cluster, *node_map, *gates;
-    int failed = copy_array(&nodes, s->nodes, s->node_count, sizeof *s->nodes) |
-                 copy_array(&edges, s->edges, 2u * (size_t)s->edge_count, sizeof *s->edges) |
-                 copy_array(&cluster, s->cluster, s->node_count, sizeof *s->cluster) |
-                 copy_array(&node_map, s->node_map, s->skeleton_node_count,
-                            sizeof *s->node_map) |
-                 copy_array(&gates, s->gates, s->gate_count, sizeof *s->gates);
-    copy->nodes = nodes;
-    copy->edges = edges;
-    copy->cluster = cluster;
-    copy->node_map = node_map;
-    copy->gates = gates;
-    return failed ? gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "topo: out of memory") : GB_OK;
 }
 
 /* The gates' lists, after gates for the openings the voxels show and with
  * disks measured on them when the bake has its voxels
  * (topo_gate_openings.c). */
-static gb_result build_gates(topo_state *t, const gb_bake *bake, gb_error *error)
+static gb_result build_gates(topo_state *t, const gb_bake_files *bake, gb_error *error)
 {
-    const gb_voxel_grid *voxels = gb_bake_voxels(bake);
-    if (!voxels)
+    if (!bake->usable[GB_BAKE_VOXELS])
         return gb_topo_gates_build(&t->segmentation, &t->gates, error);
+    const char *voxels_path = bake->paths[GB_BAKE_VOXELS];
+    gb_voxel_grid voxels = {0};
+    gb_result result = gb_voxel_grid_read(voxels_path, &voxels, error);
     const gb_segmentation *s = &t->segmentation;
-    gb_result result = GB_OK;
-    if (voxels->size[0] != s->grid_size[0] || voxels->size[1] != s->grid_size[1] ||
-        voxels->size[2] != s->grid_size[2])
+    if (result == GB_OK && (voxels.size[0] != s->grid_size[0] ||
+                            voxels.size[1] != s->grid_size[1] ||
+                            voxels.size[2] != s->grid_size[2]))
         result = gb_fail(error, GB_ERROR_STALE, "%s: voxel grid %dx%dx%d, segmentation %dx%dx%d",
-                         gb_bake_path(bake, GB_BAKE_VOXELS), voxels->size[0], voxels->size[1],
-                         voxels->size[2], s->grid_size[0], s->grid_size[1], s->grid_size[2]);
+                         voxels_path, voxels.size[0], voxels.size[1], voxels.size[2],
+                         s->grid_size[0], s->grid_size[1], s->grid_size[2]);
     uint32_t added = 0;
     if (result == GB_OK)
-        gb_topo_voxel_clusters_mark_surface(s, t->voxel_clusters, voxels->surface);
+        gb_topo_voxel_clusters_mark_surface(s, t->voxel_clusters, voxels.surface);
     if (result == GB_OK)
-        result = gb_topo_gates_add_openings(&t->segmentation, t->voxel_clusters, voxels->surface,
+        result = gb_topo_gates_add_openings(&t->segmentation, t->voxel_clusters, voxels.surface,
                                             &added, error);
     if (result == GB_OK)
         result = gb_topo_gates_build(&t->segmentation, &t->gates, error);
     if (result == GB_OK)
         result = gb_topo_gates_fit_openings(&t->segmentation, &t->gates, t->voxel_clusters,
-                                            voxels->surface, error);
+                                            voxels.surface, error);
+    gb_voxel_grid_free(&voxels);
     return result;
 }
 
-static gb_result load_clusters(topo_state *t, const gb_bake *bake, gb_error *error)
+static gb_result load_clusters(topo_state *t, const gb_bake_files *bake, gb_error *error)
 {
-    const gb_voxel_grid *frame;
-    const int32_t *nearest = gb_bake_nearest_node(bake, &frame);
-    gb_result result = copy_segmentation(gb_bake_segmentation(bake), &t->segmentation, error);
+    const char *grid_path = bake->paths[GB_BAKE_NEAREST_NODE];
+    gb_result result = gb_segmentation_read(bake->paths[GB_BAKE_SEGMENTS], &t->segmentation,
+                                            error);
+    gb_voxel_grid frame = {0};
+    int32_t *nearest = NULL;
     if (result == GB_OK)
-        result = gb_segmentation_check_grid(&t->segmentation, frame, nearest,
-                                            gb_bake_path(bake, GB_BAKE_NEAREST_NODE), error);
+        result = gb_voxel_grid_read_int32(grid_path, "nearest_node", &frame, &nearest, error);
+    if (result == GB_OK)
+        result = gb_segmentation_check_grid(&t->segmentation, &frame, nearest, grid_path, error);
     if (result == GB_OK && !(t->voxel_clusters = gb_topo_voxel_clusters(&t->segmentation, nearest)))
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "topo: out of memory");
     if (result == GB_OK)
         result = build_gates(t, bake, error);
+    free(nearest);
+    gb_voxel_grid_free(&frame);
     return result;
 }
 
