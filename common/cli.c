@@ -69,6 +69,16 @@ int gb_cli_integer(const char *tool, const char *option, const char *text, long 
     return GB_EXIT_SUCCESS;
 }
 
+int gb_cli_int(const char *tool, const char *option, const char *text, int low, int high,
+               int *value)
+{
+    long parsed;
+    int status = gb_cli_integer(tool, option, text, low, high, &parsed);
+    if (status == GB_EXIT_SUCCESS)
+        *value = (int)parsed;
+    return status;
+}
+
 int gb_cli_unsigned(const char *tool, const char *option, const char *text, uint64_t low,
                     uint64_t high, uint64_t *value)
 {

@@ -42,6 +42,9 @@ enum {
 /* A strict decimal integer (digits, one optional leading '-') in low..high. */
 int gb_cli_integer(const char *tool, const char *option, const char *text, long low,
                    long high, long *value);
+/* The same into an int (low and high within int's range). */
+int gb_cli_int(const char *tool, const char *option, const char *text, int low, int high,
+               int *value);
 /* The same for unsigned 64-bit values (seeds, photon counts); no sign. */
 int gb_cli_unsigned(const char *tool, const char *option, const char *text, uint64_t low,
                     uint64_t high, uint64_t *value);

@@ -99,16 +99,6 @@ enum {
     OPTION_BOUNCES,
 };
 
-/* An integer option value in low..high into an int field. */
-static int parse_int(const char *option, const char *value, long low, long high, int *field)
-{
-    long number;
-    int status = gb_cli_integer("gbview", option, value, low, high, &number);
-    if (status == 0)
-        *field = (int)number;
-    return status;
-}
-
 /* The options of flc (runtime/flc.h); 0, else the exit status. */
 static int parse_flc_option(int option, const char *value, arguments *a)
 {
@@ -118,9 +108,9 @@ static int parse_flc_option(int option, const char *value, arguments *a)
     case OPTION_FLC_MU: return gb_cli_float("gbview", "mu", value, 1.01, 1e3, &p->flc_mu);
     case OPTION_FLC_EPSILON:
         return gb_cli_float("gbview", "epsilon", value, 1e-30, 1e30, &p->flc_epsilon);
-    case OPTION_FLC_LEVELS: return parse_int("levels", value, 1, 16, &p->flc_levels);
+    case OPTION_FLC_LEVELS: return gb_cli_int("gbview", "levels", value, 1, 16, &p->flc_levels);
     case OPTION_FLC_NO_DECIMATION: p->flc_levels = GB_FLC_NO_DECIMATION; return 0;
-    default: return parse_int("tiling", value, 0, 4, &p->flc_tiling);
+    default: return gb_cli_int("gbview", "tiling", value, 0, 4, &p->flc_tiling);
     }
 }
 
@@ -147,16 +137,17 @@ static int parse_renderer_option(int option, const char *value, arguments *a)
         return gb_cli_size("gbview", "resolution", value, GB_CLI_MAX_IMAGE_SIDE,
                            &a->renderer.width, &a->renderer.height);
     case OPTION_AREA_SAMPLES:
-        status = parse_int("area-samples", value, 0, 4096, &a->renderer.shadow.area_samples);
+        status = gb_cli_int("gbview", "area-samples", value, 0, 4096,
+                            &a->renderer.shadow.area_samples);
         if (status == 0 && a->renderer.shadow.area_samples == 0)
             a->renderer.shadow.area_samples = -1;  /* the renderer's "none" */
         return status;
-    case OPTION_SHADOW_SIZE: return parse_int("shadow-size", value, 16, 16384,
+    case OPTION_SHADOW_SIZE: return gb_cli_int("gbview", "shadow-size", value, 16, 16384,
                                               &a->renderer.shadow.size);
-    case OPTION_VPLS: return parse_int("vpls", value, 1, 1L << 24, &p->vpls);
+    case OPTION_VPLS: return gb_cli_int("gbview", "vpls", value, 1, 1 << 24, &p->vpls);
     case OPTION_TERMS: return parse_terms(value, &a->renderer.terms);
-    case OPTION_BINS: return parse_int("bins", value, 1, 64, &p->bins);
-    case OPTION_BOUNCES: return parse_int("bounces", value, 1, 8, &p->bounces);
+    case OPTION_BINS: return gb_cli_int("gbview", "bins", value, 1, 64, &p->bins);
+    case OPTION_BOUNCES: return gb_cli_int("gbview", "bounces", value, 1, 8, &p->bounces);
     default:
         return gb_cli_choice("gbview", "topo-visibility", value, visibilities, 3,
                              &p->topo_visibility);
@@ -179,8 +170,8 @@ static int parse_option(int option, const char *value, arguments *a)
     case 'q': a->quiet = 1; return 0;
     case OPTION_SUPERSAMPLE:
         return gb_cli_integer("gbview", "supersample", value, 1, 16, &a->supersample);
-    case 'c': return gb_cli_integer("gbview", "camera", value, 0, 1L << 30, &a->camera);
-    case 'f': return gb_cli_integer("gbview", "frames", value, 1, 1L << 30, &a->frames);
+    case 'c': return gb_cli_integer("gbview", "camera", value, 0, 1 << 30, &a->camera);
+    case 'f': return gb_cli_integer("gbview", "frames", value, 1, 1 << 30, &a->frames);
     case 'm':
         if (gb_method_parse(value, &a->method, &error) == GB_OK)
             return 0;

@@ -56,16 +56,6 @@ typedef struct arguments {
 
 enum { OPTION_VPL = 256, OPTION_SEED, OPTION_MIN_BOUNCES, OPTION_PNG, OPTION_STATS };
 
-/* An integer option value in low..high into an int field. */
-static int parse_int(const char *option, const char *text, long low, long high, int *field)
-{
-    long value;
-    int status = gb_cli_integer("reference", option, text, low, high, &value);
-    if (status == 0)
-        *field = (int)value;
-    return status;
-}
-
 /* One numeric option into a; 0, else the exit status. */
 static int parse_number(int option, const char *text, arguments *a)
 {
@@ -73,10 +63,11 @@ static int parse_number(int option, const char *text, arguments *a)
     long camera;
     int status;
     switch (option) {
-    case 's': return parse_int("spp", text, 1, 1L << 30, &r->spp);
-    case 't': return parse_int("threads", text, 1, 256, &r->threads);
-    case 'b': return parse_int("bounces", text, 1, 1 << 20, &r->bounces);
-    case OPTION_MIN_BOUNCES: return parse_int("min-bounces", text, 0, 1 << 20, &r->min_bounces);
+    case 's': return gb_cli_int("reference", "spp", text, 1, 1 << 30, &r->spp);
+    case 't': return gb_cli_int("reference", "threads", text, 1, 256, &r->threads);
+    case 'b': return gb_cli_int("reference", "bounces", text, 1, 1 << 20, &r->bounces);
+    case OPTION_MIN_BOUNCES:
+        return gb_cli_int("reference", "min-bounces", text, 0, 1 << 20, &r->min_bounces);
     case OPTION_SEED: return gb_cli_unsigned("reference", "seed", text, 0, UINT64_MAX, &r->seed);
     case 'r':
         return gb_cli_size("reference", "resolution", text, GB_CLI_MAX_IMAGE_SIDE, &r->width,
