@@ -13,10 +13,13 @@
 #   make clean
 #
 # Programs are linked with $(CXX), since the library holds the C++ adapters.
-# Sources are found by their place: formats/*.c and *.cpp, common/*.c, tools/<name>/*.c
-# and runtime/*.c go into one static library; tools/<name>/main.c becomes
+# Sources are found by their place: formats/*.c and *.cpp, common/*.c, tools/<name>/*.c,
+# runtime/*.c (the renderer's core) and runtime/<method>/*.c (one folder per GI
+# method) go into one static library; tools/<name>/main.c becomes
 # build/bin/<name>, runtime/main.c becomes build/bin/gbview; tests/unit/test_*.c
-# become test programs. Adding a file needs no change here.
+# become test programs. Adding a file needs no change here. -Iruntime lets a
+# method's files include the core's headers by name; the core names a method's
+# header by its folder (#include "topo/topo.h").
 
 PREFIX ?= /usr/local
 BUILD ?= build
@@ -35,7 +38,7 @@ DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
 BENCH_DEB_PACKAGES = python3-skimage python3-openvdb
 
 SANITIZE_FLAGS = $(if $(SANITIZE),-fsanitize=$(SANITIZE) -fno-sanitize-recover=all -fno-omit-frame-pointer)
-CPPFLAGS += -Iformats -Icommon -Itests -MMD -MP -D_GNU_SOURCE
+CPPFLAGS += -Iformats -Icommon -Itests -Iruntime -MMD -MP -D_GNU_SOURCE
 CFLAGS += -std=c11 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS)
 CXXFLAGS += -std=c++17 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS) \
   -Wno-deprecated-declarations
@@ -45,7 +48,7 @@ LDLIBS += -lopenvdb -ltbb -lOpenImageIO -lOpenImageIO_Util -lOpenMeshCore \
 
 TOOLS := $(patsubst tools/%/main.c,%,$(wildcard tools/*/main.c))
 PROGRAMS := $(TOOLS) $(if $(wildcard runtime/main.c),gbview)
-LIBRARY_C := $(wildcard formats/*.c common/*.c) $(filter-out %/main.c,$(wildcard tools/*/*.c runtime/*.c))
+LIBRARY_C := $(wildcard formats/*.c common/*.c) $(filter-out %/main.c,$(wildcard tools/*/*.c runtime/*.c runtime/*/*.c))
 LIBRARY_CXX := $(wildcard formats/*.cpp)
 LIBRARY_OBJECTS := $(LIBRARY_C:%.c=$(BUILD)/obj/%.o) $(LIBRARY_CXX:%.cpp=$(BUILD)/obj/%.o)
 LIBRARY := $(BUILD)/libgibake.a

@@ -24,7 +24,7 @@
 #include <string.h>
 
 #include "../runtime/context.h"
-#include "../runtime/flc.h"
+#include "../runtime/flc/flc.h"
 #include "../runtime/renderer.h"
 
 typedef struct run {

@@ -1,5 +1,5 @@
 /* implicit_steps.c — Table 1 of Dong et al. 2007 on this machine: ms per
- * step of implicit visibility (runtime/implicit.h) run on the CPU as the
+ * step of implicit visibility (runtime/implicit/implicit.h) run on the CPU as the
  * paper runs it, every step every frame: UpdateElements, CreateHierarchical-
  * Links, Refine + PushdownLinks (with the per-element link lists), and the
  * illumination (direct light through the links and the empty bins, then
@@ -31,7 +31,7 @@
 #include <string.h>
 #include <time.h>
 
-#include "../runtime/implicit.h"
+#include "../runtime/implicit/implicit.h"
 #include "progress.h"
 
 typedef struct grower {

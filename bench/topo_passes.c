@@ -13,7 +13,7 @@
 
 #include "../runtime/context.h"
 #include "../runtime/renderer.h"
-#include "../runtime/topo.h"
+#include "../runtime/topo/topo.h"
 
 typedef struct pass_ms {
     double gp, iugc, la, il, total;

@@ -1,8 +1,9 @@
 /* indirect_method.h — what a GI method gives the renderer: its indirect
  * light, added onto the frame's direct light.
  *
- * Each method lives in its own file(s) under runtime/ (topo.c, octree.c,
- * flc.c, implicit.c ...) and exports one const gb_indirect_method, listed in
+ * Each method lives in its own folder under runtime/ (topo/, octree/, flc/,
+ * implicit/), reaches the core only through this header and the core's, never
+ * another method's files, and exports one const gb_indirect_method, listed in
  * methods.c. The renderer calls create when the method is first used (with a
  * current GL context), draw once a frame with the output framebuffer bound,
  * additive blending on (glBlendFunc(GL_ONE, GL_ONE)) and depth test off, and

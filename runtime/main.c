@@ -9,7 +9,7 @@
 
 #include "bake_files.h"
 #include "cli.h"
-#include "flc.h"
+#include "flc/flc.h"
 #include "headless.h"
 #include "image.h"
 #include "methods.h"
@@ -99,7 +99,7 @@ enum {
     OPTION_BOUNCES,
 };
 
-/* The options of flc (runtime/flc.h); 0, else the exit status. */
+/* The options of flc (runtime/flc/flc.h); 0, else the exit status. */
 static int parse_flc_option(int option, const char *value, arguments *a)
 {
     gb_method_parameters *p = &a->renderer.parameters;

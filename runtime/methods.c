@@ -1,8 +1,8 @@
 #include "methods.h"
-#include "flc.h"
-#include "implicit.h"
-#include "octree.h"
-#include "topo.h"
+#include "flc/flc.h"
+#include "implicit/implicit.h"
+#include "octree/octree.h"
+#include "topo/topo.h"
 
 #include <string.h>
 

@@ -7,8 +7,8 @@
  *   octree    the light octree of virtual directional lights (2007)
  *   flc       Forward Light Cuts (Laurent 2016)
  *   implicit  implicit visibility (Dong 2007)
- * Each GI method lands in its own file under runtime/ and lists its
- * gb_indirect_method (indirect_method.h) in methods.c.
+ * Each GI method lands in its own folder under runtime/ (runtime/topo/ ...)
+ * and lists its gb_indirect_method (indirect_method.h) in methods.c.
  */
 #ifndef GB_METHODS_H
 #define GB_METHODS_H

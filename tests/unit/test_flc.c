@@ -1,4 +1,4 @@
-/* test_flc.c — Forward Light Cuts (runtime/flc.h, flc_decimation.h): the
+/* test_flc.c — Forward Light Cuts (runtime/flc/flc.h, flc_decimation.h): the
  * parameters (S0 of Eq. 1, S_k of Eq. 17, S̄_k, D_k of Eq. 18), the
  * partition of unity f^k (Eqs. 11, 16), Alg. 1's levels against Eq. 3, the
  * random values of Alg. 2, the subdivision of divergent triangles, hard
@@ -14,7 +14,7 @@
 #include <string.h>
 
 #include "../../runtime/context.h"
-#include "../../runtime/flc.h"
+#include "../../runtime/flc/flc.h"
 #include "../../runtime/headless.h"
 #include "../../tools/imgdiff/image_error.h"
 #include "../../tools/reference/reference.h"

@@ -1,4 +1,4 @@
-/* test_implicit.c — implicit visibility (runtime/implicit.h) on the CPU:
+/* test_implicit.c — implicit visibility (runtime/implicit/implicit.h) on the CPU:
  * direction to bin at the cube map's edges and corners, element areas,
  * the hierarchy, the shortest-link rule between parallel squares, and a
  * furnace: a closed box whose walls all emit, where one bounce must give
@@ -11,7 +11,7 @@
 #include <string.h>
 
 
-#include "../../runtime/implicit.h"
+#include "../../runtime/implicit/implicit.h"
 #include "progress.h"
 #include "scene_builder.h"
 #include "tap.h"

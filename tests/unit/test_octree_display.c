@@ -1,4 +1,4 @@
-/* test_octree_display.c — the light octree's display (runtime/octree.c,
+/* test_octree_display.c — the light octree's display (runtime/octree/octree.c,
  * vivianloc-2007 §4.2) against what can be worked out by hand:
  *
  *  1. A sun over a flat floor, its photons stored at every hit (photons
@@ -29,7 +29,7 @@
 #include "../../runtime/gbuffer.h"
 #include "../../runtime/headless.h"
 #include "../../runtime/methods.h"
-#include "../../runtime/octree.h"
+#include "../../runtime/octree/octree.h"
 #include "../../tools/cluster/cluster.h"
 #include "../../tools/photons/photons.h"
 #include "light_octree.h"

@@ -1,4 +1,4 @@
-/* test_topo.c — the CPU passes of the topological method (runtime/topo.h):
+/* test_topo.c — the CPU passes of the topological method (runtime/topo/topo.h):
  * VPLs traced from the lights (count, validity, determinism, energy), the
  * gate cone tests, IUGC (one visibility cluster per geometry cluster, the
  * spheres bound their fragments) and LA on two rooms joined by a door: a
@@ -16,7 +16,7 @@
 #include "../../runtime/context.h"
 #include "../../runtime/gbuffer.h"
 #include "../../runtime/view.h"
-#include "../../runtime/topo.h"
+#include "../../runtime/topo/topo.h"
 #include "random.h"
 #include "scene_builder.h"
 #include "tap.h"

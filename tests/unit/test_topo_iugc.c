@@ -1,4 +1,4 @@
-/* test_topo_iugc.c — IUGC on the GPU (runtime/topo_geometry_clusters_gpu.c)
+/* test_topo_iugc.c — IUGC on the GPU (runtime/topo/topo_geometry_clusters_gpu.c)
  * against its CPU reference (gb_topo_geometry_clusters_build) on the same
  * G-buffer: the same number of geometry clusters, the same cluster for
  * every pixel (the GPU keeps the CPU's numbering), the same visibility
@@ -18,7 +18,7 @@
 #include "../../runtime/context.h"
 #include "../../runtime/gbuffer.h"
 #include "../../runtime/view.h"
-#include "../../runtime/topo.h"
+#include "../../runtime/topo/topo.h"
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"   /* the builder's other scenes */
 #include "scene_builder.h"

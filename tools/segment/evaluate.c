@@ -108,7 +108,7 @@ static gb_vec3 facing(const surface_point *p, gb_vec3 q)
 /* Looked up |normal|_1 voxels off the surface (out of the voxels the
  * surface itself touches, whose node thin takes from whichever side is
  * nearer a node, often the far side of the wall), then one and two voxels
- * further; the runtime's lookup (runtime/topo_clusters.c). */
+ * further; the runtime's lookup (runtime/topo/topo_clusters.c). */
 static int32_t cluster_near(const evaluation *ev, gb_vec3 position, gb_vec3 normal)
 {
     float l1 = fabsf(normal.x) + fabsf(normal.y) + fabsf(normal.z);

@@ -92,7 +92,7 @@ typedef struct gb_segment_evaluation {
  * gb_segmentation_cluster_at, looked up |n|_1 voxels off the surface on
  * that side (n its unit normal: out of the voxels the surface touches), then
  * 1 and 2 voxels further, at the point itself when none has a node (the
- * runtime's lookup, runtime/topo_clusters.c); the truth is an
+ * runtime's lookup, runtime/topo/topo_clusters.c); the truth is an
  * Embree shadow ray between the two points, each moved 1e-4 of the scene's
  * diagonal off its surface on that side. nearest: thin's grid, checked with
  * gb_segmentation_check_grid. Fails with GB_ERROR_STALE when the

@@ -1,5 +1,5 @@
 /* implicit.h — implicit visibility (Dong, Kautz, Theobalt, Seidel 2007),
- * Algorithm 1, on the CPU; runtime/implicit.c shows it (gb_implicit_method).
+ * Algorithm 1, on the CPU; runtime/implicit/implicit.c shows it (gb_implicit_method).
  * One file a step:
  *   implicit_elements.c   CreateSurfels: discs at the vertices (4.1)
  *   implicit_hierarchy.c  CreateGeometricHierarchy: segments, a quadtree a

@@ -4,12 +4,12 @@
  * the per-vertex and per-triangle random values (Alg. 2) and the list of
  * VPL triangles the GPU draws each frame.
  *
- * The GLSL of runtime/flc.c mirrors gb_flc_hash, gb_flc_uniform,
+ * The GLSL of runtime/flc/flc.c mirrors gb_flc_hash, gb_flc_uniform,
  * gb_flc_level and gb_flc_support name for name; change both together.
  *
  * Divergent triangles (area > S̄_N, Sec. 4) need n = ceil(sqrt(area / S̄_N))
  * (at most GB_FLC_MAX_SUBDIVISION) subdivisions a side. The runtime
- * (runtime/flc.c) keeps them whole (gb_flc_triangles_build_whole) and has
+ * (runtime/flc/flc.c) keeps them whole (gb_flc_triangles_build_whole) and has
  * the GPU's tessellation stage subdivide them each frame, in a second,
  * indirect, draw (the paper's divergent pipeline): the barycentric grid of
  * c x c cells, each tessellated at one even level m <= GB_FLC_MAX_TESS_LEVEL

@@ -1,5 +1,5 @@
 /* octree.h — the light octree (Vivianloc 2007, §3.2, §4.2) as a GI method
- * of the runtime (indirect_method.h); runtime/octree.c.
+ * of the runtime (indirect_method.h); runtime/octree/octree.c.
  *
  * create  reads NAME.lot from the bake folder (cluster), uploads its node
  *         pool, leaves and VDLs as shader storage buffers.
