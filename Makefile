@@ -15,7 +15,8 @@
 # Programs are linked with $(CXX), since the library holds the C++ adapters.
 # Sources are found by their place: formats/*.c and *.cpp, common/*.c, tools/<name>/*.c,
 # runtime/*.c (the renderer's core) and runtime/<method>/*.c (one folder per GI
-# method) go into one static library; tools/<name>/main.c becomes
+# method) go into one static library, but for the adapters (ADAPTER_SOURCES:
+# shared objects, loaded on first use); tools/<name>/main.c becomes
 # build/bin/<name>, runtime/main.c becomes build/bin/gbview; tests/unit/test_*.c
 # become test programs. Adding a file needs no change here. -Iruntime lets a
 # method's files include the core's headers by name; the core names a method's
@@ -43,13 +44,17 @@ CFLAGS += -std=c11 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS)
 CXXFLAGS += -std=c++17 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS) \
   -Wno-deprecated-declarations
 LDFLAGS += -pthread -Wl,--as-needed $(SANITIZE_FLAGS)
-LDLIBS += -lopenvdb -ltbb -lOpenImageIO -lOpenImageIO_Util -lOpenMeshCore \
-  -lembree3 -lflann -lepoxy -lglfw -lEGL -lz -lm
+LDLIBS += -lopenvdb -ltbb -lOpenMeshCore -lembree3 -lflann -lepoxy -lglfw -lEGL -lz -lm
+# The adapters to heavy libraries are shared objects loaded on first use
+# (formats/adapter.h), in $(BUILD)/lib/gibake/ beside $(BIN); each has its
+# rule below.
+ADAPTER_SOURCES = formats/image_openimageio.cpp
+ADAPTERS = $(BUILD)/lib/gibake/gibake-openimageio.so
 
 TOOLS := $(patsubst tools/%/main.c,%,$(wildcard tools/*/main.c))
 PROGRAMS := $(TOOLS) $(if $(wildcard runtime/main.c),gbview)
 LIBRARY_C := $(wildcard formats/*.c common/*.c) $(filter-out %/main.c,$(wildcard tools/*/*.c runtime/*.c runtime/*/*.c))
-LIBRARY_CXX := $(wildcard formats/*.cpp)
+LIBRARY_CXX := $(filter-out $(ADAPTER_SOURCES),$(wildcard formats/*.cpp))
 LIBRARY_OBJECTS := $(LIBRARY_C:%.c=$(BUILD)/obj/%.o) $(LIBRARY_CXX:%.cpp=$(BUILD)/obj/%.o)
 LIBRARY := $(BUILD)/libgibake.a
 UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(wildcard tests/unit/test_*.c))
@@ -79,9 +84,18 @@ $(BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c $< -o $@
 
-$(LIBRARY): $(LIBRARY_OBJECTS)
+# Every program links the library, so building one builds the adapters.
+$(LIBRARY): $(LIBRARY_OBJECTS) | $(ADAPTERS)
 	@mkdir -p $(@D)
-	rm -f $@ && ar rcs $@ $^
+	rm -f $@ && ar rcs $@ $(LIBRARY_OBJECTS)
+
+$(BUILD)/pic/%.o: %.cpp
+	@mkdir -p $(@D)
+	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -fPIC -fvisibility=hidden -c $< -o $@
+
+$(BUILD)/lib/gibake/gibake-openimageio.so: $(BUILD)/pic/formats/image_openimageio.o
+	@mkdir -p $(@D)
+	$(CXX) -shared $(LDFLAGS) $^ -lOpenImageIO -lOpenImageIO_Util -o $@
 
 $(BIN)/gbview: $(BUILD)/obj/runtime/main.o $(LIBRARY)
 	@mkdir -p $(@D)
@@ -244,17 +258,19 @@ $(FUZZ_TARGETS:%=fuzz-run/%): fuzz-run/%: fuzz-build
 	@grep -E '^stat::(number_of_executed_units|new_units_added)|^#[0-9]+ +DONE' \
 	  build/fuzz-corpus/$*.log | sed 's/^/$*: /'
 
-$(BUILD)/fuzz/%: $(BUILD)/obj/tests/fuzz/%.o $(LIBRARY)
+# The fuzz targets link the adapters in (formats/image.c says why).
+$(BUILD)/fuzz/%: $(BUILD)/obj/tests/fuzz/%.o $(LIBRARY) $(ADAPTER_SOURCES:%.cpp=$(BUILD)/pic/%.o)
 	@mkdir -p $(@D)
-	$(CXX) $(LDFLAGS) -fsanitize=fuzzer $^ $(LDLIBS) -o $@
+	$(CXX) $(LDFLAGS) -fsanitize=fuzzer $^ $(LDLIBS) -lOpenImageIO -lOpenImageIO_Util -o $@
 
 install: all
-	install -d $(DESTDIR)$(PREFIX)/bin
+	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/gibake
 	install -m 755 $(PROGRAMS:%=$(BIN)/%) $(DESTDIR)$(PREFIX)/bin
+	install -m 644 $(ADAPTERS) $(DESTDIR)$(PREFIX)/lib/gibake
 
 clean:
 	rm -rf build bake demo
 
 include bench/report.mk
 
--include $(shell find $(BUILD)/obj -name '*.d' 2>/dev/null)
+-include $(shell find $(BUILD)/obj $(BUILD)/pic -name '*.d' 2>/dev/null)

@@ -1,12 +1,10 @@
 // image_openimageio.cpp — the OpenImageIO adapter: gb_image (image.h) read
 // from and written to EXR, PNG, JPEG and the other files OpenImageIO knows.
-// The only file that includes OpenImageIO.
+// The only file that includes OpenImageIO. Built as the shared object
+// gibake-openimageio.so, loaded by formats/image.c on first use; it calls
+// gibake only through the host table it is given (image_adapter.h).
 
-extern "C" {
-#include "image.h"
-#include "image_check.h"
-#include "output_file.h"
-}
+#include "image_adapter.h"
 
 #include <cerrno>
 #include <cmath>
@@ -24,6 +22,8 @@ extern "C" {
 #include <OpenImageIO/imageio.h>
 
 namespace {
+
+const gb_image_host *host;
 
 float srgb_to_linear(float c)
 {
@@ -127,7 +127,7 @@ std::string read_error(const std::string &own, StderrCapture &capture)
 gb_result read_image(const char *path, gb_image *image, gb_error *error)
 {
     gb_image_file file;
-    gb_result result = gb_image_check_file(path, &file, error);
+    gb_result result = host->check_file(path, &file, error);
     if (result != GB_OK)
         return result;
     // Colours stay as stored (PNG alpha is unassociated); OpenImageIO would
@@ -137,18 +137,18 @@ gb_result read_image(const char *path, gb_image *image, gb_error *error)
     StderrCapture capture(std::strcmp(file.format, "png") == 0);
     auto input = OIIO::ImageInput::create(file.format);
     if (!input || !input->open(path, spec, config))
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path,
+        return host->fail(error, GB_ERROR_FORMAT, "%s: %s", path,
                        read_error(input ? input->geterror() : "", capture).c_str());
-    result = gb_image_check_size(path, &file, spec.width, spec.height, spec.depth,
+    result = host->check_size(path, &file, spec.width, spec.height, spec.depth,
                                  spec.nchannels, error);
     if (result == GB_OK)
-        result = gb_image_allocate(image, spec.width, spec.height, spec.nchannels, error);
+        result = host->allocate(image, spec.width, spec.height, spec.nchannels, error);
     if (result != GB_OK)
         return result;
     if (!input->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, image->pixels)) {
         std::string message = read_error(input->geterror(), capture);
-        gb_image_free(image);
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path, message.c_str());
+        host->free(image);
+        return host->fail(error, GB_ERROR_FORMAT, "%s: %s", path, message.c_str());
     }
     input->close();
     if (holds_srgb(spec))
@@ -183,7 +183,7 @@ gb_result create_output(const char *path, std::unique_ptr<OIIO::ImageOutput> *ou
     *output = OIIO::ImageOutput::create(path);
     if (!*output) {
         OIIO::geterror();  // taken: the message below says it
-        return gb_fail(error, GB_ERROR_UNSUPPORTED,
+        return host->fail(error, GB_ERROR_UNSUPPORTED,
                        "%s: unknown image format (the extension names it: .exr, .png, "
                        ".jpg, .tif, .hdr, ...)",
                        path);
@@ -212,7 +212,7 @@ gb_result encode(OIIO::ImageOutput *output, const char *name, const char *path,
         written = output->write_image(OIIO::TypeDesc::UINT8, to_srgb8(image).data());
     written = output->close() && written;
     if (!written)
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path,
+        return host->fail(error, GB_ERROR_IO, "%s: %s", path,
                        last_error(output->geterror()).c_str());
     return GB_OK;
 }
@@ -225,7 +225,7 @@ gb_result encode(OIIO::ImageOutput *output, const char *name, const char *path,
 gb_result write_image(const char *path, const gb_image *image, gb_error *error)
 {
     if (!image->pixels || image->width <= 0 || image->height <= 0 || image->channels <= 0)
-        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: no pixels to write", path);
+        return host->fail(error, GB_ERROR_ARGUMENT, "%s: no pixels to write", path);
     std::unique_ptr<OIIO::ImageOutput> output;
     gb_result result = create_output(path, &output, error);
     if (result != GB_OK)
@@ -233,80 +233,63 @@ gb_result write_image(const char *path, const gb_image *image, gb_error *error)
     OIIO::Filesystem::IOVecOutput memory;
     bool in_memory = output->supports("ioproxy") && output->set_ioproxy(&memory);
     gb_output_file *out = nullptr;
-    result = gb_output_file_open(path, in_memory ? GB_OUTPUT_FILE_STREAM : GB_OUTPUT_FILE_BY_NAME,
+    result = host->output_open(path, in_memory ? GB_OUTPUT_FILE_STREAM : GB_OUTPUT_FILE_BY_NAME,
                                  &out, error);
     if (result != GB_OK)
         return result;
     try {
-        result = encode(output.get(), in_memory ? path : gb_output_file_name(out), path, image,
+        result = encode(output.get(), in_memory ? path : host->output_name(out), path, image,
                         error);
         if (result == GB_OK && in_memory)
-            result = gb_output_file_write(out, memory.buffer().data(), memory.buffer().size(),
+            result = host->output_write(out, memory.buffer().data(), memory.buffer().size(),
                                           error);
     } catch (const std::exception &e) {
-        result = gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+        result = host->fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
     }
     if (result != GB_OK) {
-        gb_output_file_abort(out);
+        host->output_abort(out);
         return result;
     }
-    return gb_output_file_commit(out, error);
+    return host->output_commit(out, error);
 }
 
-} // namespace
-
-extern "C" gb_result gb_image_allocate(gb_image *image, int width, int height, int channels,
-                                       gb_error *error)
+gb_result read(const char *path, gb_image *image, gb_error *error)
 {
-    std::memset(image, 0, sizeof *image);
-    if (width <= 0 || height <= 0 || channels <= 0 || channels > 64
-        || static_cast<std::uint64_t>(width) * height > (std::uint64_t(1) << 32))
-        return gb_fail(error, GB_ERROR_ARGUMENT, "bad image size %d x %d x %d", width, height,
-                       channels);
-    std::size_t values = static_cast<std::size_t>(width) * height * channels;
-    image->pixels = static_cast<float *>(std::calloc(values, sizeof(float)));
-    if (!image->pixels)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory (%d x %d image)", width,
-                       height);
-    image->width = width;
-    image->height = height;
-    image->channels = channels;
-    return GB_OK;
-}
-
-extern "C" gb_result gb_image_read(const char *path, gb_image *image, gb_error *error)
-{
-    std::memset(image, 0, sizeof *image);
     try {
         return read_image(path, image, error);
     } catch (const std::exception &e) {
-        gb_image_free(image);
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+        host->free(image);
+        return host->fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
     }
 }
 
-extern "C" gb_result gb_image_write(const char *path, const gb_image *image, gb_error *error)
+gb_result write(const char *path, const gb_image *image, gb_error *error)
 {
     try {
         return write_image(path, image, error);
     } catch (const std::exception &e) {
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+        return host->fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
     }
 }
 
-extern "C" gb_result gb_image_check_output(const char *path, gb_error *error)
+gb_result check_output(const char *path, gb_error *error)
 {
     try {
         std::unique_ptr<OIIO::ImageOutput> output;
         gb_result result = create_output(path, &output, error);
-        return result == GB_OK ? gb_output_file_check(path, error) : result;
+        return result == GB_OK ? host->output_check(path, error) : result;
     } catch (const std::exception &e) {
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+        return host->fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
     }
 }
 
-extern "C" void gb_image_free(gb_image *image)
+const gb_image_adapter adapter = {read, write, check_output};
+
+} // namespace
+
+extern "C" __attribute__((visibility("default"))) const gb_image_adapter *
+gb_openimageio_adapter(const gb_image_host *given)
 {
-    std::free(image->pixels);
-    std::memset(image, 0, sizeof *image);
+    host = given;
+    return &adapter;
 }
