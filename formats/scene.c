@@ -134,6 +134,91 @@ static void drop_degenerate_triangles(gb_scene *scene)
     scene->triangle_count = kept;
 }
 
+/* A triangle's three corner positions in lexicographic order: the same
+ * three points give the same key whatever the winding or vertex indices. */
+typedef struct triangle_key {
+    float corner[3][3];
+    uint32_t triangle;
+} triangle_key;
+
+static int compare_points(const float *a, const float *b)
+{
+    for (int k = 0; k < 3; ++k)
+        if (a[k] != b[k])
+            return a[k] < b[k] ? -1 : 1;
+    return 0;
+}
+
+static int compare_corners(const triangle_key *a, const triangle_key *b)
+{
+    for (int c = 0; c < 3; ++c) {
+        int order = compare_points(a->corner[c], b->corner[c]);
+        if (order)
+            return order;
+    }
+    return 0;
+}
+
+/* Orders by corners, then by triangle: each run of equal keys starts with
+ * the triangle that comes first in the file. */
+static int compare_keys(const void *a, const void *b)
+{
+    const triangle_key *p = a, *q = b;
+    int order = compare_corners(p, q);
+    return order ? order : (p->triangle > q->triangle) - (p->triangle < q->triangle);
+}
+
+static void swap_corners(triangle_key *key, int i, int j)
+{
+    if (compare_points(key->corner[i], key->corner[j]) > 0)
+        for (int k = 0; k < 3; ++k) {
+            float swap = key->corner[i][k];
+            key->corner[i][k] = key->corner[j][k];
+            key->corner[j][k] = swap;
+        }
+}
+
+static triangle_key key_of_triangle(const gb_scene *scene, uint32_t t)
+{
+    triangle_key key = {.triangle = t};
+    for (int c = 0; c < 3; ++c)
+        memcpy(key.corner[c], &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + c]],
+               sizeof key.corner[c]);
+    swap_corners(&key, 0, 1);
+    swap_corners(&key, 1, 2);
+    swap_corners(&key, 0, 1);
+    return key;
+}
+
+/* Drops every triangle whose three corners are those of an earlier one (a
+ * surface laid twice, either way round): renderers that make a light or an
+ * element of each triangle would count it twice. The first keeps its
+ * material. */
+static gb_result drop_duplicate_triangles(gb_scene *scene, gb_error *error)
+{
+    triangle_key *keys = malloc((size_t)scene->triangle_count * sizeof *keys);
+    unsigned char *duplicate = calloc(scene->triangle_count, 1);
+    if (!keys || !duplicate) {
+        free(keys);
+        free(duplicate);
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", scene_name(scene));
+    }
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        keys[t] = key_of_triangle(scene, t);
+    qsort(keys, scene->triangle_count, sizeof *keys, compare_keys);
+    for (uint32_t i = 1; i < scene->triangle_count; ++i)
+        duplicate[keys[i].triangle] = compare_corners(&keys[i], &keys[i - 1]) == 0;
+    free(keys);
+    uint32_t kept = 0;
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        if (!duplicate[t])
+            move_triangle(scene, t, kept++);
+    free(duplicate);
+    scene->duplicate_triangle_count += scene->triangle_count - kept;
+    scene->triangle_count = kept;
+    return GB_OK;
+}
+
 static void compute_bounds(gb_scene *scene)
 {
     for (int k = 0; k < 3; ++k) {
@@ -319,6 +404,9 @@ gb_result gb_scene_finish(gb_scene *scene, gb_error *error)
         return gb_fail(error, GB_ERROR_INVALID, "%s: no triangles (empty mesh%s)",
                        scene_name(scene), scene->dropped_triangle_count ? ", all degenerate"
                                                                         : "");
+    result = drop_duplicate_triangles(scene, error);
+    if (result != GB_OK)
+        return result;
     compute_bounds(scene);
     result = list_emissive_triangles(scene, error);
     if (result == GB_OK && scene->camera_count == 0)
@@ -412,14 +500,20 @@ int gb_scene_dropped_warning(const gb_scene *scene, char *text, size_t size)
 {
     if (size)
         text[0] = '\0';
-    if (!scene->dropped_triangle_count || size == 0)
+    if ((!scene->dropped_triangle_count && !scene->duplicate_triangle_count) || size == 0)
         return 0;
-    snprintf(text, size, "%u degenerate triangle%s dropped", scene->dropped_triangle_count,
-             plural(scene->dropped_triangle_count));
+    if (scene->dropped_triangle_count)
+        snprintf(text, size, "%u degenerate triangle%s dropped", scene->dropped_triangle_count,
+                 plural(scene->dropped_triangle_count));
     if (scene->dropped_emissive_count)
         snprintf(text + strlen(text), size - strlen(text), " (%u of emissive material '%s')",
                  scene->dropped_emissive_count,
                  scene->materials[scene->dropped_emissive_material].name);
+    if (scene->duplicate_triangle_count)
+        snprintf(text + strlen(text), size - strlen(text),
+                 "%s%u duplicate triangle%s dropped (the corners of an earlier one)",
+                 scene->dropped_triangle_count ? "; " : "", scene->duplicate_triangle_count,
+                 plural(scene->duplicate_triangle_count));
     return 1;
 }
 

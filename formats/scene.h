@@ -4,6 +4,9 @@
  * gb_scene_load reads a .scene file (formats/FORMATS.md, "Scene file") or a
  * mesh directly (.obj with its .mtl, .obj.gz, .ply, .off, .stl). Polygons are
  * triangulated, degenerate (zero-area) triangles are dropped and counted,
+ * so are duplicates (the three corners of an earlier triangle, either way
+ * round: a surface laid twice would be lit twice by methods that make a
+ * light or an element of each triangle),
  * triangles whose material emits (Ke > 0) are the scene's area lights.
  * Positions are indexed (shared between triangles); normals and texture
  * coordinates, when the file has them, are stored per triangle corner.
@@ -86,6 +89,8 @@ typedef struct gb_scene {
     uint32_t dropped_triangle_count; /* degenerate triangles dropped at load */
     uint32_t dropped_emissive_count; /* of them, triangles of an emissive material */
     uint32_t dropped_emissive_material; /* the material of the first of those */
+    uint32_t duplicate_triangle_count; /* triangles with the corners of an earlier
+                                          one, dropped at load (the first kept) */
     char *path;                 /* the file loaded */
     uint32_t undefined_material_count; /* OBJ usemtl names that no MTL defines:
                                           each got the default material */
@@ -120,15 +125,16 @@ double gb_triangle_area(const gb_scene *scene, uint32_t t);
  * valid: its right answer is black. */
 int gb_scene_has_light(const gb_scene *scene, char *why, size_t size);
 
-/* The warning about the degenerate triangles gb_scene_finish dropped, e.g.
- * "3 degenerate triangles dropped (2 of emissive material 'lamp')", into
+/* The warning about the triangles gb_scene_finish dropped, e.g. "3
+ * degenerate triangles dropped (2 of emissive material 'lamp'); 1 duplicate
+ * triangle dropped (the corners of an earlier one)", into
  * text (size bytes, truncated). Returns 0 and writes "" when none was. */
 int gb_scene_dropped_warning(const gb_scene *scene, char *text, size_t size);
 
 /* Recomputes bounds, emissive triangles and hash after a caller built or
  * changed a scene in memory (tests do this). Also what gb_scene_load does
  * after reading: checks indices, materials and finite positions, drops
- * degenerate triangles (counting them), fails on an empty mesh, adds the
+ * degenerate and duplicate triangles (counting them), fails on an empty mesh, adds the
  * default camera when there is none. A scene built with no materials
  * (material_count 0, triangle_material NULL) gets the default material. */
 gb_result gb_scene_finish(gb_scene *scene, gb_error *error);
