@@ -44,12 +44,12 @@ CFLAGS += -std=c11 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS)
 CXXFLAGS += -std=c++17 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS) \
   -Wno-deprecated-declarations
 LDFLAGS += -pthread -Wl,--as-needed $(SANITIZE_FLAGS)
-LDLIBS += -lopenvdb -ltbb -lOpenMeshCore -lembree3 -lflann -lepoxy -lglfw -lEGL -lz -lm
+LDLIBS += -lOpenMeshCore -lembree3 -lflann -lepoxy -lglfw -lEGL -lz -lm
 # The adapters to heavy libraries are shared objects loaded on first use
 # (formats/adapter.h), in $(BUILD)/lib/gibake/ beside $(BIN); each has its
 # rule below.
-ADAPTER_SOURCES = formats/image_openimageio.cpp
-ADAPTERS = $(BUILD)/lib/gibake/gibake-openimageio.so
+ADAPTER_SOURCES = formats/image_openimageio.cpp formats/voxel_grid_openvdb.cpp
+ADAPTERS = $(BUILD)/lib/gibake/gibake-openimageio.so $(BUILD)/lib/gibake/gibake-openvdb.so
 
 TOOLS := $(patsubst tools/%/main.c,%,$(wildcard tools/*/main.c))
 PROGRAMS := $(TOOLS) $(if $(wildcard runtime/main.c),gbview)
@@ -91,11 +91,15 @@ $(LIBRARY): $(LIBRARY_OBJECTS) | $(ADAPTERS)
 
 $(BUILD)/pic/%.o: %.cpp
 	@mkdir -p $(@D)
-	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -fPIC -fvisibility=hidden -c $< -o $@
+	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -fPIC -c $< -o $@
 
 $(BUILD)/lib/gibake/gibake-openimageio.so: $(BUILD)/pic/formats/image_openimageio.o
 	@mkdir -p $(@D)
 	$(CXX) -shared $(LDFLAGS) $^ -lOpenImageIO -lOpenImageIO_Util -o $@
+
+$(BUILD)/lib/gibake/gibake-openvdb.so: $(BUILD)/pic/formats/voxel_grid_openvdb.o
+	@mkdir -p $(@D)
+	$(CXX) -shared $(LDFLAGS) $^ -lopenvdb -ltbb -o $@
 
 $(BIN)/gbview: $(BUILD)/obj/runtime/main.o $(LIBRARY)
 	@mkdir -p $(@D)
@@ -261,7 +265,8 @@ $(FUZZ_TARGETS:%=fuzz-run/%): fuzz-run/%: fuzz-build
 # The fuzz targets link the adapters in (formats/image.c says why).
 $(BUILD)/fuzz/%: $(BUILD)/obj/tests/fuzz/%.o $(LIBRARY) $(ADAPTER_SOURCES:%.cpp=$(BUILD)/pic/%.o)
 	@mkdir -p $(@D)
-	$(CXX) $(LDFLAGS) -fsanitize=fuzzer $^ $(LDLIBS) -lOpenImageIO -lOpenImageIO_Util -o $@
+	$(CXX) $(LDFLAGS) -fsanitize=fuzzer $^ $(LDLIBS) -lOpenImageIO -lOpenImageIO_Util \
+	  -lopenvdb -ltbb -o $@
 
 install: all
 	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/gibake

@@ -21,17 +21,32 @@ gb_result gb_adapter_path(const char *name, char *path, size_t size, gb_error *e
     return GB_OK;
 }
 
-void *gb_adapter_entry(const char *name, const char *entry, gb_error *error)
+/* The entry function of the shared object, or NULL with error set. */
+static gb_adapter_entry *load_entry(const gb_adapter *adapter, gb_error *error)
 {
     char path[PATH_MAX + 64];
-    if (gb_adapter_path(name, path, sizeof path, error) != GB_OK)
+    if (gb_adapter_path(adapter->name, path, sizeof path, error) != GB_OK)
         return NULL;
     void *library = dlopen(path, RTLD_NOW | RTLD_LOCAL);
-    void *function = library ? dlsym(library, entry) : NULL;
-    if (!function) {
+    gb_adapter_entry *entry = library ? (gb_adapter_entry *)dlsym(library, adapter->entry_name)
+                                      : NULL;
+    if (!entry) {
         const char *why = dlerror();
-        gb_fail(error, GB_ERROR_IO, "cannot load the %s adapter %s: %s", name, path,
+        gb_fail(error, GB_ERROR_IO, "cannot load the %s adapter %s: %s", adapter->name, path,
                 why ? why : "no entry function");
     }
-    return function;
+    return entry;
+}
+
+const void *gb_adapter_functions(gb_adapter *adapter, gb_error *error)
+{
+    pthread_mutex_lock(&adapter->lock);
+    if (!adapter->functions) {
+        gb_adapter_entry *entry = adapter->linked_in ? adapter->linked_in
+                                                     : load_entry(adapter, error);
+        adapter->functions = entry ? entry(adapter->host) : NULL;
+    }
+    const void *functions = adapter->functions;
+    pthread_mutex_unlock(&adapter->lock);
+    return functions;
 }

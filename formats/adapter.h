@@ -15,17 +15,34 @@
 #ifndef GB_ADAPTER_H
 #define GB_ADAPTER_H
 
+#include <pthread.h>
 #include <stddef.h>
 
 #include "result.h"
+
+/* The entry of an adapter: given the host's table, returns its own. */
+typedef const void *gb_adapter_entry(const void *host);
+
+/* What a front (image.c, voxel_grid.c) knows of its adapter. */
+typedef struct gb_adapter {
+    const char *name;           /* "openimageio": gibake-openimageio.so */
+    const char *entry_name;     /* its entry function's name */
+    const void *host;           /* the gibake functions it may call */
+    gb_adapter_entry *linked_in; /* the entry when the program links the adapter
+                                   in (the fuzz targets, so that libFuzzer counts
+                                   its coverage: it does not see a shared object
+                                   loaded after start); NULL: load it */
+    pthread_mutex_t lock;       /* PTHREAD_MUTEX_INITIALIZER */
+    const void *functions;      /* the adapter's table, once loaded */
+} gb_adapter;
 
 /* The path of adapter NAME: the program's folder, then ../lib/gibake/
  * gibake-NAME.so, into path (size bytes). */
 gb_result gb_adapter_path(const char *name, char *path, size_t size, gb_error *error);
 
-/* Loads adapter NAME (once; later calls find it loaded) and returns the
- * address of its function entry, or NULL with error set ("cannot load the
+/* The adapter's table of functions: loaded and entered by the first call
+ * (later calls find it), or NULL with error set ("cannot load the
  * openimageio adapter PATH: why"). Thread-safe; never unloaded. */
-void *gb_adapter_entry(const char *name, const char *entry, gb_error *error);
+const void *gb_adapter_functions(gb_adapter *adapter, gb_error *error);
 
 #endif

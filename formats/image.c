@@ -50,28 +50,18 @@ static const gb_image_host host = {
     .output_check = gb_output_file_check,
 };
 
-/* Defined only in programs that link the adapter in: the fuzz targets, so
- * that libFuzzer counts its coverage (it does not see a shared object
- * loaded after start). The others load it. */
-extern gb_image_adapter_entry gb_openimageio_adapter __attribute__((weak));
+/* Defined only in programs that link the adapter in (adapter.h). */
+extern gb_adapter_entry gb_openimageio_adapter __attribute__((weak));
 
-static pthread_mutex_t adapter_lock = PTHREAD_MUTEX_INITIALIZER;
-static const gb_image_adapter *loaded_adapter;
+static gb_adapter openimageio = {.name = "openimageio",
+                                 .entry_name = "gb_openimageio_adapter",
+                                 .host = &host,
+                                 .linked_in = gb_openimageio_adapter,
+                                 .lock = PTHREAD_MUTEX_INITIALIZER};
 
-/* The adapter, loaded by the first call; NULL with error set if it cannot be. */
 static const gb_image_adapter *image_adapter(gb_error *error)
 {
-    pthread_mutex_lock(&adapter_lock);
-    if (!loaded_adapter) {
-        gb_image_adapter_entry *entry =
-            gb_openimageio_adapter ? gb_openimageio_adapter
-                                   : (gb_image_adapter_entry *)gb_adapter_entry(
-                                         GB_IMAGE_ADAPTER_NAME, GB_IMAGE_ADAPTER_ENTRY, error);
-        loaded_adapter = entry ? entry(&host) : NULL;
-    }
-    const gb_image_adapter *adapter = loaded_adapter;
-    pthread_mutex_unlock(&adapter_lock);
-    return adapter;
+    return gb_adapter_functions(&openimageio, error);
 }
 
 gb_result gb_image_read(const char *path, gb_image *image, gb_error *error)

@@ -2,8 +2,9 @@
  * (formats/image_openimageio.cpp), a shared object loaded on the first
  * image read, written or checked (formats/adapter.h says why).
  *
- * The adapter's entry, GB_IMAGE_ADAPTER_ENTRY, takes the gibake functions
- * it calls (the host, which outlives it) and returns its own three.
+ * The adapter's entry, gb_openimageio_adapter (a gb_adapter_entry), takes
+ * a gb_image_host, the gibake functions it calls (which outlive it), and
+ * returns its gb_image_adapter.
  */
 #ifndef GB_IMAGE_ADAPTER_H
 #define GB_IMAGE_ADAPTER_H
@@ -46,9 +47,6 @@ typedef struct gb_image_adapter {
     gb_result (*check_output)(const char *path, gb_error *error);
 } gb_image_adapter;
 
-#define GB_IMAGE_ADAPTER_NAME "openimageio"
-#define GB_IMAGE_ADAPTER_ENTRY "gb_openimageio_adapter"
-typedef const gb_image_adapter *gb_image_adapter_entry(const gb_image_host *host);
 
 #ifdef __cplusplus
 }

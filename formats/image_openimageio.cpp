@@ -287,9 +287,10 @@ const gb_image_adapter adapter = {read, write, check_output};
 
 } // namespace
 
-extern "C" __attribute__((visibility("default"))) const gb_image_adapter *
-gb_openimageio_adapter(const gb_image_host *given)
+// The entry (adapter.h): host is a gb_image_host, the result a gb_image_adapter.
+extern "C" __attribute__((visibility("default"))) const void *
+gb_openimageio_adapter(const void *given)
 {
-    host = given;
+    host = static_cast<const gb_image_host *>(given);
     return &adapter;
 }

@@ -1,10 +1,17 @@
-/* voxel_grid.c — allocation of the dense in-memory voxel grid (the OpenVDB
- * file functions are in voxel_grid_openvdb.cpp). */
+/* voxel_grid.c — allocation of the dense in-memory voxel grid, and the
+ * front of its file functions, which the OpenVDB adapter does
+ * (voxel_grid_openvdb.cpp, a shared object loaded on first use). */
 #include "voxel_grid.h"
 
+#include <pthread.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+
+#include "adapter.h"
+#include "output_file.h"
+#include "voxel_check.h"
+#include "voxel_grid_adapter.h"
 
 /* Number of voxels of size, or 0 when a side is not positive or the count
  * (times the bytes per voxel) would not fit in a size_t. */
@@ -50,4 +57,72 @@ void gb_voxel_grid_free(gb_voxel_grid *grid)
     free(grid->surface);
     free(grid->distance);
     memset(grid, 0, sizeof *grid);
+}
+
+/* ---- the file, through the OpenVDB adapter (voxel_grid_adapter.h) ---- */
+
+static const gb_voxel_grid_host host = {
+    .fail = gb_fail,
+    .file_check = gb_voxel_file_check,
+    .allocate = gb_voxel_grid_allocate,
+    .free = gb_voxel_grid_free,
+    .output_open = gb_output_file_open,
+    .output_name = gb_output_file_name,
+    .output_commit = gb_output_file_commit,
+    .output_abort = gb_output_file_abort,
+};
+
+/* Defined only in programs that link the adapter in (adapter.h). */
+extern gb_adapter_entry gb_openvdb_adapter __attribute__((weak));
+
+static gb_adapter openvdb = {.name = "openvdb",
+                             .entry_name = "gb_openvdb_adapter",
+                             .host = &host,
+                             .linked_in = gb_openvdb_adapter,
+                             .lock = PTHREAD_MUTEX_INITIALIZER};
+
+static const gb_voxel_grid_adapter *voxel_adapter(gb_error *error)
+{
+    return gb_adapter_functions(&openvdb, error);
+}
+
+gb_result gb_voxel_grid_write(const char *path, const gb_voxel_grid *grid, gb_error *error)
+{
+    const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
+    return adapter ? adapter->write(path, grid, error) : GB_ERROR_IO;
+}
+
+gb_result gb_voxel_grid_write_and_free(const char *path, gb_voxel_grid *grid, gb_error *error)
+{
+    const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
+    if (adapter)
+        return adapter->write_and_free(path, grid, error);
+    gb_voxel_grid_free(grid);
+    return GB_ERROR_IO;
+}
+
+gb_result gb_voxel_grid_read(const char *path, gb_voxel_grid *grid, gb_error *error)
+{
+    const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
+    return adapter ? adapter->read(path, grid, error) : GB_ERROR_IO;
+}
+
+gb_result gb_voxel_grid_write_int32(const char *path, const gb_voxel_grid *frame,
+                                    const char *name, const int32_t *values, gb_error *error)
+{
+    const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
+    return adapter ? adapter->write_int32(path, frame, name, values, error) : GB_ERROR_IO;
+}
+
+gb_result gb_voxel_grid_read_int32(const char *path, const char *name, gb_voxel_grid *frame,
+                                   int32_t **values, gb_error *error)
+{
+    const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
+    return adapter ? adapter->read_int32(path, name, frame, values, error) : GB_ERROR_IO;
+}
+
+int gb_voxel_file_checksum(const void *bytes, size_t size, char uuid[37])
+{
+    const gb_voxel_grid_adapter *adapter = voxel_adapter(NULL);
+    return adapter ? adapter->file_checksum(bytes, size, uuid) : 0;
 }

@@ -2,17 +2,15 @@
 // (grids "surface", "empty", "distance") and int32 grids such as thin's
 // "nearest_node", in the frame of a gb_voxel_grid (formats/FORMATS.md,
 // "Voxel file"). The C++ stays in this file; the rest of the project sees
-// formats/voxel_grid.h.
+// formats/voxel_grid.h. Built as the shared object gibake-openvdb.so,
+// loaded by formats/voxel_grid.c on first use; it calls gibake only through
+// the host table it is given (voxel_grid_adapter.h).
 //
 // Index space: voxel (i,j,k) of the dense frame is OpenVDB coordinate
 // (i,j,k); its centre is at world_origin + voxel_size * (i+1/2, j+1/2, k+1/2),
 // which is what the grids' linear transform says.
 
-extern "C" {
-#include "output_file.h"
-#include "voxel_check.h"
-#include "voxel_grid.h"
-}
+#include "voxel_grid_adapter.h"
 
 // Half-float conversions by arithmetic, not by Imath's table: the table lives
 // in libImath, which the link line does not name.
@@ -44,6 +42,8 @@ extern "C" {
 #include <unistd.h>
 
 namespace {
+
+const gb_voxel_grid_host *host;
 
 const char *const VOXELIZE_CREATOR = "gibake-voxelize 0.1";
 const char *const INT32_CREATOR = "gibake 0.1";
@@ -151,19 +151,19 @@ gb_result read_frame(const char *path, const openvdb::GridBase &grid, gb_voxel_g
         : !find_meta(grid, "resolution", &resolution) ? "resolution (int32)"
         : nullptr;
     if (missing)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: grid '%s' has no metadata %s", path, name,
+        return host->fail(error, GB_ERROR_FORMAT, "%s: grid '%s' has no metadata %s", path, name,
                        missing);
     if (version != FORMAT_VERSION)
-        return gb_fail(error, GB_ERROR_FORMAT,
+        return host->fail(error, GB_ERROR_FORMAT,
                        "%s: grid '%s' has gibake_format %d, this program reads %d", path,
                        name, (int)version, (int)FORMAT_VERSION);
     uint64_t hash = 0;
     if (!hex_to_hash(hash_text, &hash))
-        return gb_fail(error, GB_ERROR_FORMAT,
+        return host->fail(error, GB_ERROR_FORMAT,
                        "%s: grid '%s': scene_hash '%.40s' is not 16 lowercase hex digits",
                        path, name, hash_text.c_str());
     if (resolution < 0)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: grid '%s': negative resolution %d", path,
+        return host->fail(error, GB_ERROR_FORMAT, "%s: grid '%s': negative resolution %d", path,
                        name, (int)resolution);
     gb_voxel_grid read = {};
     read.voxel_size = voxel_size;
@@ -174,7 +174,7 @@ gb_result read_frame(const char *path, const openvdb::GridBase &grid, gb_voxel_g
     read.scene_hash = hash;
     read.resolution = (uint32_t)resolution;
     if (!frame_is_valid(&read))
-        return gb_fail(error, GB_ERROR_FORMAT,
+        return host->fail(error, GB_ERROR_FORMAT,
                        "%s: grid '%s': bad frame (grid_size %d x %d x %d, voxel_size %g)", path,
                        name, (int)size[0], (int)size[1], (int)size[2], voxel_size);
     // The readers fill a dense array of the frame (5 bytes a voxel for the
@@ -183,7 +183,7 @@ gb_result read_frame(const char *path, const openvdb::GridBase &grid, gb_voxel_g
     double dense = 5.0 * (double)frame_voxel_count(&read);
     double memory = (double)sysconf(_SC_PHYS_PAGES) * (double)sysconf(_SC_PAGESIZE);
     if (memory > 0 && dense > memory)
-        return gb_fail(error, GB_ERROR_UNSUPPORTED,
+        return host->fail(error, GB_ERROR_UNSUPPORTED,
                        "%s: grid '%s': grid_size %d x %d x %d needs %.1f GiB in memory, more "
                        "than this machine's %.1f GiB", path, name, (int)size[0], (int)size[1],
                        (int)size[2], dense / (1 << 30), memory / (1 << 30));
@@ -197,7 +197,7 @@ gb_result read_frame(const char *path, const openvdb::GridBase &grid, gb_voxel_g
                   && std::fabs(centre[axis] - (origin[axis] + 0.5 * voxel_size))
                          <= tolerance + 1e-12 * std::fabs(origin[axis]);
     if (!matches)
-        return gb_fail(error, GB_ERROR_FORMAT,
+        return host->fail(error, GB_ERROR_FORMAT,
                        "%s: grid '%s': transform does not match voxel_size and world_origin",
                        path, name);
     *frame = read;
@@ -539,22 +539,22 @@ gb_result write_content_uuid(const char *path, const char *name, gb_error *error
 {
     int fd = open(name, O_RDWR | O_CLOEXEC);
     if (fd < 0)
-        return gb_fail(error, GB_ERROR_IO, "%s: cannot reopen %s: %s", path, name,
+        return host->fail(error, GB_ERROR_IO, "%s: cannot reopen %s: %s", path, name,
                        std::strerror(errno));
     unsigned char header[HEADER_BYTES];
     size_t got = 0;
     std::string uuid;
     gb_result result = GB_OK;
     if (!read_header(fd, header, &got) || !content_uuids(fd, header, &uuid, nullptr))
-        result = gb_fail(error, GB_ERROR_IO, "%s: cannot read back: %s", path,
+        result = host->fail(error, GB_ERROR_IO, "%s: cannot read back: %s", path,
                          std::strerror(errno));
     else if (got != HEADER_BYTES || !looks_like_uuid(header + UUID_OFFSET))
-        result = gb_fail(error, GB_ERROR_IO, "%s: OpenVDB wrote no UUID at bytes 21..56", path);
+        result = host->fail(error, GB_ERROR_IO, "%s: OpenVDB wrote no UUID at bytes 21..56", path);
     else if (pwrite(fd, uuid.data(), UUID_LENGTH, (off_t)UUID_OFFSET) != (ssize_t)UUID_LENGTH)
-        result = gb_fail(error, GB_ERROR_IO, "%s: cannot write the checksum: %s", path,
+        result = host->fail(error, GB_ERROR_IO, "%s: cannot write the checksum: %s", path,
                          std::strerror(errno));
     if (close(fd) != 0 && result == GB_OK)
-        result = gb_fail(error, GB_ERROR_IO, "%s: cannot write: %s", path, std::strerror(errno));
+        result = host->fail(error, GB_ERROR_IO, "%s: cannot write: %s", path, std::strerror(errno));
     return result;
 }
 
@@ -563,7 +563,7 @@ gb_result check_file(const char *path, gb_error *error)
 {
     int fd = open(path, O_RDONLY | O_CLOEXEC);
     if (fd < 0)
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
+        return host->fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
     unsigned char header[HEADER_BYTES];
     size_t got = 0;
     // OPENVDB_MAGIC as a little-endian int64.
@@ -573,25 +573,25 @@ gb_result check_file(const char *path, gb_error *error)
     const char *damaged = "%s: checksum does not match: the file is damaged or was not "
                           "written by gibake";
     if (!read_header(fd, header, &got))
-        result = gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
+        result = host->fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
     else if (got < sizeof magic || std::memcmp(header, magic, sizeof magic) != 0)
-        result = gb_fail(error, GB_ERROR_FORMAT, "%s: not an OpenVDB file", path);
+        result = host->fail(error, GB_ERROR_FORMAT, "%s: not an OpenVDB file", path);
     else if (got != HEADER_BYTES || !looks_like_uuid(header + UUID_OFFSET))
-        result = gb_fail(error, GB_ERROR_CHECKSUM, damaged, path);
+        result = host->fail(error, GB_ERROR_CHECKSUM, damaged, path);
     else if (!content_uuids(fd, header, &uuid, &format1))
-        result = gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
+        result = host->fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(errno));
     else if (uuid.compare(0, UUID_LENGTH, (const char *)header + UUID_OFFSET, UUID_LENGTH) == 0)
         result = GB_OK;
     else if (header[UUID_OFFSET + VERSION_CHARACTER] == '4'
              && format1.compare(0, UUID_LENGTH, (const char *)header + UUID_OFFSET,
                                 UUID_LENGTH) == 0)
-        result = gb_fail(error, GB_ERROR_UNSUPPORTED,
+        result = host->fail(error, GB_ERROR_UNSUPPORTED,
                          "%s: written by an older gibake (voxel file format 1, whose "
                          "checksum left out the header and the length): make it again "
                          "(voxelize, or thin for a .grid.vdb)",
                          path);
     else
-        result = gb_fail(error, GB_ERROR_CHECKSUM, damaged, path);
+        result = host->fail(error, GB_ERROR_CHECKSUM, damaged, path);
     close(fd);
     return result;
 }
@@ -613,7 +613,7 @@ gb_result write_archive(const char *path, const char *name, const openvdb::GridP
     std::ofstream stream(name, std::ios_base::out | std::ios_base::binary
                                    | std::ios_base::trunc);
     if (!stream)
-        return gb_fail(error, GB_ERROR_IO, "%s: cannot open %s: %s", path, name,
+        return host->fail(error, GB_ERROR_IO, "%s: cannot open %s: %s", path, name,
                        std::strerror(errno));
     CheckedArchive archive;
     archive.setCompression(compression());
@@ -623,7 +623,7 @@ gb_result write_archive(const char *path, const char *name, const openvdb::GridP
     // the failed write(2) left its errno (ENOSPC, EFBIG, ...): the stream makes
     // no other system call once it has failed
     if (stream.fail())
-        return gb_fail(error, GB_ERROR_IO, "%s: cannot write: %s", path,
+        return host->fail(error, GB_ERROR_IO, "%s: cannot write: %s", path,
                        errno ? std::strerror(errno) : "output stream error");
     return GB_OK;
 }
@@ -631,12 +631,12 @@ gb_result write_archive(const char *path, const char *name, const openvdb::GridP
 // Removes the output's temporary unless committed, exceptions included.
 struct OutputGuard {
     gb_output_file *file = nullptr;
-    ~OutputGuard() { gb_output_file_abort(file); }
+    ~OutputGuard() { host->output_abort(file); }
     gb_result commit(gb_error *error)
     {
         gb_output_file *committed = file;
         file = nullptr;
-        return gb_output_file_commit(committed, error);
+        return host->output_commit(committed, error);
     }
 };
 
@@ -648,10 +648,10 @@ template <typename MakeGrids>
 gb_result write_grids(const char *path, MakeGrids make_grids, gb_error *error)
 {
     OutputGuard out;
-    gb_result result = gb_output_file_open(path, GB_OUTPUT_FILE_BY_NAME, &out.file, error);
+    gb_result result = host->output_open(path, GB_OUTPUT_FILE_BY_NAME, &out.file, error);
     if (result != GB_OK)
         return result;
-    const char *name = gb_output_file_name(out.file);
+    const char *name = host->output_name(out.file);
     {
         openvdb::GridPtrVec grids = make_grids();
         result = write_archive(path, name, grids, error);
@@ -710,7 +710,7 @@ struct Reader {
         if (result == GB_OK)
             result = map(error);
         if (result == GB_OK)
-            result = gb_voxel_file_check(mapping, size, path, error);
+            result = host->file_check(mapping, size, path, error);
         if (result != GB_OK)
             return result;
         MappedBuffer buffer(mapping, size);
@@ -720,15 +720,15 @@ struct Reader {
             openvdb::io::Stream stream(in, /*delayLoad=*/false);
             grids = stream.getGrids();
         } catch (const std::ios_base::failure &) {
-            return gb_fail(error, GB_ERROR_FORMAT, "%s: OpenVDB reads past the end of the file "
+            return host->fail(error, GB_ERROR_FORMAT, "%s: OpenVDB reads past the end of the file "
                            "(a size or a count in it is wrong)", path);
         } catch (const std::bad_alloc &) {
-            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+            return host->fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
         } catch (const std::exception &e) {
-            return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
+            return host->fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
         }
         if (!grids)
-            return gb_fail(error, GB_ERROR_FORMAT, "%s: no grids", path);
+            return host->fail(error, GB_ERROR_FORMAT, "%s: no grids", path);
         return GB_OK;
     }
 
@@ -743,10 +743,10 @@ struct Reader {
                 break;
             }
         if (!found)
-            return gb_fail(error, GB_ERROR_FORMAT, "%s: no grid '%s'", path, name);
+            return host->fail(error, GB_ERROR_FORMAT, "%s: no grid '%s'", path, name);
         *grid = openvdb::gridPtrCast<GridType>(found);
         if (!*grid)
-            return gb_fail(error, GB_ERROR_FORMAT, "%s: grid '%s' is not a %s grid", path, name,
+            return host->fail(error, GB_ERROR_FORMAT, "%s: grid '%s' is not a %s grid", path, name,
                            type_name);
         return GB_OK;
     }
@@ -767,14 +767,14 @@ private:
             int saved = errno;
             if (fd >= 0)
                 close(fd);
-            return gb_fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(saved));
+            return host->fail(error, GB_ERROR_IO, "%s: %s", path, std::strerror(saved));
         }
         size = (size_t)status.st_size;
         mapping = size ? mmap(nullptr, size, PROT_READ, MAP_PRIVATE, fd, 0) : MAP_FAILED;
         int saved = errno;
         close(fd);
         if (mapping == MAP_FAILED)
-            return gb_fail(error, GB_ERROR_IO, "%s: %s", path,
+            return host->fail(error, GB_ERROR_IO, "%s: %s", path,
                            size ? std::strerror(saved) : "empty file");
         return GB_OK;
     }
@@ -786,7 +786,7 @@ gb_result check_same_frame(const char *path, const openvdb::GridBase &grid,
     gb_voxel_grid frame;
     gb_result result = read_frame(path, grid, &frame, error);
     if (result == GB_OK && !same_frame(&frame, expected))
-        result = gb_fail(error, GB_ERROR_FORMAT,
+        result = host->fail(error, GB_ERROR_FORMAT,
                          "%s: grid '%s' has another frame than grid 'surface'", path,
                          grid.getName().c_str());
     return result;
@@ -794,7 +794,7 @@ gb_result check_same_frame(const char *path, const openvdb::GridBase &grid,
 
 gb_result outside_frame(const char *path, const char *name, gb_error *error)
 {
-    return gb_fail(error, GB_ERROR_FORMAT, "%s: grid '%s' has voxels outside its grid_size",
+    return host->fail(error, GB_ERROR_FORMAT, "%s: grid '%s' has voxels outside its grid_size",
                    path, name);
 }
 
@@ -822,9 +822,9 @@ gb_result read_voxel_grids(const char *path, Reader &reader, gb_voxel_grid *grid
     if (result == GB_OK) {
         int32_t size[3] = {frame.size[0], frame.size[1], frame.size[2]};
         gb_error reason;
-        result = gb_voxel_grid_allocate(&frame, size, &reason);
+        result = host->allocate(&frame, size, &reason);
         if (result != GB_OK)
-            gb_fail(error, result, "%s: %s", path, reason.message);
+            host->fail(error, result, "%s: %s", path, reason.message);
     }
     if (result != GB_OK)
         return result;
@@ -837,7 +837,7 @@ gb_result read_voxel_grids(const char *path, Reader &reader, gb_voxel_grid *grid
         occupied[index] = 1;
     });
     if (!inside) {
-        gb_voxel_grid_free(&frame);
+        host->free(&frame);
         return outside_frame(path, "surface", error);
     }
     bool disjoint = true, finite = true;
@@ -855,14 +855,14 @@ gb_result read_voxel_grids(const char *path, Reader &reader, gb_voxel_grid *grid
     if (!inside)
         result = outside_frame(path, "empty or distance", error);
     else if (!disjoint || surface_count + empty_count != total || empty_count != distance_count)
-        result = gb_fail(error, GB_ERROR_FORMAT,
+        result = host->fail(error, GB_ERROR_FORMAT,
                          "%s: grids 'empty' and 'distance' are not the complement of 'surface'",
                          path);
     else if (!finite)
-        result = gb_fail(error, GB_ERROR_FORMAT,
+        result = host->fail(error, GB_ERROR_FORMAT,
                          "%s: grid 'distance' has a negative or non-finite value", path);
     if (result != GB_OK) {
-        gb_voxel_grid_free(&frame);
+        host->free(&frame);
         return result;
     }
     *grid = frame;
@@ -877,7 +877,7 @@ gb_result write_voxel_grids(const char *path, const gb_voxel_grid *grid, bool re
                             gb_error *error)
 {
     if (!path || !grid || !grid->surface || !grid->distance || !frame_is_valid(grid))
-        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: voxel grid to write is not valid",
+        return host->fail(error, GB_ERROR_ARGUMENT, "%s: voxel grid to write is not valid",
                        path ? path : "(null)");
     try {
         initialize_openvdb();
@@ -891,32 +891,30 @@ gb_result write_voxel_grids(const char *path, const gb_voxel_grid *grid, bool re
             return openvdb::GridPtrVec{built.surface, built.empty, built.distance};
         }, error);
     } catch (const std::bad_alloc &) {
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+        return host->fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     } catch (const std::exception &e) {
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+        return host->fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
     }
 }
 
-} // namespace
-
-extern "C" gb_result gb_voxel_grid_write(const char *path, const gb_voxel_grid *grid,
+gb_result write(const char *path, const gb_voxel_grid *grid,
                                          gb_error *error)
 {
     return write_voxel_grids(path, grid, false, error);
 }
 
-extern "C" gb_result gb_voxel_grid_write_and_free(const char *path, gb_voxel_grid *grid,
+gb_result write_and_free(const char *path, gb_voxel_grid *grid,
                                                   gb_error *error)
 {
     gb_result result = write_voxel_grids(path, grid, true, error);
-    gb_voxel_grid_free(grid);
+    host->free(grid);
     return result;
 }
 
-extern "C" gb_result gb_voxel_grid_read(const char *path, gb_voxel_grid *grid, gb_error *error)
+gb_result read(const char *path, gb_voxel_grid *grid, gb_error *error)
 {
     if (!path || !grid)
-        return gb_fail(error, GB_ERROR_ARGUMENT, "voxel grid read: no path or no grid");
+        return host->fail(error, GB_ERROR_ARGUMENT, "voxel grid read: no path or no grid");
     try {
         initialize_openvdb();
         Reader reader(path);
@@ -925,18 +923,18 @@ extern "C" gb_result gb_voxel_grid_read(const char *path, gb_voxel_grid *grid, g
             return result;
         return read_voxel_grids(path, reader, grid, error);
     } catch (const std::bad_alloc &) {
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+        return host->fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     } catch (const std::exception &e) {
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
+        return host->fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
     }
 }
 
-extern "C" gb_result gb_voxel_grid_write_int32(const char *path, const gb_voxel_grid *frame,
+gb_result write_int32(const char *path, const gb_voxel_grid *frame,
                                                const char *name, const int32_t *values,
                                                gb_error *error)
 {
     if (!path || !frame || !name || !*name || !values || !frame_is_valid(frame))
-        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: int32 grid to write is not valid",
+        return host->fail(error, GB_ERROR_ARGUMENT, "%s: int32 grid to write is not valid",
                        path ? path : "(null)");
     try {
         initialize_openvdb();
@@ -948,18 +946,18 @@ extern "C" gb_result gb_voxel_grid_write_int32(const char *path, const gb_voxel_
             return openvdb::GridPtrVec{grid};
         }, error);
     } catch (const std::bad_alloc &) {
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+        return host->fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     } catch (const std::exception &e) {
-        return gb_fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
+        return host->fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
     }
 }
 
-extern "C" gb_result gb_voxel_grid_read_int32(const char *path, const char *name,
+gb_result read_int32(const char *path, const char *name,
                                               gb_voxel_grid *frame, int32_t **values,
                                               gb_error *error)
 {
     if (!path || !name || !frame || !values)
-        return gb_fail(error, GB_ERROR_ARGUMENT, "int32 grid read: missing argument");
+        return host->fail(error, GB_ERROR_ARGUMENT, "int32 grid read: missing argument");
     try {
         initialize_openvdb();
         Reader reader(path);
@@ -975,7 +973,7 @@ extern "C" gb_result gb_voxel_grid_read_int32(const char *path, const char *name
         size_t count = frame_voxel_count(&read);
         int32_t *dense = (int32_t *)std::malloc(count * sizeof *dense);
         if (!dense)
-            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory for %zu voxels",
+            return host->fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory for %zu voxels",
                            path, count);
         for (size_t index = 0; index < count; ++index)
             dense[index] = -1;
@@ -986,7 +984,7 @@ extern "C" gb_result gb_voxel_grid_read_int32(const char *path, const char *name
         });
         if (!inside || negative) {
             std::free(dense);
-            return inside ? gb_fail(error, GB_ERROR_FORMAT,
+            return inside ? host->fail(error, GB_ERROR_FORMAT,
                                     "%s: grid '%s' has a negative active value", path, name)
                           : outside_frame(path, name, error);
         }
@@ -994,13 +992,13 @@ extern "C" gb_result gb_voxel_grid_read_int32(const char *path, const char *name
         *values = dense;
         return GB_OK;
     } catch (const std::bad_alloc &) {
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+        return host->fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     } catch (const std::exception &e) {
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
+        return host->fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
     }
 }
 
-extern "C" int gb_voxel_file_checksum(const void *bytes, size_t size, char uuid[37])
+int file_checksum(const void *bytes, size_t size, char uuid[37])
 {
     if (!bytes || size < HEADER_BYTES)
         return 0;
@@ -1010,4 +1008,18 @@ extern "C" int gb_voxel_file_checksum(const void *bytes, size_t size, char uuid[
     hash.add(file + HEADER_BYTES, size - HEADER_BYTES);
     std::memcpy(uuid, hash.uuid(2, size).c_str(), UUID_LENGTH + 1);
     return 1;
+}
+
+const gb_voxel_grid_adapter adapter = {write, write_and_free, read, write_int32, read_int32,
+                                       file_checksum};
+
+} // namespace
+
+// The entry (adapter.h): host is a gb_voxel_grid_host, the result a
+// gb_voxel_grid_adapter.
+extern "C" __attribute__((visibility("default"))) const void *
+gb_openvdb_adapter(const void *given)
+{
+    host = static_cast<const gb_voxel_grid_host *>(given);
+    return &adapter;
 }
