@@ -259,3 +259,22 @@ int gb_cli_version(const char *tool)
 {
     return printf("%s (gibake) %s\n", tool, version) < 0 ? GB_EXIT_FAILURE : GB_EXIT_SUCCESS;
 }
+
+int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
+                   const char *short_options, const struct option *options,
+                   gb_cli_option_function handle, void *arguments)
+{
+    int option, status;
+    opterr = 0;
+    while ((option = getopt_long(argc, argv, short_options, options, NULL)) != -1) {
+        if (option == 'h')
+            return gb_cli_help(usage);
+        if (option == 'V')
+            return gb_cli_version(tool);
+        if (option == '?')
+            return gb_cli_option_error(tool, argv, options);
+        if ((status = handle(option, optarg, arguments)) != GB_EXIT_SUCCESS)
+            return status;
+    }
+    return GB_CLI_GO_ON;
+}

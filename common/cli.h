@@ -80,4 +80,17 @@ int gb_cli_help(const char *text);
 /* "TOOL (gibake) VERSION" on stdout; as gb_cli_help. */
 int gb_cli_version(const char *tool);
 
+/* One option of a tool, its value (optarg) or NULL: stores it in the
+ * tool's arguments and returns GB_EXIT_SUCCESS, or an exit status. */
+typedef int (*gb_cli_option_function)(int option, const char *value, void *arguments);
+
+/* Every tool's option loop: getopt_long over argv with short_options and
+ * options (which must hold 'h' --help and 'V' --version); -h prints usage,
+ * -V the version, a refused option is gb_cli_option_error; every other
+ * option goes to handle. Returns GB_CLI_GO_ON when all were read (optind at
+ * the first operand), else the exit status to return. */
+int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
+                   const char *short_options, const struct option *options,
+                   gb_cli_option_function handle, void *arguments);
+
 #endif

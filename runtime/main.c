@@ -155,8 +155,9 @@ static int parse_renderer_option(int option, const char *value, arguments *a)
 }
 
 /* One option into a; 0, else the exit status. */
-static int parse_option(int option, const char *value, arguments *a)
+static int parse_option(int option, const char *value, void *context)
 {
+    arguments *a = context;
     gb_error error;
     if (option >= OPTION_FLC_NAVG && option <= OPTION_FLC_TILING)
         return parse_flc_option(option, value, a);
@@ -213,18 +214,10 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option, status;
-    opterr = 0;
-    while ((option = getopt_long(argc, argv, "c:m:f:o:r:qhV", options, NULL)) != -1) {
-        if (option == 'h')
-            return gb_cli_help(usage);
-        if (option == 'V')
-            return gb_cli_version("gbview");
-        if (option == '?')
-            return gb_cli_option_error("gbview", argv, options);
-        if ((status = parse_option(option, optarg, a)) != 0)
-            return status;
-    }
+    int status = gb_cli_options("gbview", usage, argc, argv, "c:m:f:o:r:qhV", options,
+                                parse_option, a);
+    if (status != GB_CLI_GO_ON)
+        return status;
     if (optind != argc - 1)
         return gb_cli_usage_error("gbview", "expected one SCENE");
     a->scene_path = argv[optind];

@@ -55,13 +55,17 @@ static int parse_small(const char *option, const char *text, uint64_t high, unsi
     return status;
 }
 
-/* One option with a value into a; 0, else the exit status. */
-static int parse_value(int option, const char *text, arguments *a)
+/* One option into a; 0, else the exit status. */
+static int parse_option(int option, const char *text, void *context)
 {
+    arguments *a = context;
     gb_cluster_options *o = &a->cluster;
     unsigned threads;
     int status;
     switch (option) {
+    case 'o': a->output = text; return 0;
+    case 'q': a->quiet = 1; return 0;
+    case OPTION_STATS: a->stats = 1; return 0;
     case 'd': return parse_small("depth", text, GB_LIGHT_OCTREE_MAX_DEPTH, &o->depth);
     case 'k': return parse_small("knn", text, 100000, &o->knn);
     case 'r': return gb_cli_float("cluster", "radius", text, 1e-30, 1e30, &o->radius);
@@ -110,21 +114,10 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option, status;
-    opterr = 0;
-    while ((option = getopt_long(argc, argv, "o:d:k:r:t:qhV", options, NULL)) != -1) {
-        switch (option) {
-        case 'o': a->output = optarg; break;
-        case 'q': a->quiet = 1; break;
-        case OPTION_STATS: a->stats = 1; break;
-        case 'h': return gb_cli_help(usage);
-        case 'V': return gb_cli_version("cluster");
-        case '?': return gb_cli_option_error("cluster", argv, options);
-        default:
-            if ((status = parse_value(option, optarg, a)) != 0)
-                return status;
-        }
-    }
+    int status = gb_cli_options("cluster", usage, argc, argv, "o:d:k:r:t:qhV", options,
+                                parse_option, a);
+    if (status != GB_CLI_GO_ON)
+        return status;
     return check_arguments(a, argc, argv);
 }
 

@@ -41,6 +41,23 @@ enum { OPTION_HEATMAP = 256, OPTION_HEATMAP_SCALE, OPTION_FAIL_ABOVE };
 /* The largest --heatmap-scale and --fail-above: any error a test can meet. */
 #define MAX_ERROR 1e30
 
+/* One option into a; 0, else the exit status. */
+static int parse_option(int option, const char *text, void *context)
+{
+    arguments *a = context;
+    switch (option) {
+    case 'm': a->mask = text; return 0;
+    case 'q': a->quiet = 1; return 0;
+    case OPTION_HEATMAP: a->heatmap = text; return 0;
+    case OPTION_HEATMAP_SCALE:  /* 0 would show every error white */
+        return gb_cli_number("imgdiff", "heatmap-scale", text, 1e-30, MAX_ERROR,
+                             &a->heatmap_scale);
+    case OPTION_FAIL_ABOVE:
+        return gb_cli_number("imgdiff", "fail-above", text, 0.0, MAX_ERROR, &a->fail_above);
+    }
+    return 0;
+}
+
 /* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
 static int parse_arguments(int argc, char **argv, arguments *a)
 {
@@ -54,28 +71,9 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option, status = 0;
-    opterr = 0;
-    while ((option = getopt_long(argc, argv, "m:qhV", options, NULL)) != -1) {
-        switch (option) {
-        case 'm': a->mask = optarg; break;
-        case 'q': a->quiet = 1; break;
-        case OPTION_HEATMAP: a->heatmap = optarg; break;
-        case OPTION_HEATMAP_SCALE:  /* 0 would show every error white */
-            status = gb_cli_number("imgdiff", "heatmap-scale", optarg, 1e-30, MAX_ERROR,
-                                   &a->heatmap_scale);
-            break;
-        case OPTION_FAIL_ABOVE:
-            status = gb_cli_number("imgdiff", "fail-above", optarg, 0.0, MAX_ERROR,
-                                   &a->fail_above);
-            break;
-        case 'h': return gb_cli_help(usage);
-        case 'V': return gb_cli_version("imgdiff");
-        default: return gb_cli_option_error("imgdiff", argv, options);
-        }
-        if (status)
-            return status;
-    }
+    int status = gb_cli_options("imgdiff", usage, argc, argv, "m:qhV", options, parse_option, a);
+    if (status != GB_CLI_GO_ON)
+        return status;
     if (optind != argc - 2)
         return gb_cli_usage_error("imgdiff", "expected IMAGE and REFERENCE");
     a->image = argv[optind];

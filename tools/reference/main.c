@@ -80,8 +80,9 @@ static int parse_number(int option, const char *text, arguments *a)
 }
 
 /* One option into a; 0, else the exit status. */
-static int parse_option(int option, const char *text, arguments *a)
+static int parse_option(int option, const char *text, void *context)
 {
+    arguments *a = context;
     gb_error error;
     switch (option) {
     case 'o': a->output = text; return 0;
@@ -133,18 +134,10 @@ static int parse_arguments(int argc, char **argv, arguments *a)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option, status;
-    opterr = 0;
-    while ((option = getopt_long(argc, argv, "o:m:s:c:r:t:b:qhV", options, NULL)) != -1) {
-        if (option == 'h')
-            return gb_cli_help(usage);
-        if (option == 'V')
-            return gb_cli_version("reference");
-        if (option == '?')
-            return gb_cli_option_error("reference", argv, options);
-        if ((status = parse_option(option, optarg, a)) != 0)
-            return status;
-    }
+    int status = gb_cli_options("reference", usage, argc, argv, "o:m:s:c:r:t:b:qhV", options,
+                                parse_option, a);
+    if (status != GB_CLI_GO_ON)
+        return status;
     return check_arguments(a, argc, argv);
 }
 

@@ -68,6 +68,15 @@ static void print_summary(const gb_scene *scene)
     printf("hash            %016llx\n", (unsigned long long)scene->hash);
 }
 
+/* Its only option, -q. */
+static int set_quiet(int option, const char *value, void *quiet)
+{
+    (void)option;
+    (void)value;
+    *(int *)quiet = 1;
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     static const struct option options[] = {
@@ -76,18 +85,11 @@ int main(int argc, char **argv)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int quiet = 0, option;
-    opterr = 0;
-    while ((option = getopt_long(argc, argv, "qhV", options, NULL)) != -1) {
-        if (option == 'q')
-            quiet = 1;
-        else if (option == 'h')
-            return gb_cli_help(usage);
-        else if (option == 'V')
-            return gb_cli_version("scene-info");
-        else
-            return gb_cli_option_error("scene-info", argv, options);
-    }
+    int quiet = 0;
+    int status = gb_cli_options("scene-info", usage, argc, argv, "qhV", options, set_quiet,
+                                &quiet);
+    if (status != GB_CLI_GO_ON)
+        return status;
     if (optind != argc - 1)
         return gb_cli_usage_error("scene-info", "expected one SCENE");
     gb_scene scene;

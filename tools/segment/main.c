@@ -50,8 +50,9 @@ typedef struct arguments {
 } arguments;
 
 /* One option into args; 0, else the exit status. */
-static int parse_option(int option, const char *text, arguments *args)
+static int parse_option(int option, const char *text, void *context)
 {
+    arguments *args = context;
     double value;
     uint64_t pairs;
     int status = 0;
@@ -109,18 +110,10 @@ static int parse_arguments(int argc, char **argv, arguments *args)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option, status;
-    opterr = 0;
-    while ((option = getopt_long(argc, argv, "o:a:en:sqhV", options, NULL)) != -1) {
-        if (option == 'h')
-            return gb_cli_help(usage);
-        if (option == 'V')
-            return gb_cli_version("segment");
-        if (option == '?')
-            return gb_cli_option_error("segment", argv, options);
-        if ((status = parse_option(option, optarg, args)) != 0)
-            return status;
-    }
+    int status = gb_cli_options("segment", usage, argc, argv, "o:a:en:sqhV", options,
+                                parse_option, args);
+    if (status != GB_CLI_GO_ON)
+        return status;
     return check_positionals(argc, argv, args);
 }
 

@@ -43,13 +43,16 @@ typedef struct arguments {
     int quiet, stats;
 } arguments;
 
-/* One option with a value into args; 0, else the exit status. */
-static int parse_value(int option, const char *text, arguments *args)
+/* One option into args; 0, else the exit status. */
+static int parse_option(int option, const char *text, void *context)
 {
+    arguments *args = context;
     double value;
     long threads;
     int status;
     switch (option) {
+    case 's': args->stats = 1; return 0;
+    case 'q': args->quiet = 1; return 0;
     case 'o': args->output = text; return 0;
     case 'g': args->grid = text; return 0;
     case 'p':
@@ -87,20 +90,10 @@ static int parse_arguments(int argc, char **argv, arguments *args)
         {"version", no_argument, NULL, 'V'},
         {NULL, 0, NULL, 0},
     };
-    int option, status;
-    opterr = 0;
-    while ((option = getopt_long(argc, argv, "o:g:p:l:j:sqhV", options, NULL)) != -1) {
-        switch (option) {
-        case 's': args->stats = 1; break;
-        case 'q': args->quiet = 1; break;
-        case 'h': return gb_cli_help(usage);
-        case 'V': return gb_cli_version("thin");
-        case '?': return gb_cli_option_error("thin", argv, options);
-        default:
-            if ((status = parse_value(option, optarg, args)) != 0)
-                return status;
-        }
-    }
+    int status = gb_cli_options("thin", usage, argc, argv, "o:g:p:l:j:sqhV", options,
+                                parse_option, args);
+    if (status != GB_CLI_GO_ON)
+        return status;
     if (optind != argc - 1 || !args->output)
         return gb_cli_usage_error("thin", "expected one IN.vdb and -o OUT.skel");
     args->input = argv[optind];

@@ -37,10 +37,12 @@ typedef struct arguments {
     int quiet;
 } arguments;
 
-/* One option with a value into parsed; 0, else the exit status. */
-static int parse_value(int option, const char *text, arguments *parsed)
+/* One option into parsed; 0, else the exit status. */
+static int parse_option(int option, const char *text, void *context)
 {
+    arguments *parsed = context;
     switch (option) {
+    case 'q': parsed->quiet = 1; return 0;
     case 'o': parsed->output = text; return 0;
     case 'r':
         return gb_cli_integer("voxelize", "resolution", text, 1, GB_VOXELIZE_MAX_RESOLUTION,
@@ -66,19 +68,10 @@ static int parse_arguments(int argc, char **argv, arguments *parsed)
     };
     *parsed = (arguments){NULL, NULL, GB_VOXELIZE_DEFAULT_RESOLUTION, GB_VOXELIZE_DEFAULT_PAD,
                           GB_VOXELIZE_DEFAULT_THREADS, 0};
-    int option, status;
-    opterr = 0;
-    while ((option = getopt_long(argc, argv, "o:r:j:qhV", options, NULL)) != -1) {
-        switch (option) {
-        case 'q': parsed->quiet = 1; break;
-        case 'h': return gb_cli_help(usage);
-        case 'V': return gb_cli_version("voxelize");
-        case '?': return gb_cli_option_error("voxelize", argv, options);
-        default:
-            if ((status = parse_value(option, optarg, parsed)) != 0)
-                return status;
-        }
-    }
+    int status = gb_cli_options("voxelize", usage, argc, argv, "o:r:j:qhV", options,
+                                parse_option, parsed);
+    if (status != GB_CLI_GO_ON)
+        return status;
     if (optind != argc - 1)
         return gb_cli_usage_error("voxelize", "expected one SCENE");
     if (!parsed->output)
