@@ -33,7 +33,7 @@ FUZZ_SECONDS ?= 20
 DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
   libopenvdb-dev libtbb-dev libembree-dev libflann-dev liblz4-dev libcgal-dev \
   libopenmesh-dev libopenimageio-dev libepoxy-dev libglfw3-dev libegl-dev \
-  libegl-mesa0 libgl1-mesa-dri xvfb xauth libopenvdb-tools openimageio-tools time strace gnuplot-nox
+  libegl-mesa0 libgl1-mesa-dri xvfb xauth libopenvdb-tools openimageio-tools time strace gnuplot-nox help2man
 # What make bench needs beside: scikit-image's skeletonize_3d, thin's peer
 # in bench/thin.sh (for Debian's /usr/bin/python3).
 BENCH_DEB_PACKAGES = python3-skimage python3-openvdb
@@ -268,10 +268,9 @@ $(BUILD)/fuzz/%: $(BUILD)/obj/tests/fuzz/%.o $(LIBRARY) $(ADAPTER_SOURCES:%.cpp=
 	$(CXX) $(LDFLAGS) -fsanitize=fuzzer $^ $(LDLIBS) -lOpenImageIO -lOpenImageIO_Util \
 	  -lopenvdb -ltbb -o $@
 
+# gibake-TOOL, the gibake dispatcher, the adapters, man pages (tools/install.sh).
 install: all
-	install -d $(DESTDIR)$(PREFIX)/bin $(DESTDIR)$(PREFIX)/lib/gibake
-	install -m 755 $(PROGRAMS:%=$(BIN)/%) $(DESTDIR)$(PREFIX)/bin
-	install -m 644 $(ADAPTERS) $(DESTDIR)$(PREFIX)/lib/gibake
+	sh tools/install.sh $(BIN) $(DESTDIR)$(PREFIX)
 
 clean:
 	rm -rf build bake demo
