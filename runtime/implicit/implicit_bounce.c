@@ -21,11 +21,11 @@
  */
 #include "implicit.h"
 
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "brdf.h"
+#include "threads.h"
 
 void gb_implicit_pullup(const gb_implicit_model *model, float *values)
 {
@@ -83,20 +83,23 @@ static void light_irradiance(const gb_scene *scene, const gb_implicit_node *node
     }
 }
 
-typedef struct gather_range {
+typedef struct gather_job {
     const gb_implicit_links *links;
     const float *source;
     float *gathered;
-    uint32_t begin, end;
-} gather_range;
+    uint32_t element_count;
+} gather_job;
 
-static void *gather(void *argument)
+/* Thread t of thread_count: its share of the elements. */
+static void gather(void *context, int t, int thread_count)
 {
-    const gather_range *r = argument;
-    const gb_implicit_links *links = r->links;
-    const float *source = r->source;
-    float *gathered = r->gathered;
-    for (uint32_t e = r->begin; e < r->end; ++e) {
+    const gather_job *job = context;
+    const gb_implicit_links *links = job->links;
+    const float *source = job->source;
+    float *gathered = job->gathered;
+    uint32_t begin = (uint32_t)((uint64_t)job->element_count * t / thread_count);
+    uint32_t end = (uint32_t)((uint64_t)job->element_count * (t + 1) / thread_count);
+    for (uint32_t e = begin; e < end; ++e) {
         float sum[3] = {0, 0, 0};
         for (uint32_t i = links->first[e]; i < links->first[e + 1]; ++i) {
             const float *L = &source[3 * (size_t)links->source[i]];
@@ -107,7 +110,6 @@ static void *gather(void *argument)
         for (int k = 0; k < 3; ++k)
             gathered[3 * (size_t)e + k] = sum[k] / GB_PI;
     }
-    return NULL;
 }
 
 /* ComputeIlluminateLeafNodes: gathered[e] = sum of w L(source) / pi, on two
@@ -117,17 +119,8 @@ static void compute_illuminate_leaf_nodes(const gb_implicit_model *model,
                                           const gb_implicit_links *links, const float *source,
                                           float *gathered)
 {
-    uint32_t half = model->element_count / 2;
-    gather_range ranges[2] = {{links, source, gathered, 0, half},
-                              {links, source, gathered, half, model->element_count}};
-    pthread_t thread;
-    int threaded = model->element_count >= 2048 &&
-                   pthread_create(&thread, NULL, gather, &ranges[1]) == 0;
-    gather(&ranges[0]);
-    if (threaded)
-        pthread_join(thread, NULL);
-    else
-        gather(&ranges[1]);
+    gather_job job = {links, source, gathered, model->element_count};
+    gb_run_threads(gather, &job, model->element_count >= 2048 ? 2 : 1);
 }
 
 static void direct_light(const gb_scene *scene, const gb_implicit_model *model,

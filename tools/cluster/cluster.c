@@ -4,13 +4,13 @@
  * (cluster.h). */
 #include "cluster.h"
 
-#include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "gathering.h"
+#include "threads.h"
 #include "octree.h"
 #include "vdl.h"
 
@@ -75,36 +75,31 @@ static void cluster_leaf(chunk_job *job, gb_vdl_workspace *w, uint32_t *kept, ui
     job->gathered[leaf] = n;
 }
 
-static void *chunk_worker(void *user)
+/* One of the threads of run_chunk: leaves taken one at a time. */
+static void chunk_worker(void *context, int thread, int thread_count)
 {
-    chunk_job *job = user;
+    (void)thread;
+    (void)thread_count;
+    chunk_job *job = context;
     uint32_t K = job->gathering->knn;
     gb_vdl_workspace w;
     uint32_t *kept = malloc((K ? K : 1) * sizeof *kept);
     if (!kept || gb_vdl_workspace_create(&w, K, job->options->vdls_max, NULL) != GB_OK) {
         free(kept);
         atomic_store(&job->failed, 1);
-        return NULL;
+        return;
     }
     w.kmeans.restarts = job->options->restarts;
     for (uint32_t j; (j = atomic_fetch_add(&job->next, 1)) < job->count;)
         cluster_leaf(job, &w, kept, j);
     gb_vdl_workspace_free(&w);
     free(kept);
-    return NULL;
 }
 
 static gb_result run_chunk(chunk_job *job, int threads, gb_error *error)
 {
-    pthread_t ids[256];
-    int started = 0;
     atomic_store(&job->next, 0);
-    for (; started < threads - 1; ++started)
-        if (pthread_create(&ids[started], NULL, chunk_worker, job) != 0)
-            break;
-    chunk_worker(job);
-    for (int i = 0; i < started; ++i)
-        pthread_join(ids[i], NULL);
+    gb_run_threads(chunk_worker, job, threads);
     if (atomic_load(&job->failed))
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cluster: out of memory");
     return GB_OK;

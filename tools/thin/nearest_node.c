@@ -14,11 +14,11 @@
  * improves anything. A thread writes and reads only cells of its slab. */
 #include "nearest_node.h"
 
-#include <pthread.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "cell_list.h"
+#include "threads.h"
 
 enum {
     BUCKETS = 2048,             /* > the longest step, a power of two */
@@ -328,11 +328,12 @@ static gb_result propagate(slab *s)
     }
 }
 
-static void *propagate_thread(void *user)
+/* Thread t runs slab t's Dijkstra (gb_run_threads). */
+static void propagate_slab(void *slabs, int t, int thread_count)
 {
-    slab *s = user;
+    (void)thread_count;
+    slab *s = &((slab *)slabs)[t];
     s->result = propagate(s);
-    return NULL;
 }
 
 /* ---- slabs and rounds ---- */
@@ -391,19 +392,10 @@ static gb_result seed_nodes(slab *slabs, int count, const uint32_t *node_cells,
     return GB_OK;
 }
 
-/* Runs every slab's Dijkstra, the first on this thread. */
+/* Runs every slab's Dijkstra, one thread a slab, the first on this one. */
 static gb_result run_slabs(slab *slabs, int count, gb_error *error)
 {
-    pthread_t threads[MAX_SLABS];
-    int started = 0;
-    for (int s = 1; s < count; ++s, ++started)
-        if (pthread_create(&threads[s], NULL, propagate_thread, &slabs[s]))
-            break;
-    for (int s = started + 1; s < count; ++s)
-        propagate_thread(&slabs[s]); /* no thread: run here */
-    propagate_thread(&slabs[0]);
-    for (int s = 1; s <= started; ++s)
-        pthread_join(threads[s], NULL);
+    gb_run_threads(propagate_slab, slabs, count);
     for (int s = 0; s < count; ++s)
         if (slabs[s].result) {
             *error = slabs[s].error;
