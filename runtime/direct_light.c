@@ -68,7 +68,7 @@ static const char fragment_shader[] =
     GB_GLSL_OCTAHEDRAL
     GLSL_BRDF
     GLSL_SHADOW_BIAS
-    "struct Surface { vec3 position, n, ng, wo, Kd, Ks; float Ns; };\n"
+    GB_GLSL_SURFACE
     /* f(wo, wi) E dot(n, wi); nothing arrives through the surface. */
     "vec3 reflected(Surface s, vec3 wi, vec3 E) {\n"
     "    if (dot(s.ng, wi) <= 0.0)\n"
@@ -137,23 +137,6 @@ static const char fragment_shader[] =
     "    float u = atan(d.x, -d.z) / (2.0 * 3.14159265358979) + 0.5;\n"
     "    float v = acos(clamp(d.y, -1.0, 1.0)) / 3.14159265358979;\n"
     "    return textureLod(environment_map, vec2(u, v), 0.0).rgb;\n"
-    "}\n"
-    "Surface surface_at(ivec2 pixel, float depth) {\n"
-    "    vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(textureSize(gbuffer_depth, 0)) - 1.0;\n"
-    "    float z = -near / depth;\n"
-    "    vec3 view_position = vec3(ndc * tan_half_fov * -z, z);\n"
-    "    vec4 normals = texelFetch(gbuffer_normal, pixel, 0);\n"
-    "    mat3 rotation = mat3(view_to_world);\n"
-    "    Surface s;\n"
-    "    s.position = (view_to_world * vec4(view_position, 1.0)).xyz;\n"
-    "    s.n = normalize(rotation * oct_decode(normals.xy));\n"
-    "    s.ng = normalize(rotation * oct_decode(normals.zw));\n"
-    "    s.wo = normalize(rotation * -view_position);\n"
-    "    s.Kd = texelFetch(gbuffer_diffuse, pixel, 0).rgb;\n"
-    "    vec4 glossy = texelFetch(gbuffer_glossy, pixel, 0);\n"
-    "    s.Ks = glossy.rgb;\n"
-    "    s.Ns = glossy.a;\n"
-    "    return s;\n"
     "}\n"
     "void main() {\n"
     "    ivec2 pixel = ivec2(gl_FragCoord.xy);\n"

@@ -435,6 +435,7 @@ static const char splat_fragment_shader[] =
     "flat in int g_level;\n"
     "out vec4 splat;\n"
     GB_GLSL_OCTAHEDRAL
+    GB_GLSL_WORLD_POSITION
     GLSL_FLC_COMMON
     "void main() {\n"
     "    ivec2 f = ivec2(gl_FragCoord.xy);\n"
@@ -445,9 +446,7 @@ static const char splat_fragment_shader[] =
     "    float depth = texelFetch(gbuffer_depth, pixel, 0).r;\n"
     "    if (depth <= 0.0)\n"
     "        discard;\n"
-    "    vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(full_size) - 1.0;\n"
-    "    float z = -near / depth;\n"
-    "    vec3 x = (view_to_world * vec4(ndc * tan_half_fov * -z, z, 1.0)).xyz;\n"
+    "    vec3 x = world_position(pixel, full_size, depth);\n"
     "    vec4 normals = texelFetch(gbuffer_normal, pixel, 0);\n"
     "    mat3 rotation = mat3(view_to_world);\n"
     "    vec3 n = normalize(rotation * oct_decode(normals.xy));\n"

@@ -37,6 +37,7 @@ static const char fragment_shader[] =
     "const float MIN_COS = 0.25;\n"
     "const float MIN_WEIGHT = 1e-6;\n"
     GB_GLSL_OCTAHEDRAL
+    GB_GLSL_WORLD_POSITION
     /* gb_light_octree_find_leaf: depth node fetches from the root. */
     "uint find_leaf(ivec3 cell) {\n"
     "    if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, ivec3(1 << depth))))\n"
@@ -99,9 +100,7 @@ static const char fragment_shader[] =
     "        radiance = vec4(0.0);\n"
     "        return;\n"
     "    }\n"
-    "    vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(full_size) - 1.0;\n"
-    "    float z = -near / d;\n"
-    "    vec3 x = (view_to_world * vec4(ndc * tan_half_fov * -z, z, 1.0)).xyz;\n"
+    "    vec3 x = world_position(pixel, full_size, d);\n"
     "    vec4 normals = texelFetch(gbuffer_normal, pixel, 0);\n"
     "    mat3 rotation = mat3(view_to_world);\n"
     "    vec3 n = normalize(rotation * oct_decode(normals.xy));\n"

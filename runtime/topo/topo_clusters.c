@@ -136,6 +136,7 @@ static const char compute_shader[] =
     "uniform ivec3 grid_size;\n"
     "const uint NO_CLUSTER = 0xffffffffu;\n"
     GB_GLSL_OCTAHEDRAL
+    GB_GLSL_WORLD_POSITION
     "int voxel_cluster(vec3 p) {\n"
     "    ivec3 v = ivec3(floor((p - grid_origin) / voxel_size));\n"
     "    if (any(lessThan(v, ivec3(0))) || any(greaterThanEqual(v, grid_size)))\n"
@@ -171,9 +172,7 @@ static const char compute_shader[] =
     "    float depth = texelFetch(gbuffer_depth, pixel, 0).r;\n"
     "    int c = -1;\n"
     "    if (depth > 0.0) {\n"
-    "        vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(size) - 1.0;\n"
-    "        float z = -near / depth;\n"
-    "        vec3 x = (view_to_world * vec4(ndc * tan_half_fov * -z, z, 1.0)).xyz;\n"
+    "        vec3 x = world_position(pixel, size, depth);\n"
     "        vec3 ng = normalize(mat3(view_to_world) *\n"
     "                            oct_decode(texelFetch(gbuffer_normal, pixel, 0).zw));\n"
     "        float l1 = abs(ng.x) + abs(ng.y) + abs(ng.z);\n"

@@ -55,24 +55,7 @@ static const char fragment_shader[] =
     "const uint NO = 0xffffffffu;\n"
     GB_GLSL_OCTAHEDRAL
     GLSL_BRDF
-    "struct Surface { vec3 position, n, ng, wo, Kd, Ks; float Ns; };\n"
-    "Surface surface_at(ivec2 pixel, float depth) {\n"
-    "    vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(textureSize(gbuffer_depth, 0)) - 1.0;\n"
-    "    float z = -near / depth;\n"
-    "    vec3 view_position = vec3(ndc * tan_half_fov * -z, z);\n"
-    "    vec4 normals = texelFetch(gbuffer_normal, pixel, 0);\n"
-    "    mat3 rotation = mat3(view_to_world);\n"
-    "    Surface s;\n"
-    "    s.position = (view_to_world * vec4(view_position, 1.0)).xyz;\n"
-    "    s.n = normalize(rotation * oct_decode(normals.xy));\n"
-    "    s.ng = normalize(rotation * oct_decode(normals.zw));\n"
-    "    s.wo = normalize(rotation * -view_position);\n"
-    "    s.Kd = texelFetch(gbuffer_diffuse, pixel, 0).rgb;\n"
-    "    vec4 glossy = texelFetch(gbuffer_glossy, pixel, 0);\n"
-    "    s.Ks = glossy.rgb;\n"
-    "    s.Ns = glossy.a;\n"
-    "    return s;\n"
-    "}\n"
+    GB_GLSL_SURFACE
     /* The cone from p through the gate's disk; from within the disk's
      * radius, the segment to x through the disk (topo_assignment.c). */
     "bool in_gate_cone(vec3 p, uint gate, vec3 x) {\n"
