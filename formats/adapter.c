@@ -1,3 +1,4 @@
+/* adapter.c — finding, loading and entering an adapter (adapter.h). */
 #include "adapter.h"
 
 #include <dlfcn.h>
@@ -6,7 +7,9 @@
 #include <string.h>
 #include <unistd.h>
 
-gb_result gb_adapter_path(const char *name, char *path, size_t size, gb_error *error)
+/* The path of adapter NAME: the program's folder, then ../lib/gibake/
+ * gibake-NAME.so, into path (size bytes). */
+static gb_result adapter_path(const char *name, char *path, size_t size, gb_error *error)
 {
     char program[PATH_MAX];
     ssize_t length = readlink("/proc/self/exe", program, sizeof program - 1);
@@ -25,7 +28,7 @@ gb_result gb_adapter_path(const char *name, char *path, size_t size, gb_error *e
 static gb_adapter_entry *load_entry(const gb_adapter *adapter, gb_error *error)
 {
     char path[PATH_MAX + 64];
-    if (gb_adapter_path(adapter->name, path, sizeof path, error) != GB_OK)
+    if (adapter_path(adapter->name, path, sizeof path, error) != GB_OK)
         return NULL;
     void *library = dlopen(path, RTLD_NOW | RTLD_LOCAL);
     gb_adapter_entry *entry = library ? (gb_adapter_entry *)dlsym(library, adapter->entry_name)

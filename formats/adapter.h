@@ -36,11 +36,8 @@ typedef struct gb_adapter {
     const void *functions;      /* the adapter's table, once loaded */
 } gb_adapter;
 
-/* The path of adapter NAME: the program's folder, then ../lib/gibake/
- * gibake-NAME.so, into path (size bytes). */
-gb_result gb_adapter_path(const char *name, char *path, size_t size, gb_error *error);
-
-/* The adapter's table of functions: loaded and entered by the first call
+/* The adapter's table of functions: PROGRAM_FOLDER/../lib/gibake/
+ * gibake-NAME.so loaded and entered by the first call
  * (later calls find it), or NULL with error set ("cannot load the
  * openimageio adapter PATH: why"). Thread-safe; never unloaded. */
 const void *gb_adapter_functions(gb_adapter *adapter, gb_error *error);
