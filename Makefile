@@ -50,6 +50,8 @@ LDLIBS += -lOpenMeshCore -lembree3 -lflann -lepoxy -lglfw -lEGL -lz -lm
 # rule below.
 ADAPTER_SOURCES = formats/image_openimageio.cpp formats/voxel_grid_openvdb.cpp
 ADAPTERS = $(BUILD)/lib/gibake/gibake-openimageio.so $(BUILD)/lib/gibake/gibake-openvdb.so
+OPENIMAGEIO_LIBS = -lOpenImageIO -lOpenImageIO_Util
+OPENVDB_LIBS = -lopenvdb -ltbb
 
 TOOLS := $(patsubst tools/%/main.c,%,$(wildcard tools/*/main.c))
 PROGRAMS := $(TOOLS) $(if $(wildcard runtime/main.c),gbview)
@@ -66,7 +68,7 @@ BIN := $(BUILD)/bin
 .DELETE_ON_ERROR:
 .SECONDARY:
 
-all: $(PROGRAMS:%=$(BIN)/%)
+all: $(PROGRAMS:%=$(BIN)/%) $(ADAPTERS)
 
 deps:
 	@missing=$$(for p in $(DEB_PACKAGES); do \
@@ -84,7 +86,8 @@ $(BUILD)/obj/%.o: %.cpp
 	@mkdir -p $(@D)
 	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c $< -o $@
 
-# Every program links the library, so building one builds the adapters.
+# Every program links the library, so building one builds the adapters; all
+# and unit-tests also name them, so that a deleted one is made again.
 $(LIBRARY): $(LIBRARY_OBJECTS) | $(ADAPTERS)
 	@mkdir -p $(@D)
 	rm -f $@ && ar rcs $@ $(LIBRARY_OBJECTS)
@@ -95,11 +98,11 @@ $(BUILD)/pic/%.o: %.cpp
 
 $(BUILD)/lib/gibake/gibake-openimageio.so: $(BUILD)/pic/formats/image_openimageio.o
 	@mkdir -p $(@D)
-	$(CXX) -shared $(LDFLAGS) $^ -lOpenImageIO -lOpenImageIO_Util -o $@
+	$(CXX) -shared $(LDFLAGS) $^ $(OPENIMAGEIO_LIBS) -o $@
 
 $(BUILD)/lib/gibake/gibake-openvdb.so: $(BUILD)/pic/formats/voxel_grid_openvdb.o
 	@mkdir -p $(@D)
-	$(CXX) -shared $(LDFLAGS) $^ -lopenvdb -ltbb -o $@
+	$(CXX) -shared $(LDFLAGS) $^ $(OPENVDB_LIBS) -o $@
 
 $(BIN)/gbview: $(BUILD)/obj/runtime/main.o $(LIBRARY)
 	@mkdir -p $(@D)
@@ -113,7 +116,7 @@ $(BUILD)/tests/%: $(BUILD)/obj/tests/unit/%.o $(LIBRARY)
 	@mkdir -p $(@D)
 	$(CXX) $(LDFLAGS) $^ $(LDLIBS) -o $@
 
-unit-tests: $(UNIT_TESTS)
+unit-tests: $(UNIT_TESTS) $(ADAPTERS)
 
 # The whole suite: the unit tests and the CLI suite (tests/cli/*.t) on the
 # optimised build; then all of it again on a clang build with AddressSanitizer,
@@ -265,8 +268,7 @@ $(FUZZ_TARGETS:%=fuzz-run/%): fuzz-run/%: fuzz-build
 # The fuzz targets link the adapters in (formats/image.c says why).
 $(BUILD)/fuzz/%: $(BUILD)/obj/tests/fuzz/%.o $(LIBRARY) $(ADAPTER_SOURCES:%.cpp=$(BUILD)/pic/%.o)
 	@mkdir -p $(@D)
-	$(CXX) $(LDFLAGS) -fsanitize=fuzzer $^ $(LDLIBS) -lOpenImageIO -lOpenImageIO_Util \
-	  -lopenvdb -ltbb -o $@
+	$(CXX) $(LDFLAGS) -fsanitize=fuzzer $^ $(LDLIBS) $(OPENIMAGEIO_LIBS) $(OPENVDB_LIBS) -o $@
 
 # gibake-TOOL, the gibake dispatcher, the adapters, man pages (tools/install.sh).
 install: all
