@@ -897,14 +897,12 @@ gb_result write_voxel_grids(const char *path, const gb_voxel_grid *grid, bool re
     }
 }
 
-gb_result write(const char *path, const gb_voxel_grid *grid,
-                                         gb_error *error)
+gb_result write(const char *path, const gb_voxel_grid *grid, gb_error *error)
 {
     return write_voxel_grids(path, grid, false, error);
 }
 
-gb_result write_and_free(const char *path, gb_voxel_grid *grid,
-                                                  gb_error *error)
+gb_result write_and_free(const char *path, gb_voxel_grid *grid, gb_error *error)
 {
     gb_result result = write_voxel_grids(path, grid, true, error);
     host->free(grid);
@@ -929,9 +927,8 @@ gb_result read(const char *path, gb_voxel_grid *grid, gb_error *error)
     }
 }
 
-gb_result write_int32(const char *path, const gb_voxel_grid *frame,
-                                               const char *name, const int32_t *values,
-                                               gb_error *error)
+gb_result write_int32(const char *path, const gb_voxel_grid *frame, const char *name,
+                      const int32_t *values, gb_error *error)
 {
     if (!path || !frame || !name || !*name || !values || !frame_is_valid(frame))
         return host->fail(error, GB_ERROR_ARGUMENT, "%s: int32 grid to write is not valid",
@@ -952,9 +949,8 @@ gb_result write_int32(const char *path, const gb_voxel_grid *frame,
     }
 }
 
-gb_result read_int32(const char *path, const char *name,
-                                              gb_voxel_grid *frame, int32_t **values,
-                                              gb_error *error)
+gb_result read_int32(const char *path, const char *name, gb_voxel_grid *frame,
+                     int32_t **values, gb_error *error)
 {
     if (!path || !name || !frame || !values)
         return host->fail(error, GB_ERROR_ARGUMENT, "int32 grid read: missing argument");
