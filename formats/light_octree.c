@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "container_kind.h"
+
 #if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "light octrees are read in place: gibake needs a little-endian host"
 #endif
@@ -268,49 +270,35 @@ static gb_result view_sections(const gb_container *container, const char *path,
     return result;
 }
 
-/* Takes the container: on success the octree owns it, on failure it is closed. */
-static gb_result adopt_container(gb_container *container, const char *path,
-                                 gb_light_octree *octree, gb_error *error)
+/* Fills the octree from a checked LOCT container, which it then keeps: its
+ * arrays are views into it (container_kind.h). */
+static gb_result adopt_container(const gb_container *container, const char *path, void *object,
+                                 gb_error *error)
 {
-    gb_result result = gb_container_check_version(container, path, GB_LIGHT_OCTREE_VERSION,
-                                                  error);
-    if (result == GB_OK && container->section_count != 4)
-        result = gb_fail(error, GB_ERROR_FORMAT, "%s: %u sections, expected 4", path,
-                         (unsigned)container->section_count);
-    if (result == GB_OK)
-        result = view_sections(container, path, octree, error);
+    gb_light_octree *octree = object;
+    if (container->section_count != 4)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: %u sections, expected 4", path,
+                       (unsigned)container->section_count);
+    gb_result result = view_sections(container, path, octree, error);
     if (result == GB_OK)
         result = gb_light_octree_check(octree, path, error);
-    if (result != GB_OK) {
-        gb_container_close(container);
-        *octree = (gb_light_octree){0};
-        return result;
-    }
-    octree->container = *container;
-    return GB_OK;
+    if (result == GB_OK)
+        octree->container = *container;
+    return result;
 }
+
+static const gb_container_kind light_octree_kind = {
+    "LOCT", GB_LIGHT_OCTREE_VERSION, sizeof(gb_light_octree), adopt_container, 1};
 
 gb_result gb_light_octree_read(const char *path, gb_light_octree *octree, gb_error *error)
 {
-    *octree = (gb_light_octree){0};
-    gb_container container;
-    gb_result result = gb_container_read(path, "LOCT", &container, error);
-    if (result != GB_OK)
-        return result;
-    return adopt_container(&container, path, octree, error);
+    return gb_container_kind_read(path, &light_octree_kind, octree, error);
 }
 
 gb_result gb_light_octree_parse(const void *bytes, size_t size, const char *path,
                                 gb_light_octree *octree, gb_error *error)
 {
-    *octree = (gb_light_octree){0};
-    if ((uintptr_t)bytes % ALIGNMENT)
-        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: buffer is not 16-byte aligned", path);
-    gb_container container;
-    gb_result result = gb_container_parse(bytes, size, path, "LOCT", &container, error);
-    if (result != GB_OK)
-        return result;
-    return adopt_container(&container, path, octree, error);
+    return gb_container_kind_parse(bytes, size, path, &light_octree_kind, octree, error);
 }
 
 void gb_light_octree_free(gb_light_octree *octree)

@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "container_kind.h"
+
 #if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
 #error "photon maps are read in place: gibake needs a little-endian host"
 #endif
@@ -368,48 +370,35 @@ static gb_result view_arrays(const gb_container *container, const char *path,
     return result;
 }
 
-/* Takes the container: on success the map owns it, on failure it is closed. */
-static gb_result adopt_container(gb_container *container, const char *path,
-                                 gb_photon_map *map, gb_error *error)
+/* Fills the map from a checked PHOT container, which it then keeps: its
+ * arrays are views into it (container_kind.h). */
+static gb_result adopt_container(const gb_container *container, const char *path, void *object,
+                                 gb_error *error)
 {
-    gb_result result = gb_container_check_version(container, path, GB_PHOTON_MAP_VERSION, error);
-    if (result == GB_OK && container->section_count != 5)
-        result = gb_fail(error, GB_ERROR_FORMAT, "%s: %u sections, expected 5", path,
-                         (unsigned)container->section_count);
-    if (result == GB_OK)
-        result = decode_header(container, path, map, error);
+    gb_photon_map *map = object;
+    if (container->section_count != 5)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: %u sections, expected 5", path,
+                       (unsigned)container->section_count);
+    gb_result result = decode_header(container, path, map, error);
     if (result == GB_OK)
         result = view_arrays(container, path, map, error);
     if (result == GB_OK)
         result = gb_photon_map_check(map, path, error);
-    if (result != GB_OK) {
-        gb_container_close(container);
-        *map = (gb_photon_map){0};
-        return result;
-    }
-    map->container = *container;
-    return GB_OK;
+    if (result == GB_OK)
+        map->container = *container;
+    return result;
 }
+
+static const gb_container_kind photon_map_kind = {
+    "PHOT", GB_PHOTON_MAP_VERSION, sizeof(gb_photon_map), adopt_container, 1};
 
 gb_result gb_photon_map_read(const char *path, gb_photon_map *map, gb_error *error)
 {
-    *map = (gb_photon_map){0};
-    gb_container container;
-    gb_result result = gb_container_read(path, "PHOT", &container, error);
-    if (result != GB_OK)
-        return result;
-    return adopt_container(&container, path, map, error);
+    return gb_container_kind_read(path, &photon_map_kind, map, error);
 }
 
 gb_result gb_photon_map_parse(const void *bytes, size_t size, const char *path,
                               gb_photon_map *map, gb_error *error)
 {
-    *map = (gb_photon_map){0};
-    if ((uintptr_t)bytes % ALIGNMENT)
-        return gb_fail(error, GB_ERROR_ARGUMENT, "%s: buffer is not 16-byte aligned", path);
-    gb_container container;
-    gb_result result = gb_container_parse(bytes, size, path, "PHOT", &container, error);
-    if (result != GB_OK)
-        return result;
-    return adopt_container(&container, path, map, error);
+    return gb_container_kind_parse(bytes, size, path, &photon_map_kind, map, error);
 }

@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "container.h"
+#include "container_kind.h"
 
 enum {
     HEADER_SIZE = 88,
@@ -412,14 +413,14 @@ static gb_result decode_arrays(const gb_container *c, const char *path, gb_segme
     return GB_OK;
 }
 
-static gb_result decode_container(const gb_container *c, const char *path, gb_segmentation *s,
+/* Fills the segmentation from a checked SEGM container (container_kind.h). */
+static gb_result decode_container(const gb_container *c, const char *path, void *object,
                                   gb_error *error)
 {
-    gb_result result = gb_container_check_version(c, path, GB_SEGMENTATION_VERSION, error);
-    if (result)
-        return result;
+    gb_segmentation *s = object;
     const gb_section *header;
-    result = gb_container_find_array(c, "header", 1, HEADER_SIZE, 1, path, &header, error);
+    gb_result result =
+        gb_container_find_array(c, "header", 1, HEADER_SIZE, 1, path, &header, error);
     if (result)
         return result;
     if (gb_get_u32((const uint8_t *)header->data + 84) != 0)
@@ -430,36 +431,23 @@ static gb_result decode_container(const gb_container *c, const char *path, gb_se
         result = decode_arrays(c, path, s, error);
     if (!result)
         result = gb_segmentation_validate(s, path, error);
+    if (result)
+        gb_segmentation_free(s);
     return result;
 }
+
+static const gb_container_kind segmentation_kind = {
+    "SEGM", GB_SEGMENTATION_VERSION, sizeof(gb_segmentation), decode_container, 0};
 
 gb_result gb_segmentation_parse(const void *bytes, size_t size, const char *path,
                                 gb_segmentation *segmentation, gb_error *error)
 {
-    memset(segmentation, 0, sizeof *segmentation);
-    gb_container container;
-    gb_result result = gb_container_parse(bytes, size, path, "SEGM", &container, error);
-    if (result)
-        return result;
-    result = decode_container(&container, path, segmentation, error);
-    gb_container_close(&container);
-    if (result)
-        gb_segmentation_free(segmentation);
-    return result;
+    return gb_container_kind_parse(bytes, size, path, &segmentation_kind, segmentation, error);
 }
 
 gb_result gb_segmentation_read(const char *path, gb_segmentation *segmentation, gb_error *error)
 {
-    memset(segmentation, 0, sizeof *segmentation);
-    gb_container container;
-    gb_result result = gb_container_read(path, "SEGM", &container, error);
-    if (result)
-        return result;
-    result = decode_container(&container, path, segmentation, error);
-    gb_container_close(&container);
-    if (result)
-        gb_segmentation_free(segmentation);
-    return result;
+    return gb_container_kind_read(path, &segmentation_kind, segmentation, error);
 }
 
 void gb_segmentation_free(gb_segmentation *segmentation)

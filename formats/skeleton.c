@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "container.h"
+#include "container_kind.h"
 #include "little_endian.h"
 
 enum {
@@ -188,13 +189,14 @@ static gb_result decode_arrays(const gb_section *nodes, const gb_section *edges,
     return GB_OK;
 }
 
-static gb_result decode_container(const gb_container *c, const char *path, gb_skeleton *s,
+/* Fills the skeleton from a checked SKEL container (container_kind.h). */
+static gb_result decode_container(const gb_container *c, const char *path, void *object,
                                   gb_error *error)
 {
+    gb_skeleton *s = object;
     const gb_section *header, *nodes, *edges;
-    gb_result result = gb_container_check_version(c, path, GB_SKELETON_VERSION, error);
-    if (!result)
-        result = gb_container_find_array(c, "header", 1, HEADER_SIZE, 1, path, &header, error);
+    gb_result result =
+        gb_container_find_array(c, "header", 1, HEADER_SIZE, 1, path, &header, error);
     if (result)
         return result;
     decode_header(header->data, s);
@@ -207,36 +209,23 @@ static gb_result decode_container(const gb_container *c, const char *path, gb_sk
         result = decode_arrays(nodes, edges, path, s, error);
     if (!result)
         result = gb_skeleton_validate(s, path, error);
+    if (result)
+        gb_skeleton_free(s);
     return result;
 }
+
+static const gb_container_kind skeleton_kind = {
+    "SKEL", GB_SKELETON_VERSION, sizeof(gb_skeleton), decode_container, 0};
 
 gb_result gb_skeleton_parse(const void *bytes, size_t size, const char *path,
                             gb_skeleton *skeleton, gb_error *error)
 {
-    memset(skeleton, 0, sizeof *skeleton);
-    gb_container container;
-    gb_result result = gb_container_parse(bytes, size, path, "SKEL", &container, error);
-    if (result)
-        return result;
-    result = decode_container(&container, path, skeleton, error);
-    gb_container_close(&container);
-    if (result)
-        gb_skeleton_free(skeleton);
-    return result;
+    return gb_container_kind_parse(bytes, size, path, &skeleton_kind, skeleton, error);
 }
 
 gb_result gb_skeleton_read(const char *path, gb_skeleton *skeleton, gb_error *error)
 {
-    memset(skeleton, 0, sizeof *skeleton);
-    gb_container container;
-    gb_result result = gb_container_read(path, "SKEL", &container, error);
-    if (result)
-        return result;
-    result = decode_container(&container, path, skeleton, error);
-    gb_container_close(&container);
-    if (result)
-        gb_skeleton_free(skeleton);
-    return result;
+    return gb_container_kind_read(path, &skeleton_kind, skeleton, error);
 }
 
 void gb_skeleton_free(gb_skeleton *skeleton)

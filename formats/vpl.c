@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "container.h"
+#include "container_kind.h"
 
 enum {
     HEADER_SIZE = 16,           /* count u32, reserved u32, scene hash u64 */
@@ -130,12 +131,12 @@ static gb_result read_vpls(const gb_container *container, const char *path, gb_v
     return GB_OK;
 }
 
-static gb_result read_container(const gb_container *container, const char *path,
-                                gb_vpl_set *set, gb_error *error)
+/* Fills the set from a checked VPLS container (container_kind.h). */
+static gb_result read_container(const gb_container *container, const char *path, void *object,
+                                gb_error *error)
 {
-    gb_result result = gb_container_check_version(container, path, GB_VPL_VERSION, error);
-    if (result == GB_OK)
-        result = read_header(container, path, set, error);
+    gb_vpl_set *set = object;
+    gb_result result = read_header(container, path, set, error);
     if (result == GB_OK)
         result = read_vpls(container, path, set, error);
     if (result == GB_OK)
@@ -145,29 +146,18 @@ static gb_result read_container(const gb_container *container, const char *path,
     return result;
 }
 
+static const gb_container_kind vpl_kind = {
+    "VPLS", GB_VPL_VERSION, sizeof(gb_vpl_set), read_container, 0};
+
 gb_result gb_vpl_read(const char *path, gb_vpl_set *set, gb_error *error)
 {
-    *set = (gb_vpl_set){0};
-    gb_container container;
-    gb_result result = gb_container_read(path, "VPLS", &container, error);
-    if (result != GB_OK)
-        return result;
-    result = read_container(&container, path, set, error);
-    gb_container_close(&container);
-    return result;
+    return gb_container_kind_read(path, &vpl_kind, set, error);
 }
 
 gb_result gb_vpl_parse(const void *bytes, size_t size, const char *path, gb_vpl_set *set,
                        gb_error *error)
 {
-    *set = (gb_vpl_set){0};
-    gb_container container;
-    gb_result result = gb_container_parse(bytes, size, path, "VPLS", &container, error);
-    if (result != GB_OK)
-        return result;
-    result = read_container(&container, path, set, error);
-    gb_container_close(&container);
-    return result;
+    return gb_container_kind_parse(bytes, size, path, &vpl_kind, set, error);
 }
 
 gb_result gb_vpl_check_scene(const gb_vpl_set *set, uint64_t scene_hash, const char *path,
