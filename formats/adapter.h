@@ -36,6 +36,12 @@ typedef struct gb_adapter {
     const void *functions;      /* the adapter's table, once loaded */
 } gb_adapter;
 
+/* A front's adapter: NAME ("openvdb"), HOST (its table of gibake
+ * functions), ENTRY the entry function's name, declared weak by the front. */
+#define GB_ADAPTER_INITIALIZER(NAME, HOST, ENTRY)                                      \
+    {.name = NAME, .entry_name = #ENTRY, .host = HOST, .linked_in = ENTRY,              \
+     .lock = PTHREAD_MUTEX_INITIALIZER}
+
 /* The adapter's table of functions: PROGRAM_FOLDER/../lib/gibake/
  * gibake-NAME.so loaded and entered by the first call
  * (later calls find it), or NULL with error set ("cannot load the

@@ -42,22 +42,14 @@ static const gb_image_host host = {
     .check_size = gb_image_check_size,
     .allocate = gb_image_allocate,
     .free = gb_image_free,
-    .output_open = gb_output_file_open,
-    .output_name = gb_output_file_name,
-    .output_write = gb_output_file_write,
-    .output_commit = gb_output_file_commit,
-    .output_abort = gb_output_file_abort,
-    .output_check = gb_output_file_check,
+    .output = &gb_output_file_table,
 };
 
 /* Defined only in programs that link the adapter in (adapter.h). */
 extern gb_adapter_entry gb_openimageio_adapter __attribute__((weak));
 
-static gb_adapter openimageio = {.name = "openimageio",
-                                 .entry_name = "gb_openimageio_adapter",
-                                 .host = &host,
-                                 .linked_in = gb_openimageio_adapter,
-                                 .lock = PTHREAD_MUTEX_INITIALIZER};
+static gb_adapter openimageio =
+    GB_ADAPTER_INITIALIZER("openimageio", &host, gb_openimageio_adapter);
 
 static const gb_image_adapter *image_adapter(gb_error *error)
 {

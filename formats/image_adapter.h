@@ -30,14 +30,7 @@ typedef struct gb_image_host {
     gb_result (*allocate)(gb_image *image, int width, int height, int channels,
                           gb_error *error);
     void (*free)(gb_image *image);
-    gb_result (*output_open)(const char *path, gb_output_file_mode mode, gb_output_file **file,
-                             gb_error *error);
-    const char *(*output_name)(const gb_output_file *file);
-    gb_result (*output_write)(gb_output_file *file, const void *data, size_t size,
-                              gb_error *error);
-    gb_result (*output_commit)(gb_output_file *file, gb_error *error);
-    void (*output_abort)(gb_output_file *file);
-    gb_result (*output_check)(const char *path, gb_error *error);
+    const gb_output_file_functions *output; /* the one output writer */
 } gb_image_host;
 
 /* What gb_image_read, gb_image_write and gb_image_check_output do. */

@@ -233,24 +233,24 @@ gb_result write_image(const char *path, const gb_image *image, gb_error *error)
     OIIO::Filesystem::IOVecOutput memory;
     bool in_memory = output->supports("ioproxy") && output->set_ioproxy(&memory);
     gb_output_file *out = nullptr;
-    result = host->output_open(path, in_memory ? GB_OUTPUT_FILE_STREAM : GB_OUTPUT_FILE_BY_NAME,
+    result = host->output->open(path, in_memory ? GB_OUTPUT_FILE_STREAM : GB_OUTPUT_FILE_BY_NAME,
                                  &out, error);
     if (result != GB_OK)
         return result;
     try {
-        result = encode(output.get(), in_memory ? path : host->output_name(out), path, image,
+        result = encode(output.get(), in_memory ? path : host->output->name(out), path, image,
                         error);
         if (result == GB_OK && in_memory)
-            result = host->output_write(out, memory.buffer().data(), memory.buffer().size(),
+            result = host->output->write(out, memory.buffer().data(), memory.buffer().size(),
                                           error);
     } catch (const std::exception &e) {
         result = host->fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
     }
     if (result != GB_OK) {
-        host->output_abort(out);
+        host->output->abort(out);
         return result;
     }
-    return host->output_commit(out, error);
+    return host->output->commit(out, error);
 }
 
 gb_result read(const char *path, gb_image *image, gb_error *error)
@@ -277,7 +277,7 @@ gb_result check_output(const char *path, gb_error *error)
     try {
         std::unique_ptr<OIIO::ImageOutput> output;
         gb_result result = create_output(path, &output, error);
-        return result == GB_OK ? host->output_check(path, error) : result;
+        return result == GB_OK ? host->output->check(path, error) : result;
     } catch (const std::exception &e) {
         return host->fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
     }

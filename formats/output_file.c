@@ -614,3 +614,12 @@ gb_result gb_output_file_check(const char *path, gb_error *error)
     free(final);
     return result;
 }
+
+const gb_output_file_functions gb_output_file_table = {
+    .check = gb_output_file_check,
+    .open = gb_output_file_open,
+    .name = gb_output_file_name,
+    .write = gb_output_file_write,
+    .commit = gb_output_file_commit,
+    .abort = gb_output_file_abort,
+};

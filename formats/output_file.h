@@ -90,4 +90,18 @@ gb_result gb_output_file_commit(gb_output_file *file, gb_error *error);
  * NULL does nothing. */
 void gb_output_file_abort(gb_output_file *file);
 
+/* The functions above as a table, for the adapters (adapter.h), which link
+ * no gibake code and reach the one writer through their host. */
+typedef struct gb_output_file_functions {
+    gb_result (*check)(const char *path, gb_error *error);
+    gb_result (*open)(const char *path, gb_output_file_mode mode, gb_output_file **file,
+                      gb_error *error);
+    const char *(*name)(const gb_output_file *file);
+    gb_result (*write)(gb_output_file *file, const void *data, size_t size, gb_error *error);
+    gb_result (*commit)(gb_output_file *file, gb_error *error);
+    void (*abort)(gb_output_file *file);
+} gb_output_file_functions;
+
+extern const gb_output_file_functions gb_output_file_table;
+
 #endif

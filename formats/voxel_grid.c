@@ -66,20 +66,13 @@ static const gb_voxel_grid_host host = {
     .file_check = gb_voxel_file_check,
     .allocate = gb_voxel_grid_allocate,
     .free = gb_voxel_grid_free,
-    .output_open = gb_output_file_open,
-    .output_name = gb_output_file_name,
-    .output_commit = gb_output_file_commit,
-    .output_abort = gb_output_file_abort,
+    .output = &gb_output_file_table,
 };
 
 /* Defined only in programs that link the adapter in (adapter.h). */
 extern gb_adapter_entry gb_openvdb_adapter __attribute__((weak));
 
-static gb_adapter openvdb = {.name = "openvdb",
-                             .entry_name = "gb_openvdb_adapter",
-                             .host = &host,
-                             .linked_in = gb_openvdb_adapter,
-                             .lock = PTHREAD_MUTEX_INITIALIZER};
+static gb_adapter openvdb = GB_ADAPTER_INITIALIZER("openvdb", &host, gb_openvdb_adapter);
 
 static const gb_voxel_grid_adapter *voxel_adapter(gb_error *error)
 {

@@ -27,11 +27,7 @@ typedef struct gb_voxel_grid_host {
     gb_result (*file_check)(const void *bytes, size_t size, const char *path, gb_error *error);
     gb_result (*allocate)(gb_voxel_grid *grid, const int32_t size[3], gb_error *error);
     void (*free)(gb_voxel_grid *grid);
-    gb_result (*output_open)(const char *path, gb_output_file_mode mode, gb_output_file **file,
-                             gb_error *error);
-    const char *(*output_name)(const gb_output_file *file);
-    gb_result (*output_commit)(gb_output_file *file, gb_error *error);
-    void (*output_abort)(gb_output_file *file);
+    const gb_output_file_functions *output; /* the one output writer */
 } gb_voxel_grid_host;
 
 /* What the functions of voxel_grid.h of the same names do. */

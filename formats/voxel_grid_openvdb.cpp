@@ -631,12 +631,12 @@ gb_result write_archive(const char *path, const char *name, const openvdb::GridP
 // Removes the output's temporary unless committed, exceptions included.
 struct OutputGuard {
     gb_output_file *file = nullptr;
-    ~OutputGuard() { host->output_abort(file); }
+    ~OutputGuard() { host->output->abort(file); }
     gb_result commit(gb_error *error)
     {
         gb_output_file *committed = file;
         file = nullptr;
-        return host->output_commit(committed, error);
+        return host->output->commit(committed, error);
     }
 };
 
@@ -648,10 +648,10 @@ template <typename MakeGrids>
 gb_result write_grids(const char *path, MakeGrids make_grids, gb_error *error)
 {
     OutputGuard out;
-    gb_result result = host->output_open(path, GB_OUTPUT_FILE_BY_NAME, &out.file, error);
+    gb_result result = host->output->open(path, GB_OUTPUT_FILE_BY_NAME, &out.file, error);
     if (result != GB_OK)
         return result;
-    const char *name = host->output_name(out.file);
+    const char *name = host->output->name(out.file);
     {
         openvdb::GridPtrVec grids = make_grids();
         result = write_archive(path, name, grids, error);
