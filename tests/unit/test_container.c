@@ -4,6 +4,7 @@
  * leave nothing at the final path, an existing file survives).
  */
 #include "container.h"
+#include "scratch.h"
 #include "tap.h"
 
 #include <dirent.h>
@@ -16,33 +17,12 @@
 #include <unistd.h>
 #include <zlib.h>
 
-static char folder[256];
-
 /* ---- helpers ---- */
 
-static void make_folder(void)
-{
-    const char *tmp = getenv("TMPDIR");
-    snprintf(folder, sizeof folder, "%s/gibake-test-container-XXXXXX", tmp ? tmp : "/tmp");
-    if (!mkdtemp(folder)) {
-        perror("mkdtemp");
-        exit(1);
-    }
-}
-
-static char *in_folder(const char *name)
-{
-    static char paths[4][512];
-    static int next;
-    char *path = paths[next++ % 4];
-    snprintf(path, sizeof paths[0], "%s/%s", folder, name);
-    return path;
-}
-
-/* Number of entries in the test folder; *first gets the first name seen. */
+/* Number of entries in the scratch folder; *first gets the first name seen. */
 static int count_files(char *first, size_t first_size)
 {
-    DIR *dir = opendir(folder);
+    DIR *dir = opendir(scratch_folder);
     int count = 0;
     struct dirent *entry;
     while (dir && (entry = readdir(dir)))
@@ -55,41 +35,10 @@ static int count_files(char *first, size_t first_size)
     return count;
 }
 
-static void empty_folder(void)
-{
-    char name[256];
-    while (count_files(name, sizeof name) > 0)
-        unlink(in_folder(name));
-}
-
 static int exists(const char *path)
 {
     struct stat status;
     return stat(path, &status) == 0;
-}
-
-static unsigned char *read_bytes(const char *path, size_t *size)
-{
-    FILE *file = fopen(path, "rb");
-    if (!file)
-        return NULL;
-    fseek(file, 0, SEEK_END);
-    *size = (size_t)ftell(file);
-    fseek(file, 0, SEEK_SET);
-    unsigned char *bytes = malloc(*size ? *size : 1);
-    if (fread(bytes, 1, *size, file) != *size) {
-        free(bytes);
-        bytes = NULL;
-    }
-    fclose(file);
-    return bytes;
-}
-
-static void write_bytes(const char *path, const void *bytes, size_t size)
-{
-    FILE *file = fopen(path, "wb");
-    fwrite(bytes, 1, size, file);
-    fclose(file);
 }
 
 static int starts_with(const char *text, const char *prefix)
@@ -175,10 +124,10 @@ static unsigned char *small_file(size_t *size)
     gb_container_add(writer, "a", "hello", 5, &error);
     gb_container_add(writer, "bb", NULL, 0, &error);
     gb_container_add(writer, "ccc", "seventeen bytes!!", 17, &error);
-    const char *path = in_folder("small.test");
+    const char *path = scratch_path("small.test");
     gb_container_commit(writer, path, &error);
     gb_container_writer_destroy(writer);
-    unsigned char *bytes = read_bytes(path, size);
+    unsigned char *bytes = scratch_read(path, size);
     unlink(path);
     return bytes;
 }
@@ -213,7 +162,7 @@ static void test_round_trip(void)
 {
     gb_container_writer *writer = sample_writer();
     gb_error error = {""};
-    const char *path = in_folder("sample.test");
+    const char *path = scratch_path("sample.test");
     CHECK_EQ_INT(gb_container_commit(writer, path, &error), GB_OK, "commit succeeds");
     gb_container_writer_destroy(writer);
     CHECK_EQ_INT(count_files(NULL, 0), 1, "commit leaves only the final file");
@@ -224,7 +173,7 @@ static void test_round_trip(void)
     CHECK_EQ_INT(status.st_mode & 0777, 0644, "file mode is 0666 less the umask 022");
 
     size_t size;
-    unsigned char *bytes = read_bytes(path, &size);
+    unsigned char *bytes = scratch_read(path, &size);
     static const unsigned char magic[8] = {0xAB, 'G', 'B', 'K', 0x0D, 0x0A, 0x1A, 0x0A};
     CHECK(memcmp(bytes, magic, 8) == 0, "bytes 0..7 are the magic");
     CHECK(memcmp(bytes + 8, "TEST", 4) == 0, "bytes 8..11 are the kind");
@@ -270,7 +219,7 @@ static void test_empty_container(void)
 {
     gb_container_writer *writer = gb_container_writer_create("NONE", 1);
     gb_error error;
-    const char *path = in_folder("none.test");
+    const char *path = scratch_path("none.test");
     CHECK_EQ_INT(gb_container_commit(writer, path, &error), GB_OK,
                  "commit of a container without sections");
     gb_container_writer_destroy(writer);
@@ -287,12 +236,12 @@ static void test_deterministic(void)
 {
     gb_container_writer *writer = sample_writer();
     gb_error error;
-    const char *first = in_folder("first.test"), *second = in_folder("second.test");
+    const char *first = scratch_path("first.test"), *second = scratch_path("second.test");
     gb_container_commit(writer, first, &error);
     gb_container_commit(writer, second, &error);
     gb_container_writer_destroy(writer);
     size_t first_size = 0, second_size = 1;
-    unsigned char *a = read_bytes(first, &first_size), *b = read_bytes(second, &second_size);
+    unsigned char *a = scratch_read(first, &first_size), *b = scratch_read(second, &second_size);
     CHECK(a && b && first_size == second_size && memcmp(a, b, first_size) == 0,
           "two commits of the same sections are byte-identical");
     free(a);
@@ -492,22 +441,22 @@ static void test_read_errors(void)
 {
     gb_container container;
     gb_error error;
-    const char *missing = in_folder("missing.test");
+    const char *missing = scratch_path("missing.test");
     CHECK_EQ_INT(gb_container_read(missing, NULL, &container, &error), GB_ERROR_IO,
                  "reading a missing file is an IO error");
     CHECK(starts_with(error.message, missing) && strstr(error.message, "No such file"),
           "missing file message names the path");
-    const char *empty = in_folder("empty.test");
-    write_bytes(empty, "", 0);
+    const char *empty = scratch_path("empty.test");
+    scratch_write(empty, "", 0);
     CHECK_EQ_INT(gb_container_read(empty, NULL, &container, &error), GB_ERROR_FORMAT,
                  "reading an empty file is a format error");
-    const char *text = in_folder("text.test");
-    write_bytes(text, "hello", 5);
+    const char *text = scratch_path("text.test");
+    scratch_write(text, "hello", 5);
     CHECK_EQ_INT(gb_container_read(text, NULL, &container, &error), GB_ERROR_FORMAT,
                  "reading a 5-byte text file is a format error");
     CHECK(strstr(error.message, "not a gibake file (bad magic)") != NULL,
           "text file message says bad magic");
-    CHECK_EQ_INT(gb_container_read(folder, NULL, &container, &error), GB_ERROR_IO,
+    CHECK_EQ_INT(gb_container_read(scratch_folder, NULL, &container, &error), GB_ERROR_IO,
                  "reading a folder is an IO error");
     CHECK(container.sections == NULL && container.mapping == NULL,
           "a failed read leaves the container zeroed");
@@ -535,7 +484,7 @@ static void test_writer_arguments(void)
                  "NULL data of 4 bytes is refused");
     gb_container_writer_destroy(writer);
 
-    const char *path = in_folder("bad.test");
+    const char *path = scratch_path("bad.test");
     writer = gb_container_writer_create("TOO LONG", 1);
     CHECK(writer != NULL, "create with a bad kind still returns a writer");
     CHECK_EQ_INT(gb_container_commit(writer, path, &error), GB_ERROR_ARGUMENT,
@@ -571,7 +520,7 @@ static void test_cancelled_commit(void)
         interrupter state = {0, stop_at, 0};
         gb_container_writer_set_interrupt(writer, interrupt_commit, &state);
         gb_error error = {""};
-        const char *path = in_folder("cancelled.test");
+        const char *path = scratch_path("cancelled.test");
         gb_result result = gb_container_commit(writer, path, &error);
         gb_container_writer_destroy(writer);
         char label[128];
@@ -588,7 +537,7 @@ static void test_cancelled_commit(void)
     interrupter state = {0, 1000, 0};
     gb_container_writer_set_interrupt(writer, interrupt_commit, &state);
     gb_error error;
-    const char *path = in_folder("counted.test");
+    const char *path = scratch_path("counted.test");
     CHECK_EQ_INT(gb_container_commit(writer, path, &error), GB_OK,
                  "an interrupter that returns 0 lets the commit finish");
     CHECK_EQ_INT(state.calls, 6, "the interrupter runs before each of 5 sections and once more");
@@ -598,14 +547,14 @@ static void test_cancelled_commit(void)
 
 static void test_replace_is_atomic(void)
 {
-    const char *path = in_folder("replace.test");
+    const char *path = scratch_path("replace.test");
     gb_container_writer *old = gb_container_writer_create("TEST", 1);
     gb_error error;
     gb_container_add(old, "old", "old content", 11, &error);
     gb_container_commit(old, path, &error);
     gb_container_writer_destroy(old);
     size_t old_size, now_size;
-    unsigned char *before = read_bytes(path, &old_size);
+    unsigned char *before = scratch_read(path, &old_size);
 
     gb_container_writer *writer = sample_writer();
     interrupter state = {0, 6, 0}; /* the last call, after every payload is written */
@@ -613,7 +562,7 @@ static void test_replace_is_atomic(void)
     CHECK_EQ_INT(gb_container_commit(writer, path, &error), GB_ERROR_INTERRUPTED,
                  "a replacing commit cancelled before the rename fails");
     gb_container_writer_destroy(writer);
-    unsigned char *after = read_bytes(path, &now_size);
+    unsigned char *after = scratch_read(path, &now_size);
     CHECK(after && now_size == old_size && memcmp(before, after, old_size) == 0,
           "the old file is intact after a cancelled replacement");
     CHECK_EQ_INT(count_files(NULL, 0), 1, "no temporary is left beside it");
@@ -636,7 +585,7 @@ static void test_replace_is_atomic(void)
  * from inside the interrupter at call stop_at. */
 static void test_killed_commit(int stop_at)
 {
-    const char *path = in_folder("killed.test");
+    const char *path = scratch_path("killed.test");
     fflush(stdout);
     pid_t child = fork();
     if (child == 0) {
@@ -658,14 +607,14 @@ static void test_killed_commit(int stop_at)
     snprintf(label, sizeof label, "killed at call %d: only a killed.test.tmp.* is left",
              stop_at);
     CHECK(files == 1 && starts_with(name, "killed.test.tmp."), label);
-    empty_folder();
+    scratch_empty();
 }
 
 static void test_missing_folder(void)
 {
     gb_container_writer *writer = sample_writer();
     gb_error error = {""};
-    const char *path = in_folder("no/such/folder/x.test");
+    const char *path = scratch_path("no/such/folder/x.test");
     CHECK_EQ_INT(gb_container_commit(writer, path, &error), GB_ERROR_IO,
                  "commit into a missing folder is an IO error");
     CHECK(starts_with(error.message, path) && strstr(error.message, "No such file"),
@@ -676,7 +625,7 @@ static void test_missing_folder(void)
 int main(void)
 {
     umask(022);
-    make_folder();
+    scratch_create("container");
     fill_payloads();
     test_round_trip();
     test_empty_container();
@@ -695,7 +644,6 @@ int main(void)
     test_killed_commit(3);
     test_killed_commit(6);
     test_missing_folder();
-    empty_folder();
-    rmdir(folder);
+    scratch_remove();
     return tap_done();
 }

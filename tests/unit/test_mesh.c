@@ -12,24 +12,8 @@
 
 #include "mesh_check.h"
 #include "scene.h"
+#include "scratch.h"
 #include "tap.h"
-
-static char temporary_folder[] = "/tmp/gibake-test-mesh-XXXXXX";
-
-static const char *in_temporary(const char *name, char *out, size_t size)
-{
-    snprintf(out, size, "%s/%s", temporary_folder, name);
-    return out;
-}
-
-static void write_bytes(const char *path, const void *bytes, size_t size)
-{
-    FILE *file = fopen(path, "wb");
-    if (!file || fwrite(bytes, 1, size, file) != size || fclose(file) != 0) {
-        printf("Bail out! cannot write %s\n", path);
-        exit(1);
-    }
-}
 
 /* Loads name (written with text) through gb_scene_load; 1 when it fails
  * with result and a message that is "<folder>/" followed by expected. */
@@ -37,8 +21,8 @@ static int load_fails(const char *name, const void *bytes, size_t size, gb_resul
                       const char *expected)
 {
     char path[4096], want[4096];
-    write_bytes(in_temporary(name, path, sizeof path), bytes, size);
-    in_temporary(expected, want, sizeof want);
+    scratch_write(scratch_path_into(name, path, sizeof path), bytes, size);
+    scratch_path_into(expected, want, sizeof want);
     gb_scene scene;
     gb_error error;
     gb_result got = gb_scene_load(path, NULL, &scene, &error);
@@ -58,7 +42,7 @@ static int load_fails(const char *name, const void *bytes, size_t size, gb_resul
 static int loads(const char *name, const void *bytes, size_t size, uint32_t triangles)
 {
     char path[4096];
-    write_bytes(in_temporary(name, path, sizeof path), bytes, size);
+    scratch_write(scratch_path_into(name, path, sizeof path), bytes, size);
     gb_scene scene;
     gb_error error;
     if (gb_scene_load(path, NULL, &scene, &error) != GB_OK) {
@@ -276,16 +260,10 @@ static void test_guards(void)
 
 int main(void)
 {
-    if (!mkdtemp(temporary_folder)) {
-        printf("Bail out! cannot create %s\n", temporary_folder);
-        return 1;
-    }
+    scratch_create("mesh");
     test_ascii_non_finite();
     test_binary_non_finite();
     test_guards();
-    char command[4200];
-    snprintf(command, sizeof command, "rm -rf '%s'", temporary_folder);
-    if (system(command) != 0)
-        printf("# could not remove %s\n", temporary_folder);
+    scratch_remove();
     return tap_done();
 }

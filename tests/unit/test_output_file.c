@@ -8,6 +8,7 @@
  * point, so nothing depends on timing.
  */
 #include "output_file.h"
+#include "scratch.h"
 #include "tap.h"
 
 #include <dirent.h>
@@ -24,27 +25,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-static char folder[256];
 /* Set once a FIFO was written through: only then is /dev/stdout tried (as
  * root, a writer that renames onto it would replace the system's link). */
 static int fifo_written_through;
 
 /* ---- helpers ---- */
 
-static char *in_folder(const char *name)
-{
-    static char paths[8][512];
-    static int next;
-    char *path = paths[next++ % 8];
-    snprintf(path, sizeof paths[0], "%s/%s", folder, name);
-    return path;
-}
-
 /* Entries of sub (a folder under the test folder, "" for itself) whose name
  * contains ".tmp.". */
 static int count_temporaries(const char *sub)
 {
-    DIR *dir = opendir(*sub ? in_folder(sub) : folder);
+    DIR *dir = opendir(*sub ? scratch_path(sub) : scratch_folder);
     int count = 0;
     for (struct dirent *entry; dir && (entry = readdir(dir));)
         count += strstr(entry->d_name, ".tmp.") != NULL;
@@ -73,13 +64,6 @@ static void remove_tree(const char *path)
     } else {
         unlink(path);
     }
-}
-
-static void write_text(const char *path, const char *text)
-{
-    FILE *file = fopen(path, "wb");
-    fputs(text, file);
-    fclose(file);
 }
 
 /* The whole content of path as a NUL-terminated string ("" when missing). */
@@ -129,7 +113,7 @@ static gb_result write_output(const char *path, const char *text, gb_error *erro
 static void test_new_and_replaced(void)
 {
     gb_error error = {""};
-    const char *path = in_folder("new.txt");
+    const char *path = scratch_path("new.txt");
     CHECK_EQ_INT(write_output(path, "first", &error), GB_OK, "a new file is written");
     CHECK(strcmp(read_text(path), "first") == 0, "... with its bytes");
     CHECK_EQ_INT(count_temporaries(""), 0, "... and no temporary left");
@@ -154,7 +138,7 @@ static void test_modes(void)
     gb_error error;
     for (int i = 0; i < 2; ++i) {
         mode_t old = umask(masks[i]);
-        const char *path = in_folder("mode.txt");
+        const char *path = scratch_path("mode.txt");
         write_output(path, "x", &error);
         char label[96];
         snprintf(label, sizeof label, "umask %03o: a new file gets mode %03o", masks[i],
@@ -175,62 +159,62 @@ static void test_modes(void)
 static void test_symlinks(void)
 {
     gb_error error;
-    mkdir(in_folder("sub"), 0755);
-    write_text(in_folder("sub/target.txt"), "old");
-    symlink("sub/target.txt", in_folder("link.txt"));
-    CHECK_EQ_INT(write_output(in_folder("link.txt"), "through the link", &error), GB_OK,
+    mkdir(scratch_path("sub"), 0755);
+    scratch_write_text(scratch_path("sub/target.txt"), "old");
+    symlink("sub/target.txt", scratch_path("link.txt"));
+    CHECK_EQ_INT(write_output(scratch_path("link.txt"), "through the link", &error), GB_OK,
                  "writing to a relative symlink succeeds");
-    CHECK(is_link(in_folder("link.txt")), "... the link stays a link");
-    CHECK(strcmp(read_text(in_folder("sub/target.txt")), "through the link") == 0,
+    CHECK(is_link(scratch_path("link.txt")), "... the link stays a link");
+    CHECK(strcmp(read_text(scratch_path("sub/target.txt")), "through the link") == 0,
           "... and its target has the bytes");
     CHECK(count_temporaries("") == 0 && count_temporaries("sub") == 0,
           "... no temporary left in either folder");
 
     /* a chain: chain.txt -> link.txt -> sub/target.txt */
-    symlink("link.txt", in_folder("chain.txt"));
-    write_output(in_folder("chain.txt"), "chained", &error);
-    CHECK(is_link(in_folder("chain.txt")) && is_link(in_folder("link.txt")) &&
-              strcmp(read_text(in_folder("sub/target.txt")), "chained") == 0,
+    symlink("link.txt", scratch_path("chain.txt"));
+    write_output(scratch_path("chain.txt"), "chained", &error);
+    CHECK(is_link(scratch_path("chain.txt")) && is_link(scratch_path("link.txt")) &&
+              strcmp(read_text(scratch_path("sub/target.txt")), "chained") == 0,
           "a chain of two links is followed to the end, both stay links");
 
     /* a link inside sub, relative to sub */
-    symlink("target.txt", in_folder("sub/inner.txt"));
-    write_output(in_folder("sub/inner.txt"), "inner", &error);
-    CHECK(is_link(in_folder("sub/inner.txt")) &&
-              strcmp(read_text(in_folder("sub/target.txt")), "inner") == 0,
+    symlink("target.txt", scratch_path("sub/inner.txt"));
+    write_output(scratch_path("sub/inner.txt"), "inner", &error);
+    CHECK(is_link(scratch_path("sub/inner.txt")) &&
+              strcmp(read_text(scratch_path("sub/target.txt")), "inner") == 0,
           "a relative link is relative to its own folder");
 
     /* dangling: the target is created */
-    symlink("sub/created.txt", in_folder("dangling.txt"));
-    CHECK_EQ_INT(write_output(in_folder("dangling.txt"), "created", &error), GB_OK,
+    symlink("sub/created.txt", scratch_path("dangling.txt"));
+    CHECK_EQ_INT(write_output(scratch_path("dangling.txt"), "created", &error), GB_OK,
                  "writing to a dangling symlink succeeds");
-    CHECK(is_link(in_folder("dangling.txt")) &&
-              strcmp(read_text(in_folder("sub/created.txt")), "created") == 0,
+    CHECK(is_link(scratch_path("dangling.txt")) &&
+              strcmp(read_text(scratch_path("sub/created.txt")), "created") == 0,
           "... it creates the target and the link stays");
 
     /* absolute */
     char absolute[600];
-    snprintf(absolute, sizeof absolute, "%s/sub/target.txt", folder);
-    symlink(absolute, in_folder("absolute.txt"));
-    write_output(in_folder("absolute.txt"), "absolute", &error);
-    CHECK(is_link(in_folder("absolute.txt")) &&
-              strcmp(read_text(in_folder("sub/target.txt")), "absolute") == 0,
+    snprintf(absolute, sizeof absolute, "%s/sub/target.txt", scratch_folder);
+    symlink(absolute, scratch_path("absolute.txt"));
+    write_output(scratch_path("absolute.txt"), "absolute", &error);
+    CHECK(is_link(scratch_path("absolute.txt")) &&
+              strcmp(read_text(scratch_path("sub/target.txt")), "absolute") == 0,
           "an absolute link is followed");
 
     /* a loop */
-    symlink("loop-b.txt", in_folder("loop-a.txt"));
-    symlink("loop-a.txt", in_folder("loop-b.txt"));
-    CHECK_EQ_INT(write_output(in_folder("loop-a.txt"), "x", &error), GB_ERROR_IO,
+    symlink("loop-b.txt", scratch_path("loop-a.txt"));
+    symlink("loop-a.txt", scratch_path("loop-b.txt"));
+    CHECK_EQ_INT(write_output(scratch_path("loop-a.txt"), "x", &error), GB_ERROR_IO,
                  "a symlink loop is an error");
     CHECK(strstr(error.message, "loop-a.txt: ") && strstr(error.message, "symbolic links"),
           "... saying so");
-    remove_tree(in_folder("sub"));
-    unlink(in_folder("link.txt"));
-    unlink(in_folder("chain.txt"));
-    unlink(in_folder("dangling.txt"));
-    unlink(in_folder("absolute.txt"));
-    unlink(in_folder("loop-a.txt"));
-    unlink(in_folder("loop-b.txt"));
+    remove_tree(scratch_path("sub"));
+    unlink(scratch_path("link.txt"));
+    unlink(scratch_path("chain.txt"));
+    unlink(scratch_path("dangling.txt"));
+    unlink(scratch_path("absolute.txt"));
+    unlink(scratch_path("loop-a.txt"));
+    unlink(scratch_path("loop-b.txt"));
 }
 
 /* ---- devices, FIFOs, standard output ---- */
@@ -238,8 +222,8 @@ static void test_symlinks(void)
 static void test_devices(void)
 {
     gb_error error;
-    const char *null = in_folder("null");
-    const char *full = in_folder("full");
+    const char *null = scratch_path("null");
+    const char *full = scratch_path("full");
     if (mknod(null, S_IFCHR | 0666, makedev(1, 3)) != 0 ||
         mknod(full, S_IFCHR | 0666, makedev(1, 7)) != 0) {
         for (int i = 0; i < 5; ++i)
@@ -266,7 +250,7 @@ static void test_devices(void)
 static void test_fifo(void)
 {
     gb_error error;
-    const char *fifo = in_folder("fifo");
+    const char *fifo = scratch_path("fifo");
     mkfifo(fifo, 0644);
     /* our own reader end, open before the writer's: the write then does not block */
     int reader = open(fifo, O_RDWR | O_NONBLOCK);
@@ -286,10 +270,10 @@ static void test_fifo(void)
     CHECK_EQ_INT(gb_output_file_open(fifo, GB_OUTPUT_FILE_BY_NAME, &out, &error), GB_OK,
                  "a FIFO opened by name");
     const char *name = gb_output_file_name(out);
-    CHECK(name && strncmp(name, folder, strlen(folder)) == 0 &&
+    CHECK(name && strncmp(name, scratch_folder, strlen(scratch_folder)) == 0 &&
               strstr(name, "/gibake-fifo.tmp.") != NULL,
           "... is written as $TMPDIR/gibake-fifo.tmp.XXXXXX");
-    write_text(name, "copied");
+    scratch_write_text(name, "copied");
     CHECK_EQ_INT(gb_output_file_commit(out, &error), GB_OK, "... and committed");
     n = read(reader, got, sizeof got - 1);
     got[n > 0 ? n : 0] = '\0';
@@ -302,7 +286,7 @@ static void test_fifo(void)
 static void test_standard_output(void)
 {
     gb_error error;
-    const char *captured = in_folder("stdout.txt");
+    const char *captured = scratch_path("stdout.txt");
     fflush(stdout);
     int saved = dup(STDOUT_FILENO);
     int file = open(captured, O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -313,7 +297,7 @@ static void test_standard_output(void)
     gb_output_file *out;
     gb_result by_name = gb_output_file_open("-", GB_OUTPUT_FILE_BY_NAME, &out, &error);
     if (by_name == GB_OK) {
-        write_text(gb_output_file_name(out), "by name, ");
+        scratch_write_text(gb_output_file_name(out), "by name, ");
         by_name = gb_output_file_commit(out, &error);
     }
     gb_result device = fifo_written_through ? write_output("/dev/stdout", "/dev/stdout", &error)
@@ -336,8 +320,8 @@ static void test_standard_output(void)
 static void test_by_name(void)
 {
     gb_error error;
-    const char *path = in_folder("library.bin");
-    write_text(path, "old");
+    const char *path = scratch_path("library.bin");
+    scratch_write_text(path, "old");
     gb_output_file *out;
     CHECK_EQ_INT(gb_output_file_open(path, GB_OUTPUT_FILE_BY_NAME, &out, &error), GB_OK,
                  "by-name mode opens");
@@ -348,7 +332,7 @@ static void test_by_name(void)
           "... the library writes PATH.tmp.XXXXXX beside the target");
     CHECK_EQ_INT(gb_output_file_write(out, "x", 1, &error), GB_ERROR_ARGUMENT,
                  "... gb_output_file_write is refused in that mode");
-    write_text(name, "written by the library");
+    scratch_write_text(name, "written by the library");
     CHECK(strcmp(read_text(path), "old") == 0, "... the old file is there until commit");
     CHECK_EQ_INT(gb_output_file_commit(out, &error), GB_OK, "commit");
     CHECK(strcmp(read_text(path), "written by the library") == 0 && count_temporaries("") == 0,
@@ -362,29 +346,29 @@ static void test_by_name(void)
 static void test_check(void)
 {
     gb_error error = {""};
-    CHECK_EQ_INT(gb_output_file_check(in_folder("fine.bin"), &error), GB_OK,
+    CHECK_EQ_INT(gb_output_file_check(scratch_path("fine.bin"), &error), GB_OK,
                  "a new file in a writable folder passes");
-    CHECK(count_temporaries("") == 0 && access(in_folder("fine.bin"), F_OK) != 0,
+    CHECK(count_temporaries("") == 0 && access(scratch_path("fine.bin"), F_OK) != 0,
           "... and the check leaves nothing behind");
-    const char *missing = in_folder("missing/x.bin");
+    const char *missing = scratch_path("missing/x.bin");
     CHECK_EQ_INT(gb_output_file_check(missing, &error), GB_ERROR_IO, "a missing folder fails");
     char expected[700];
     snprintf(expected, sizeof expected,
              "%s: cannot write in folder '%s/missing': No such file or directory", missing,
-             folder);
+             scratch_folder);
     CHECK(strcmp(error.message, expected) == 0, "... 'PATH: cannot write in folder ...: No such file'");
-    write_text(in_folder("plain"), "");
-    CHECK_EQ_INT(gb_output_file_check(in_folder("plain/x.bin"), &error), GB_ERROR_IO,
+    scratch_write_text(scratch_path("plain"), "");
+    CHECK_EQ_INT(gb_output_file_check(scratch_path("plain/x.bin"), &error), GB_ERROR_IO,
                  "a file as the folder fails");
     CHECK(strstr(error.message, "Not a directory") != NULL, "... 'Not a directory'");
-    mkdir(in_folder("a_folder"), 0755);
-    CHECK_EQ_INT(gb_output_file_check(in_folder("a_folder"), &error), GB_ERROR_IO,
+    mkdir(scratch_path("a_folder"), 0755);
+    CHECK_EQ_INT(gb_output_file_check(scratch_path("a_folder"), &error), GB_ERROR_IO,
                  "a folder as the output fails");
     CHECK(strstr(error.message, "a_folder: is a folder") != NULL, "... 'is a folder'");
-    CHECK_EQ_INT(write_output(in_folder("a_folder"), "x", &error), GB_ERROR_IO,
+    CHECK_EQ_INT(write_output(scratch_path("a_folder"), "x", &error), GB_ERROR_IO,
                  "opening a folder fails too");
-    symlink("missing/y.bin", in_folder("dangling"));
-    CHECK_EQ_INT(gb_output_file_check(in_folder("dangling"), &error), GB_ERROR_IO,
+    symlink("missing/y.bin", scratch_path("dangling"));
+    CHECK_EQ_INT(gb_output_file_check(scratch_path("dangling"), &error), GB_ERROR_IO,
                  "a dangling link into a missing folder fails");
     CHECK_EQ_INT(gb_output_file_check("", &error), GB_ERROR_ARGUMENT, "an empty name fails");
     CHECK_EQ_INT(write_output(missing, "x", &error), GB_ERROR_IO,
@@ -392,9 +376,9 @@ static void test_check(void)
     CHECK(strncmp(error.message, missing, strlen(missing)) == 0 &&
               strstr(error.message, "No such file"),
           "... naming the path and the reason");
-    rmdir(in_folder("a_folder"));
-    unlink(in_folder("plain"));
-    unlink(in_folder("dangling"));
+    rmdir(scratch_path("a_folder"));
+    unlink(scratch_path("plain"));
+    unlink(scratch_path("dangling"));
 }
 
 /* ---- limits ---- */
@@ -403,8 +387,8 @@ static void test_check(void)
  * writer ignores SIGXFSZ), removes the temporary and keeps the old file. */
 static void test_file_size_limit(void)
 {
-    const char *path = in_folder("limited.bin");
-    write_text(path, "old");
+    const char *path = scratch_path("limited.bin");
+    scratch_write_text(path, "old");
     fflush(stdout);
     pid_t child = fork();
     if (child == 0) {
@@ -455,10 +439,10 @@ static void test_signals(void)
 {
     static const int signals[] = {SIGINT, SIGTERM, SIGHUP};
     static const char *names[] = {"SIGINT", "SIGTERM", "SIGHUP"};
-    const char *path = in_folder("signalled.bin");
+    const char *path = scratch_path("signalled.bin");
     char label[128];
     for (int i = 0; i < 3; ++i) {
-        write_text(path, "old");
+        scratch_write_text(path, "old");
         int status = signalled_child(path, signals[i], 0);
         snprintf(label, sizeof label, "%s while the temporary exists: the child dies by it",
                  names[i]);
@@ -467,23 +451,23 @@ static void test_signals(void)
                  names[i]);
         CHECK(strcmp(read_text(path), "old") == 0 && count_temporaries("") == 0, label);
     }
-    write_text(path, "old");
+    scratch_write_text(path, "old");
     int status = signalled_child(path, SIGINT, 1);
     CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0,
           "an ignored SIGINT stays ignored (a background job): the write completes");
     CHECK(strcmp(read_text(path), "partial and the rest") == 0 && count_temporaries("") == 0,
           "... with the whole new file");
-    write_text(path, "old");
+    scratch_write_text(path, "old");
     status = signalled_child(path, SIGKILL, 0);
     CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL, "SIGKILL kills the child");
     CHECK(strcmp(read_text(path), "old") == 0,
           "... the old file is byte-identical (the rename never happened)");
     CHECK_EQ_INT(count_temporaries(""), 1,
                  "... and one stale signalled.bin.tmp.XXXXXX remains (SIGKILL cannot be caught)");
-    DIR *dir = opendir(folder);
+    DIR *dir = opendir(scratch_folder);
     for (struct dirent *entry; dir && (entry = readdir(dir));)
         if (strstr(entry->d_name, ".tmp."))
-            unlink(in_folder(entry->d_name));
+            unlink(scratch_path(entry->d_name));
     if (dir)
         closedir(dir);
     unlink(path);
@@ -516,8 +500,8 @@ static void *hold_output(void *argument)
 
 static void test_signal_to_another_thread(void)
 {
-    const char *path = in_folder("threaded.bin");
-    write_text(path, "old");
+    const char *path = scratch_path("threaded.bin");
+    scratch_write_text(path, "old");
     fflush(stdout);
     pid_t child = fork();
     if (child == 0) {
@@ -558,7 +542,7 @@ static void test_threads(void)
     char paths[4][600];
     pthread_t threads[4];
     for (int i = 0; i < 4; ++i) {
-        snprintf(paths[i], sizeof paths[i], "%s/thread-%d.bin", folder, i);
+        snprintf(paths[i], sizeof paths[i], "%s/thread-%d.bin", scratch_folder, i);
         pthread_create(&threads[i], NULL, write_in_thread, paths[i]);
     }
     int failed = 0, right = 1;
@@ -575,13 +559,8 @@ static void test_threads(void)
 
 int main(void)
 {
-    const char *tmp = getenv("TMPDIR");
-    snprintf(folder, sizeof folder, "%s/gibake-test-output-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    if (!mkdtemp(folder)) {
-        perror("mkdtemp");
-        return 1;
-    }
-    setenv("TMPDIR", folder, 1);   /* where a device's by-name temporary goes */
+    scratch_create("output");
+    setenv("TMPDIR", scratch_folder, 1);   /* where a device's by-name temporary goes */
     umask(022);
     test_new_and_replaced();
     test_modes();
@@ -595,6 +574,6 @@ int main(void)
     test_signals();
     test_signal_to_another_thread();
     test_threads();
-    remove_tree(folder);
+    remove_tree(scratch_folder);
     return tap_done();
 }

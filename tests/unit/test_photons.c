@@ -15,49 +15,12 @@
 #include "photon_map.h"
 #include "random.h"
 #include "scene_builder.h"
+#include "scratch.h"
 #include "tap.h"
 
 static const double PI = 3.14159265358979323846;
 
 /* ---- helpers ----------------------------------------------------------- */
-
-static char folder[256];
-
-static void make_folder(void)
-{
-    const char *tmp = getenv("TMPDIR");
-    snprintf(folder, sizeof folder, "%s/gibake-test-photons-XXXXXX", tmp ? tmp : "/tmp");
-    if (!mkdtemp(folder)) {
-        perror("mkdtemp");
-        exit(2);
-    }
-}
-
-static const char *in_folder(const char *name)
-{
-    static char paths[4][512];
-    static int next;
-    char *path = paths[next++ % 4];
-    snprintf(path, sizeof paths[0], "%s/%s", folder, name);
-    return path;
-}
-
-static unsigned char *read_whole(const char *path, size_t *size)
-{
-    FILE *file = fopen(path, "rb");
-    if (!file)
-        return NULL;
-    fseek(file, 0, SEEK_END);
-    *size = (size_t)ftell(file);
-    rewind(file);
-    unsigned char *bytes = aligned_alloc(16, (*size + 15) & ~(size_t)15);
-    if (bytes && fread(bytes, 1, *size, file) != *size) {
-        free(bytes);
-        bytes = NULL;
-    }
-    fclose(file);
-    return bytes;
-}
 
 static gb_photons_options options_for(uint64_t count, unsigned bounces, gb_photon_store store)
 {
@@ -134,7 +97,7 @@ static int same_maps(const gb_photon_map *a, const gb_photon_map *b)
 static int files_equal(const char *a, const char *b)
 {
     size_t size_a = 0, size_b = 0;
-    unsigned char *bytes_a = read_whole(a, &size_a), *bytes_b = read_whole(b, &size_b);
+    unsigned char *bytes_a = scratch_read(a, &size_a), *bytes_b = scratch_read(b, &size_b);
     int equal = bytes_a && bytes_b && size_a == size_b && memcmp(bytes_a, bytes_b, size_a) == 0;
     free(bytes_a);
     free(bytes_b);
@@ -522,9 +485,9 @@ static void test_shards_and_merge(void)
     gb_photon_map merged;
     CHECK_EQ_INT(gb_photons_merge(shards, 3, names, &merged, &error), GB_OK, "merge 3 shards");
     CHECK(same_maps(&whole, &merged), "the merged shards are the whole run's map");
-    gb_photon_map_write(in_folder("whole.phot"), &whole, &error);
-    gb_photon_map_write(in_folder("merged.phot"), &merged, &error);
-    CHECK(files_equal(in_folder("whole.phot"), in_folder("merged.phot")),
+    gb_photon_map_write(scratch_path("whole.phot"), &whole, &error);
+    gb_photon_map_write(scratch_path("merged.phot"), &merged, &error);
+    CHECK(files_equal(scratch_path("whole.phot"), scratch_path("merged.phot")),
           "... byte for byte in the file");
     gb_photon_map_free(&merged);
 
@@ -609,7 +572,7 @@ static void test_round_trip(void)
 {
     gb_photon_map map = small_map(), read;
     gb_error error;
-    const char *path = in_folder("round.phot");
+    const char *path = scratch_path("round.phot");
     CHECK_EQ_INT(gb_photon_map_write(path, &map, &error), GB_OK, "write a photon map");
     CHECK_EQ_INT(gb_photon_map_read(path, &read, &error), GB_OK, "read it back");
     CHECK(same_maps(&map, &read), "every field and photon comes back");
@@ -617,7 +580,7 @@ static void test_round_trip(void)
               !read.storage,
           "the arrays are 16-byte aligned views of the file, no copy");
     size_t size = 0;
-    unsigned char *bytes = read_whole(path, &size);
+    unsigned char *bytes = scratch_read(path, &size);
     size_t header_bytes = 32 + 5 * 48 + 128;
     CHECK(size <= header_bytes + 4 * 16 + GB_PHOTON_SIZE * map.count,
           "the file holds 32 bytes per photon and a fixed header");
@@ -651,7 +614,7 @@ static gb_result write_raw(const char *path, const gb_photon_map *map, uint32_t 
 static void header_bytes(const gb_photon_map *map, unsigned char header[128])
 {
     gb_error error;
-    const char *path = in_folder("header.phot");
+    const char *path = scratch_path("header.phot");
     gb_photon_map_write(path, map, &error);
     gb_container container;
     gb_container_read(path, "PHOT", &container, &error);
@@ -705,7 +668,7 @@ static gb_result read_edit(const gb_photon_map *map, int field, const unsigned c
             d[k] = -d[k];
         e.arrays.directions[3] = gb_photon_pack_direction(d);
     }
-    const char *path = in_folder("edited.phot");
+    const char *path = scratch_path("edited.phot");
     write_raw(path, &e.map, 1, header, error);
     gb_photon_map_free(&e.map);
     gb_photon_map read;
@@ -720,7 +683,7 @@ static void test_corrupt_files(void)
     gb_error error;
     unsigned char header[128], bad[128];
     header_bytes(&map, header);
-    const char *path = in_folder("bad.phot");
+    const char *path = scratch_path("bad.phot");
 
     const char *photon_problems[] = {"a NaN position", "a photon outside the scene bounds",
                                      "a negative power", "a bounce count above bounces",
@@ -767,10 +730,10 @@ static void test_corrupt_files(void)
                  "a newer format version is refused");
 
     /* a flipped byte anywhere: the container's checksums */
-    const char *good = in_folder("good.phot");
+    const char *good = scratch_path("good.phot");
     gb_photon_map_write(good, &map, &error);
     size_t size = 0;
-    unsigned char *bytes = read_whole(good, &size);
+    unsigned char *bytes = scratch_read(good, &size);
     bytes[size - 5] ^= 0x10;
     gb_photon_map parsed;
     CHECK_EQ_INT(gb_photon_map_parse(bytes, size, "flipped", &parsed, &error),
@@ -783,14 +746,14 @@ static void test_corrupt_files(void)
                  "the restored bytes parse again");
     gb_photon_map_free(&parsed);
     free(bytes);
-    CHECK_EQ_INT(gb_photon_map_read(in_folder("missing.phot"), &read, &error), GB_ERROR_IO,
+    CHECK_EQ_INT(gb_photon_map_read(scratch_path("missing.phot"), &read, &error), GB_ERROR_IO,
                  "a missing file is an I/O error");
     gb_photon_map_free(&map);
 }
 
 int main(void)
 {
-    make_folder();
+    scratch_create("photons");
     test_packing();
     test_shard_ranges();
     test_closed_box();
@@ -805,9 +768,6 @@ int main(void)
     test_bad_options();
     test_round_trip();
     test_corrupt_files();
-    char command[600];
-    snprintf(command, sizeof command, "rm -rf '%s'", folder);
-    if (system(command) != 0)
-        printf("# could not remove %s\n", folder);
+    scratch_remove();
     return tap_done();
 }

@@ -6,6 +6,7 @@
  * the libraries crash, leak or over-allocate. */
 #include "image.h"
 #include "image_check.h"
+#include "scratch.h"
 #include "tap.h"
 #include "voxel_check.h"
 #include "voxel_grid.h"
@@ -16,41 +17,6 @@
 #include <string.h>
 #include <unistd.h>
 #include <zlib.h>
-
-static char directory[] = "/tmp/gb_test_reader_guards_XXXXXX";
-
-static const char *in_directory(const char *name, char *path, size_t size)
-{
-    snprintf(path, size, "%s/%s", directory, name);
-    return path;
-}
-
-static unsigned char *read_all(const char *path, size_t *size)
-{
-    FILE *file = fopen(path, "rb");
-    unsigned char *bytes = NULL;
-    long n;
-    if (file && fseek(file, 0, SEEK_END) == 0 && (n = ftell(file)) > 0 &&
-        fseek(file, 0, SEEK_SET) == 0 && (bytes = malloc((size_t)n)) &&
-        fread(bytes, 1, (size_t)n, file) == (size_t)n)
-        *size = (size_t)n;
-    else {
-        free(bytes);
-        bytes = NULL;
-    }
-    if (file)
-        fclose(file);
-    return bytes;
-}
-
-static void write_all(const char *path, const unsigned char *bytes, size_t size)
-{
-    FILE *file = fopen(path, "wb");
-    if (!file || fwrite(bytes, 1, size, file) != size || fclose(file) != 0) {
-        printf("Bail out! cannot write %s\n", path);
-        exit(1);
-    }
-}
 
 static int fails_with(gb_result got, gb_result expected, const gb_error *error,
                       const char *part)
@@ -69,21 +35,21 @@ static void put_be32(unsigned char *p, uint32_t v)
 
 static void test_images(void)
 {
-    char path[512];
+    const char *path;
     gb_image image;
     gb_error error;
     if (gb_image_allocate(&image, 8, 8, 3, &error) != GB_OK) {
         printf("Bail out! %s\n", error.message);
         exit(1);
     }
-    in_directory("small.png", path, sizeof path);
+    path = scratch_path("small.png");
     if (gb_image_write(path, &image, &error) != GB_OK) {
         printf("Bail out! %s\n", error.message);
         exit(1);
     }
     gb_image_free(&image);
     size_t size = 0;
-    unsigned char *png = read_all(path, &size);
+    unsigned char *png = scratch_read(path, &size);
     gb_image_file file;
     CHECK(png && gb_image_check(png, size, "a.png", &file, &error) == GB_OK &&
               !strcmp(file.format, "png"), "a PNG the project writes passes, as png");
@@ -94,8 +60,8 @@ static void test_images(void)
     put_be32(png + 16, 60000);
     put_be32(png + 20, 60000);
     put_be32(png + 29, (uint32_t)crc32(crc32(0, Z_NULL, 0), png + 12, 17));
-    in_directory("huge.png", path, sizeof path);
-    write_all(path, png, size);
+    path = scratch_path("huge.png");
+    scratch_write(path, png, size);
     char message[600];
     snprintf(message, sizeof message, "%s: 60000 x 60000 pixels x 3 channels: more than", path);
     CHECK(fails_with(gb_image_read(path, &image, &error), GB_ERROR_FORMAT, &error, message),
@@ -117,20 +83,20 @@ static void test_images(void)
 
 static void test_voxel_files(void)
 {
-    char path[512];
+    const char *path;
     gb_voxel_grid frame = {.size = {4, 3, 2}, .voxel_size = 0.5, .scene_hash = 0x1234,
                            .resolution = 4};
     int32_t values[24];
     for (int i = 0; i < 24; ++i)
         values[i] = i % 5 - 1;
     gb_error error;
-    in_directory("grid.vdb", path, sizeof path);
+    path = scratch_path("grid.vdb");
     if (gb_voxel_grid_write_int32(path, &frame, "nearest_node", values, &error) != GB_OK) {
         printf("Bail out! %s\n", error.message);
         exit(1);
     }
     size_t size = 0;
-    unsigned char *vdb = read_all(path, &size);
+    unsigned char *vdb = scratch_read(path, &size);
     if (!vdb) {
         printf("Bail out! cannot read %s\n", path);
         exit(1);
@@ -164,15 +130,9 @@ static void test_voxel_files(void)
 
 int main(void)
 {
-    if (!mkdtemp(directory)) {
-        perror("mkdtemp");
-        return 1;
-    }
+    scratch_create("reader-guards");
     test_images();
     test_voxel_files();
-    char command[600];
-    snprintf(command, sizeof command, "rm -rf '%s'", directory);
-    if (system(command) != 0)
-        printf("# could not remove %s\n", directory);
+    scratch_remove();
     return tap_done();
 }

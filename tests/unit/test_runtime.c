@@ -22,6 +22,7 @@
 #include "../../tools/reference/reference.h"
 #include "camera.h"
 #include "scene.h"
+#include "scratch.h"
 #include "tap.h"
 
 /* The relative MSE (tools/imgdiff) of the direct light at 128x128, 16 area
@@ -199,31 +200,16 @@ static void test_gl_errors(void)
     gb_context_destroy(&context);
 }
 
-static void write_file(const char *path, const char *text)
-{
-    FILE *file = fopen(path, "wb");
-    if (file) {
-        fputs(text, file);
-        fclose(file);
-    }
-}
-
 static void test_bake_files(const gb_scene *scene)
 {
-    char folder[] = "/tmp/gibake-runtime.XXXXXX";
-    if (!mkdtemp(folder)) {
-        CHECK(0, "a temporary folder");
-        return;
-    }
-    char skel[4096], seg[4096];
-    snprintf(skel, sizeof skel, "%s/cornell.skel", folder);
-    snprintf(seg, sizeof seg, "%s/cornell.seg", folder);
-    write_file(skel, "not a skeleton at all");
-    write_file(seg, "");
+    scratch_create("runtime");
+    scratch_write_text(scratch_path("cornell.skel"), "not a skeleton at all");
+    scratch_write_text(scratch_path("cornell.seg"), "");
     gb_bake_files files;
     gb_error error;
-    CHECK(gb_bake_files_check(scene, "scenes/cornell/cornell.scene", folder, &files, &error) ==
-              GB_OK, "checking a bake folder never fails on its files");
+    gb_result result = gb_bake_files_check(scene, "scenes/cornell/cornell.scene",
+                                           scratch_folder, &files, &error);
+    CHECK(result == GB_OK, "checking a bake folder never fails on its files");
     CHECK(files.has_problem[GB_BAKE_SKELETON] && !files.usable[GB_BAKE_SKELETON] &&
               strstr(files.problems[GB_BAKE_SKELETON].message, "cornell.skel"),
           "a corrupt .skel is reported by path and skipped");
@@ -232,9 +218,7 @@ static void test_bake_files(const gb_scene *scene)
     CHECK(files.has_problem[GB_BAKE_VOXELS] &&
               strstr(files.problems[GB_BAKE_VOXELS].message, "cornell.vdb"),
           "a missing .vdb is reported");
-    unlink(skel);
-    unlink(seg);
-    rmdir(folder);
+    scratch_remove();
 }
 
 static int render(const gb_scene *scene, uint32_t camera, int width, int height,

@@ -14,30 +14,15 @@
 #include "scene_file.h"
 #include "environment.h"
 #include "image.h"
+#include "scratch.h"
 #include "tap.h"
 
 static char root[2048];
-static char temporary_folder[] = "/tmp/gibake-test-scene-XXXXXX";
 
 static const char *shared(const char *relative, char *out, size_t size)
 {
     snprintf(out, size, "%s/../shared/scenes/%s", root, relative);
     return out;
-}
-
-static const char *in_temporary(const char *name, char *out, size_t size)
-{
-    snprintf(out, size, "%s/%s", temporary_folder, name);
-    return out;
-}
-
-static void write_file(const char *path, const char *text)
-{
-    FILE *file = fopen(path, "wb");
-    if (!file || fputs(text, file) == EOF || fclose(file) != 0) {
-        printf("Bail out! cannot write %s\n", path);
-        exit(1);
-    }
 }
 
 /* Loads path; on failure prints the message as a TAP comment. */
@@ -455,8 +440,8 @@ static const char cube_obj[] =
 static void test_scene_file(void)
 {
     char obj_path[4096], scene_path[4096];
-    write_file(in_temporary("cube.obj", obj_path, sizeof obj_path), cube_obj);
-    write_file(in_temporary("lit.scene", scene_path, sizeof scene_path),
+    scratch_write_text(scratch_path_into("cube.obj", obj_path, sizeof obj_path), cube_obj);
+    scratch_write_text(scratch_path_into("lit.scene", scene_path, sizeof scene_path),
                "# a test scene\r\n"
                "gibake-scene 1\r\n"
                "mesh cube.obj\r\n"
@@ -509,11 +494,11 @@ static void write_cube_openmesh_files(void)
                                        {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
     static const int quad[6][4] = {{0, 1, 2, 3}, {4, 7, 6, 5}, {0, 4, 5, 1},
                                    {1, 5, 6, 2}, {2, 6, 7, 3}, {4, 0, 3, 7}};
-    write_file(in_temporary("cube.off", path, sizeof path),
+    scratch_write_text(scratch_path_into("cube.off", path, sizeof path),
                "OFF\n8 6 12\n-1 -1 -1\n1 -1 -1\n1 1 -1\n-1 1 -1\n-1 -1 1\n1 -1 1\n1 1 1\n"
                "-1 1 1\n4 0 1 2 3\n4 4 7 6 5\n4 0 4 5 1\n4 1 5 6 2\n4 2 6 7 3\n4 4 0 3 7\n");
     char ascii[8192] = "solid cube\n";
-    FILE *binary = fopen(in_temporary("cube-binary.stl", path, sizeof path), "wb");
+    FILE *binary = fopen(scratch_path_into("cube-binary.stl", path, sizeof path), "wb");
     unsigned char header[84] = {0};
     header[80] = 12;    /* little-endian triangle count */
     fwrite(header, 1, sizeof header, binary);
@@ -534,7 +519,7 @@ static void write_cube_openmesh_files(void)
         }
     fclose(binary);
     strcat(ascii, "endsolid cube\n");
-    write_file(in_temporary("cube-ascii.stl", path, sizeof path), ascii);
+    scratch_write_text(scratch_path_into("cube-ascii.stl", path, sizeof path), ascii);
 }
 
 /* environment-map: a lat-long image beside the scene file, y up, the middle
@@ -565,9 +550,9 @@ static void write_environment_map(const char *path)
 static void test_environment_map(void)
 {
     char obj_path[4096], map_path[4096], scene_path[4096];
-    write_file(in_temporary("cube.obj", obj_path, sizeof obj_path), cube_obj);
-    write_environment_map(in_temporary("sky map.exr", map_path, sizeof map_path));
-    write_file(in_temporary("sky.scene", scene_path, sizeof scene_path),
+    scratch_write_text(scratch_path_into("cube.obj", obj_path, sizeof obj_path), cube_obj);
+    write_environment_map(scratch_path_into("sky map.exr", map_path, sizeof map_path));
+    scratch_write_text(scratch_path_into("sky.scene", scene_path, sizeof scene_path),
                "gibake-scene 1\nmesh cube.obj\nenvironment-map sky map.exr\n");
     gb_scene scene, plain;
     gb_scene_options textures = {.load_textures = 1};
@@ -578,7 +563,7 @@ static void test_environment_map(void)
     float up[3] = {0, 1, 0}, rgb[3];
     gb_environment_radiance(&scene, up, rgb);
     CHECK(rgb[0] == 0 && rgb[1] == 0 && rgb[2] == 0, "not loaded: the colour (black) instead");
-    write_file(in_temporary("plain.scene", scene_path, sizeof scene_path),
+    scratch_write_text(scratch_path_into("plain.scene", scene_path, sizeof scene_path),
                "gibake-scene 1\nmesh cube.obj\n");
     if (load(scene_path, NULL, &plain)) {
         CHECK(plain.hash != scene.hash, "the map is part of the scene hash");
@@ -586,7 +571,7 @@ static void test_environment_map(void)
     }
     gb_scene_free(&scene);
 
-    in_temporary("sky.scene", scene_path, sizeof scene_path);
+    scratch_path_into("sky.scene", scene_path, sizeof scene_path);
     if (!CHECK(load(scene_path, &textures, &scene), "with textures, the map is read"))
         return;
     CHECK(scene.environment_texture.width == 8 && scene.environment_texture.height == 4,
@@ -608,11 +593,11 @@ static void test_environment_map(void)
     gb_scene_free(&scene);
 
     gb_error error;
-    write_file(scene_path, "gibake-scene 1\nmesh cube.obj\nenvironment 1 1 1\n"
+    scratch_write_text(scene_path, "gibake-scene 1\nmesh cube.obj\nenvironment 1 1 1\n"
                            "environment-map sky map.exr\n");
     CHECK(gb_scene_load(scene_path, NULL, &scene, &error) == GB_ERROR_PARSE
           && strstr(error.message, ":3:"), "a colour and a map are refused, at the colour's line");
-    write_file(scene_path, "gibake-scene 1\nmesh cube.obj\nenvironment-map none.exr\n");
+    scratch_write_text(scene_path, "gibake-scene 1\nmesh cube.obj\nenvironment-map none.exr\n");
     CHECK(gb_scene_load(scene_path, NULL, &scene, &error) == GB_ERROR_IO
           && strstr(error.message, ":3: environment-map"), "a missing map: file:line");
 }
@@ -623,12 +608,12 @@ static void test_openmesh_types(void)
     char path[4096];
     gb_scene obj;
     write_cube_openmesh_files();
-    int obj_loaded = load(in_temporary("cube.obj", path, sizeof path), NULL, &obj);
+    int obj_loaded = load(scratch_path_into("cube.obj", path, sizeof path), NULL, &obj);
     for (int i = 0; i < 3; ++i) {
         gb_scene scene;
         char what[128];
         snprintf(what, sizeof what, "%s loads through OpenMesh", names[i]);
-        if (!CHECK(load(in_temporary(names[i], path, sizeof path), NULL, &scene), what))
+        if (!CHECK(load(scratch_path_into(names[i], path, sizeof path), NULL, &scene), what))
             continue;
         snprintf(what, sizeof what, "%s: 12 triangles on 8 shared vertices", names[i]);
         CHECK(scene.triangle_count == 12 && scene.vertex_count == 8, what);
@@ -649,11 +634,11 @@ static void test_hash_ignores_cameras(void)
 {
     char path[4096];
     gb_scene a, b;
-    write_file(in_temporary("one.scene", path, sizeof path),
+    scratch_write_text(scratch_path_into("one.scene", path, sizeof path),
                "gibake-scene 1\nmesh cube.obj\nlight point position 0 0 0 intensity 1 1 1\n"
                "camera position 0 0 9 target 0 0 0 up 0 1 0 fov 40 resolution 8 8\n");
     int loaded = load(path, NULL, &a);
-    write_file(in_temporary("two.scene", path, sizeof path),
+    scratch_write_text(scratch_path_into("two.scene", path, sizeof path),
                "gibake-scene 1\nlight point position 0 0 0 intensity 1 1 1\nmesh cube.obj\n");
     loaded = load(path, NULL, &b) && loaded;
     if (CHECK(loaded, "two scene files that differ in cameras load"))
@@ -717,7 +702,7 @@ static void test_default_camera(void)
 {
     char path[4096];
     gb_scene scene;
-    if (!CHECK(load(in_temporary("cube.obj", path, sizeof path), NULL, &scene),
+    if (!CHECK(load(scratch_path_into("cube.obj", path, sizeof path), NULL, &scene),
                "cube OBJ without cameras loads"))
         return;
     CHECK_EQ_INT(scene.camera_count, 1, "a default camera is added");
@@ -809,48 +794,33 @@ static void test_missing_files(void)
     char path[4096], mtl[4096];
     gb_scene scene;
     gb_error error;
-    write_file(in_temporary("nomtl.obj", path, sizeof path),
+    scratch_write_text(scratch_path_into("nomtl.obj", path, sizeof path),
                "mtllib missing.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
     gb_result result = gb_scene_load(path, NULL, &scene, &error);
     char expected[8192];
     snprintf(expected, sizeof expected, "%s:1: mtllib %s/missing.mtl: No such file or directory",
-             path, temporary_folder);
+             path, scratch_folder);
     CHECK(result == GB_ERROR_IO && strcmp(error.message, expected) == 0,
           "missing MTL: obj:line: mtllib path: reason");
-    write_file(in_temporary("notex.mtl", mtl, sizeof mtl), "newmtl a\nKd 1 1 1\nmap_Kd gone.png\n");
-    write_file(path, "mtllib notex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
+    scratch_write_text(scratch_path_into("notex.mtl", mtl, sizeof mtl), "newmtl a\nKd 1 1 1\nmap_Kd gone.png\n");
+    scratch_write_text(path, "mtllib notex.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n");
     result = gb_scene_load(path, NULL, &scene, &error);
     snprintf(expected, sizeof expected, "%s:3: texture %s/gone.png: No such file or directory",
-             mtl, temporary_folder);
+             mtl, scratch_folder);
     CHECK(result == GB_ERROR_IO && strcmp(error.message, expected) == 0,
           "missing texture: mtl:line: texture path: reason");
-    result = gb_scene_load(in_temporary("absent.obj", path, sizeof path), NULL, &scene, &error);
+    result = gb_scene_load(scratch_path_into("absent.obj", path, sizeof path), NULL, &scene, &error);
     CHECK(result == GB_ERROR_IO, "missing OBJ: I/O error");
     CHECK(scene.triangle_count == 0 && scene.positions == NULL,
           "failed load leaves a zeroed scene");
     gb_scene_free(&scene);
 }
 
-static void remove_temporary_folder(void)
-{
-    static const char *const names[] = {"cube.obj", "lit.scene", "one.scene", "two.scene",
-                                        "nomtl.obj", "notex.mtl", "cube.off",
-                                        "cube-ascii.stl", "cube-binary.stl", "sky map.exr",
-                                        "sky.scene", "plain.scene"};
-    char path[4096];
-    for (size_t i = 0; i < sizeof names / sizeof *names; ++i)
-        unlink(in_temporary(names[i], path, sizeof path));
-    rmdir(temporary_folder);
-}
-
 int main(void)
 {
     const char *env = getenv("GB_ROOT");
     snprintf(root, sizeof root, "%s", env && *env ? env : ".");
-    if (!mkdtemp(temporary_folder)) {
-        printf("Bail out! cannot make a temporary folder\n");
-        return 1;
-    }
+    scratch_create("scene");
     test_cornell_original();
     test_bunny();
     test_bunny_gz();
@@ -872,6 +842,6 @@ int main(void)
     test_finish_in_memory();
     test_missing_files();
     test_environment_map();
-    remove_temporary_folder();
+    scratch_remove();
     return tap_done();
 }

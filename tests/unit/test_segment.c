@@ -15,6 +15,7 @@
 #include "random.h"
 #include "scene_builder.h"
 #include "segmentation.h"
+#include "scratch.h"
 #include "tap.h"
 
 #include <stdio.h>
@@ -661,20 +662,6 @@ static void test_equal_radii(void)
 
 /* ---- the .seg file ---- */
 
-static unsigned char *read_all(const char *path, size_t *size)
-{
-    FILE *f = fopen(path, "rb");
-    if (!f)
-        return NULL;
-    fseek(f, 0, SEEK_END);
-    long length = ftell(f);
-    fseek(f, 0, SEEK_SET);
-    unsigned char *bytes = malloc(length > 0 ? (size_t)length : 1);
-    *size = fread(bytes, 1, (size_t)length, f);
-    fclose(f);
-    return bytes;
-}
-
 static int segmentations_equal(const gb_segmentation *a, const gb_segmentation *b)
 {
     return a->skeleton_node_count == b->skeleton_node_count && a->node_count == b->node_count &&
@@ -755,17 +742,14 @@ static void test_file(void)
     gb_error error;
     segment_with(&s, 20, &seg, NULL);
     segment_with(&s, 20, &again, NULL);
-    char dir[] = "/tmp/gibake-test-segment.XXXXXX", p1[64], p2[64], p3[64];
-    if (!CHECK(mkdtemp(dir) != NULL, "file: temporary folder"))
-        return;
-    snprintf(p1, sizeof p1, "%s/a.seg", dir);
-    snprintf(p2, sizeof p2, "%s/b.seg", dir);
-    snprintf(p3, sizeof p3, "%s/c.seg", dir);
+    scratch_create("segment");
+    const char *p1 = scratch_path("a.seg"), *p2 = scratch_path("b.seg"),
+               *p3 = scratch_path("c.seg");
     CHECK(gb_segmentation_write(p1, &seg, &error) == GB_OK &&
               gb_segmentation_write(p2, &again, &error) == GB_OK,
           "file: written");
     size_t size1 = 0, size2 = 0;
-    unsigned char *b1 = read_all(p1, &size1), *b2 = read_all(p2, &size2);
+    unsigned char *b1 = scratch_read(p1, &size1), *b2 = scratch_read(p2, &size2);
     CHECK(b1 && b2 && size1 == size2 && !memcmp(b1, b2, size1),
           "file: the same skeleton gives the same bytes");
     CHECK(gb_segmentation_read(p1, &back, &error) == GB_OK, "file: read back");
@@ -817,10 +801,7 @@ static void test_file(void)
 
     free(b1);
     free(b2);
-    unlink(p1);
-    unlink(p2);
-    unlink(p3);
-    rmdir(dir);
+    scratch_remove();
     gb_segmentation_free(&seg);
     gb_segmentation_free(&again);
     gb_skeleton_free(&s);

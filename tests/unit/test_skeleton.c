@@ -3,6 +3,7 @@
  * says), and corrupt files are refused with a message, never read. */
 #include "container.h"
 #include "skeleton.h"
+#include "scratch.h"
 #include "tap.h"
 
 #include <math.h>
@@ -10,44 +11,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-static char folder[256];
-
-static void make_folder(void)
-{
-    const char *tmp = getenv("TMPDIR");
-    snprintf(folder, sizeof folder, "%s/gibake-test-skeleton-XXXXXX", tmp ? tmp : "/tmp");
-    if (!mkdtemp(folder)) {
-        perror("mkdtemp");
-        exit(1);
-    }
-}
-
-static const char *in_folder(const char *name)
-{
-    static char paths[4][512];
-    static int next;
-    char *path = paths[next++ % 4];
-    snprintf(path, sizeof paths[0], "%s/%s", folder, name);
-    return path;
-}
-
-static unsigned char *read_all(const char *path, size_t *size)
-{
-    FILE *file = fopen(path, "rb");
-    if (!file)
-        return NULL;
-    fseek(file, 0, SEEK_END);
-    *size = (size_t)ftell(file);
-    fseek(file, 0, SEEK_SET);
-    unsigned char *bytes = malloc(*size ? *size : 1);
-    if (fread(bytes, 1, *size, file) != *size) {
-        free(bytes);
-        bytes = NULL;
-    }
-    fclose(file);
-    return bytes;
-}
 
 /* A small valid skeleton: a square with a tail. */
 static gb_skeleton sample(void)
@@ -96,14 +59,14 @@ static void test_round_trip(void)
 {
     gb_skeleton s = sample(), back;
     gb_error error;
-    const char *path = in_folder("sample.skel");
+    const char *path = scratch_path("sample.skel");
     CHECK_EQ_INT(gb_skeleton_write(path, &s, &error), GB_OK, "round trip: write");
     CHECK_EQ_INT(gb_skeleton_read(path, &back, &error), GB_OK, "round trip: read");
     CHECK(same_skeleton(&s, &back), "round trip: every field comes back");
     gb_skeleton_free(&back);
 
     size_t size = 0;
-    unsigned char *bytes = read_all(path, &size);
+    unsigned char *bytes = scratch_read(path, &size);
     gb_container container;
     CHECK(bytes && gb_container_parse(bytes, size, path, "SKEL", &container, &error) == GB_OK,
           "layout: a SKEL container");
@@ -129,9 +92,9 @@ static void test_round_trip(void)
     memset(&empty, 0, sizeof empty);
     empty.voxel_size = 1.0;
     empty.grid_size[0] = empty.grid_size[1] = empty.grid_size[2] = 1;
-    CHECK_EQ_INT(gb_skeleton_write(in_folder("empty.skel"), &empty, &error), GB_OK,
+    CHECK_EQ_INT(gb_skeleton_write(scratch_path("empty.skel"), &empty, &error), GB_OK,
                  "round trip: a skeleton without nodes is written");
-    CHECK_EQ_INT(gb_skeleton_read(in_folder("empty.skel"), &back, &error), GB_OK,
+    CHECK_EQ_INT(gb_skeleton_read(scratch_path("empty.skel"), &back, &error), GB_OK,
                  "round trip: and read back");
     CHECK(back.node_count == 0 && back.edge_count == 0, "round trip: still empty");
     gb_skeleton_free(&back);
@@ -143,7 +106,7 @@ static gb_result read_crafted(const void *header, uint64_t header_size, const vo
                               uint64_t node_size, const void *edges, uint64_t edge_size,
                               uint32_t version, gb_error *error)
 {
-    const char *path = in_folder("crafted.skel");
+    const char *path = scratch_path("crafted.skel");
     gb_container_writer *w = gb_container_writer_create("SKEL", version);
     if (header)
         gb_container_add(w, "header", header, header_size, NULL);
@@ -263,10 +226,10 @@ static void test_corrupt_bytes(void)
 {
     gb_skeleton s = sample(), back;
     gb_error error;
-    const char *path = in_folder("corrupt.skel");
+    const char *path = scratch_path("corrupt.skel");
     gb_skeleton_write(path, &s, &error);
     size_t size = 0;
-    unsigned char *bytes = read_all(path, &size);
+    unsigned char *bytes = scratch_read(path, &size);
     int refused = 0, crashed_or_accepted = 0;
     for (size_t i = 0; i < size; ++i) {
         bytes[i] ^= 0x5a;
@@ -290,26 +253,23 @@ static void test_corrupt_bytes(void)
     CHECK(refused > 0, "corrupt: messages given");
     free(bytes);
 
-    CHECK(gb_skeleton_read(in_folder("missing.skel"), &back, &error) == GB_ERROR_IO &&
+    CHECK(gb_skeleton_read(scratch_path("missing.skel"), &back, &error) == GB_ERROR_IO &&
               strstr(error.message, "missing.skel") != NULL,
           "corrupt: a missing file names the path");
     gb_skeleton bad = sample();
     bad.edges = (uint32_t[]){0, 9};
     bad.edge_count = 1;
-    CHECK_EQ_INT(gb_skeleton_write(in_folder("bad.skel"), &bad, &error), GB_ERROR_INVALID,
+    CHECK_EQ_INT(gb_skeleton_write(scratch_path("bad.skel"), &bad, &error), GB_ERROR_INVALID,
                  "writer: refuses an edge out of range");
-    CHECK(access(in_folder("bad.skel"), F_OK) != 0, "writer: and writes nothing");
+    CHECK(access(scratch_path("bad.skel"), F_OK) != 0, "writer: and writes nothing");
 }
 
 int main(void)
 {
-    make_folder();
+    scratch_create("skeleton");
     test_round_trip();
     test_rejections();
     test_corrupt_bytes();
-    char command[600];
-    snprintf(command, sizeof command, "rm -rf '%s'", folder);
-    if (system(command) != 0)
-        printf("# could not remove %s\n", folder);
+    scratch_remove();
     return tap_done();
 }

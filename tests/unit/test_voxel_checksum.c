@@ -5,6 +5,7 @@
  * version in bytes 8..20: each is refused before OpenVDB parses anything. A
  * format-1 file gets its own message.
  */
+#include "scratch.h"
 #include "tap.h"
 #include "voxel_grid.h"
 
@@ -16,8 +17,7 @@
 
 enum { UUID_OFFSET = 21, UUID_LENGTH = 36, HEADER_BYTES = 57 };
 
-static char directory[] = "/tmp/gb_test_voxel_checksum_XXXXXX";
-static char path[128];
+static char path[512]; /* the file the checks write and read */
 
 static void make_grid(gb_voxel_grid *grid)
 {
@@ -38,30 +38,10 @@ static void make_grid(gb_voxel_grid *grid)
             }
 }
 
-static unsigned char *read_file(const char *name, size_t *size)
-{
-    FILE *file = fopen(name, "rb");
-    fseek(file, 0, SEEK_END);
-    *size = (size_t)ftell(file);
-    fseek(file, 0, SEEK_SET);
-    unsigned char *bytes = malloc(*size + 16);
-    if (fread(bytes, 1, *size, file) != *size)
-        abort();
-    fclose(file);
-    return bytes;
-}
-
-static void write_file(const unsigned char *bytes, size_t size)
-{
-    FILE *file = fopen(path, "wb");
-    fwrite(bytes, 1, size, file);
-    fclose(file);
-}
-
 /* The result of reading bytes as a voxel file; error gets the message. */
 static gb_result read_bytes(const unsigned char *bytes, size_t size, gb_error *error)
 {
-    write_file(bytes, size);
+    scratch_write(path, bytes, size);
     gb_voxel_grid read = {0};
     gb_result result = gb_voxel_grid_read(path, &read, error);
     if (result == GB_OK)
@@ -98,19 +78,17 @@ static void format1_uuid(const unsigned char *bytes, size_t size, char uuid[UUID
 
 int main(void)
 {
-    if (!mkdtemp(directory)) {
-        perror("mkdtemp");
-        return 1;
-    }
-    snprintf(path, sizeof path, "%s/test.vdb", directory);
-    char whole[160];
-    snprintf(whole, sizeof whole, "%s/whole.vdb", directory);
+    scratch_create("voxel-checksum");
+    char whole[512], nearest[512];
+    scratch_path_into("test.vdb", path, sizeof path);
+    scratch_path_into("whole.vdb", whole, sizeof whole);
+    scratch_path_into("nearest.vdb", nearest, sizeof nearest);
     gb_voxel_grid grid;
     gb_error error;
     make_grid(&grid);
     CHECK_EQ_INT(gb_voxel_grid_write(whole, &grid, &error), GB_OK, "a small voxel file is written");
     size_t size;
-    unsigned char *bytes = read_file(whole, &size);
+    unsigned char *bytes = scratch_read(whole, &size);
     unsigned char *copy = malloc(size + 16);
 
     char uuid[UUID_LENGTH + 1];
@@ -194,13 +172,11 @@ int main(void)
     int32_t *values = malloc((size_t)9 * 5 * 4 * sizeof *values);
     for (int i = 0; i < 9 * 5 * 4; ++i)
         values[i] = i % 3 ? i : -1;
-    char nearest[160];
-    snprintf(nearest, sizeof nearest, "%s/nearest.vdb", directory);
     gb_voxel_grid_write_int32(nearest, &grid, "nearest_node", values, &error);
     size_t int_size;
-    unsigned char *int_bytes = read_file(nearest, &int_size);
+    unsigned char *int_bytes = scratch_read(nearest, &int_size);
     int_bytes[12] ^= 1;   /* the library major version */
-    write_file(int_bytes, int_size);
+    scratch_write(path, int_bytes, int_size);
     gb_voxel_grid frame;
     int32_t *read_values = NULL;
     CHECK_EQ_INT(gb_voxel_grid_read_int32(path, "nearest_node", &frame, &read_values, &error),
@@ -212,9 +188,6 @@ int main(void)
     free(copy);
     free(bytes);
     gb_voxel_grid_free(&grid);
-    unlink(path);
-    unlink(whole);
-    unlink(nearest);
-    rmdir(directory);
+    scratch_remove();
     return tap_done();
 }

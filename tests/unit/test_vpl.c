@@ -1,6 +1,7 @@
 /* The VPL set file (formats/vpl.[ch]): a round trip keeps every value, and
  * corrupted, inconsistent, invalid, newer or stale sets are refused. */
 #include "container.h"
+#include "scratch.h"
 #include "tap.h"
 #include "vpl.h"
 
@@ -8,42 +9,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-static char folder[256];
-
-static void make_folder(void)
-{
-    const char *tmp = getenv("TMPDIR");
-    snprintf(folder, sizeof folder, "%s/gibake-test-vpl-XXXXXX", tmp ? tmp : "/tmp");
-    if (!mkdtemp(folder)) {
-        perror("mkdtemp");
-        exit(1);
-    }
-}
-
-static const char *in_folder(const char *name)
-{
-    static char path[512];
-    snprintf(path, sizeof path, "%s/%s", folder, name);
-    return path;
-}
-
-static unsigned char *read_whole(const char *path, size_t *size)
-{
-    FILE *file = fopen(path, "rb");
-    if (!file)
-        return NULL;
-    fseek(file, 0, SEEK_END);
-    *size = (size_t)ftell(file);
-    rewind(file);
-    unsigned char *bytes = malloc(*size);
-    if (bytes && fread(bytes, 1, *size, file) != *size) {
-        free(bytes);
-        bytes = NULL;
-    }
-    fclose(file);
-    return bytes;
-}
 
 static const gb_vpl sample_vpls[3] = {
     {{1, 2, 3}, {0, 1, 0}, {0.5f, 0.25f, 0.125f}},
@@ -56,9 +21,9 @@ static void test_round_trip(void)
     gb_vpl_set set = {.scene_hash = 0x0123456789abcdefULL, .count = 3,
                       .vpls = (gb_vpl *)sample_vpls};
     gb_error error;
-    CHECK_EQ_INT(gb_vpl_write(in_folder("a.vpls"), &set, &error), GB_OK, "write a VPL set");
+    CHECK_EQ_INT(gb_vpl_write(scratch_path("a.vpls"), &set, &error), GB_OK, "write a VPL set");
     gb_vpl_set read;
-    CHECK_EQ_INT(gb_vpl_read(in_folder("a.vpls"), &read, &error), GB_OK, "read it back");
+    CHECK_EQ_INT(gb_vpl_read(scratch_path("a.vpls"), &read, &error), GB_OK, "read it back");
     CHECK(read.count == 3 && read.scene_hash == set.scene_hash &&
               memcmp(read.vpls, sample_vpls, sizeof sample_vpls) == 0,
           "the round trip keeps the count, the scene hash and every float");
@@ -69,8 +34,8 @@ static void test_round_trip(void)
     gb_vpl_free(&read);
 
     gb_vpl_set empty = {.scene_hash = 9};
-    gb_vpl_write(in_folder("empty.vpls"), &empty, &error);
-    CHECK(gb_vpl_read(in_folder("empty.vpls"), &read, &error) == GB_OK && read.count == 0 &&
+    gb_vpl_write(scratch_path("empty.vpls"), &empty, &error);
+    CHECK(gb_vpl_read(scratch_path("empty.vpls"), &read, &error) == GB_OK && read.count == 0 &&
               read.scene_hash == 9,
           "an empty set is valid");
     gb_vpl_free(&read);
@@ -79,7 +44,7 @@ static void test_round_trip(void)
 static void test_corruption(void)
 {
     size_t size;
-    unsigned char *bytes = read_whole(in_folder("a.vpls"), &size);
+    unsigned char *bytes = scratch_read(scratch_path("a.vpls"), &size);
     int refused = 1, messages = 1;
     for (size_t i = 0; bytes && i < size; ++i) {
         bytes[i] ^= 0x10;
@@ -116,29 +81,29 @@ static void test_inconsistent(void)
     unsigned char payload[2 * 36] = {0};
     gb_vpl_set set;
     gb_error error;
-    write_raw(in_folder("short.vpls"), 1, header, 16, payload, sizeof payload);
-    CHECK_EQ_INT(gb_vpl_read(in_folder("short.vpls"), &set, &error), GB_ERROR_FORMAT,
+    write_raw(scratch_path("short.vpls"), 1, header, 16, payload, sizeof payload);
+    CHECK_EQ_INT(gb_vpl_read(scratch_path("short.vpls"), &set, &error), GB_ERROR_FORMAT,
                  "a count that does not match the payload is refused");
     header[0] = 2;
-    write_raw(in_folder("zero-normal.vpls"), 1, header, 16, payload, sizeof payload);
-    CHECK_EQ_INT(gb_vpl_read(in_folder("zero-normal.vpls"), &set, &error), GB_ERROR_INVALID,
+    write_raw(scratch_path("zero-normal.vpls"), 1, header, 16, payload, sizeof payload);
+    CHECK_EQ_INT(gb_vpl_read(scratch_path("zero-normal.vpls"), &set, &error), GB_ERROR_INVALID,
                  "a VPL whose normal is not unit is refused");
-    write_raw(in_folder("newer.vpls"), 2, header, 16, payload, sizeof payload);
-    CHECK_EQ_INT(gb_vpl_read(in_folder("newer.vpls"), &set, &error), GB_ERROR_UNSUPPORTED,
+    write_raw(scratch_path("newer.vpls"), 2, header, 16, payload, sizeof payload);
+    CHECK_EQ_INT(gb_vpl_read(scratch_path("newer.vpls"), &set, &error), GB_ERROR_UNSUPPORTED,
                  "a newer format version is refused");
     header[4] = 1;
-    write_raw(in_folder("reserved.vpls"), 1, header, 16, payload, sizeof payload);
-    CHECK_EQ_INT(gb_vpl_read(in_folder("reserved.vpls"), &set, &error), GB_ERROR_FORMAT,
+    write_raw(scratch_path("reserved.vpls"), 1, header, 16, payload, sizeof payload);
+    CHECK_EQ_INT(gb_vpl_read(scratch_path("reserved.vpls"), &set, &error), GB_ERROR_FORMAT,
                  "a nonzero reserved field is refused");
-    write_raw(in_folder("small-header.vpls"), 1, header, 8, payload, sizeof payload);
-    CHECK_EQ_INT(gb_vpl_read(in_folder("small-header.vpls"), &set, &error), GB_ERROR_FORMAT,
+    write_raw(scratch_path("small-header.vpls"), 1, header, 8, payload, sizeof payload);
+    CHECK_EQ_INT(gb_vpl_read(scratch_path("small-header.vpls"), &set, &error), GB_ERROR_FORMAT,
                  "a header of the wrong size is refused");
     CHECK(set.count == 0 && set.vpls == NULL, "a failed read leaves an empty set");
     gb_container_writer *w = gb_container_writer_create("SKEL", 1);
     gb_container_add(w, "header", header, 16, &error);
-    gb_container_commit(w, in_folder("other.kind"), &error);
+    gb_container_commit(w, scratch_path("other.kind"), &error);
     gb_container_writer_destroy(w);
-    CHECK(gb_vpl_read(in_folder("other.kind"), &set, &error) != GB_OK,
+    CHECK(gb_vpl_read(scratch_path("other.kind"), &set, &error) != GB_OK,
           "a container of another kind is refused");
 }
 
@@ -147,33 +112,24 @@ static void test_invalid_write(void)
     gb_vpl bad[1] = {{{0, 0, 0}, {0, 2, 0}, {1, 1, 1}}};
     gb_vpl_set set = {.count = 1, .vpls = bad};
     gb_error error;
-    CHECK_EQ_INT(gb_vpl_write(in_folder("bad.vpls"), &set, &error), GB_ERROR_INVALID,
+    CHECK_EQ_INT(gb_vpl_write(scratch_path("bad.vpls"), &set, &error), GB_ERROR_INVALID,
                  "writing a non-unit normal is refused");
-    CHECK(access(in_folder("bad.vpls"), F_OK) != 0, "and leaves no file");
+    CHECK(access(scratch_path("bad.vpls"), F_OK) != 0, "and leaves no file");
     bad[0].normal[1] = 1;
     bad[0].power[2] = -1;
-    CHECK_EQ_INT(gb_vpl_write(in_folder("bad.vpls"), &set, &error), GB_ERROR_INVALID,
+    CHECK_EQ_INT(gb_vpl_write(scratch_path("bad.vpls"), &set, &error), GB_ERROR_INVALID,
                  "writing a negative power is refused");
-    CHECK_EQ_INT(gb_vpl_read(in_folder("missing.vpls"), &set, &error), GB_ERROR_IO,
+    CHECK_EQ_INT(gb_vpl_read(scratch_path("missing.vpls"), &set, &error), GB_ERROR_IO,
                  "a missing file is an I/O error");
-}
-
-static void remove_folder(void)
-{
-    const char *names[] = {"a.vpls", "empty.vpls", "short.vpls", "zero-normal.vpls",
-                           "newer.vpls", "reserved.vpls", "small-header.vpls", "other.kind"};
-    for (size_t i = 0; i < sizeof names / sizeof names[0]; ++i)
-        unlink(in_folder(names[i]));
-    rmdir(folder);
 }
 
 int main(void)
 {
-    make_folder();
+    scratch_create("vpl");
     test_round_trip();
     test_corruption();
     test_inconsistent();
     test_invalid_write();
-    remove_folder();
+    scratch_remove();
     return tap_done();
 }
