@@ -9,19 +9,10 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-adapters.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
 . "$(dirname "$0")/tap.sh"
 
 adapters=$GB_BIN/../lib/gibake
-for t in imgdiff reference voxelize thin gbview; do
-    if [ ! -x "$GB_BIN/$t" ]; then
-        echo "Bail out! $GB_BIN/$t not built"
-        exit 1
-    fi
-done
+needs imgdiff reference voxelize thin gbview
 
 [ -f "$adapters/gibake-openimageio.so" ] &&
     ldd "$adapters/gibake-openimageio.so" | grep -q 'libOpenImageIO\.so'

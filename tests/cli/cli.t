@@ -7,20 +7,11 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-cli.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-tool=
 . "$(dirname "$0")/tap.sh"
+tool=
 
 tools="voxelize thin segment photons cluster reference imgdiff scene-info gbview"
-for name in $tools; do
-    if [ ! -x "$GB_BIN/$name" ]; then
-        echo "Bail out! $GB_BIN/$name not built"
-        exit 1
-    fi
-done
+needs $tools
 
 # usage_error WHAT TOOL LINE ARGS...: TOOL ARGS exits 2 with exactly LINE and
 # the Try line on stderr, nothing on stdout.

@@ -6,18 +6,11 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+. "$(dirname "$0")/tap.sh"
 tool=$GB_BIN/cluster
 scene=$GB_ROOT/scenes/cornell/cornell.scene
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-cluster.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-. "$(dirname "$0")/tap.sh"
 
-if [ ! -x "$tool" ] || [ ! -x "$GB_BIN/photons" ]; then
-    echo "Bail out! $tool or photons not built"
-    exit 1
-fi
+needs cluster photons
 
 "$GB_BIN/photons" --count 5000 --quiet "$scene" -o "$dir/in.phot" 2>"$dir/err"
 ok $? "photons for the Cornell box"

@@ -8,20 +8,13 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+. "$(dirname "$0")/tap.sh"
 tool=$GB_BIN/gbview
 reference=$GB_BIN/reference
 imgdiff=$GB_BIN/imgdiff
 scene=$GB_ROOT/scenes/cornell/cornell.scene
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-flc.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-. "$(dirname "$0")/tap.sh"
 
-if [ ! -x "$tool" ] || [ ! -x "$imgdiff" ] || [ ! -x "$reference" ]; then
-    echo "Bail out! $tool, $imgdiff or $reference not built"
-    exit 1
-fi
+needs gbview imgdiff reference
 
 # The relative MSE of 16 frames at 64x64 against the reference at 1024 spp
 # is about 0.0005 (1 frame about 0.0017); the threshold leaves room.

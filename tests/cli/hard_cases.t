@@ -12,18 +12,9 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-hard.XXXXXX") || exit 1
-[ -n "$GB_KEEP" ] || trap 'rm -rf "$dir"' EXIT INT TERM
 . "$(dirname "$0")/tap.sh"
 
-for t in scene-info voxelize thin segment photons cluster reference gbview imgdiff; do
-    if [ ! -x "$GB_BIN/$t" ]; then
-        echo "Bail out! $GB_BIN/$t not built"
-        exit 1
-    fi
-done
+needs scene-info voxelize thin segment photons cluster reference gbview imgdiff
 if ! command -v oiiotool >/dev/null 2>&1; then
     missing "oiiotool (openimageio-tools): the images' NaN and Inf counts"
     tap_done

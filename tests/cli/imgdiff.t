@@ -5,18 +5,11 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
-tool=$GB_BIN/imgdiff
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-imgdiff.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
 . "$(dirname "$0")/tap.sh"
+tool=$GB_BIN/imgdiff
 
 # value KEY FILE: the value printed for KEY in FILE
-if [ ! -x "$tool" ]; then
-    echo "Bail out! $tool not built"
-    exit 1
-fi
+needs imgdiff
 
 printf 'P3\n2 1\n255\n100 100 100 0 0 0\n' >"$dir/a.ppm"
 printf 'P3\n2 1\n255\n110 110 110 0 0 0\n' >"$dir/b.ppm"

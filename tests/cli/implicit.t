@@ -8,20 +8,13 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+. "$(dirname "$0")/tap.sh"
 tool=$GB_BIN/gbview
 reference=$GB_BIN/reference
 imgdiff=$GB_BIN/imgdiff
 scene=$GB_ROOT/scenes/cornell/cornell.scene
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-implicit.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-. "$(dirname "$0")/tap.sh"
 
-if [ ! -x "$tool" ] || [ ! -x "$imgdiff" ]; then
-    echo "Bail out! $tool or $imgdiff not built"
-    exit 1
-fi
+needs gbview imgdiff
 
 small="--headless --method implicit --bins 8 --resolution 64x64 --quiet"
 

@@ -6,10 +6,6 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-install.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
 . "$(dirname "$0")/tap.sh"
 
 if ! command -v help2man >/dev/null 2>&1; then

@@ -9,24 +9,15 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+. "$(dirname "$0")/tap.sh"
 tool=$GB_BIN/gbview
 photons=$GB_BIN/photons
 cluster=$GB_BIN/cluster
 reference=$GB_BIN/reference
 imgdiff=$GB_BIN/imgdiff
 scene=$GB_ROOT/scenes/cornell/cornell.scene
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-octree.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-. "$(dirname "$0")/tap.sh"
 
-for t in "$tool" "$photons" "$cluster" "$imgdiff"; do
-    if [ ! -x "$t" ]; then
-        echo "Bail out! $t not built"
-        exit 1
-    fi
-done
+needs gbview photons cluster imgdiff
 
 # The bake: NAME.lot, NAME the scene file's name, as gbview --bake looks for it.
 mkdir "$dir/bake"

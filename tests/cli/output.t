@@ -16,10 +16,8 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+. "$(dirname "$0")/tap.sh"
 scene=$GB_ROOT/scenes/cornell/cornell.scene
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-output.XXXXXX") || exit 1
 in=$dir/in
 mounted=
 cleanup() {
@@ -29,15 +27,9 @@ cleanup() {
 }
 trap cleanup EXIT
 trap 'exit 1' INT TERM
-. "$(dirname "$0")/tap.sh"
 
 tools="voxelize thin segment photons cluster reference gbview imgdiff"
-for t in $tools; do
-    if [ ! -x "$GB_BIN/$t" ]; then
-        echo "Bail out! $GB_BIN/$t not built"
-        exit 1
-    fi
-done
+needs $tools
 root=0
 [ "$(id -u)" = 0 ] && root=1
 

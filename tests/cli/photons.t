@@ -6,18 +6,11 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+. "$(dirname "$0")/tap.sh"
 tool=$GB_BIN/photons
 scene=$GB_ROOT/scenes/cornell/cornell.scene
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-photons.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-. "$(dirname "$0")/tap.sh"
 
-if [ ! -x "$tool" ]; then
-    echo "Bail out! $tool not built"
-    exit 1
-fi
+needs photons
 
 small="--count 3000 --quiet"
 

@@ -14,12 +14,8 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
-GB_BIN=$(cd "$GB_BIN" 2>/dev/null && pwd || echo "$GB_BIN")
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-report.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
 . "$(dirname "$0")/tap.sh"
+GB_BIN=$(cd "$GB_BIN" 2>/dev/null && pwd || echo "$GB_BIN")
 # No time limit on a render (timeout 0): under the sanitizers or a loaded
 # machine a slow render must still finish, never fail by the clock.
 export REPORT_TIMEOUT=0

@@ -5,12 +5,8 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
-tool=$GB_BIN/scene-info
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-scene-errors.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
 . "$(dirname "$0")/tap.sh"
+tool=$GB_BIN/scene-info
 
 # expect_error WHAT FILE MESSAGE: scene-info FILE exits 1, prints exactly
 # "scene-info: MESSAGE" on stderr and nothing on stdout.
@@ -32,10 +28,7 @@ triangle='v 0 0 0
 v 1 0 0
 v 0 1 0'
 
-if [ ! -x "$tool" ]; then
-    echo "Bail out! $tool not built"
-    exit 1
-fi
+needs scene-info
 
 printf '%s\nv 0 nan 0\nf 1 2 3\n' "$triangle" >"$dir/nan.obj"
 expect_error "NaN coordinate" "$dir/nan.obj" "$dir/nan.obj:4: vertex y 'nan' is not finite"

@@ -6,12 +6,8 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
-scene=$GB_ROOT/scenes/cornell/cornell.scene
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-segment.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
 . "$(dirname "$0")/tap.sh"
+scene=$GB_ROOT/scenes/cornell/cornell.scene
 
 # expect_status WHAT STATUS COMMAND...: the command exits with STATUS.
 expect_status() {

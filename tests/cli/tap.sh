@@ -1,7 +1,11 @@
-# tap.sh — the TAP helpers every tests/cli/*.t shares; a .t sources it
-# (`. "$(dirname "$0")/tap.sh"`) after setting $tool (the program under
-# test) and $dir (its scratch folder), and ends with `tap_done`.
+# tap.sh — the TAP helpers every tests/cli/*.t shares. A .t sources it first
+# (`. "$(dirname "$0")/tap.sh"`) and ends with `tap_done`. Sourcing sets
+#   GB_ROOT              the repository (default .), made absolute
+#   GB_BIN               the tools (default $GB_ROOT/build/bin)
+#   dir                  a scratch folder, gibake-NAME.XXXXXX for NAME.t,
+#                        removed at exit unless GB_KEEP is set
 #
+#   needs TOOL...        bails out unless each TOOL is built in $GB_BIN
 #   ok STATUS WHAT       one check, passed when STATUS is 0
 #   missing WHAT         one failed check: a program or package the test needs
 #                        is absent (make test installs them all, so in CI this
@@ -12,6 +16,11 @@
 #                        runs $tool ARGS: two checks, exit status STATUS
 #                        and PATTERN (grep) on stderr
 #   tap_done             prints the plan; returns nonzero if a check failed
+
+GB_ROOT=$(cd "${GB_ROOT:-.}" && pwd) || exit 1
+GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
+dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-$(basename "$0" .t).XXXXXX") || exit 1
+[ -n "$GB_KEEP" ] || trap 'rm -rf "$dir"' EXIT INT TERM
 
 count=0
 failed=0
@@ -24,6 +33,15 @@ ok() {
         failed=$((failed + 1))
         echo "not ok $count - $2"
     fi
+}
+
+needs() {
+    for needed in "$@"; do
+        if [ ! -x "$GB_BIN/$needed" ]; then
+            echo "Bail out! $GB_BIN/$needed not built"
+            exit 1
+        fi
+    done
 }
 
 missing() {

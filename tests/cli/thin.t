@@ -6,12 +6,8 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
-tool=$GB_BIN/thin
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-thin.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
 . "$(dirname "$0")/tap.sh"
+tool=$GB_BIN/thin
 
 # status_of COMMAND...: its exit status, output in $dir/out and $dir/err.
 status_of() {
@@ -19,10 +15,7 @@ status_of() {
     echo $?
 }
 
-if [ ! -x "$tool" ] || [ ! -x "$GB_BIN/voxelize" ]; then
-    echo "Bail out! thin or voxelize not built in $GB_BIN"
-    exit 1
-fi
+needs thin voxelize
 
 scene=$GB_ROOT/scenes/cornell/cornell.scene
 "$GB_BIN/voxelize" -q -r 40 "$scene" -o "$dir/box.vdb" 2>"$dir/err"

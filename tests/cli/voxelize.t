@@ -6,12 +6,8 @@
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
-tool=$GB_BIN/voxelize
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-voxelize.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
 . "$(dirname "$0")/tap.sh"
+tool=$GB_BIN/voxelize
 
 # active NAME FILE: the number of active voxels vdb_print reports for grid NAME
 active() {
@@ -20,10 +16,7 @@ active() {
         grid == name && /Number of active voxels/ { gsub(",", "", $NF); print $NF; exit }'
 }
 
-if [ ! -x "$tool" ]; then
-    echo "Bail out! $tool not built"
-    exit 1
-fi
+needs voxelize
 
 # A closed box room 0..16 x 0..16 x 0..16 (6 quads): at resolution 16 its
 # walls lie on voxel faces and each marks the two layers around it.
