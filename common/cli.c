@@ -2,6 +2,7 @@
 
 #include "cli.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -260,10 +261,28 @@ int gb_cli_version(const char *tool)
     return printf("%s (gibake) %s\n", tool, version) < 0 ? GB_EXIT_FAILURE : GB_EXIT_SUCCESS;
 }
 
-int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
-                   const char *short_options, const struct option *options,
-                   gb_cli_option_function handle, void *arguments)
+/* getopt's short options of a table: every entry whose value is a letter,
+ * followed by ':' when it takes a value; at most 52 letters of 2
+ * characters ("o:"). */
+static void short_options_of(const struct option *options, char text[128])
 {
+    size_t length = 0;
+    for (const struct option *o = options; o->name && length + 3 <= 128; ++o) {
+        if (o->val <= 0 || o->val > 127 || !isalpha(o->val))
+            continue;
+        text[length++] = (char)o->val;
+        if (o->has_arg == required_argument)
+            text[length++] = ':';
+    }
+    text[length] = '\0';
+}
+
+int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
+                   const struct option *options, gb_cli_option_function handle,
+                   void *arguments)
+{
+    char short_options[128];
+    short_options_of(options, short_options);
     int option, status;
     opterr = 0;
     while ((option = getopt_long(argc, argv, short_options, options, NULL)) != -1) {

@@ -1,7 +1,7 @@
 /* cli.h — the option values and usage errors every tool's main() shares,
  * so that every command reports a bad value the same way (git's
- * parse-options habit). A main parses with getopt_long, sets opterr = 0,
- * and hands each value to one of these functions.
+ * parse-options habit). gb_cli_options runs getopt_long and hands each
+ * option to the tool, which hands each value to one of these functions.
  *
  * Exit codes, for every tool: 0 success, 1 failure (a file, the work),
  * 2 usage (a bad option, a bad value, a missing argument).
@@ -80,17 +80,35 @@ int gb_cli_help(const char *text);
 /* "TOOL (gibake) VERSION" on stdout; as gb_cli_help. */
 int gb_cli_version(const char *tool);
 
+/* The entries of an option table (git's OPT_* habit): NAME is the long
+ * option without its dashes, CODE what gb_cli_options hands to the tool's
+ * option function: a letter, which is then also the short option (-o), or
+ * a value past 255 for a long option alone.
+ *     static const struct option long_options[] = {
+ *         GB_CLI_VALUE("output", 'o'),        --output FILE, -o FILE
+ *         GB_CLI_FLAG("stats", OPTION_STATS), --stats
+ *         GB_CLI_OPTIONS_END,
+ *     };
+ * GB_CLI_OPTIONS_END holds the entries every tool ends with: -q --quiet
+ * (each tool's option function says what quiet means), -h --help and
+ * -V --version (gb_cli_options answers those), then the terminator. */
+#define GB_CLI_VALUE(name, code) {(name), required_argument, NULL, (code)}
+#define GB_CLI_FLAG(name, code) {(name), no_argument, NULL, (code)}
+#define GB_CLI_OPTIONS_END                                                                  \
+    GB_CLI_FLAG("quiet", 'q'), GB_CLI_FLAG("help", 'h'), GB_CLI_FLAG("version", 'V'),      \
+        {NULL, 0, NULL, 0}
+
 /* One option of a tool, its value (optarg) or NULL: stores it in the
  * tool's arguments and returns GB_EXIT_SUCCESS, or an exit status. */
 typedef int (*gb_cli_option_function)(int option, const char *value, void *arguments);
 
-/* Every tool's option loop: getopt_long over argv with short_options and
- * options (which must hold 'h' --help and 'V' --version); -h prints usage,
- * -V the version, a refused option is gb_cli_option_error; every other
- * option goes to handle. Returns GB_CLI_GO_ON when all were read (optind at
- * the first operand), else the exit status to return. */
+/* Every tool's option loop: getopt_long over argv with options (ending
+ * with GB_CLI_OPTIONS_END); -h prints usage, -V the version, a refused
+ * option is gb_cli_option_error; every other option goes to handle.
+ * Returns GB_CLI_GO_ON when all were read (optind at the first operand),
+ * else the exit status to return. */
 int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
-                   const char *short_options, const struct option *options,
-                   gb_cli_option_function handle, void *arguments);
+                   const struct option *options, gb_cli_option_function handle,
+                   void *arguments);
 
 #endif

@@ -99,23 +99,19 @@ static int check_arguments(arguments *a, int argc, char **argv)
 static int parse_arguments(int argc, char **argv, arguments *a)
 {
     static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"depth", required_argument, NULL, 'd'},
-        {"knn", required_argument, NULL, 'k'},
-        {"radius", required_argument, NULL, 'r'},
-        {"vdls", required_argument, NULL, OPTION_VDLS},
-        {"max-spread", required_argument, NULL, OPTION_SPREAD},
-        {"restarts", required_argument, NULL, OPTION_RESTARTS},
-        {"seed", required_argument, NULL, OPTION_SEED},
-        {"threads", required_argument, NULL, 't'},
-        {"stats", no_argument, NULL, OPTION_STATS},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
+        GB_CLI_VALUE("output", 'o'),
+        GB_CLI_VALUE("depth", 'd'),
+        GB_CLI_VALUE("knn", 'k'),
+        GB_CLI_VALUE("radius", 'r'),
+        GB_CLI_VALUE("vdls", OPTION_VDLS),
+        GB_CLI_VALUE("max-spread", OPTION_SPREAD),
+        GB_CLI_VALUE("restarts", OPTION_RESTARTS),
+        GB_CLI_VALUE("seed", OPTION_SEED),
+        GB_CLI_VALUE("threads", 't'),
+        GB_CLI_FLAG("stats", OPTION_STATS),
+        GB_CLI_OPTIONS_END,
     };
-    int status = gb_cli_options("cluster", usage, argc, argv, "o:d:k:r:t:qhV", options,
-                                parse_option, a);
+    int status = gb_cli_options("cluster", usage, argc, argv, options, parse_option, a);
     if (status != GB_CLI_GO_ON)
         return status;
     return check_arguments(a, argc, argv);

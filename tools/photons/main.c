@@ -112,22 +112,18 @@ static int check_arguments(arguments *a, int argc, char **argv)
 static int parse_arguments(int argc, char **argv, arguments *a)
 {
     static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"count", required_argument, NULL, 'n'},
-        {"bounces", required_argument, NULL, 'b'},
-        {"store", required_argument, NULL, OPTION_STORE},
-        {"seed", required_argument, NULL, OPTION_SEED},
-        {"threads", required_argument, NULL, 't'},
-        {"shard", required_argument, NULL, OPTION_SHARD},
-        {"merge", no_argument, NULL, OPTION_MERGE},
-        {"stats", no_argument, NULL, OPTION_STATS},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
+        GB_CLI_VALUE("output", 'o'),
+        GB_CLI_VALUE("count", 'n'),
+        GB_CLI_VALUE("bounces", 'b'),
+        GB_CLI_VALUE("store", OPTION_STORE),
+        GB_CLI_VALUE("seed", OPTION_SEED),
+        GB_CLI_VALUE("threads", 't'),
+        GB_CLI_VALUE("shard", OPTION_SHARD),
+        GB_CLI_FLAG("merge", OPTION_MERGE),
+        GB_CLI_FLAG("stats", OPTION_STATS),
+        GB_CLI_OPTIONS_END,
     };
-    int status = gb_cli_options("photons", usage, argc, argv, "o:n:b:t:qhV", options,
-                                parse_option, a);
+    int status = gb_cli_options("photons", usage, argc, argv, options, parse_option, a);
     if (status != GB_CLI_GO_ON)
         return status;
     return check_arguments(a, argc, argv);

@@ -117,25 +117,21 @@ static int check_arguments(arguments *a, int argc, char **argv)
 static int parse_arguments(int argc, char **argv, arguments *a)
 {
     static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"mode", required_argument, NULL, 'm'},
-        {"vpl", required_argument, NULL, OPTION_VPL},
-        {"spp", required_argument, NULL, 's'},
-        {"seed", required_argument, NULL, OPTION_SEED},
-        {"camera", required_argument, NULL, 'c'},
-        {"resolution", required_argument, NULL, 'r'},
-        {"threads", required_argument, NULL, 't'},
-        {"bounces", required_argument, NULL, 'b'},
-        {"min-bounces", required_argument, NULL, OPTION_MIN_BOUNCES},
-        {"png", no_argument, NULL, OPTION_PNG},
-        {"stats", no_argument, NULL, OPTION_STATS},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
+        GB_CLI_VALUE("output", 'o'),
+        GB_CLI_VALUE("mode", 'm'),
+        GB_CLI_VALUE("vpl", OPTION_VPL),
+        GB_CLI_VALUE("spp", 's'),
+        GB_CLI_VALUE("seed", OPTION_SEED),
+        GB_CLI_VALUE("camera", 'c'),
+        GB_CLI_VALUE("resolution", 'r'),
+        GB_CLI_VALUE("threads", 't'),
+        GB_CLI_VALUE("bounces", 'b'),
+        GB_CLI_VALUE("min-bounces", OPTION_MIN_BOUNCES),
+        GB_CLI_FLAG("png", OPTION_PNG),
+        GB_CLI_FLAG("stats", OPTION_STATS),
+        GB_CLI_OPTIONS_END,
     };
-    int status = gb_cli_options("reference", usage, argc, argv, "o:m:s:c:r:t:b:qhV", options,
-                                parse_option, a);
+    int status = gb_cli_options("reference", usage, argc, argv, options, parse_option, a);
     if (status != GB_CLI_GO_ON)
         return status;
     return check_arguments(a, argc, argv);

@@ -80,14 +80,10 @@ static int set_quiet(int option, const char *value, void *quiet)
 int main(int argc, char **argv)
 {
     static const struct option options[] = {
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
+        GB_CLI_OPTIONS_END,
     };
     int quiet = 0;
-    int status = gb_cli_options("scene-info", usage, argc, argv, "qhV", options, set_quiet,
-                                &quiet);
+    int status = gb_cli_options("scene-info", usage, argc, argv, options, set_quiet, &quiet);
     if (status != GB_CLI_GO_ON)
         return status;
     if (optind != argc - 1)

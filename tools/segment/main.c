@@ -99,19 +99,15 @@ static int check_positionals(int argc, char **argv, arguments *args)
 static int parse_arguments(int argc, char **argv, arguments *args)
 {
     static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"alpha", required_argument, NULL, 'a'},
-        {"evaluate", no_argument, NULL, 'e'},
-        {"pairs", required_argument, NULL, 'n'},
-        {"seed", required_argument, NULL, OPTION_SEED},
-        {"stats", no_argument, NULL, 's'},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
+        GB_CLI_VALUE("output", 'o'),
+        GB_CLI_VALUE("alpha", 'a'),
+        GB_CLI_FLAG("evaluate", 'e'),
+        GB_CLI_VALUE("pairs", 'n'),
+        GB_CLI_VALUE("seed", OPTION_SEED),
+        GB_CLI_FLAG("stats", 's'),
+        GB_CLI_OPTIONS_END,
     };
-    int status = gb_cli_options("segment", usage, argc, argv, "o:a:en:sqhV", options,
-                                parse_option, args);
+    int status = gb_cli_options("segment", usage, argc, argv, options, parse_option, args);
     if (status != GB_CLI_GO_ON)
         return status;
     return check_positionals(argc, argv, args);

@@ -79,19 +79,15 @@ static int parse_option(int option, const char *text, void *context)
 static int parse_arguments(int argc, char **argv, arguments *args)
 {
     static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"grid", required_argument, NULL, 'g'},
-        {"persistence", required_argument, NULL, 'p'},
-        {"min-lifespan", required_argument, NULL, 'l'},
-        {"threads", required_argument, NULL, 'j'},
-        {"stats", no_argument, NULL, 's'},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
+        GB_CLI_VALUE("output", 'o'),
+        GB_CLI_VALUE("grid", 'g'),
+        GB_CLI_VALUE("persistence", 'p'),
+        GB_CLI_VALUE("min-lifespan", 'l'),
+        GB_CLI_VALUE("threads", 'j'),
+        GB_CLI_FLAG("stats", 's'),
+        GB_CLI_OPTIONS_END,
     };
-    int status = gb_cli_options("thin", usage, argc, argv, "o:g:p:l:j:sqhV", options,
-                                parse_option, args);
+    int status = gb_cli_options("thin", usage, argc, argv, options, parse_option, args);
     if (status != GB_CLI_GO_ON)
         return status;
     if (optind != argc - 1 || !args->output)

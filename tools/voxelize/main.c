@@ -57,19 +57,15 @@ static int parse_option(int option, const char *text, void *context)
 static int parse_arguments(int argc, char **argv, arguments *parsed)
 {
     static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"resolution", required_argument, NULL, 'r'},
-        {"pad", required_argument, NULL, OPTION_PAD},
-        {"threads", required_argument, NULL, 'j'},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
+        GB_CLI_VALUE("output", 'o'),
+        GB_CLI_VALUE("resolution", 'r'),
+        GB_CLI_VALUE("pad", OPTION_PAD),
+        GB_CLI_VALUE("threads", 'j'),
+        GB_CLI_OPTIONS_END,
     };
     *parsed = (arguments){NULL, NULL, GB_VOXELIZE_DEFAULT_RESOLUTION, GB_VOXELIZE_DEFAULT_PAD,
                           GB_VOXELIZE_DEFAULT_THREADS, 0};
-    int status = gb_cli_options("voxelize", usage, argc, argv, "o:r:j:qhV", options,
-                                parse_option, parsed);
+    int status = gb_cli_options("voxelize", usage, argc, argv, options, parse_option, parsed);
     if (status != GB_CLI_GO_ON)
         return status;
     if (optind != argc - 1)
