@@ -93,6 +93,15 @@ int gb_cli_unsigned(const char *tool, const char *option, const char *text, uint
     return GB_EXIT_SUCCESS;
 }
 
+int gb_cli_uint(const char *tool, const char *option, const char *text, unsigned low,
+                unsigned high, unsigned *value)
+{
+    uint64_t parsed = *value;   /* kept on a usage error */
+    int status = gb_cli_unsigned(tool, option, text, low, high, &parsed);
+    *value = (unsigned)parsed;
+    return status;
+}
+
 /* strtod's numbers, but no leading space, no inf, no nan: a sign, a digit
  * or a point first. */
 static int parse_finite(const char *text, double *value)
@@ -129,6 +138,15 @@ int gb_cli_float(const char *tool, const char *option, const char *text, double 
     int status = gb_cli_number(tool, option, text, low, high, &parsed);
     if (status == GB_EXIT_SUCCESS)
         *value = (float)parsed;
+    return status;
+}
+
+int gb_cli_number_keep_zero(const char *tool, const char *option, const char *text,
+                            double low, double high, double *value)
+{
+    int status = gb_cli_number(tool, option, text, low, high, value);
+    if (status == GB_EXIT_SUCCESS && *value == 0.0)
+        *value = -1.0;
     return status;
 }
 

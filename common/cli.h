@@ -48,11 +48,19 @@ int gb_cli_int(const char *tool, const char *option, const char *text, int low, 
 /* The same for unsigned 64-bit values (seeds, photon counts); no sign. */
 int gb_cli_unsigned(const char *tool, const char *option, const char *text, uint64_t low,
                     uint64_t high, uint64_t *value);
+/* gb_cli_unsigned into an unsigned (high within unsigned's range). */
+int gb_cli_uint(const char *tool, const char *option, const char *text, unsigned low,
+                unsigned high, unsigned *value);
 /* A finite decimal number in [low, high]. */
 int gb_cli_number(const char *tool, const char *option, const char *text, double low,
                   double high, double *value);
 int gb_cli_float(const char *tool, const char *option, const char *text, double low,
                  double high, float *value);
+/* gb_cli_number for a library option where 0 means "the default" and a
+ * negative value means 0: a 0 given on the command line is stored as -1,
+ * so that it stays a 0. */
+int gb_cli_number_keep_zero(const char *tool, const char *option, const char *text,
+                            double low, double high, double *value);
 /* WxH, each side a strict decimal integer in 1..max_side. */
 int gb_cli_size(const char *tool, const char *option, const char *text, int max_side,
                 int *width, int *height);

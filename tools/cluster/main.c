@@ -45,43 +45,31 @@ typedef struct arguments {
 
 enum { OPTION_VDLS = 256, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED, OPTION_STATS };
 
-/* An unsigned option value in 1..high into an unsigned field. */
-static int parse_small(const char *option, const char *text, uint64_t high, unsigned *field)
-{
-    uint64_t value;
-    int status = gb_cli_unsigned("cluster", option, text, 1, high, &value);
-    if (status == 0)
-        *field = (unsigned)value;
-    return status;
-}
-
 /* One option into a; 0, else the exit status. */
 static int parse_option(int option, const char *text, void *context)
 {
     arguments *a = context;
     gb_cluster_options *o = &a->cluster;
-    unsigned threads;
     int status;
     switch (option) {
     case 'o': a->output = text; return 0;
     case 'q': a->quiet = 1; return 0;
     case OPTION_STATS: a->stats = 1; return 0;
-    case 'd': return parse_small("depth", text, GB_LIGHT_OCTREE_MAX_DEPTH, &o->depth);
-    case 'k': return parse_small("knn", text, 100000, &o->knn);
+    case 'd':
+        return gb_cli_uint("cluster", "depth", text, 1, GB_LIGHT_OCTREE_MAX_DEPTH, &o->depth);
+    case 'k': return gb_cli_uint("cluster", "knn", text, 1, 100000, &o->knn);
     case 'r': return gb_cli_float("cluster", "radius", text, 1e-30, 1e30, &o->radius);
-    case OPTION_VDLS: return parse_small("vdls", text, GB_LIGHT_OCTREE_MAX_VDLS, &o->vdls_max);
+    case OPTION_VDLS:
+        return gb_cli_uint("cluster", "vdls", text, 1, GB_LIGHT_OCTREE_MAX_VDLS, &o->vdls_max);
     case OPTION_SPREAD:
         status = gb_cli_float("cluster", "max-spread", text, 0.0, 180.0, &o->max_spread);
         /* 0 means "always K_max", which the library spells as negative */
         if (status == 0 && o->max_spread == 0.0f)
             o->max_spread = -1.0f;
         return status;
-    case OPTION_RESTARTS: return parse_small("restarts", text, 64, &o->restarts);
+    case OPTION_RESTARTS: return gb_cli_uint("cluster", "restarts", text, 1, 64, &o->restarts);
     case OPTION_SEED: return gb_cli_unsigned("cluster", "seed", text, 0, UINT64_MAX, &o->seed);
-    default:
-        if ((status = parse_small("threads", text, 256, &threads)) == 0)
-            o->threads = (int)threads;
-        return status;
+    default: return gb_cli_int("cluster", "threads", text, 1, 256, &o->threads);
     }
 }
 

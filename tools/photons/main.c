@@ -49,16 +49,6 @@ typedef struct arguments {
 
 enum { OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS };
 
-/* An unsigned option value at most high into an unsigned field. */
-static int parse_small(const char *option, const char *text, uint64_t high, unsigned *field)
-{
-    uint64_t value;
-    int status = gb_cli_unsigned("photons", option, text, 1, high, &value);
-    if (status == 0)
-        *field = (unsigned)value;
-    return status;
-}
-
 static int parse_store(const char *text, gb_photons_options *o)
 {
     static const char *const stores[] = {"indirect", "all"};
@@ -73,8 +63,6 @@ static int parse_store(const char *text, gb_photons_options *o)
 static int parse_option(int option, const char *text, void *context)
 {
     arguments *a = context;
-    unsigned threads;
-    int status;
     switch (option) {
     case 'o': a->output = text; return 0;
     case OPTION_MERGE: a->merge = 1; return 0;
@@ -83,11 +71,10 @@ static int parse_option(int option, const char *text, void *context)
     case 'n':
         return gb_cli_unsigned("photons", "count", text, 1, GB_PHOTONS_MAX_COUNT,
                                &a->trace.count);
-    case 'b': return parse_small("bounces", text, GB_PHOTON_MAX_BOUNCES, &a->trace.bounces);
-    case 't':
-        if ((status = parse_small("threads", text, 256, &threads)) == 0)
-            a->trace.threads = (int)threads;
-        return status;
+    case 'b':
+        return gb_cli_uint("photons", "bounces", text, 1, GB_PHOTON_MAX_BOUNCES,
+                           &a->trace.bounces);
+    case 't': return gb_cli_int("photons", "threads", text, 1, 256, &a->trace.threads);
     case OPTION_SEED:
         return gb_cli_unsigned("photons", "seed", text, 0, UINT64_MAX, &a->trace.seed);
     case OPTION_STORE: return parse_store(text, &a->trace);

@@ -53,26 +53,17 @@ typedef struct arguments {
 static int parse_option(int option, const char *text, void *context)
 {
     arguments *args = context;
-    double value;
-    uint64_t pairs;
-    int status = 0;
+    gb_segment_evaluate_options *e = &args->evaluate_options;
     switch (option) {
     case 'o': args->output = text; return 0;
     case 'e': args->evaluate = 1; return 0;
     case 's': args->stats = 1; return 0;
     case 'q': args->quiet = 1; return 0;
     case 'a':
-        if ((status = gb_cli_number("segment", "alpha", text, 0.0, 100.0, &value)) == 0)
-            /* in the options struct 0 means the default; negative means 0 */
-            args->options.alpha = value == 0.0 ? -1.0 : value;
-        return status;
-    case 'n':
-        if ((status = gb_cli_unsigned("segment", "pairs", text, 1, UINT32_MAX, &pairs)) == 0)
-            args->evaluate_options.pairs = (uint32_t)pairs;
-        return status;
-    default:
-        return gb_cli_unsigned("segment", "seed", text, 0, UINT64_MAX,
-                               &args->evaluate_options.seed);
+        return gb_cli_number_keep_zero("segment", "alpha", text, 0.0, 100.0,
+                                       &args->options.alpha);
+    case 'n': return gb_cli_uint("segment", "pairs", text, 1, UINT32_MAX, &e->pairs);
+    default: return gb_cli_unsigned("segment", "seed", text, 0, UINT64_MAX, &e->seed);
     }
 }
 

@@ -47,31 +47,20 @@ typedef struct arguments {
 static int parse_option(int option, const char *text, void *context)
 {
     arguments *args = context;
-    double value;
-    long threads;
-    int status;
     switch (option) {
-    case 's': args->stats = 1; return 0;
-    case 'q': args->quiet = 1; return 0;
     case 'o': args->output = text; return 0;
     case 'g': args->grid = text; return 0;
+    case 's': args->stats = 1; return 0;
+    case 'q': args->quiet = 1; return 0;
     case 'p':
-        if ((status = gb_cli_number("thin", "persistence", text, 0.0, 1e6, &value)) != 0)
-            return status;
-        /* in the options struct 0 means the default; negative means 0 */
-        args->options.persistence = value == 0.0 ? -1.0 : value;
-        return 0;
+        return gb_cli_number_keep_zero("thin", "persistence", text, 0.0, 1e6,
+                                       &args->options.persistence);
     case 'l':
-        if ((status = gb_cli_number("thin", "min-lifespan", text, 0.0, 1e6, &value)) != 0)
-            return status;
-        args->options.min_lifespan = value == 0.0 ? -1.0 : value;
-        return 0;
+        return gb_cli_number_keep_zero("thin", "min-lifespan", text, 0.0, 1e6,
+                                       &args->options.min_lifespan);
     default:
-        if ((status = gb_cli_integer("thin", "threads", text, 1, GB_THIN_MAX_THREADS,
-                                     &threads)) != 0)
-            return status;
-        args->options.threads = (int)threads;
-        return 0;
+        return gb_cli_int("thin", "threads", text, 1, GB_THIN_MAX_THREADS,
+                          &args->options.threads);
     }
 }
 
