@@ -130,9 +130,8 @@ static gb_result cluster(arguments *a, const gb_scene *scene, const gb_photon_ma
                          gb_error *error)
 {
     gb_progress progress;
-    gb_progress_begin(&progress, "cluster", a->quiet);
-    a->cluster.progress = gb_progress_report;
-    a->cluster.progress_user = &progress;
+    gb_progress_begin_for(&progress, "cluster", a->quiet, &a->cluster.progress,
+                          &a->cluster.progress_user);
     gb_light_octree octree;
     gb_cluster_stats stats;
     gb_result result = gb_cluster_build(scene, map, &a->cluster, &octree, &stats, error);

@@ -190,9 +190,8 @@ static void print_stats(const gb_reference_stats *stats)
 static gb_result render(arguments *a, const gb_scene *scene, gb_error *error)
 {
     gb_progress progress;
-    gb_progress_begin(&progress, "reference", a->quiet);
-    a->render.progress = gb_progress_report;
-    a->render.progress_user = &progress;
+    gb_progress_begin_for(&progress, "reference", a->quiet, &a->render.progress,
+                          &a->render.progress_user);
     gb_image image;
     gb_reference_stats stats;
     gb_result result = gb_reference_render(scene, &a->render, &image, &stats, error);

@@ -190,10 +190,9 @@ static int run_evaluate(const arguments *args)
     int status = load_evaluation_inputs(args, &scene, &seg, &frame, &nearest);
     if (!status) {
         gb_progress progress;
-        gb_progress_begin(&progress, "segment", args->quiet);
         gb_segment_evaluate_options options = args->evaluate_options;
-        options.progress = gb_progress_report;
-        options.progress_user = &progress;
+        gb_progress_begin_for(&progress, "segment", args->quiet, &options.progress,
+                              &options.progress_user);
         gb_segment_evaluation evaluation;
         gb_error error;
         gb_result result = gb_segment_evaluate(&scene, &seg, nearest, &options, &evaluation,

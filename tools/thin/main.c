@@ -131,11 +131,10 @@ static int run(const arguments *args)
     /* the reader's OpenVDB trees are freed, but glibc keeps their heap
      * pages: give them back before the big arrays of thin */
     malloc_trim(0);
-    gb_progress progress;
-    gb_progress_begin(&progress, "thin", args->quiet);
     gb_thin_options options = args->options;
-    options.progress = gb_progress_report;
-    options.progress_user = &progress;
+    gb_progress progress;
+    gb_progress_begin_for(&progress, "thin", args->quiet, &options.progress,
+                          &options.progress_user);
     gb_skeleton skeleton;
     gb_thin_stats stats;
     int32_t *nearest = NULL;
