@@ -315,3 +315,24 @@ int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
     }
     return GB_CLI_GO_ON;
 }
+
+int gb_cli_failure(const char *tool, const gb_error *error)
+{
+    fprintf(stderr, "%s: %s\n", tool, error->message);
+    return GB_EXIT_FAILURE;
+}
+
+int gb_cli_main(const gb_cli_command *command, int argc, char **argv, gb_cli_run_function run,
+                void *arguments)
+{
+    int status = gb_cli_options(command->tool, command->usage, argc, argv, command->options,
+                                command->option, arguments);
+    if (status == GB_CLI_GO_ON)
+        status = command->operands(argc - optind, argv + optind, arguments);
+    if (status != GB_CLI_GO_ON)
+        return status;
+    gb_error error;
+    if (run(arguments, &error) != GB_OK)
+        return gb_cli_failure(command->tool, &error);
+    return fflush(stdout) == 0 ? GB_EXIT_SUCCESS : GB_EXIT_FAILURE;
+}

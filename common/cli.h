@@ -19,15 +19,22 @@
  *     TOOL: WHAT                            (gb_cli_usage_error)
  *     Try 'TOOL --help' for more information.
  * never the whole help. The caller returns the status from main().
- * The help and the version go to stdout (gb_cli_help, gb_cli_version).
+ * The help and the version go to stdout (gb_cli_help, gb_cli_version); a
+ * failure of the work is "TOOL: MESSAGE" on stderr (gb_cli_failure).
  * Nothing else here prints. The caller owns every string passed in; TOOL
  * is the bare name ("voxelize"), OPTION the long name without its dashes.
+ *
+ * A tool describes its command line in a gb_cli_command, and its main()
+ * is one call, on arguments of its own that start zeroed:
+ *     return gb_cli_main(&command, argc, argv, run, &(arguments){0});
  */
 #ifndef GB_CLI_H
 #define GB_CLI_H
 
 #include <getopt.h>
 #include <stdint.h>
+
+#include "result.h"
 
 enum {
     GB_EXIT_SUCCESS = 0,
@@ -118,5 +125,35 @@ typedef int (*gb_cli_option_function)(int option, const char *value, void *argum
 int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
                    const struct option *options, gb_cli_option_function handle,
                    void *arguments);
+
+/* The work failed: prints "TOOL: MESSAGE" (error's) on stderr; returns
+ * GB_EXIT_FAILURE. */
+int gb_cli_failure(const char *tool, const gb_error *error);
+
+/* After the options, the operands (count of them, from operands[0]) into
+ * the arguments, and whatever the options must agree on: GB_CLI_GO_ON, or
+ * the status of a usage error. */
+typedef int (*gb_cli_operands_function)(int count, char **operands, void *arguments);
+/* The work on the parsed arguments, from checking that the outputs can be
+ * written to writing them; fills error when it fails. */
+typedef gb_result (*gb_cli_run_function)(void *arguments, gb_error *error);
+
+/* A tool's command line: what gb_cli_main reads argv with. */
+typedef struct gb_cli_command {
+    const char *tool;                   /* "cluster": every message starts with it */
+    const char *usage;                  /* the --help text */
+    const struct option *options;       /* ends with GB_CLI_OPTIONS_END */
+    gb_cli_option_function option;      /* each option into the arguments */
+    gb_cli_operands_function operands;  /* then the operands */
+} gb_cli_command;
+
+/* Every tool's main(): gb_cli_options, then the operands, then run, each
+ * step only if the one before said GB_CLI_GO_ON. Returns the first other
+ * status (GB_EXIT_SUCCESS after --help or --version, GB_EXIT_USAGE after a
+ * usage error), gb_cli_failure when run fails, else GB_EXIT_SUCCESS once
+ * stdout is flushed (GB_EXIT_FAILURE if it cannot be). arguments, the
+ * tool's own, goes to each function of command and to run. */
+int gb_cli_main(const gb_cli_command *command, int argc, char **argv, gb_cli_run_function run,
+                void *arguments);
 
 #endif

@@ -45,6 +45,20 @@ typedef struct arguments {
 
 enum { OPTION_VDLS = 256, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED, OPTION_STATS };
 
+static const struct option long_options[] = {
+    GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("depth", 'd'),
+    GB_CLI_VALUE("knn", 'k'),
+    GB_CLI_VALUE("radius", 'r'),
+    GB_CLI_VALUE("vdls", OPTION_VDLS),
+    GB_CLI_VALUE("max-spread", OPTION_SPREAD),
+    GB_CLI_VALUE("restarts", OPTION_RESTARTS),
+    GB_CLI_VALUE("seed", OPTION_SEED),
+    GB_CLI_VALUE("threads", 't'),
+    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_OPTIONS_END,
+};
+
 /* One option into a; 0, else the exit status. */
 static int parse_option(int option, const char *text, void *context)
 {
@@ -73,37 +87,19 @@ static int parse_option(int option, const char *text, void *context)
     }
 }
 
-/* GB_CLI_GO_ON, else the exit status. */
-static int check_arguments(arguments *a, int argc, char **argv)
+/* SCENE IN.phot, and -o; GB_CLI_GO_ON, else the exit status. */
+static int check_operands(int count, char **operands, void *context)
 {
-    if (!a->output || argc - optind != 2)
+    arguments *a = context;
+    if (!a->output || count != 2)
         return gb_cli_usage_error("cluster", "expected SCENE IN.phot and -o OUT.lot");
-    a->scene = argv[optind];
-    a->photons = argv[optind + 1];
+    a->scene = operands[0];
+    a->photons = operands[1];
     return GB_CLI_GO_ON;
 }
 
-/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
-static int parse_arguments(int argc, char **argv, arguments *a)
-{
-    static const struct option options[] = {
-        GB_CLI_VALUE("output", 'o'),
-        GB_CLI_VALUE("depth", 'd'),
-        GB_CLI_VALUE("knn", 'k'),
-        GB_CLI_VALUE("radius", 'r'),
-        GB_CLI_VALUE("vdls", OPTION_VDLS),
-        GB_CLI_VALUE("max-spread", OPTION_SPREAD),
-        GB_CLI_VALUE("restarts", OPTION_RESTARTS),
-        GB_CLI_VALUE("seed", OPTION_SEED),
-        GB_CLI_VALUE("threads", 't'),
-        GB_CLI_FLAG("stats", OPTION_STATS),
-        GB_CLI_OPTIONS_END,
-    };
-    int status = gb_cli_options("cluster", usage, argc, argv, options, parse_option, a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    return check_arguments(a, argc, argv);
-}
+static const gb_cli_command command = {"cluster", usage, long_options, parse_option,
+                                       check_operands};
 
 static void print_stats(const gb_cluster_stats *s, const char *output)
 {
@@ -144,12 +140,16 @@ static gb_result cluster(arguments *a, const gb_scene *scene, const gb_photon_ma
     return result;
 }
 
-static gb_result run(arguments *a, gb_error *error)
+static gb_result run(void *context, gb_error *error)
 {
+    arguments *a = context;
+    gb_result result = gb_output_file_check(a->output, error);
+    if (result != GB_OK)
+        return result;
     gb_scene scene;
     gb_photon_map map;
     memset(&map, 0, sizeof map);
-    gb_result result = gb_scene_load(a->scene, NULL, &scene, error);
+    result = gb_scene_load(a->scene, NULL, &scene, error);
     if (result == GB_OK && !a->quiet)  /* no light: an empty map, an octree of no VDL */
         gb_scene_warn("cluster", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     if (result == GB_OK)
@@ -165,14 +165,5 @@ static gb_result run(arguments *a, gb_error *error)
 
 int main(int argc, char **argv)
 {
-    arguments a = {0};
-    int status = parse_arguments(argc, argv, &a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    gb_error error;
-    if (gb_output_file_check(a.output, &error) != GB_OK || run(&a, &error) != GB_OK) {
-        fprintf(stderr, "cluster: %s\n", error.message);
-        return 1;
-    }
-    return fflush(stdout) == 0 ? 0 : 1;
+    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
 }

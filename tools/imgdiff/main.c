@@ -136,10 +136,8 @@ int main(int argc, char **argv)
         result = compare(&a, images, &measures, &error);
     for (int i = 0; i < 3; ++i)
         gb_image_free(&images[i]);
-    if (result != GB_OK) {
-        fprintf(stderr, "imgdiff: %s\n", error.message);
-        return 1;
-    }
+    if (result != GB_OK)
+        return gb_cli_failure("imgdiff", &error);
     if (fflush(stdout) != 0)
         return 1;
     if (isfinite(a.fail_above) && !(measures.relative_mse <= a.fail_above)) {

@@ -39,6 +39,8 @@ static const char usage[] =
     "  -h, --help              this help\n"
     "  -V, --version           the version\n";
 
+enum { OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS };
+
 typedef struct arguments {
     gb_photons_options trace;
     const char *output;
@@ -47,7 +49,18 @@ typedef struct arguments {
     int merge, stats, quiet;
 } arguments;
 
-enum { OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS };
+static const struct option long_options[] = {
+    GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("count", 'n'),
+    GB_CLI_VALUE("bounces", 'b'),
+    GB_CLI_VALUE("store", OPTION_STORE),
+    GB_CLI_VALUE("seed", OPTION_SEED),
+    GB_CLI_VALUE("threads", 't'),
+    GB_CLI_VALUE("shard", OPTION_SHARD),
+    GB_CLI_FLAG("merge", OPTION_MERGE),
+    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_OPTIONS_END,
+};
 
 static int parse_store(const char *text, gb_photons_options *o)
 {
@@ -84,37 +97,21 @@ static int parse_option(int option, const char *text, void *context)
     }
 }
 
-/* GB_CLI_GO_ON, else the exit status. */
-static int check_arguments(arguments *a, int argc, char **argv)
+/* One SCENE, or with --merge the shards, and -o; GB_CLI_GO_ON, else the
+ * exit status. */
+static int check_operands(int count, char **operands, void *context)
 {
-    a->inputs = argv + optind;
-    a->input_count = argc - optind;
+    arguments *a = context;
+    a->inputs = operands;
+    a->input_count = count;
     if (!a->output || a->input_count < 1 || (!a->merge && a->input_count != 1))
         return gb_cli_usage_error("photons", "expected %s and -o OUT",
                                   a->merge ? "the shards to merge" : "one SCENE");
     return GB_CLI_GO_ON;
 }
 
-/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
-static int parse_arguments(int argc, char **argv, arguments *a)
-{
-    static const struct option options[] = {
-        GB_CLI_VALUE("output", 'o'),
-        GB_CLI_VALUE("count", 'n'),
-        GB_CLI_VALUE("bounces", 'b'),
-        GB_CLI_VALUE("store", OPTION_STORE),
-        GB_CLI_VALUE("seed", OPTION_SEED),
-        GB_CLI_VALUE("threads", 't'),
-        GB_CLI_VALUE("shard", OPTION_SHARD),
-        GB_CLI_FLAG("merge", OPTION_MERGE),
-        GB_CLI_FLAG("stats", OPTION_STATS),
-        GB_CLI_OPTIONS_END,
-    };
-    int status = gb_cli_options("photons", usage, argc, argv, options, parse_option, a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    return check_arguments(a, argc, argv);
-}
+static const gb_cli_command command = {"photons", usage, long_options, parse_option,
+                                       check_operands};
 
 /* ---- tracing ---- */
 
@@ -210,17 +207,16 @@ static gb_result run_merge(arguments *a, gb_error *error)
     return result;
 }
 
+static gb_result run(void *context, gb_error *error)
+{
+    arguments *a = context;
+    gb_result result = gb_output_file_check(a->output, error);
+    if (result == GB_OK)
+        result = a->merge ? run_merge(a, error) : run_trace(a, error);
+    return result;
+}
+
 int main(int argc, char **argv)
 {
-    arguments a = {0};
-    int status = parse_arguments(argc, argv, &a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    gb_error error;
-    if (gb_output_file_check(a.output, &error) != GB_OK ||
-        (a.merge ? run_merge(&a, &error) : run_trace(&a, &error)) != GB_OK) {
-        fprintf(stderr, "photons: %s\n", error.message);
-        return 1;
-    }
-    return fflush(stdout) == 0 ? 0 : 1;
+    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
 }
