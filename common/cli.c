@@ -2,6 +2,7 @@
 
 #include "cli.h"
 
+#include <ctype.h>
 #include <errno.h>
 #include <math.h>
 #include <stdarg.h>
@@ -92,6 +93,15 @@ int gb_cli_unsigned(const char *tool, const char *option, const char *text, uint
     return GB_EXIT_SUCCESS;
 }
 
+int gb_cli_uint(const char *tool, const char *option, const char *text, unsigned low,
+                unsigned high, unsigned *value)
+{
+    uint64_t parsed = *value;   /* kept on a usage error */
+    int status = gb_cli_unsigned(tool, option, text, low, high, &parsed);
+    *value = (unsigned)parsed;
+    return status;
+}
+
 /* strtod's numbers, but no leading space, no inf, no nan: a sign, a digit
  * or a point first. */
 static int parse_finite(const char *text, double *value)
@@ -128,6 +138,15 @@ int gb_cli_float(const char *tool, const char *option, const char *text, double 
     int status = gb_cli_number(tool, option, text, low, high, &parsed);
     if (status == GB_EXIT_SUCCESS)
         *value = (float)parsed;
+    return status;
+}
+
+int gb_cli_number_keep_zero(const char *tool, const char *option, const char *text,
+                            double low, double high, double *value)
+{
+    int status = gb_cli_number(tool, option, text, low, high, value);
+    if (status == GB_EXIT_SUCCESS && *value == 0.0)
+        *value = -1.0;
     return status;
 }
 
@@ -260,10 +279,28 @@ int gb_cli_version(const char *tool)
     return printf("%s (gibake) %s\n", tool, version) < 0 ? GB_EXIT_FAILURE : GB_EXIT_SUCCESS;
 }
 
-int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
-                   const char *short_options, const struct option *options,
-                   gb_cli_option_function handle, void *arguments)
+/* getopt's short options of a table: every entry whose value is a letter,
+ * followed by ':' when it takes a value; at most 52 letters of 2
+ * characters ("o:"). */
+static void short_options_of(const struct option *options, char text[128])
 {
+    size_t length = 0;
+    for (const struct option *o = options; o->name && length + 3 <= 128; ++o) {
+        if (o->val <= 0 || o->val > 127 || !isalpha(o->val))
+            continue;
+        text[length++] = (char)o->val;
+        if (o->has_arg == required_argument)
+            text[length++] = ':';
+    }
+    text[length] = '\0';
+}
+
+int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
+                   const struct option *options, gb_cli_option_function handle,
+                   void *arguments)
+{
+    char short_options[128];
+    short_options_of(options, short_options);
     int option, status;
     opterr = 0;
     while ((option = getopt_long(argc, argv, short_options, options, NULL)) != -1) {
@@ -277,4 +314,25 @@ int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
             return status;
     }
     return GB_CLI_GO_ON;
+}
+
+int gb_cli_failure(const char *tool, const gb_error *error)
+{
+    fprintf(stderr, "%s: %s\n", tool, error->message);
+    return GB_EXIT_FAILURE;
+}
+
+int gb_cli_main(const gb_cli_command *command, int argc, char **argv, gb_cli_run_function run,
+                void *arguments)
+{
+    int status = gb_cli_options(command->tool, command->usage, argc, argv, command->options,
+                                command->option, arguments);
+    if (status == GB_CLI_GO_ON)
+        status = command->operands(argc - optind, argv + optind, arguments);
+    if (status != GB_CLI_GO_ON)
+        return status;
+    gb_error error;
+    if (run(arguments, &error) != GB_OK)
+        return gb_cli_failure(command->tool, &error);
+    return fflush(stdout) == 0 ? GB_EXIT_SUCCESS : GB_EXIT_FAILURE;
 }

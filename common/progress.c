@@ -28,6 +28,14 @@ void gb_progress_begin(gb_progress *progress, const char *label, int quiet)
     progress->last_permille = -1;
 }
 
+void gb_progress_begin_for(gb_progress *progress, const char *label, int quiet,
+                           gb_progress_callback *callback, void **user)
+{
+    gb_progress_begin(progress, label, quiet);
+    *callback = gb_progress_report;
+    *user = progress;
+}
+
 static void draw(const gb_progress *progress, double fraction)
 {
     char bar[BAR_WIDTH + 1];

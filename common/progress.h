@@ -21,6 +21,10 @@ typedef struct gb_progress {
 } gb_progress;
 
 void gb_progress_begin(gb_progress *progress, const char *label, int quiet);
+/* gb_progress_begin, then a library's progress slots pointed at the bar:
+ * *callback = gb_progress_report, *user = progress. */
+void gb_progress_begin_for(gb_progress *progress, const char *label, int quiet,
+                           gb_progress_callback *callback, void **user);
 int gb_progress_report(void *progress, double fraction);
 void gb_progress_end(gb_progress *progress);
 

@@ -99,6 +99,34 @@ enum {
     OPTION_BOUNCES,
 };
 
+static const struct option long_options[] = {
+    GB_CLI_FLAG("headless", OPTION_HEADLESS),
+    GB_CLI_VALUE("camera", 'c'),
+    GB_CLI_VALUE("method", 'm'),
+    GB_CLI_VALUE("frames", 'f'),
+    GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("resolution", 'r'),
+    GB_CLI_FLAG("timings", OPTION_TIMINGS),
+    GB_CLI_VALUE("bake", OPTION_BAKE),
+    GB_CLI_VALUE("area-samples", OPTION_AREA_SAMPLES),
+    GB_CLI_VALUE("shadow-size", OPTION_SHADOW_SIZE),
+    GB_CLI_FLAG("no-shadows", OPTION_NO_SHADOWS),
+    GB_CLI_VALUE("supersample", OPTION_SUPERSAMPLE),
+    GB_CLI_VALUE("navg", OPTION_FLC_NAVG),
+    GB_CLI_VALUE("mu", OPTION_FLC_MU),
+    GB_CLI_VALUE("levels", OPTION_FLC_LEVELS),
+    GB_CLI_VALUE("epsilon", OPTION_FLC_EPSILON),
+    GB_CLI_VALUE("tiling", OPTION_FLC_TILING),
+    GB_CLI_FLAG("no-decimation", OPTION_FLC_NO_DECIMATION),
+    GB_CLI_VALUE("vpls", OPTION_VPLS),
+    GB_CLI_VALUE("terms", OPTION_TERMS),
+    GB_CLI_VALUE("write-vpls", OPTION_WRITE_VPLS),
+    GB_CLI_VALUE("topo-visibility", OPTION_TOPO_VISIBILITY),
+    GB_CLI_VALUE("bins", OPTION_BINS),
+    GB_CLI_VALUE("bounces", OPTION_BOUNCES),
+    GB_CLI_OPTIONS_END,
+};
+
 /* The options of flc (runtime/flc/flc.h); 0, else the exit status. */
 static int parse_flc_option(int option, const char *value, arguments *a)
 {
@@ -181,64 +209,45 @@ static int parse_option(int option, const char *value, void *context)
     }
 }
 
-/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
-static int parse_arguments(int argc, char **argv, arguments *a)
+/* The method chosen, if this build has it: GB_CLI_GO_ON, else a usage error. */
+static int check_method(arguments *a)
 {
-    static const struct option options[] = {
-        {"headless", no_argument, NULL, OPTION_HEADLESS},
-        {"camera", required_argument, NULL, 'c'},
-        {"method", required_argument, NULL, 'm'},
-        {"frames", required_argument, NULL, 'f'},
-        {"output", required_argument, NULL, 'o'},
-        {"resolution", required_argument, NULL, 'r'},
-        {"timings", no_argument, NULL, OPTION_TIMINGS},
-        {"bake", required_argument, NULL, OPTION_BAKE},
-        {"area-samples", required_argument, NULL, OPTION_AREA_SAMPLES},
-        {"shadow-size", required_argument, NULL, OPTION_SHADOW_SIZE},
-        {"no-shadows", no_argument, NULL, OPTION_NO_SHADOWS},
-        {"supersample", required_argument, NULL, OPTION_SUPERSAMPLE},
-        {"navg", required_argument, NULL, OPTION_FLC_NAVG},
-        {"mu", required_argument, NULL, OPTION_FLC_MU},
-        {"levels", required_argument, NULL, OPTION_FLC_LEVELS},
-        {"epsilon", required_argument, NULL, OPTION_FLC_EPSILON},
-        {"tiling", required_argument, NULL, OPTION_FLC_TILING},
-        {"no-decimation", no_argument, NULL, OPTION_FLC_NO_DECIMATION},
-        {"vpls", required_argument, NULL, OPTION_VPLS},
-        {"terms", required_argument, NULL, OPTION_TERMS},
-        {"write-vpls", required_argument, NULL, OPTION_WRITE_VPLS},
-        {"topo-visibility", required_argument, NULL, OPTION_TOPO_VISIBILITY},
-        {"bins", required_argument, NULL, OPTION_BINS},
-        {"bounces", required_argument, NULL, OPTION_BOUNCES},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
-    };
-    int status = gb_cli_options("gbview", usage, argc, argv, "c:m:f:o:r:qhV", options,
-                                parse_option, a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    if (optind != argc - 1)
-        return gb_cli_usage_error("gbview", "expected one SCENE");
-    a->scene_path = argv[optind];
-    if (a->headless && !a->output && !a->timings && !a->renderer.parameters.write_vpls)
-        return gb_cli_usage_error("gbview", "--headless writes nothing without -o FILE, "
-                                            "--timings or --write-vpls");
+    gb_error error;
+    a->renderer.method = a->method;
+    if (gb_method_check(a->method, &error) != GB_OK)
+        return gb_cli_usage_error("gbview", "%s", error.message);
     return GB_CLI_GO_ON;
 }
 
-/* One message per missing or bad baked file; never fatal. */
-static int check_bake(const gb_scene *scene, const arguments *a, gb_bake_files *files)
+/* One SCENE, something to write with --headless, and a method this build
+ * has; GB_CLI_GO_ON, else the exit status. */
+static int check_operands(int count, char **operands, void *context)
 {
-    gb_error error;
-    if (gb_bake_files_check(scene, a->scene_path, a->bake, files, &error) != GB_OK) {
-        fprintf(stderr, "gbview: %s\n", error.message);
-        return 1;
-    }
+    arguments *a = context;
+    if (count != 1)
+        return gb_cli_usage_error("gbview", "expected one SCENE");
+    a->scene_path = operands[0];
+    if (a->headless && !a->output && !a->timings && !a->renderer.parameters.write_vpls)
+        return gb_cli_usage_error("gbview", "--headless writes nothing without -o FILE, "
+                                            "--timings or --write-vpls");
+    return check_method(a);
+}
+
+static const gb_cli_command command = {"gbview", usage, long_options, parse_option,
+                                       check_operands};
+
+/* One warning per missing or bad baked file, which is skipped; an error only
+ * when the files cannot be looked for at all. */
+static gb_result check_bake(const gb_scene *scene, const arguments *a, gb_bake_files *files,
+                            gb_error *error)
+{
+    gb_result result = gb_bake_files_check(scene, a->scene_path, a->bake, files, error);
+    if (result != GB_OK)
+        return result;
     for (int kind = 0; kind < GB_BAKE_KIND_COUNT; ++kind)
         if (files->has_problem[kind])
             fprintf(stderr, "gbview: warning: skipped: %s\n", files->problems[kind].message);
-    return 0;
+    return GB_OK;
 }
 
 static void report(void *user, const char *message)
@@ -280,52 +289,50 @@ static gb_result run_window(const gb_scene *scene, const arguments *a, gb_timing
     return gb_run_window(scene, &options, timings, error);
 }
 
-static int run(const gb_scene *scene, const arguments *a)
+static gb_result render(const gb_scene *scene, const arguments *a, gb_error *error)
 {
     gb_timings timings;
-    gb_error error;
     memset(&timings, 0, sizeof timings);
-    gb_result result = a->headless ? run_headless(scene, a, &timings, &error)
-                                   : run_window(scene, a, &timings, &error);
-    if (result != GB_OK) {
-        fprintf(stderr, "gbview: %s\n", error.message);
-        return 1;
-    }
-    if (a->timings)
+    gb_result result = a->headless ? run_headless(scene, a, &timings, error)
+                                   : run_window(scene, a, &timings, error);
+    if (result == GB_OK && a->timings)
         gb_timings_print(&timings, stdout);
-    return fflush(stdout) == 0 ? 0 : 1;
+    return result;
+}
+
+/* Before the work: the image and the VPL set can be written. */
+static gb_result check_outputs(const arguments *a, gb_error *error)
+{
+    const char *vpls = a->renderer.parameters.write_vpls;
+    gb_result result = a->output ? gb_image_check_output(a->output, error) : GB_OK;
+    if (result == GB_OK && vpls)
+        result = gb_output_file_check(vpls, error);
+    return result;
+}
+
+static gb_result run(void *context, gb_error *error)
+{
+    arguments *a = context;
+    gb_scene scene;
+    gb_scene_options scene_options = {.load_textures = 1};
+    gb_result result = check_outputs(a, error);
+    if (result == GB_OK)
+        result = gb_scene_load(a->scene_path, &scene_options, &scene, error);
+    if (result != GB_OK)
+        return result;
+    if (!a->quiet)  /* with no light every method draws black, as it should */
+        gb_scene_warn("gbview", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
+    gb_bake_files files;
+    if (a->bake)
+        result = check_bake(&scene, a, &files, error);
+    a->renderer.bake = a->bake ? &files : NULL;
+    if (result == GB_OK)
+        result = render(&scene, a, error);
+    gb_scene_free(&scene);
+    return result;
 }
 
 int main(int argc, char **argv)
 {
-    arguments a;
-    memset(&a, 0, sizeof a);
-    int status = parse_arguments(argc, argv, &a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    gb_error error;
-    a.renderer.method = a.method;
-    if (gb_method_check(a.method, &error) != GB_OK)
-        return gb_cli_usage_error("gbview", "%s", error.message);
-    const char *vpls = a.renderer.parameters.write_vpls;
-    if ((a.output && gb_image_check_output(a.output, &error) != GB_OK) ||
-        (vpls && gb_output_file_check(vpls, &error) != GB_OK)) {
-        fprintf(stderr, "gbview: %s\n", error.message);
-        return 1;
-    }
-    gb_scene scene;
-    gb_scene_options scene_options = {.load_textures = 1};
-    if (gb_scene_load(a.scene_path, &scene_options, &scene, &error) != GB_OK) {
-        fprintf(stderr, "gbview: %s\n", error.message);
-        return 1;
-    }
-    if (!a.quiet)      /* with no light every method draws black, as it should */
-        gb_scene_warn("gbview", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
-    gb_bake_files files;
-    status = a.bake ? check_bake(&scene, &a, &files) : 0;
-    a.renderer.bake = a.bake ? &files : NULL;
-    if (status == 0)
-        status = run(&scene, &a);
-    gb_scene_free(&scene);
-    return status;
+    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
 }

@@ -45,81 +45,61 @@ typedef struct arguments {
 
 enum { OPTION_VDLS = 256, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED, OPTION_STATS };
 
-/* An unsigned option value in 1..high into an unsigned field. */
-static int parse_small(const char *option, const char *text, uint64_t high, unsigned *field)
-{
-    uint64_t value;
-    int status = gb_cli_unsigned("cluster", option, text, 1, high, &value);
-    if (status == 0)
-        *field = (unsigned)value;
-    return status;
-}
+static const struct option long_options[] = {
+    GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("depth", 'd'),
+    GB_CLI_VALUE("knn", 'k'),
+    GB_CLI_VALUE("radius", 'r'),
+    GB_CLI_VALUE("vdls", OPTION_VDLS),
+    GB_CLI_VALUE("max-spread", OPTION_SPREAD),
+    GB_CLI_VALUE("restarts", OPTION_RESTARTS),
+    GB_CLI_VALUE("seed", OPTION_SEED),
+    GB_CLI_VALUE("threads", 't'),
+    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_OPTIONS_END,
+};
 
 /* One option into a; 0, else the exit status. */
 static int parse_option(int option, const char *text, void *context)
 {
     arguments *a = context;
     gb_cluster_options *o = &a->cluster;
-    unsigned threads;
     int status;
     switch (option) {
     case 'o': a->output = text; return 0;
     case 'q': a->quiet = 1; return 0;
     case OPTION_STATS: a->stats = 1; return 0;
-    case 'd': return parse_small("depth", text, GB_LIGHT_OCTREE_MAX_DEPTH, &o->depth);
-    case 'k': return parse_small("knn", text, 100000, &o->knn);
+    case 'd':
+        return gb_cli_uint("cluster", "depth", text, 1, GB_LIGHT_OCTREE_MAX_DEPTH, &o->depth);
+    case 'k': return gb_cli_uint("cluster", "knn", text, 1, 100000, &o->knn);
     case 'r': return gb_cli_float("cluster", "radius", text, 1e-30, 1e30, &o->radius);
-    case OPTION_VDLS: return parse_small("vdls", text, GB_LIGHT_OCTREE_MAX_VDLS, &o->vdls_max);
+    case OPTION_VDLS:
+        return gb_cli_uint("cluster", "vdls", text, 1, GB_LIGHT_OCTREE_MAX_VDLS, &o->vdls_max);
     case OPTION_SPREAD:
         status = gb_cli_float("cluster", "max-spread", text, 0.0, 180.0, &o->max_spread);
         /* 0 means "always K_max", which the library spells as negative */
         if (status == 0 && o->max_spread == 0.0f)
             o->max_spread = -1.0f;
         return status;
-    case OPTION_RESTARTS: return parse_small("restarts", text, 64, &o->restarts);
+    case OPTION_RESTARTS: return gb_cli_uint("cluster", "restarts", text, 1, 64, &o->restarts);
     case OPTION_SEED: return gb_cli_unsigned("cluster", "seed", text, 0, UINT64_MAX, &o->seed);
-    default:
-        if ((status = parse_small("threads", text, 256, &threads)) == 0)
-            o->threads = (int)threads;
-        return status;
+    default: return gb_cli_int("cluster", "threads", text, 1, 256, &o->threads);
     }
 }
 
-/* GB_CLI_GO_ON, else the exit status. */
-static int check_arguments(arguments *a, int argc, char **argv)
+/* SCENE IN.phot, and -o; GB_CLI_GO_ON, else the exit status. */
+static int check_operands(int count, char **operands, void *context)
 {
-    if (!a->output || argc - optind != 2)
+    arguments *a = context;
+    if (!a->output || count != 2)
         return gb_cli_usage_error("cluster", "expected SCENE IN.phot and -o OUT.lot");
-    a->scene = argv[optind];
-    a->photons = argv[optind + 1];
+    a->scene = operands[0];
+    a->photons = operands[1];
     return GB_CLI_GO_ON;
 }
 
-/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
-static int parse_arguments(int argc, char **argv, arguments *a)
-{
-    static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"depth", required_argument, NULL, 'd'},
-        {"knn", required_argument, NULL, 'k'},
-        {"radius", required_argument, NULL, 'r'},
-        {"vdls", required_argument, NULL, OPTION_VDLS},
-        {"max-spread", required_argument, NULL, OPTION_SPREAD},
-        {"restarts", required_argument, NULL, OPTION_RESTARTS},
-        {"seed", required_argument, NULL, OPTION_SEED},
-        {"threads", required_argument, NULL, 't'},
-        {"stats", no_argument, NULL, OPTION_STATS},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
-    };
-    int status = gb_cli_options("cluster", usage, argc, argv, "o:d:k:r:t:qhV", options,
-                                parse_option, a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    return check_arguments(a, argc, argv);
-}
+static const gb_cli_command command = {"cluster", usage, long_options, parse_option,
+                                       check_operands};
 
 static void print_stats(const gb_cluster_stats *s, const char *output)
 {
@@ -146,9 +126,8 @@ static gb_result cluster(arguments *a, const gb_scene *scene, const gb_photon_ma
                          gb_error *error)
 {
     gb_progress progress;
-    gb_progress_begin(&progress, "cluster", a->quiet);
-    a->cluster.progress = gb_progress_report;
-    a->cluster.progress_user = &progress;
+    gb_progress_begin_for(&progress, "cluster", a->quiet, &a->cluster.progress,
+                          &a->cluster.progress_user);
     gb_light_octree octree;
     gb_cluster_stats stats;
     gb_result result = gb_cluster_build(scene, map, &a->cluster, &octree, &stats, error);
@@ -161,12 +140,16 @@ static gb_result cluster(arguments *a, const gb_scene *scene, const gb_photon_ma
     return result;
 }
 
-static gb_result run(arguments *a, gb_error *error)
+static gb_result run(void *context, gb_error *error)
 {
+    arguments *a = context;
+    gb_result result = gb_output_file_check(a->output, error);
+    if (result != GB_OK)
+        return result;
     gb_scene scene;
     gb_photon_map map;
     memset(&map, 0, sizeof map);
-    gb_result result = gb_scene_load(a->scene, NULL, &scene, error);
+    result = gb_scene_load(a->scene, NULL, &scene, error);
     if (result == GB_OK && !a->quiet)  /* no light: an empty map, an octree of no VDL */
         gb_scene_warn("cluster", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     if (result == GB_OK)
@@ -182,14 +165,5 @@ static gb_result run(arguments *a, gb_error *error)
 
 int main(int argc, char **argv)
 {
-    arguments a = {0};
-    int status = parse_arguments(argc, argv, &a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    gb_error error;
-    if (gb_output_file_check(a.output, &error) != GB_OK || run(&a, &error) != GB_OK) {
-        fprintf(stderr, "cluster: %s\n", error.message);
-        return 1;
-    }
-    return fflush(stdout) == 0 ? 0 : 1;
+    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
 }

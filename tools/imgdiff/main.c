@@ -62,16 +62,13 @@ static int parse_option(int option, const char *text, void *context)
 static int parse_arguments(int argc, char **argv, arguments *a)
 {
     static const struct option options[] = {
-        {"mask", required_argument, NULL, 'm'},
-        {"heatmap", required_argument, NULL, OPTION_HEATMAP},
-        {"heatmap-scale", required_argument, NULL, OPTION_HEATMAP_SCALE},
-        {"fail-above", required_argument, NULL, OPTION_FAIL_ABOVE},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
+        GB_CLI_VALUE("mask", 'm'),
+        GB_CLI_VALUE("heatmap", OPTION_HEATMAP),
+        GB_CLI_VALUE("heatmap-scale", OPTION_HEATMAP_SCALE),
+        GB_CLI_VALUE("fail-above", OPTION_FAIL_ABOVE),
+        GB_CLI_OPTIONS_END,
     };
-    int status = gb_cli_options("imgdiff", usage, argc, argv, "m:qhV", options, parse_option, a);
+    int status = gb_cli_options("imgdiff", usage, argc, argv, options, parse_option, a);
     if (status != GB_CLI_GO_ON)
         return status;
     if (optind != argc - 2)
@@ -139,10 +136,8 @@ int main(int argc, char **argv)
         result = compare(&a, images, &measures, &error);
     for (int i = 0; i < 3; ++i)
         gb_image_free(&images[i]);
-    if (result != GB_OK) {
-        fprintf(stderr, "imgdiff: %s\n", error.message);
-        return 1;
-    }
+    if (result != GB_OK)
+        return gb_cli_failure("imgdiff", &error);
     if (fflush(stdout) != 0)
         return 1;
     if (isfinite(a.fail_above) && !(measures.relative_mse <= a.fail_above)) {

@@ -39,6 +39,8 @@ static const char usage[] =
     "  -h, --help              this help\n"
     "  -V, --version           the version\n";
 
+enum { OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS };
+
 typedef struct arguments {
     gb_photons_options trace;
     const char *output;
@@ -47,17 +49,18 @@ typedef struct arguments {
     int merge, stats, quiet;
 } arguments;
 
-enum { OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS };
-
-/* An unsigned option value at most high into an unsigned field. */
-static int parse_small(const char *option, const char *text, uint64_t high, unsigned *field)
-{
-    uint64_t value;
-    int status = gb_cli_unsigned("photons", option, text, 1, high, &value);
-    if (status == 0)
-        *field = (unsigned)value;
-    return status;
-}
+static const struct option long_options[] = {
+    GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("count", 'n'),
+    GB_CLI_VALUE("bounces", 'b'),
+    GB_CLI_VALUE("store", OPTION_STORE),
+    GB_CLI_VALUE("seed", OPTION_SEED),
+    GB_CLI_VALUE("threads", 't'),
+    GB_CLI_VALUE("shard", OPTION_SHARD),
+    GB_CLI_FLAG("merge", OPTION_MERGE),
+    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_OPTIONS_END,
+};
 
 static int parse_store(const char *text, gb_photons_options *o)
 {
@@ -73,8 +76,6 @@ static int parse_store(const char *text, gb_photons_options *o)
 static int parse_option(int option, const char *text, void *context)
 {
     arguments *a = context;
-    unsigned threads;
-    int status;
     switch (option) {
     case 'o': a->output = text; return 0;
     case OPTION_MERGE: a->merge = 1; return 0;
@@ -83,11 +84,10 @@ static int parse_option(int option, const char *text, void *context)
     case 'n':
         return gb_cli_unsigned("photons", "count", text, 1, GB_PHOTONS_MAX_COUNT,
                                &a->trace.count);
-    case 'b': return parse_small("bounces", text, GB_PHOTON_MAX_BOUNCES, &a->trace.bounces);
-    case 't':
-        if ((status = parse_small("threads", text, 256, &threads)) == 0)
-            a->trace.threads = (int)threads;
-        return status;
+    case 'b':
+        return gb_cli_uint("photons", "bounces", text, 1, GB_PHOTON_MAX_BOUNCES,
+                           &a->trace.bounces);
+    case 't': return gb_cli_int("photons", "threads", text, 1, 256, &a->trace.threads);
     case OPTION_SEED:
         return gb_cli_unsigned("photons", "seed", text, 0, UINT64_MAX, &a->trace.seed);
     case OPTION_STORE: return parse_store(text, &a->trace);
@@ -97,41 +97,21 @@ static int parse_option(int option, const char *text, void *context)
     }
 }
 
-/* GB_CLI_GO_ON, else the exit status. */
-static int check_arguments(arguments *a, int argc, char **argv)
+/* One SCENE, or with --merge the shards, and -o; GB_CLI_GO_ON, else the
+ * exit status. */
+static int check_operands(int count, char **operands, void *context)
 {
-    a->inputs = argv + optind;
-    a->input_count = argc - optind;
+    arguments *a = context;
+    a->inputs = operands;
+    a->input_count = count;
     if (!a->output || a->input_count < 1 || (!a->merge && a->input_count != 1))
         return gb_cli_usage_error("photons", "expected %s and -o OUT",
                                   a->merge ? "the shards to merge" : "one SCENE");
     return GB_CLI_GO_ON;
 }
 
-/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
-static int parse_arguments(int argc, char **argv, arguments *a)
-{
-    static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"count", required_argument, NULL, 'n'},
-        {"bounces", required_argument, NULL, 'b'},
-        {"store", required_argument, NULL, OPTION_STORE},
-        {"seed", required_argument, NULL, OPTION_SEED},
-        {"threads", required_argument, NULL, 't'},
-        {"shard", required_argument, NULL, OPTION_SHARD},
-        {"merge", no_argument, NULL, OPTION_MERGE},
-        {"stats", no_argument, NULL, OPTION_STATS},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
-    };
-    int status = gb_cli_options("photons", usage, argc, argv, "o:n:b:t:qhV", options,
-                                parse_option, a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    return check_arguments(a, argc, argv);
-}
+static const gb_cli_command command = {"photons", usage, long_options, parse_option,
+                                       check_operands};
 
 /* ---- tracing ---- */
 
@@ -227,17 +207,16 @@ static gb_result run_merge(arguments *a, gb_error *error)
     return result;
 }
 
+static gb_result run(void *context, gb_error *error)
+{
+    arguments *a = context;
+    gb_result result = gb_output_file_check(a->output, error);
+    if (result == GB_OK)
+        result = a->merge ? run_merge(a, error) : run_trace(a, error);
+    return result;
+}
+
 int main(int argc, char **argv)
 {
-    arguments a = {0};
-    int status = parse_arguments(argc, argv, &a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    gb_error error;
-    if (gb_output_file_check(a.output, &error) != GB_OK ||
-        (a.merge ? run_merge(&a, &error) : run_trace(&a, &error)) != GB_OK) {
-        fprintf(stderr, "photons: %s\n", error.message);
-        return 1;
-    }
-    return fflush(stdout) == 0 ? 0 : 1;
+    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
 }

@@ -56,6 +56,22 @@ typedef struct arguments {
 
 enum { OPTION_VPL = 256, OPTION_SEED, OPTION_MIN_BOUNCES, OPTION_PNG, OPTION_STATS };
 
+static const struct option long_options[] = {
+    GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("mode", 'm'),
+    GB_CLI_VALUE("vpl", OPTION_VPL),
+    GB_CLI_VALUE("spp", 's'),
+    GB_CLI_VALUE("seed", OPTION_SEED),
+    GB_CLI_VALUE("camera", 'c'),
+    GB_CLI_VALUE("resolution", 'r'),
+    GB_CLI_VALUE("threads", 't'),
+    GB_CLI_VALUE("bounces", 'b'),
+    GB_CLI_VALUE("min-bounces", OPTION_MIN_BOUNCES),
+    GB_CLI_FLAG("png", OPTION_PNG),
+    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_OPTIONS_END,
+};
+
 /* One numeric option into a; 0, else the exit status. */
 static int parse_number(int option, const char *text, arguments *a)
 {
@@ -99,12 +115,14 @@ static int parse_option(int option, const char *text, void *context)
     }
 }
 
-/* GB_CLI_GO_ON, else the exit status. */
-static int check_arguments(arguments *a, int argc, char **argv)
+/* One SCENE, -o, and --vpl with vpl mode; GB_CLI_GO_ON, else the exit
+ * status. */
+static int check_operands(int count, char **operands, void *context)
 {
-    if (optind != argc - 1 || !a->output)
+    arguments *a = context;
+    if (count != 1 || !a->output)
         return gb_cli_usage_error("reference", "expected one SCENE and -o OUT");
-    a->scene_path = argv[optind];
+    a->scene_path = operands[0];
     if (a->vpl_path && !a->mode_given)
         a->render.mode = GB_REFERENCE_VPL;
     if ((a->render.mode == GB_REFERENCE_VPL) != (a->vpl_path != NULL))
@@ -113,33 +131,8 @@ static int check_arguments(arguments *a, int argc, char **argv)
     return GB_CLI_GO_ON;
 }
 
-/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
-static int parse_arguments(int argc, char **argv, arguments *a)
-{
-    static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"mode", required_argument, NULL, 'm'},
-        {"vpl", required_argument, NULL, OPTION_VPL},
-        {"spp", required_argument, NULL, 's'},
-        {"seed", required_argument, NULL, OPTION_SEED},
-        {"camera", required_argument, NULL, 'c'},
-        {"resolution", required_argument, NULL, 'r'},
-        {"threads", required_argument, NULL, 't'},
-        {"bounces", required_argument, NULL, 'b'},
-        {"min-bounces", required_argument, NULL, OPTION_MIN_BOUNCES},
-        {"png", no_argument, NULL, OPTION_PNG},
-        {"stats", no_argument, NULL, OPTION_STATS},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
-    };
-    int status = gb_cli_options("reference", usage, argc, argv, "o:m:s:c:r:t:b:qhV", options,
-                                parse_option, a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    return check_arguments(a, argc, argv);
-}
+static const gb_cli_command command = {"reference", usage, long_options, parse_option,
+                                       check_operands};
 
 /* OUT.exr -> OUT.png; any other name gets ".png" appended. */
 static char *png_path(const char *output)
@@ -194,9 +187,8 @@ static void print_stats(const gb_reference_stats *stats)
 static gb_result render(arguments *a, const gb_scene *scene, gb_error *error)
 {
     gb_progress progress;
-    gb_progress_begin(&progress, "reference", a->quiet);
-    a->render.progress = gb_progress_report;
-    a->render.progress_user = &progress;
+    gb_progress_begin_for(&progress, "reference", a->quiet, &a->render.progress,
+                          &a->render.progress_user);
     gb_image image;
     gb_reference_stats stats;
     gb_result result = gb_reference_render(scene, &a->render, &image, &stats, error);
@@ -209,11 +201,15 @@ static gb_result render(arguments *a, const gb_scene *scene, gb_error *error)
     return result;
 }
 
-static gb_result run(arguments *a, gb_error *error)
+static gb_result run(void *context, gb_error *error)
 {
+    arguments *a = context;
+    gb_result result = check_outputs(a, error);
+    if (result != GB_OK)
+        return result;
     gb_scene scene;
     gb_scene_options scene_options = {.load_textures = 1};
-    gb_result result = gb_scene_load(a->scene_path, &scene_options, &scene, error);
+    result = gb_scene_load(a->scene_path, &scene_options, &scene, error);
     if (result != GB_OK)
         return result;
     if (!a->quiet)     /* with no light the image is black, as it should be */
@@ -234,14 +230,5 @@ static gb_result run(arguments *a, gb_error *error)
 
 int main(int argc, char **argv)
 {
-    arguments a = {0};
-    int status = parse_arguments(argc, argv, &a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    gb_error error;
-    if (check_outputs(&a, &error) != GB_OK || run(&a, &error) != GB_OK) {
-        fprintf(stderr, "reference: %s\n", error.message);
-        return 1;
-    }
-    return fflush(stdout) == 0 ? 0 : 1;
+    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
 }

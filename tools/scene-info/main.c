@@ -21,6 +21,36 @@ static const char usage[] =
     "  -h, --help      this help\n"
     "  -V, --version   the version\n";
 
+typedef struct arguments {
+    const char *scene;
+    int quiet;
+} arguments;
+
+static const struct option long_options[] = {
+    GB_CLI_OPTIONS_END,
+};
+
+/* Its only option, -q. */
+static int set_quiet(int option, const char *value, void *context)
+{
+    (void)option;
+    (void)value;
+    ((arguments *)context)->quiet = 1;
+    return 0;
+}
+
+/* One SCENE; GB_CLI_GO_ON, else the exit status. */
+static int check_operands(int count, char **operands, void *context)
+{
+    if (count != 1)
+        return gb_cli_usage_error("scene-info", "expected one SCENE");
+    ((arguments *)context)->scene = operands[0];
+    return GB_CLI_GO_ON;
+}
+
+static const gb_cli_command command = {"scene-info", usage, long_options, set_quiet,
+                                       check_operands};
+
 static double emissive_area(const gb_scene *scene)
 {
     double area = 0;
@@ -68,39 +98,21 @@ static void print_summary(const gb_scene *scene)
     printf("hash            %016llx\n", (unsigned long long)scene->hash);
 }
 
-/* Its only option, -q. */
-static int set_quiet(int option, const char *value, void *quiet)
+static gb_result run(void *context, gb_error *error)
 {
-    (void)option;
-    (void)value;
-    *(int *)quiet = 1;
-    return 0;
+    const arguments *a = context;
+    gb_scene scene;
+    gb_result result = gb_scene_load(a->scene, NULL, &scene, error);
+    if (result != GB_OK)
+        return result;
+    print_summary(&scene);
+    if (!a->quiet)
+        gb_scene_warn("scene-info", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
+    gb_scene_free(&scene);
+    return GB_OK;
 }
 
 int main(int argc, char **argv)
 {
-    static const struct option options[] = {
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
-    };
-    int quiet = 0;
-    int status = gb_cli_options("scene-info", usage, argc, argv, "qhV", options, set_quiet,
-                                &quiet);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    if (optind != argc - 1)
-        return gb_cli_usage_error("scene-info", "expected one SCENE");
-    gb_scene scene;
-    gb_error error;
-    if (gb_scene_load(argv[optind], NULL, &scene, &error) != GB_OK) {
-        fprintf(stderr, "scene-info: %s\n", error.message);
-        return 1;
-    }
-    print_summary(&scene);
-    if (!quiet)
-        gb_scene_warn("scene-info", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
-    gb_scene_free(&scene);
-    return fflush(stdout) == 0 ? 0 : 1;
+    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
 }

@@ -49,73 +49,56 @@ typedef struct arguments {
     int evaluate, quiet, stats;
 } arguments;
 
+static const struct option long_options[] = {
+    GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("alpha", 'a'),
+    GB_CLI_FLAG("evaluate", 'e'),
+    GB_CLI_VALUE("pairs", 'n'),
+    GB_CLI_VALUE("seed", OPTION_SEED),
+    GB_CLI_FLAG("stats", 's'),
+    GB_CLI_OPTIONS_END,
+};
+
 /* One option into args; 0, else the exit status. */
 static int parse_option(int option, const char *text, void *context)
 {
     arguments *args = context;
-    double value;
-    uint64_t pairs;
-    int status = 0;
+    gb_segment_evaluate_options *e = &args->evaluate_options;
     switch (option) {
     case 'o': args->output = text; return 0;
     case 'e': args->evaluate = 1; return 0;
     case 's': args->stats = 1; return 0;
     case 'q': args->quiet = 1; return 0;
     case 'a':
-        if ((status = gb_cli_number("segment", "alpha", text, 0.0, 100.0, &value)) == 0)
-            /* in the options struct 0 means the default; negative means 0 */
-            args->options.alpha = value == 0.0 ? -1.0 : value;
-        return status;
-    case 'n':
-        if ((status = gb_cli_unsigned("segment", "pairs", text, 1, UINT32_MAX, &pairs)) == 0)
-            args->evaluate_options.pairs = (uint32_t)pairs;
-        return status;
-    default:
-        return gb_cli_unsigned("segment", "seed", text, 0, UINT64_MAX,
-                               &args->evaluate_options.seed);
+        return gb_cli_number_keep_zero("segment", "alpha", text, 0.0, 100.0,
+                                       &args->options.alpha);
+    case 'n': return gb_cli_uint("segment", "pairs", text, 1, UINT32_MAX, &e->pairs);
+    default: return gb_cli_unsigned("segment", "seed", text, 0, UINT64_MAX, &e->seed);
     }
 }
 
-/* GB_CLI_GO_ON, else the exit status. */
-static int check_positionals(int argc, char **argv, arguments *args)
+/* IN.skel and -o, or with --evaluate SCENE IN.seg GRID.vdb; GB_CLI_GO_ON,
+ * else the exit status. */
+static int check_operands(int count, char **operands, void *context)
 {
-    int count = argc - optind;
+    arguments *args = context;
     if (args->evaluate) {
         if (count != 3 || args->output)
             return gb_cli_usage_error("segment",
                                       "--evaluate expects SCENE IN.seg GRID.vdb and no -o");
-        args->scene = argv[optind];
-        args->input = argv[optind + 1];
-        args->grid = argv[optind + 2];
+        args->scene = operands[0];
+        args->input = operands[1];
+        args->grid = operands[2];
         return GB_CLI_GO_ON;
     }
     if (count != 1 || !args->output)
         return gb_cli_usage_error("segment", "expected one IN.skel and -o OUT.seg");
-    args->input = argv[optind];
+    args->input = operands[0];
     return GB_CLI_GO_ON;
 }
 
-/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
-static int parse_arguments(int argc, char **argv, arguments *args)
-{
-    static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"alpha", required_argument, NULL, 'a'},
-        {"evaluate", no_argument, NULL, 'e'},
-        {"pairs", required_argument, NULL, 'n'},
-        {"seed", required_argument, NULL, OPTION_SEED},
-        {"stats", no_argument, NULL, 's'},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
-    };
-    int status = gb_cli_options("segment", usage, argc, argv, "o:a:en:sqhV", options,
-                                parse_option, args);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    return check_positionals(argc, argv, args);
-}
+static const gb_cli_command command = {"segment", usage, long_options, parse_option,
+                                       check_operands};
 
 static void print_stats(const gb_segmentation *s, const gb_segment_stats *stats)
 {
@@ -132,29 +115,27 @@ static void print_stats(const gb_segmentation *s, const gb_segment_stats *stats)
     printf("seconds          %.4f\n", stats->seconds);
 }
 
-static int run_segment(const arguments *args)
+static gb_result run_segment(const arguments *args, gb_error *error)
 {
     gb_skeleton skeleton;
-    gb_error error;
-    if (gb_skeleton_read(args->input, &skeleton, &error)) {
-        fprintf(stderr, "segment: %s\n", error.message);
-        return 1;
-    }
+    gb_result result = gb_output_file_check(args->output, error);
+    if (result == GB_OK)
+        result = gb_skeleton_read(args->input, &skeleton, error);
+    if (result != GB_OK)
+        return result;
     gb_segmentation segmentation;
     gb_segment_stats stats;
-    int status = 0;
-    if (gb_segment(&skeleton, &args->options, &segmentation, &stats, &error)) {
-        fprintf(stderr, "segment: %s: %s\n", args->input, error.message);
-        status = 1;
-    } else if (gb_segmentation_write(args->output, &segmentation, &error)) {
-        fprintf(stderr, "segment: %s\n", error.message);
-        status = 1;
-    } else if (args->stats) {
+    gb_error reason;
+    result = gb_segment(&skeleton, &args->options, &segmentation, &stats, &reason);
+    if (result != GB_OK)
+        gb_fail(error, result, "%s: %s", args->input, reason.message);
+    else
+        result = gb_segmentation_write(args->output, &segmentation, error);
+    if (result == GB_OK && args->stats)
         print_stats(&segmentation, &stats);
-    }
     gb_segmentation_free(&segmentation);
     gb_skeleton_free(&skeleton);
-    return status;
+    return result;
 }
 
 static void print_evaluation(const arguments *args, const gb_segmentation *s,
@@ -177,69 +158,63 @@ static void print_evaluation(const arguments *args, const gb_segmentation *s,
     printf("seconds          %.3f\n", e->seconds);
 }
 
-/* Reads the scene, the segmentation and the grid; 0 or 1 after a message. */
-static int load_evaluation_inputs(const arguments *args, gb_scene *scene, gb_segmentation *seg,
-                                  gb_voxel_grid *frame, int32_t **nearest)
+/* Reads the scene, the segmentation and the grid. */
+static gb_result load_evaluation_inputs(const arguments *args, gb_scene *scene,
+                                        gb_segmentation *seg, gb_voxel_grid *frame,
+                                        int32_t **nearest, gb_error *error)
 {
-    gb_error error;
-    if (gb_scene_load(args->scene, NULL, scene, &error) ||
-        gb_segmentation_read(args->input, seg, &error) ||
-        gb_voxel_grid_read_int32(args->grid, "nearest_node", frame, nearest, &error) ||
-        gb_segmentation_check_grid(seg, frame, *nearest, args->grid, &error)) {
-        fprintf(stderr, "segment: %s\n", error.message);
-        return 1;
-    }
-    if (!args->quiet)
+    gb_result result = gb_scene_load(args->scene, NULL, scene, error);
+    if (result == GB_OK)
+        result = gb_segmentation_read(args->input, seg, error);
+    if (result == GB_OK)
+        result = gb_voxel_grid_read_int32(args->grid, "nearest_node", frame, nearest, error);
+    if (result == GB_OK)
+        result = gb_segmentation_check_grid(seg, frame, *nearest, args->grid, error);
+    if (result == GB_OK && !args->quiet)
         gb_scene_warn("segment", scene, GB_WARN_GEOMETRY);
-    return 0;
+    return result;
 }
 
-static int run_evaluate(const arguments *args)
+static gb_result evaluate(const arguments *args, const gb_scene *scene,
+                          const gb_segmentation *seg, const int32_t *nearest, gb_error *error)
+{
+    gb_progress progress;
+    gb_segment_evaluate_options options = args->evaluate_options;
+    gb_progress_begin_for(&progress, "segment", args->quiet, &options.progress,
+                          &options.progress_user);
+    gb_segment_evaluation evaluation;
+    gb_error reason;
+    gb_result result = gb_segment_evaluate(scene, seg, nearest, &options, &evaluation, &reason);
+    gb_progress_end(&progress);
+    if (result != GB_OK)
+        return gb_fail(error, result, "%s: %s", args->input, reason.message);
+    print_evaluation(args, seg, &evaluation);
+    return GB_OK;
+}
+
+static gb_result run_evaluate(const arguments *args, gb_error *error)
 {
     gb_scene scene = {0};
     gb_segmentation seg = {0};
     gb_voxel_grid frame = {0};
     int32_t *nearest = NULL;
-    int status = load_evaluation_inputs(args, &scene, &seg, &frame, &nearest);
-    if (!status) {
-        gb_progress progress;
-        gb_progress_begin(&progress, "segment", args->quiet);
-        gb_segment_evaluate_options options = args->evaluate_options;
-        options.progress = gb_progress_report;
-        options.progress_user = &progress;
-        gb_segment_evaluation evaluation;
-        gb_error error;
-        gb_result result = gb_segment_evaluate(&scene, &seg, nearest, &options, &evaluation,
-                                               &error);
-        gb_progress_end(&progress);
-        if (result) {
-            fprintf(stderr, "segment: %s: %s\n", args->input, error.message);
-            status = 1;
-        } else {
-            print_evaluation(args, &seg, &evaluation);
-        }
-    }
+    gb_result result = load_evaluation_inputs(args, &scene, &seg, &frame, &nearest, error);
+    if (result == GB_OK)
+        result = evaluate(args, &scene, &seg, nearest, error);
     free(nearest);
     gb_voxel_grid_free(&frame);
     gb_segmentation_free(&seg);
     gb_scene_free(&scene);
-    return status;
+    return result;
+}
+
+static gb_result run(void *context, gb_error *error)
+{
+    const arguments *args = context;
+    return args->evaluate ? run_evaluate(args, error) : run_segment(args, error);
 }
 
 int main(int argc, char **argv)
 {
-    arguments args;
-    memset(&args, 0, sizeof args);
-    int parsed = parse_arguments(argc, argv, &args);
-    if (parsed != GB_CLI_GO_ON)
-        return parsed;
-    gb_error error;
-    if (!args.evaluate && gb_output_file_check(args.output, &error) != GB_OK) {
-        fprintf(stderr, "segment: %s\n", error.message);
-        return 1;
-    }
-    int status = args.evaluate ? run_evaluate(&args) : run_segment(&args);
-    if (fflush(stdout) != 0)
-        status = 1;
-    return status;
+    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
 }

@@ -43,62 +43,48 @@ typedef struct arguments {
     int quiet, stats;
 } arguments;
 
+static const struct option long_options[] = {
+    GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("grid", 'g'),
+    GB_CLI_VALUE("persistence", 'p'),
+    GB_CLI_VALUE("min-lifespan", 'l'),
+    GB_CLI_VALUE("threads", 'j'),
+    GB_CLI_FLAG("stats", 's'),
+    GB_CLI_OPTIONS_END,
+};
+
 /* One option into args; 0, else the exit status. */
 static int parse_option(int option, const char *text, void *context)
 {
     arguments *args = context;
-    double value;
-    long threads;
-    int status;
     switch (option) {
-    case 's': args->stats = 1; return 0;
-    case 'q': args->quiet = 1; return 0;
     case 'o': args->output = text; return 0;
     case 'g': args->grid = text; return 0;
+    case 's': args->stats = 1; return 0;
+    case 'q': args->quiet = 1; return 0;
     case 'p':
-        if ((status = gb_cli_number("thin", "persistence", text, 0.0, 1e6, &value)) != 0)
-            return status;
-        /* in the options struct 0 means the default; negative means 0 */
-        args->options.persistence = value == 0.0 ? -1.0 : value;
-        return 0;
+        return gb_cli_number_keep_zero("thin", "persistence", text, 0.0, 1e6,
+                                       &args->options.persistence);
     case 'l':
-        if ((status = gb_cli_number("thin", "min-lifespan", text, 0.0, 1e6, &value)) != 0)
-            return status;
-        args->options.min_lifespan = value == 0.0 ? -1.0 : value;
-        return 0;
+        return gb_cli_number_keep_zero("thin", "min-lifespan", text, 0.0, 1e6,
+                                       &args->options.min_lifespan);
     default:
-        if ((status = gb_cli_integer("thin", "threads", text, 1, GB_THIN_MAX_THREADS,
-                                     &threads)) != 0)
-            return status;
-        args->options.threads = (int)threads;
-        return 0;
+        return gb_cli_int("thin", "threads", text, 1, GB_THIN_MAX_THREADS,
+                          &args->options.threads);
     }
 }
 
-/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
-static int parse_arguments(int argc, char **argv, arguments *args)
+/* One IN.vdb, and -o; GB_CLI_GO_ON, else the exit status. */
+static int check_operands(int count, char **operands, void *context)
 {
-    static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"grid", required_argument, NULL, 'g'},
-        {"persistence", required_argument, NULL, 'p'},
-        {"min-lifespan", required_argument, NULL, 'l'},
-        {"threads", required_argument, NULL, 'j'},
-        {"stats", no_argument, NULL, 's'},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
-    };
-    int status = gb_cli_options("thin", usage, argc, argv, "o:g:p:l:j:sqhV", options,
-                                parse_option, args);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    if (optind != argc - 1 || !args->output)
+    arguments *args = context;
+    if (count != 1 || !args->output)
         return gb_cli_usage_error("thin", "expected one IN.vdb and -o OUT.skel");
-    args->input = argv[optind];
+    args->input = operands[0];
     return GB_CLI_GO_ON;
 }
+
+static const gb_cli_command command = {"thin", usage, long_options, parse_option, check_operands};
 
 static void print_stats(const gb_skeleton *s, const gb_thin_stats *stats)
 {
@@ -116,82 +102,72 @@ static void print_stats(const gb_skeleton *s, const gb_thin_stats *stats)
 
 /* The grid first: if the skeleton then fails, the new grid is removed so
  * that a failed run leaves no output. */
-static int write_outputs(const arguments *args, const gb_voxel_grid *grid,
-                         const gb_skeleton *skeleton, const int32_t *nearest)
+static gb_result write_outputs(const arguments *args, const gb_voxel_grid *grid,
+                               const gb_skeleton *skeleton, const int32_t *nearest,
+                               gb_error *error)
 {
-    gb_error error;
-    if (args->grid &&
-        gb_voxel_grid_write_int32(args->grid, grid, "nearest_node", nearest, &error)) {
-        fprintf(stderr, "thin: %s\n", error.message);
-        return 1;
-    }
-    if (gb_skeleton_write(args->output, skeleton, &error)) {
-        fprintf(stderr, "thin: %s\n", error.message);
-        struct stat status;  /* never a device, a FIFO or a symlink */
-        if (args->grid && lstat(args->grid, &status) == 0 && S_ISREG(status.st_mode))
-            unlink(args->grid);
-        return 1;
-    }
-    return 0;
+    gb_result result = GB_OK;
+    if (args->grid)
+        result = gb_voxel_grid_write_int32(args->grid, grid, "nearest_node", nearest, error);
+    if (result != GB_OK)
+        return result;
+    result = gb_skeleton_write(args->output, skeleton, error);
+    struct stat status;  /* never a device, a FIFO or a symlink */
+    if (result != GB_OK && args->grid && lstat(args->grid, &status) == 0 &&
+        S_ISREG(status.st_mode))
+        unlink(args->grid);
+    return result;
 }
 
-static int run(const arguments *args)
+/* Before the work: both outputs can be written. */
+static gb_result check_outputs(const arguments *args, gb_error *error)
 {
+    gb_result result = gb_output_file_check(args->output, error);
+    if (result == GB_OK && args->grid)
+        result = gb_output_file_check(args->grid, error);
+    return result;
+}
+
+static gb_result run(void *context, gb_error *error)
+{
+    const arguments *args = context;
     gb_voxel_grid grid = {0};
-    gb_error error;
-    if (gb_voxel_grid_read(args->input, &grid, &error)) {
-        fprintf(stderr, "thin: %s\n", error.message);
-        return 1;
-    }
+    gb_result result = check_outputs(args, error);
+    if (result == GB_OK)
+        result = gb_voxel_grid_read(args->input, &grid, error);
+    if (result != GB_OK)
+        return result;
     /* the reader's OpenVDB trees are freed, but glibc keeps their heap
      * pages: give them back before the big arrays of thin */
     malloc_trim(0);
-    gb_progress progress;
-    gb_progress_begin(&progress, "thin", args->quiet);
     gb_thin_options options = args->options;
-    options.progress = gb_progress_report;
-    options.progress_user = &progress;
+    gb_progress progress;
+    gb_progress_begin_for(&progress, "thin", args->quiet, &options.progress,
+                          &options.progress_user);
     gb_skeleton skeleton;
     gb_thin_stats stats;
     int32_t *nearest = NULL;
-    gb_result result = gb_thin(&grid, &options, &skeleton, args->grid ? &nearest : NULL, &stats,
-                               &error);
+    gb_error reason;
+    result = gb_thin(&grid, &options, &skeleton, args->grid ? &nearest : NULL, &stats, &reason);
     gb_progress_end(&progress);
     /* only the frame is needed from here: give the memory back for writing */
     free(grid.surface);
     free(grid.distance);
     grid.surface = NULL;
     grid.distance = NULL;
-    int status = 0;
-    if (result) {
-        fprintf(stderr, "thin: %s: %s\n", args->input, error.message);
-        status = 1;
-    } else {
-        status = write_outputs(args, &grid, &skeleton, nearest);
-    }
-    if (!status && args->stats)
+    if (result != GB_OK)
+        gb_fail(error, result, "%s: %s", args->input, reason.message);
+    else
+        result = write_outputs(args, &grid, &skeleton, nearest, error);
+    if (result == GB_OK && args->stats)
         print_stats(&skeleton, &stats);
     gb_skeleton_free(&skeleton);
     free(nearest);
     gb_voxel_grid_free(&grid);
-    return status;
+    return result;
 }
 
 int main(int argc, char **argv)
 {
-    arguments args;
-    memset(&args, 0, sizeof args);
-    int parsed = parse_arguments(argc, argv, &args);
-    if (parsed != GB_CLI_GO_ON)
-        return parsed;
-    gb_error error;
-    if (gb_output_file_check(args.output, &error) != GB_OK ||
-        (args.grid && gb_output_file_check(args.grid, &error) != GB_OK)) {
-        fprintf(stderr, "thin: %s\n", error.message);
-        return 1;
-    }
-    int status = run(&args);
-    if (fflush(stdout) != 0)
-        status = 1;
-    return status;
+    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
 }

@@ -37,6 +37,26 @@ typedef struct arguments {
     int quiet;
 } arguments;
 
+static const struct option long_options[] = {
+    GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("resolution", 'r'),
+    GB_CLI_VALUE("pad", OPTION_PAD),
+    GB_CLI_VALUE("threads", 'j'),
+    GB_CLI_OPTIONS_END,
+};
+
+/* One SCENE, and -o; GB_CLI_GO_ON, else the exit status. */
+static int check_operands(int count, char **operands, void *context)
+{
+    arguments *parsed = context;
+    if (count != 1)
+        return gb_cli_usage_error("voxelize", "expected one SCENE");
+    if (!parsed->output)
+        return gb_cli_usage_error("voxelize", "no output file: give -o OUT.vdb");
+    parsed->scene = operands[0];
+    return GB_CLI_GO_ON;
+}
+
 /* One option into parsed; 0, else the exit status. */
 static int parse_option(int option, const char *text, void *context)
 {
@@ -53,32 +73,8 @@ static int parse_option(int option, const char *text, void *context)
     }
 }
 
-/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
-static int parse_arguments(int argc, char **argv, arguments *parsed)
-{
-    static const struct option options[] = {
-        {"output", required_argument, NULL, 'o'},
-        {"resolution", required_argument, NULL, 'r'},
-        {"pad", required_argument, NULL, OPTION_PAD},
-        {"threads", required_argument, NULL, 'j'},
-        {"quiet", no_argument, NULL, 'q'},
-        {"help", no_argument, NULL, 'h'},
-        {"version", no_argument, NULL, 'V'},
-        {NULL, 0, NULL, 0},
-    };
-    *parsed = (arguments){NULL, NULL, GB_VOXELIZE_DEFAULT_RESOLUTION, GB_VOXELIZE_DEFAULT_PAD,
-                          GB_VOXELIZE_DEFAULT_THREADS, 0};
-    int status = gb_cli_options("voxelize", usage, argc, argv, "o:r:j:qhV", options,
-                                parse_option, parsed);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    if (optind != argc - 1)
-        return gb_cli_usage_error("voxelize", "expected one SCENE");
-    if (!parsed->output)
-        return gb_cli_usage_error("voxelize", "no output file: give -o OUT.vdb");
-    parsed->scene = argv[optind];
-    return GB_CLI_GO_ON;
-}
+static const gb_cli_command command = {"voxelize", usage, long_options, parse_option,
+                                       check_operands};
 
 /* The bar shows voxelizing as 90 % of the work and writing as the rest. */
 static int report_voxelizing(void *bar, double fraction)
@@ -86,11 +82,14 @@ static int report_voxelizing(void *bar, double fraction)
     return gb_progress_report(bar, 0.9 * fraction);
 }
 
-static int voxelize_file(const arguments *parsed)
+static gb_result voxelize_file(void *context, gb_error *error)
 {
+    const arguments *parsed = context;
+    gb_result result = gb_output_file_check(parsed->output, error);
+    if (result != GB_OK)
+        return result;
     gb_scene scene;
     gb_voxel_grid grid = {0};
-    gb_error error;
     gb_progress bar;
     gb_progress_begin(&bar, "voxelize", parsed->quiet);
     gb_voxelize_options options = {
@@ -100,37 +99,31 @@ static int voxelize_file(const arguments *parsed)
         .progress = report_voxelizing,
         .progress_user = &bar,
     };
-    gb_result result = gb_scene_load(parsed->scene, NULL, &scene, &error);
+    result = gb_scene_load(parsed->scene, NULL, &scene, error);
     if (result != GB_OK) {
-        fprintf(stderr, "voxelize: %s\n", error.message);
         gb_scene_free(&scene);
-        return 1;
+        return result;
     }
     if (!parsed->quiet)
         gb_scene_warn("voxelize", &scene, GB_WARN_GEOMETRY);
-    result = gb_voxelize_scene(&scene, &options, &grid, &error);
+    gb_error reason;
+    result = gb_voxelize_scene(&scene, &options, &grid, &reason);
     if (result != GB_OK)
-        fprintf(stderr, "voxelize: %s: %s\n", parsed->scene, error.message);
-    else if ((result = gb_voxel_grid_write_and_free(parsed->output, &grid, &error)) != GB_OK)
-        fprintf(stderr, "voxelize: %s\n", error.message);
+        gb_fail(error, result, "%s: %s", parsed->scene, reason.message);
     else
+        result = gb_voxel_grid_write_and_free(parsed->output, &grid, error);
+    if (result == GB_OK)
         gb_progress_report(&bar, 1.0);
     gb_progress_end(&bar);
     gb_voxel_grid_free(&grid);
     gb_scene_free(&scene);
-    return result == GB_OK ? 0 : 1;
+    return result;
 }
 
 int main(int argc, char **argv)
 {
-    arguments parsed;
-    int status = parse_arguments(argc, argv, &parsed);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    gb_error error;
-    if (gb_output_file_check(parsed.output, &error) != GB_OK) {
-        fprintf(stderr, "voxelize: %s\n", error.message);
-        return 1;
-    }
-    return voxelize_file(&parsed);
+    arguments defaults = {.resolution = GB_VOXELIZE_DEFAULT_RESOLUTION,
+                          .pad = GB_VOXELIZE_DEFAULT_PAD,
+                          .threads = GB_VOXELIZE_DEFAULT_THREADS};
+    return gb_cli_main(&command, argc, argv, voxelize_file, &defaults);
 }
