@@ -15,15 +15,5 @@ vec3 brdf_eval(vec3 Kd, vec3 Ks, float Ns, float n_dot_wo, float n_dot_wi,
     float lobe = phong_lobe(Ns, phong_cos_mirror(n_dot_wo, n_dot_wi, wo_dot_wi));
     return Kd / PI + Ks * lobe;
 }
-float spot_falloff(float cos_angle, float cone_angle_degrees,
-                   float falloff_angle_degrees) {
-    float cos_cone = cos(cone_angle_degrees * (PI / 180.0));
-    float cos_falloff = cos(falloff_angle_degrees * (PI / 180.0));
-    if (cos_angle <= cos_cone)
-        return 0.0;
-    if (cos_angle >= cos_falloff || cos_falloff <= cos_cone)
-        return 1.0;
-    float t = (cos_angle - cos_cone) / (cos_falloff - cos_cone);
-    return t * t * (3.0 - 2.0 * t);
-}
+#include "runtime/spot_falloff.glsl"
 float inverse_square(float r2) { return 1.0 / r2; }
