@@ -14,7 +14,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gbuffer.h"
 #include "gl_util.h"
 #include "topo.h"
 
