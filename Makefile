@@ -87,8 +87,9 @@ deps:
 #   static const char present_shader[] =
 #   #include "runtime/output_present.frag.glsl.inc"
 #       ;
-# Every object waits for them (order-only) the first time; then its own .d
-# names those it includes, and each .inc's .d the .glsl files it was made of.
+# Objects are made after them (order-only: a first build has no .d yet);
+# then an object's .d names the .inc files it includes, and each .inc's .d
+# the .glsl files it was made of, so an edit remakes exactly what uses it.
 GLSL_STAGES := $(wildcard runtime/*.*.glsl runtime/*/*.*.glsl tests/unit/*.*.glsl)
 GLSL_SOURCES := $(GLSL_STAGES:%=$(BUILD)/glsl/%.inc)
 
