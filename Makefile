@@ -18,9 +18,10 @@
 # method) go into one static library, but for the adapters (ADAPTER_SOURCES:
 # shared objects, loaded on first use); tools/<name>/main.c becomes
 # build/bin/<name>, runtime/main.c becomes build/bin/gbview; tests/unit/test_*.c
-# become test programs. Adding a file needs no change here. -Iruntime lets a
-# method's files include the core's headers by name; the core names a method's
-# header by its folder (#include "topo/topo.h").
+# become test programs; shaders, PASS.STAGE.glsl beside the C file that draws
+# with them, become C string literals (below). Adding a file needs no change
+# here. -Iruntime lets a method's files include the core's headers by name;
+# the core names a method's header by its folder (#include "topo/topo.h").
 
 PREFIX ?= /usr/local
 BUILD ?= build
@@ -39,7 +40,7 @@ DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
 BENCH_DEB_PACKAGES = python3-skimage python3-openvdb
 
 SANITIZE_FLAGS = $(if $(SANITIZE),-fsanitize=$(SANITIZE) -fno-sanitize-recover=all -fno-omit-frame-pointer)
-CPPFLAGS += -Iformats -Icommon -Itests -Iruntime -MMD -MP -D_GNU_SOURCE
+CPPFLAGS += -Iformats -Icommon -Itests -Iruntime -I$(BUILD)/glsl -MMD -MP -D_GNU_SOURCE
 CFLAGS += -std=c11 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS)
 CXXFLAGS += -std=c++17 $(OPT) -g -Wall -Wextra -pthread $(SANITIZE_FLAGS) \
   -Wno-deprecated-declarations
@@ -78,7 +79,25 @@ deps:
 	  apt-get update -q && DEBIAN_FRONTEND=noninteractive apt-get install -y -q $$missing; \
 	fi
 
-$(BUILD)/obj/%.o: %.c
+# Shaders: one file a stage, PASS.STAGE.glsl (STAGE vert, tesc, tese, geom,
+# frag or comp; runtime/*, runtime/<method>/*, tests/unit/*), and snippets
+# that stages #include, NAME.glsl. tools/glsl.awk makes each stage the C
+# string literal $(BUILD)/glsl/PATH.inc, its snippets spliced in, which the C
+# file includes (-I$(BUILD)/glsl) as the source's initialiser:
+#   static const char present_shader[] =
+#   #include "runtime/output_present.frag.glsl.inc"
+#       ;
+# Objects are made after them (order-only: a first build has no .d yet);
+# then an object's .d names the .inc files it includes, and each .inc's .d
+# the .glsl files it was made of, so an edit remakes exactly what uses it.
+GLSL_STAGES := $(wildcard runtime/*.*.glsl runtime/*/*.*.glsl tests/unit/*.*.glsl)
+GLSL_SOURCES := $(GLSL_STAGES:%=$(BUILD)/glsl/%.inc)
+
+$(BUILD)/glsl/%.glsl.inc: %.glsl tools/glsl.awk
+	@mkdir -p $(@D)
+	awk -f tools/glsl.awk -v target=$@ -v depfile=$(@:.inc=.d) $< >$@
+
+$(BUILD)/obj/%.o: %.c | $(GLSL_SOURCES)
 	@mkdir -p $(@D)
 	$(CC) $(CPPFLAGS) $(CFLAGS) -c $< -o $@
 
@@ -279,4 +298,4 @@ clean:
 
 include bench/report.mk
 
--include $(shell find $(BUILD)/obj $(BUILD)/pic -name '*.d' 2>/dev/null)
+-include $(shell find $(BUILD)/obj $(BUILD)/pic $(BUILD)/glsl -name '*.d' 2>/dev/null)

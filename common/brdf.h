@@ -1,6 +1,7 @@
 /* brdf.h — the reflection and lighting conventions of gibake, written once
  * for the reference renderer (tools/reference) and the runtime. The runtime's
- * GLSL mirrors these functions name for name; change both together.
+ * GLSL (runtime/brdf.glsl) mirrors these functions name for name; change both
+ * together.
  *
  * Every quantity is linear RGB in the scene's radiometric units. Every
  * function takes cosines (dot products of unit vectors), never vectors, so

@@ -9,7 +9,7 @@
  * ambient Kd L_env, it doubled the error to the reference on Sponza (whose
  * court is mostly enclosed), and shadowing it is a GI method's business. The BRDF and
  * light conventions are common/brdf.h's, mirrored in GLSL function for
- * function (see the shader).
+ * function (brdf.glsl; the pass is direct_light.frag.glsl).
  *
  * Create → draw each frame → destroy (also on a zeroed one).
  */

@@ -5,60 +5,12 @@
 #include "gl_util.h"
 
 static const char vertex_shader[] =
-    "#version 450 core\n"
-    "layout(location = 0) in vec3 position;\n"
-    "layout(location = 1) in vec3 normal;\n"
-    "layout(location = 2) in vec3 face_normal;\n"
-    "layout(location = 3) in vec2 texcoord;\n"
-    "layout(location = 4) in uint material;\n"
-    "uniform mat4 view;\n"
-    "uniform mat4 projection;\n"
-    "out vec3 v_normal;\n"
-    "flat out vec3 v_face_normal;\n"
-    "out vec2 v_texcoord;\n"
-    "flat out uint v_material;\n"
-    "void main() {\n"
-    "    v_normal = mat3(view) * normal;\n"
-    "    v_face_normal = mat3(view) * face_normal;\n"
-    "    v_texcoord = texcoord;\n"
-    "    v_material = material;\n"
-    "    gl_Position = projection * (view * vec4(position, 1.0));\n"
-    "}\n";
+#include "runtime/gbuffer.vert.glsl.inc"
+    ;
 
-/* Sides as in common/brdf.h: the geometric normal turned toward the viewer
- * (the front face is cross(v1 - v0, v2 - v0), counter-clockwise on screen),
- * the shading normal turned to its side; only the front face emits. */
 static const char fragment_shader[] =
-    "#version 450 core\n"
-    "struct Material { vec4 Kd_textured; vec4 Ks_Ns; vec4 Ke; };\n"
-    "layout(std430, binding = 0) readonly buffer Materials { Material materials[]; };\n"
-    "layout(binding = 0) uniform sampler2D diffuse_texture;\n"
-    "in vec3 v_normal;\n"
-    "flat in vec3 v_face_normal;\n"
-    "in vec2 v_texcoord;\n"
-    "flat in uint v_material;\n"
-    "layout(location = 0) out vec4 out_normal;\n"
-    "layout(location = 1) out vec4 out_diffuse;\n"
-    "layout(location = 2) out vec4 out_glossy;\n"
-    "layout(location = 3) out uvec2 out_clusters;\n"
-    "layout(location = 4) out vec4 out_emission;\n"
-    GB_GLSL_OCTAHEDRAL
-    "void main() {\n"
-    "    Material m = materials[v_material];\n"
-    "    vec3 ng = normalize(gl_FrontFacing ? v_face_normal : -v_face_normal);\n"
-    "    vec3 n = normalize(v_normal);\n"
-    "    if (!(dot(n, n) > 0.0))\n"
-    "        n = ng;\n"
-    "    if (dot(n, ng) < 0.0)\n"
-    "        n = -n;\n"
-    "    vec3 texel = m.Kd_textured.w > 0.5 ? texture(diffuse_texture, v_texcoord).rgb\n"
-    "                                       : vec3(1.0);\n"
-    "    out_normal = vec4(oct_encode(n), oct_encode(ng));\n"
-    "    out_diffuse = vec4(m.Kd_textured.rgb * texel, 1.0);\n"
-    "    out_glossy = m.Ks_Ns;\n"
-    "    out_clusters = uvec2(0xffffffffu);\n"
-    "    out_emission = vec4(gl_FrontFacing ? m.Ke.rgb : vec3(0.0), 1.0);\n"
-    "}\n";
+#include "runtime/gbuffer.frag.glsl.inc"
+    ;
 
 static void delete_textures(gb_gbuffer *g)
 {

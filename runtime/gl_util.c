@@ -169,13 +169,9 @@ GLuint gb_gl_texture_2d(GLenum internal_format, int width, int height)
     return texture;
 }
 
-/* One triangle covering the screen: (-1,-1), (3,-1), (-1,3). */
 const char gb_gl_fullscreen_vertex_shader[] =
-    "#version 450 core\n"
-    "void main() {\n"
-    "    vec2 p = vec2((gl_VertexID << 1) & 2, gl_VertexID & 2);\n"
-    "    gl_Position = vec4(2.0 * p - 1.0, 0.0, 1.0);\n"
-    "}\n";
+#include "runtime/fullscreen.vert.glsl.inc"
+    ;
 
 void gb_gl_draw_fullscreen(GLuint empty_vertex_array)
 {

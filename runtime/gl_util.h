@@ -1,6 +1,14 @@
 /* gl_util.h — what every GPU pass of the runtime shares: the one place GL
- * errors are collected, shader programs built from C string literals, and
+ * errors are collected, shader programs built from their GLSL, and
  * textures and the empty vertex array of full-screen passes.
+ *
+ * Shaders: each stage is a file beside the pass's C file, PASS.STAGE.glsl,
+ * which the Makefile embeds as a C string literal (its "Shaders" rule;
+ * snippets that several stages share, NAME.glsl, spliced in where a stage
+ * says #include "PATH"); the pass takes it as a source:
+ *     static const char present_shader[] =
+ *     #include "runtime/output_present.frag.glsl.inc"
+ *         ;
  *
  * Errors: gb_gl_errors_install turns on KHR_debug output (core since 4.3)
  * with a callback that keeps the first error message and counts them; it is
@@ -60,8 +68,8 @@ GLuint gb_gl_buffer(const void *data, GLsizeiptr size);
 /* A 2-D texture of internal format, one level, nearest filtering, clamped. */
 GLuint gb_gl_texture_2d(GLenum internal_format, int width, int height);
 
-/* The full-screen triangle: a vertex shader that needs no attribute; draw
- * with gb_gl_draw_fullscreen and an empty vertex array. */
+/* The full-screen triangle (fullscreen.vert.glsl): a vertex shader that needs
+ * no attribute; draw with gb_gl_draw_fullscreen and an empty vertex array. */
 extern const char gb_gl_fullscreen_vertex_shader[];
 void gb_gl_draw_fullscreen(GLuint empty_vertex_array);
 

@@ -6,18 +6,8 @@
 #include "gl_util.h"
 
 static const char present_shader[] =
-    "#version 450 core\n"
-    "layout(binding = 0) uniform sampler2D radiance;\n"
-    "uniform vec2 scale;\n"
-    "out vec4 colour;\n"
-    "vec3 srgb(vec3 linear) {\n"
-    "    vec3 c = clamp(linear, 0.0, 1.0);\n"
-    "    return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(0.0031308, c));\n"
-    "}\n"
-    "void main() {\n"
-    "    ivec2 pixel = ivec2(gl_FragCoord.xy * scale);\n"
-    "    colour = vec4(srgb(texelFetch(radiance, pixel, 0).rgb), 1.0);\n"
-    "}\n";
+#include "runtime/output_present.frag.glsl.inc"
+    ;
 
 static gb_result make_target(gb_output *output, int width, int height, gb_error *error)
 {

@@ -12,37 +12,20 @@
 enum { POINT_FLOATS = 12, PLANE_FLOATS = 32 };
 
 static const char cube_vertex_shader[] =
-    "#version 450 core\n"
-    "layout(location = 0) in vec3 position;\n"
-    "uniform mat4 view_projection;\n"
-    "out vec3 v_world;\n"
-    "void main() {\n"
-    "    v_world = position;\n"
-    "    gl_Position = view_projection * vec4(position, 1.0);\n"
-    "}\n";
+#include "runtime/shadow_maps_cube.vert.glsl.inc"
+    ;
 
-/* The distance to the light, over its range: what the lighting pass compares. */
 static const char cube_fragment_shader[] =
-    "#version 450 core\n"
-    "uniform vec3 light_position;\n"
-    "uniform float range;\n"
-    "in vec3 v_world;\n"
-    "void main() {\n"
-    "    gl_FragDepth = length(v_world - light_position) / range;\n"
-    "}\n";
+#include "runtime/shadow_maps_cube.frag.glsl.inc"
+    ;
 
 static const char plane_vertex_shader[] =
-    "#version 450 core\n"
-    "layout(location = 0) in vec3 position;\n"
-    "uniform mat4 view_projection;\n"
-    "void main() {\n"
-    "    gl_Position = view_projection * vec4(position, 1.0);\n"
-    "}\n";
+#include "runtime/shadow_maps_plane.vert.glsl.inc"
+    ;
 
 static const char plane_fragment_shader[] =
-    "#version 450 core\n"
-    "void main() {\n"
-    "}\n";
+#include "runtime/shadow_maps_plane.frag.glsl.inc"
+    ;
 
 /* The faces of a cube map as OpenGL samples them: forward and up of each. */
 static const float cube_faces[6][2][3] = {

@@ -4,8 +4,9 @@
  * the per-vertex and per-triangle random values (Alg. 2) and the list of
  * VPL triangles the GPU draws each frame.
  *
- * The GLSL of runtime/flc/flc.c mirrors gb_flc_hash, gb_flc_uniform,
- * gb_flc_level and gb_flc_support name for name; change both together.
+ * The GLSL of runtime/flc/ (flc_common.glsl, flc_generate.glsl) mirrors
+ * gb_flc_hash, gb_flc_uniform, gb_flc_level and gb_flc_support name for
+ * name; change both together.
  *
  * Divergent triangles (area > S̄_N, Sec. 4) need n = ceil(sqrt(area / S̄_N))
  * (at most GB_FLC_MAX_SUBDIVISION) subdivisions a side. The runtime

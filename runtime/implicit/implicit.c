@@ -42,38 +42,16 @@ typedef struct implicit_state {
 } implicit_state;
 
 static const char mesh_vertex_shader[] =
-    "#version 450 core\n"
-    "layout(location = 0) in vec3 position;\n"
-    "layout(location = 1) in vec3 incident;\n"
-    "uniform mat4 view;\n"
-    "uniform mat4 projection;\n"
-    "out vec3 vertex_incident;\n"
-    "void main() {\n"
-    "    vertex_incident = incident;\n"
-    "    gl_Position = projection * (view * vec4(position, 1.0));\n"
-    "}\n";
+#include "runtime/implicit/implicit_mesh.vert.glsl.inc"
+    ;
 
 static const char mesh_fragment_shader[] =
-    "#version 450 core\n"
-    "in vec3 vertex_incident;\n"
-    "out vec4 incident;\n"
-    "void main() { incident = vec4(vertex_incident, 1.0); }\n";
+#include "runtime/implicit/implicit_mesh.frag.glsl.inc"
+    ;
 
 static const char compose_fragment_shader[] =
-    "#version 450 core\n"
-    "layout(binding = 2) uniform sampler2D gbuffer_depth;\n"
-    "layout(binding = 3) uniform sampler2D gbuffer_diffuse;\n"
-    "layout(binding = 10) uniform sampler2D incident;\n"
-    "out vec4 radiance;\n"
-    "void main() {\n"
-    "    ivec2 pixel = ivec2(gl_FragCoord.xy);\n"
-    "    if (texelFetch(gbuffer_depth, pixel, 0).r <= 0.0) {\n"
-    "        radiance = vec4(0.0);\n"
-    "        return;\n"
-    "    }\n"
-    "    vec3 Kd = texelFetch(gbuffer_diffuse, pixel, 0).rgb;\n"
-    "    radiance = vec4(Kd * texelFetch(incident, pixel, 0).rgb, 0.0);\n"
-    "}\n";
+#include "runtime/implicit/implicit_compose.frag.glsl.inc"
+    ;
 
 static void make_target(implicit_state *s, int width, int height)
 {

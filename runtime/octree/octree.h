@@ -3,13 +3,13 @@
  *
  * create  reads NAME.lot from the bake folder (cluster), uploads its node
  *         pool, leaves and VDLs as shader storage buffers.
- * draw    one full-screen pass over the G-buffer: per pixel, the world
- *         point x, walked from the root to the leaves of the 8 leaf cells
- *         around it (δ node fetches each, Figure 6), their VDL sums
- *         interpolated trilinearly between the leaf centres. Neighbours
- *         without a leaf or without VDLs get no weight and the weights are
- *         renormalised over the rest (the paper's interpolation holes,
- *         Fig. 16c): no dark seams. Every weight is at least 10^-6, so a
+ * draw    one full-screen pass over the G-buffer (octree_display.frag.glsl):
+ *         per pixel, the world point x, walked from the root to the leaves
+ *         of the 8 leaf cells around it (δ node fetches each, Figure 6),
+ *         their VDL sums interpolated trilinearly between the leaf centres.
+ *         Neighbours without a leaf or without VDLs get no weight and the
+ *         weights are renormalised over the rest (the paper's interpolation
+ *         holes, Fig. 16c): no dark seams. Every weight is at least 10^-6, so a
  *         point at the centre of a leaf without VDLs (where the trilinear
  *         weights of the other 7 are 0) gets its neighbours' mean, not
  *         black. Only a point whose 8 neighbours all lack VDLs is black.
@@ -31,7 +31,7 @@
  * GPU layout: the file's arrays as they are (light_octree.h), 16 bytes a
  * VDL like the paper's one RGBA texel: irradiance as 3 x f32 (no
  * quantisation) and the direction octahedral 2 x 16 bits (photon_map.h),
- * decoded by GB_GLSL_VDL_DIRECTION below. Measured angular error of the
+ * decoded by octree_vdl_direction.glsl. Measured angular error of the
  * packing and this decode: max 0.0025°, mean 0.0012°; the paper's 8 + 8 bit
  * (θ, φ) gives max 0.78°, mean 0.35° (test_octree_display.c).
  */
@@ -40,16 +40,5 @@
 
 struct gb_indirect_method;
 extern const struct gb_indirect_method gb_octree_method;
-
-/* GLSL: vec3 vdl_direction(uint bits), a VDL's direction as stored
- * (octahedral 2 x 16 bits, x in bits 0..15) decoded as
- * gb_photon_unpack_direction does; needs GB_GLSL_OCTAHEDRAL (gbuffer.h)
- * before it. */
-#define GB_GLSL_VDL_DIRECTION                                                     \
-    "vec3 vdl_direction(uint bits) {\n"                                          \
-    "    vec2 q = (vec2(float(bits & 0xffffu), float(bits >> 16)) - 32768.0)\n"  \
-    "           / 32767.0;\n"                                                    \
-    "    return oct_decode(q);\n"                                                \
-    "}\n"
 
 #endif

@@ -9,98 +9,13 @@
 #include "gl_util.h"
 #include "topo.h"
 
-#define GLSL_LA_COMMON                                                              \
-    "#version 450 core\n"                                                          \
-    "layout(local_size_x = 64) in;\n"                                              \
-    "struct VPL { vec4 position; vec4 normal; vec4 power; };\n"                    \
-    "struct GeometryCluster { vec4 sphere; uvec4 info; };\n"                        \
-    "layout(std430, binding = 3) readonly buffer VPLs { VPL vpls[]; };\n"          \
-    "struct Gate { vec4 disk; vec4 normal; };\n"                                   \
-    "layout(std430, binding = 4) readonly buffer Gates { Gate gates[]; };\n"        \
-    "layout(std430, binding = 5) buffer Ranges { uvec2 ranges[]; };\n"              \
-    "layout(std430, binding = 6) writeonly buffer Entries { uvec2 entries[]; };\n"  \
-    "layout(std430, binding = 7) readonly buffer Clusters { GeometryCluster clusters[]; };\n" \
-    "layout(std430, binding = 8) readonly buffer VPLClusters { int vpl_cluster[]; };\n" \
-    "layout(std430, binding = 9) readonly buffer GroupOffsets { uint group_offsets[]; };\n" \
-    "layout(std430, binding = 10) readonly buffer Routes { uvec4 routes[]; };\n" \
-    "layout(std430, binding = 11) readonly buffer Groups { uvec4 groups[]; };\n" \
-    "uniform uint cluster_count;\n"                                                \
-    "uniform uint vpl_count;\n"                                                    \
-    "uniform bool gates_on;\n"                                                     \
-    "const uint NO = 0xffffffffu;\n"                                               \
-    /* gb_topo_cone_hits_sphere, operation for operation */                        \
-    "bool cone_hits_sphere(vec3 p, vec4 gate, vec3 centre, float radius) {\n"       \
-    "    vec3 axis = gate.xyz - p;\n"                                               \
-    "    float d2 = axis.x * axis.x + axis.y * axis.y + axis.z * axis.z;\n"         \
-    "    float d = sqrt(d2);\n"                                                     \
-    "    if (!(d > gate.w))\n"                                                      \
-    "        return true;\n"                                                        \
-    "    axis /= d;\n"                                                              \
-    "    float h = sqrt(d2 + gate.w * gate.w);\n"                                   \
-    "    float cos_half = d / h, sin_half = gate.w / h;\n"                          \
-    "    vec3 v = centre - p;\n"                                                    \
-    "    float l2 = v.x * v.x + v.y * v.y + v.z * v.z;\n"                           \
-    "    float along = v.x * axis.x + v.y * axis.y + v.z * axis.z;\n"               \
-    "    float l = sqrt(l2);\n"                                                     \
-    "    if (l <= radius)\n"                                                        \
-    "        return true;\n"                                                        \
-    "    float cos_v = along / l;\n"                                                \
-    "    float sin_s = radius / l, cos_s = sqrt(max(0.0, 1.0 - sin_s * sin_s));\n"  \
-    "    float cos_limit = cos_half * cos_s - sin_half * sin_s;\n"                  \
-    "    float sin_limit = sin_half * cos_s + cos_half * sin_s;\n"                  \
-    "    if (sin_limit < 0.0)\n"                                                    \
-    "        return true;\n"                                                        \
-    "    return cos_v >= cos_limit;\n"                                              \
-    "}\n"                                                                          \
-    "bool route_hits_sphere(vec3 p, uvec4 route, vec3 centre, float radius) {\n"   \
-    "    return cone_hits_sphere(p, gates[route.x].disk, centre, radius) &&\n"      \
-    "           (route.y == NO ||\n"                                                \
-    "            cone_hits_sphere(p, gates[route.y].disk, centre, radius));\n"      \
-    "}\n"                                                                          \
-    "void emit(uint g, inout uint n, uint vpl, uint gate);\n"                       \
-    "void main() {\n"                                                              \
-    "    uint g = gl_GlobalInvocationID.x;\n"                                       \
-    "    if (g >= cluster_count)\n"                                                 \
-    "        return;\n"                                                             \
-    "    GeometryCluster gc = clusters[g];\n"                                       \
-    "    uint n = 0u;\n"                                                            \
-    "    for (uint v = 0u; v < vpl_count; ++v) {\n"                                 \
-    "        int c = vpl_cluster[v];\n"                                             \
-    "        if (c < 0)\n"                                                          \
-    "            continue;\n"                                                       \
-    "        if (uint(c) == gc.info.x) {\n"                                         \
-    "            emit(g, n, v, NO);\n"                                              \
-    "            continue;\n"                                                       \
-    "        }\n"                                                                   \
-    "        if (!gates_on)\n"                                                      \
-    "            continue;\n"                                                       \
-    "        uint lo = group_offsets[c], hi = group_offsets[c + 1];\n"             \
-    "        while (lo < hi) {\n"                                                   \
-    "            uint mid = lo + (hi - lo) / 2u;\n"                                 \
-    "            if (groups[mid].x < gc.info.x) lo = mid + 1u; else hi = mid;\n"    \
-    "        }\n"                                                                   \
-    "        if (lo == group_offsets[c + 1] || groups[lo].x != gc.info.x)\n"       \
-    "            continue;\n"                                                       \
-    "        for (uint k = groups[lo].y; k < groups[lo].y + groups[lo].z; ++k)\n"   \
-    "            if (route_hits_sphere(vpls[v].position.xyz, routes[k],\n"          \
-    "                                  gc.sphere.xyz, gc.sphere.w)) {\n"            \
-    "                emit(g, n, v, lo);\n"                                          \
-    "                break;\n"                                                      \
-    "            }\n"                                                               \
-    "    }\n"                                                                       \
-    "    ranges[g].y = n;\n"                                                        \
-    "}\n"
-
 static const char count_shader[] =
-    GLSL_LA_COMMON
-    "void emit(uint g, inout uint n, uint vpl, uint gate) { ++n; }\n";
+#include "runtime/topo/topo_assignment_count.comp.glsl.inc"
+    ;
 
 static const char write_shader[] =
-    GLSL_LA_COMMON
-    "void emit(uint g, inout uint n, uint vpl, uint gate) {\n"
-    "    entries[ranges[g].x + n] = uvec2(vpl, gate);\n"
-    "    ++n;\n"
-    "}\n";
+#include "runtime/topo/topo_assignment_write.comp.glsl.inc"
+    ;
 
 gb_result gb_topo_la_gpu_create(const gb_vpl_set *vpls, const int32_t *vpl_cluster,
                                 const gb_topo_gates *gates, gb_topo_la_gpu *la, gb_error *error)

@@ -14,113 +14,12 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "gbuffer.h"
 #include "gl_util.h"
 #include "topo.h"
 
-/* common/brdf.h's BRDF in GLSL (as direct_light.c has it). */
-#define GLSL_BRDF                                                                  \
-    "const float PI = 3.14159265358979323846;\n"                                   \
-    "vec3 brdf_eval(vec3 Kd, vec3 Ks, float Ns, float n_dot_wo, float n_dot_wi,\n"  \
-    "               float wo_dot_wi) {\n"                                          \
-    "    if (n_dot_wo <= 0.0 || n_dot_wi <= 0.0)\n"                                \
-    "        return vec3(0.0);\n"                                                  \
-    "    float cos_mirror = 2.0 * n_dot_wo * n_dot_wi - wo_dot_wi;\n"              \
-    "    float lobe = cos_mirror > 0.0 ? (Ns + 2.0) / (2.0 * PI) * pow(cos_mirror, Ns) : 0.0;\n" \
-    "    return Kd / PI + Ks * lobe;\n"                                            \
-    "}\n"
-
 static const char fragment_shader[] =
-    "#version 450 core\n"
-    "struct VPL { vec4 position; vec4 normal; vec4 power; };\n"
-    "layout(std430, binding = 3) readonly buffer VPLs { VPL vpls[]; };\n"
-    "struct Gate { vec4 disk; vec4 normal; };\n"
-    "layout(std430, binding = 4) readonly buffer Gates { Gate gates[]; };\n"
-    "layout(std430, binding = 5) readonly buffer Ranges { uvec2 ranges[]; };\n"
-    "layout(std430, binding = 6) readonly buffer Entries { uvec2 entries[]; };\n"
-    "layout(std430, binding = 10) readonly buffer Routes { uvec4 routes[]; };\n"
-    "layout(std430, binding = 11) readonly buffer Groups { uvec4 groups[]; };\n"
-    "layout(binding = 1) uniform sampler2D gbuffer_normal;\n"
-    "layout(binding = 2) uniform sampler2D gbuffer_depth;\n"
-    "layout(binding = 3) uniform sampler2D gbuffer_diffuse;\n"
-    "layout(binding = 4) uniform sampler2D gbuffer_glossy;\n"
-    "layout(binding = 5) uniform usampler2D gbuffer_clusters;\n"
-    "uniform mat4 view_to_world;\n"
-    "uniform vec2 tan_half_fov;\n"
-    "uniform float near;\n"
-    "uniform float clamp_distance2;\n"
-    "uniform int vpl_count;\n"
-    "uniform bool every_vpl;\n"
-    "out vec4 radiance;\n"
-    "const uint NO = 0xffffffffu;\n"
-    GB_GLSL_OCTAHEDRAL
-    GLSL_BRDF
-    GB_GLSL_SURFACE
-    /* The cone from p through the gate's disk; from within the disk's
-     * radius, the segment to x through the disk (topo_assignment.c). */
-    "bool in_gate_cone(vec3 p, uint gate, vec3 x) {\n"
-    "    vec4 g = gates[gate].disk;\n"
-    "    vec3 axis = g.xyz - p;\n"
-    "    float d = length(axis);\n"
-    "    if (d <= g.w) {\n"
-    "        vec3 n = gates[gate].normal.xyz;\n"
-    "        float dp = dot(p - g.xyz, n), dx = dot(x - g.xyz, n);\n"
-    "        if (!(dp * dx < 0.0))\n"
-    "            return false;\n"
-    "        vec3 q = p + (dp / (dp - dx)) * (x - p) - g.xyz;\n"
-    "        return dot(q, q) <= g.w * g.w;\n"
-    "    }\n"
-    "    float cos_half = d / sqrt(d * d + g.w * g.w);\n"
-    "    vec3 v = x - p;\n"
-    "    return dot(v, axis / d) >= cos_half * length(v);\n"
-    "}\n"
-    "bool in_route(vec3 p, uint route, vec3 x) {\n"
-    "    uvec4 r = routes[route];\n"
-    "    return in_gate_cone(p, r.x, x) && (r.y == NO || in_gate_cone(p, r.y, x));\n"
-    "}\n"
-    "bool in_group(vec3 p, uint group, vec3 x) {\n"
-    "    uvec4 g = groups[group];\n"
-    "    for (uint k = g.y; k < g.y + g.z; ++k)\n"
-    "        if (in_route(p, k, x))\n"
-    "            return true;\n"
-    "    return false;\n"
-    "}\n"
-    "vec3 vpl_light(uint i, Surface s) {\n"
-    "    VPL l = vpls[i];\n"
-    "    vec3 to_vpl = l.position.xyz - s.position;\n"
-    "    float d2 = dot(to_vpl, to_vpl);\n"
-    "    if (d2 <= 0.0)\n"
-    "        return vec3(0.0);\n"
-    "    vec3 wi = to_vpl * inversesqrt(d2);\n"
-    "    float emission = max(0.0, -dot(l.normal.xyz, wi)) / PI;\n"
-    "    float n_dot_wi = dot(s.n, wi);\n"
-    "    if (emission <= 0.0 || dot(s.ng, wi) <= 0.0)\n"
-    "        return vec3(0.0);\n"
-    "    vec3 f = brdf_eval(s.Kd, s.Ks, s.Ns, dot(s.n, s.wo), n_dot_wi, dot(s.wo, wi));\n"
-    "    return f * l.power.rgb * (emission * n_dot_wi / max(d2, clamp_distance2));\n"
-    "}\n"
-    "void main() {\n"
-    "    ivec2 pixel = ivec2(gl_FragCoord.xy);\n"
-    "    float depth = texelFetch(gbuffer_depth, pixel, 0).r;\n"
-    "    radiance = vec4(0.0, 0.0, 0.0, 1.0);\n"
-    "    if (depth <= 0.0)\n"
-    "        return;\n"
-    "    Surface s = surface_at(pixel, depth);\n"
-    "    uint g = texelFetch(gbuffer_clusters, pixel, 0).y;\n"
-    "    vec3 L = vec3(0.0);\n"
-    "    if (every_vpl || g == NO) {\n"
-    "        for (int i = 0; i < vpl_count; ++i)\n"
-    "            L += vpl_light(uint(i), s);\n"
-    "    } else {\n"
-    "        uvec2 range = ranges[g];\n"
-    "        for (uint k = range.x; k < range.x + range.y; ++k) {\n"
-    "            uvec2 e = entries[k];\n"
-    "            if (e.y == NO || in_group(vpls[e.x].position.xyz, e.y, s.position))\n"
-    "                L += vpl_light(e.x, s);\n"
-    "        }\n"
-    "    }\n"
-    "    radiance = vec4(L, 1.0);\n"
-    "}\n";
+#include "runtime/topo/topo_gather.frag.glsl.inc"
+    ;
 
 static GLuint route_buffer(const gb_topo_gates *gates)
 {

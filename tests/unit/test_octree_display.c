@@ -14,9 +14,10 @@
  *     black pixel right above the centre of a missing leaf.
  *  3. The VDL direction as the GPU gets it: packed octahedral 2 x 16 bits on
  *     the CPU (gb_photon_pack_direction, as cluster writes it), decoded by
- *     the shader's own GLSL (GB_GLSL_VDL_DIRECTION) in a compute pass;
- *     the angular error over 2^20 directions, max and mean, beside the
- *     paper's 8 + 8 bit spherical (θ, φ) packing.
+ *     the shader's own GLSL (octree_vdl_direction.glsl) in a compute pass
+ *     (test_octree_display_decode.comp.glsl); the angular error over 2^20
+ *     directions, max and mean, beside the paper's 8 + 8 bit spherical
+ *     (θ, φ) packing.
  */
 #include <math.h>
 #include <stdio.h>
@@ -26,7 +27,6 @@
 
 #include "../../runtime/bake_files.h"
 #include "../../runtime/context.h"
-#include "../../runtime/gbuffer.h"
 #include "../../runtime/headless.h"
 #include "../../runtime/methods.h"
 #include "../../runtime/octree/octree.h"
@@ -445,18 +445,8 @@ static void test_holes(void)
 /* ---- 3. VDL direction packing -------------------------------------------- */
 
 static const char decode_shader[] =
-    "#version 450 core\n"
-    "layout(local_size_x = 64) in;\n"
-    "layout(std430, binding = 0) readonly buffer Packed { uint packed_directions[]; };\n"
-    "layout(std430, binding = 1) writeonly buffer Decoded { vec4 decoded[]; };\n"
-    "uniform uint count;\n"
-    GB_GLSL_OCTAHEDRAL
-    GB_GLSL_VDL_DIRECTION
-    "void main() {\n"
-    "    uint i = gl_GlobalInvocationID.x;\n"
-    "    if (i < count)\n"
-    "        decoded[i] = vec4(vdl_direction(packed_directions[i]), 0.0);\n"
-    "}\n";
+#include "tests/unit/test_octree_display_decode.comp.glsl.inc"
+    ;
 
 /* n directions: a Fibonacci sphere, then the 6 axes and the octahedron's
  * fold lines (z = 0, x = 0, y = 0 great circles), where the packing is

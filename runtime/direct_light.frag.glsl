@@ -1,0 +1,116 @@
+// Direct light (Noël & Biri 2014, V.E): at the pixel's surface, the light
+// of every point and plane light reflected by common/brdf.h's BRDF, each
+// through its shadow map (shadow_maps.h), plus the emission seen; the
+// background where no surface was drawn.
+#version 450 core
+struct PointLight { vec4 position_range; vec4 intensity_one_sided; vec4 normal; };
+struct PlaneLight { mat4 world_to_clip; vec4 position_kind; vec4 direction_texel;
+                    vec4 intensity; vec4 cone; };
+layout(std430, binding = 1) readonly buffer PointLights { PointLight point_lights[]; };
+layout(std430, binding = 2) readonly buffer PlaneLights { PlaneLight plane_lights[]; };
+layout(binding = 1) uniform sampler2D gbuffer_normal;
+layout(binding = 2) uniform sampler2D gbuffer_depth;
+layout(binding = 3) uniform sampler2D gbuffer_diffuse;
+layout(binding = 4) uniform sampler2D gbuffer_glossy;
+layout(binding = 6) uniform sampler2D gbuffer_emission;
+layout(binding = 8) uniform samplerCubeArrayShadow shadow_cubes;
+layout(binding = 9) uniform sampler2DArrayShadow shadow_planes;
+layout(binding = 10) uniform sampler2D environment_map;
+uniform mat4 view_to_world;
+uniform vec2 tan_half_fov;
+uniform float near;
+uniform vec3 environment;
+uniform bool has_environment_map;
+uniform int point_count;
+uniform int plane_count;
+uniform bool shadows;
+uniform float cube_texel;
+out vec4 radiance;
+#include "runtime/gbuffer_octahedral.glsl"
+#include "runtime/brdf.glsl"
+#include "runtime/shadow_bias.glsl"
+#include "runtime/gbuffer_surface.glsl"
+// f(wo, wi) E dot(n, wi); nothing arrives through the surface.
+vec3 reflected(Surface s, vec3 wi, vec3 E) {
+    if (dot(s.ng, wi) <= 0.0)
+        return vec3(0.0);
+    float n_dot_wi = dot(s.n, wi);
+    vec3 f = brdf_eval(s.Kd, s.Ks, s.Ns, dot(s.n, s.wo), n_dot_wi, dot(s.wo, wi));
+    return f * E * n_dot_wi;
+}
+float point_visibility(int i, Surface s, float distance) {
+    if (!shadows)
+        return 1.0;
+    PointLight l = point_lights[i];
+    vec3 p = s.position + s.ng * (NORMAL_OFFSET * cube_texel * distance);
+    vec3 d = p - l.position_range.xyz;
+    float reference = length(d) / l.position_range.w - DEPTH_BIAS;
+    return texture(shadow_cubes, vec4(d, float(i)), reference);
+}
+vec3 point_light(int i, Surface s) {
+    PointLight l = point_lights[i];
+    vec3 to_light = l.position_range.xyz - s.position;
+    float r2 = dot(to_light, to_light);
+    float r = sqrt(r2);
+    vec3 wi = to_light / r;
+    vec3 I = l.intensity_one_sided.rgb;
+    if (l.intensity_one_sided.w > 0.5)
+        I *= max(0.0, -dot(l.normal.xyz, wi));
+    if (dot(s.ng, wi) <= 0.0 || I == vec3(0.0))
+        return vec3(0.0);
+    return reflected(s, wi, I * inverse_square(r2)) * point_visibility(i, s, r);
+}
+float plane_visibility(int i, Surface s, float texel) {
+    if (!shadows)
+        return 1.0;
+    vec3 p = s.position + s.ng * (NORMAL_OFFSET * texel);
+    vec4 clip = plane_lights[i].world_to_clip * vec4(p, 1.0);
+    vec3 ndc = clip.xyz / clip.w;
+    return texture(shadow_planes, vec4(0.5 * ndc.xy + 0.5, float(i), ndc.z + DEPTH_BIAS));
+}
+vec3 plane_light(int i, Surface s) {
+    PlaneLight l = plane_lights[i];
+    vec3 d = l.direction_texel.xyz;
+    float texel = l.direction_texel.w;
+    if (l.position_kind.w > 0.5) {
+        if (dot(s.ng, -d) <= 0.0)
+            return vec3(0.0);
+        return reflected(s, -d, l.intensity.rgb) * plane_visibility(i, s, texel);
+    }
+    vec3 to_light = l.position_kind.xyz - s.position;
+    float r2 = dot(to_light, to_light);
+    float r = sqrt(r2);
+    vec3 wi = to_light / r;
+    float falloff = spot_falloff(dot(d, -wi), l.cone.x, l.cone.y);
+    if (falloff <= 0.0 || dot(s.ng, wi) <= 0.0)
+        return vec3(0.0);
+    float axial = max(dot(d, -to_light), 0.0);
+    return reflected(s, wi, l.intensity.rgb * falloff * inverse_square(r2))
+           * plane_visibility(i, s, texel * axial);
+}
+// The background toward the pixel: formats/environment.h's lat-long
+// lookup (row 0 is +y; the middle column looks along -z).
+vec3 background(ivec2 pixel) {
+    if (!has_environment_map)
+        return environment;
+    vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(textureSize(gbuffer_depth, 0)) - 1.0;
+    vec3 d = normalize(mat3(view_to_world) * vec3(ndc * tan_half_fov, -1.0));
+    float u = atan(d.x, -d.z) / (2.0 * 3.14159265358979) + 0.5;
+    float v = acos(clamp(d.y, -1.0, 1.0)) / 3.14159265358979;
+    return textureLod(environment_map, vec2(u, v), 0.0).rgb;
+}
+void main() {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    float depth = texelFetch(gbuffer_depth, pixel, 0).r;
+    if (depth <= 0.0) {
+        radiance = vec4(background(pixel), 1.0);
+        return;
+    }
+    Surface s = surface_at(pixel, depth);
+    vec3 L = texelFetch(gbuffer_emission, pixel, 0).rgb;
+    for (int i = 0; i < point_count; ++i)
+        L += point_light(i, s);
+    for (int i = 0; i < plane_count; ++i)
+        L += plane_light(i, s);
+    radiance = vec4(L, 1.0);
+}

@@ -1,0 +1,4 @@
+// 2-D shadow map: depth only, nothing to write.
+#version 450 core
+void main() {
+}
