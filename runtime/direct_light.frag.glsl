@@ -8,17 +8,10 @@ struct PlaneLight { mat4 world_to_clip; vec4 position_kind; vec4 direction_texel
                     vec4 intensity; vec4 cone; };
 layout(std430, binding = 1) readonly buffer PointLights { PointLight point_lights[]; };
 layout(std430, binding = 2) readonly buffer PlaneLights { PlaneLight plane_lights[]; };
-layout(binding = 1) uniform sampler2D gbuffer_normal;
-layout(binding = 2) uniform sampler2D gbuffer_depth;
-layout(binding = 3) uniform sampler2D gbuffer_diffuse;
-layout(binding = 4) uniform sampler2D gbuffer_glossy;
-layout(binding = 6) uniform sampler2D gbuffer_emission;
+#include "runtime/gbuffer_textures.glsl"
 layout(binding = 8) uniform samplerCubeArrayShadow shadow_cubes;
 layout(binding = 9) uniform sampler2DArrayShadow shadow_planes;
 layout(binding = 10) uniform sampler2D environment_map;
-uniform mat4 view_to_world;
-uniform vec2 tan_half_fov;
-uniform float near;
 uniform vec3 environment;
 uniform bool has_environment_map;
 uniform int point_count;

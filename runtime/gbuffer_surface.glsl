@@ -1,8 +1,6 @@
 // struct Surface and surface_at(pixel, depth): everything the G-buffer says
 // of a pixel, in world space (wo toward the eye). Needs
-// gbuffer_octahedral.glsl before it, the samplers gbuffer_normal,
-// gbuffer_depth, gbuffer_diffuse and gbuffer_glossy, and the uniforms of
-// gbuffer_world_position.glsl.
+// gbuffer_textures.glsl and gbuffer_octahedral.glsl before it.
 struct Surface { vec3 position, n, ng, wo, Kd, Ks; float Ns; };
 Surface surface_at(ivec2 pixel, float depth) {
     vec2 ndc = 2.0 * (vec2(pixel) + 0.5) / vec2(textureSize(gbuffer_depth, 0)) - 1.0;

@@ -1,9 +1,7 @@
 // FLC pass 3: untile and blur into the accumulation: the mean of the
 // pixel's 2^tiling block over the pixels of its surface, times rho_x / pi.
 #version 450 core
-layout(binding = 1) uniform sampler2D gbuffer_normal;
-layout(binding = 2) uniform sampler2D gbuffer_depth;
-layout(binding = 3) uniform sampler2D gbuffer_diffuse;
+#include "runtime/gbuffer_textures.glsl"
 layout(binding = 10) uniform sampler2D splats;
 uniform ivec2 full_size;
 uniform ivec2 tile_size;

@@ -2,11 +2,7 @@
 // f^k(d(t_i, x)) (Eqs. 5, 10, 14, 16) without rho_x / pi, times the number
 // of tiles.
 #version 450 core
-layout(binding = 1) uniform sampler2D gbuffer_normal;
-layout(binding = 2) uniform sampler2D gbuffer_depth;
-uniform mat4 view_to_world;
-uniform vec2 tan_half_fov;
-uniform float near;
+#include "runtime/gbuffer_textures.glsl"
 uniform ivec2 full_size;
 uniform ivec2 tile_size;
 uniform int scale;

@@ -6,12 +6,7 @@
 layout(std430, binding = 0) readonly buffer Nodes { uint nodes[]; };
 layout(std430, binding = 1) readonly buffer Leaves { uint leaves[]; };
 layout(std430, binding = 2) readonly buffer Vdls { uint vdls[]; };
-layout(binding = 1) uniform sampler2D gbuffer_normal;
-layout(binding = 2) uniform sampler2D gbuffer_depth;
-layout(binding = 3) uniform sampler2D gbuffer_diffuse;
-uniform mat4 view_to_world;
-uniform vec2 tan_half_fov;
-uniform float near;
+#include "runtime/gbuffer_textures.glsl"
 uniform ivec2 full_size;
 uniform vec3 origin;
 uniform float cell_size;

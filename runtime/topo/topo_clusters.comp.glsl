@@ -6,13 +6,9 @@
 // G-buffer's clusters.x.
 #version 450 core
 layout(local_size_x = 8, local_size_y = 8) in;
-layout(binding = 1) uniform sampler2D gbuffer_normal;
-layout(binding = 2) uniform sampler2D gbuffer_depth;
+#include "runtime/gbuffer_textures.glsl"
 layout(binding = 12) uniform isampler3D voxel_clusters;
 layout(rg32ui, binding = 0) writeonly uniform uimage2D clusters;
-uniform mat4 view_to_world;
-uniform vec2 tan_half_fov;
-uniform float near;
 uniform vec3 grid_origin;
 uniform float voxel_size;
 uniform ivec3 grid_size;

@@ -12,14 +12,7 @@ layout(std430, binding = 5) readonly buffer Ranges { uvec2 ranges[]; };
 layout(std430, binding = 6) readonly buffer Entries { uvec2 entries[]; };
 layout(std430, binding = 10) readonly buffer Routes { uvec4 routes[]; };
 layout(std430, binding = 11) readonly buffer Groups { uvec4 groups[]; };
-layout(binding = 1) uniform sampler2D gbuffer_normal;
-layout(binding = 2) uniform sampler2D gbuffer_depth;
-layout(binding = 3) uniform sampler2D gbuffer_diffuse;
-layout(binding = 4) uniform sampler2D gbuffer_glossy;
-layout(binding = 5) uniform usampler2D gbuffer_clusters;
-uniform mat4 view_to_world;
-uniform vec2 tan_half_fov;
-uniform float near;
+#include "runtime/gbuffer_textures.glsl"
 uniform float clamp_distance2;
 uniform int vpl_count;
 uniform bool every_vpl;
