@@ -1,6 +1,6 @@
 /* implicit_bins.c — the sphere of directions as a cube map of 6 x N x N
  * bins (Dong 2007, 4.2.2 "Discretization"), fixed in world space. */
-#include "implicit.h"
+#include "implicit_bins.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -19,7 +19,7 @@
  * gathers E = sum of w L over its links, and reflects Kd E / pi.
  * The gathering runs on two threads (elements split in halves).
  */
-#include "implicit.h"
+#include "implicit_bounce.h"
 
 #include <stdlib.h>
 #include <string.h>

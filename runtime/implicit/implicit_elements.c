@@ -3,7 +3,9 @@
  * vertices are those of a finer mesh (implicit.h): each triangle cut into
  * n x n, the corners welded within a segment by position (quantised to
  * 1/64 of the element size). Also the model's create and free. */
-#include "implicit.h"
+#include "implicit_elements.h"
+#include "implicit_hierarchy.h"
+#include "implicit_update.h"
 
 #include <math.h>
 #include <stdlib.h>

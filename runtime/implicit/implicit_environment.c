@@ -4,7 +4,7 @@
  * element gathers its empty bins' radiance, weighted like its links
  * (implicit_links.c). The map is the scene's lat-long image
  * (formats/environment.h has the convention). */
-#include "implicit.h"
+#include "implicit_environment.h"
 
 #include <math.h>
 #include <stddef.h>

@@ -3,7 +3,7 @@
  * segment: the elements split at the median of the first tangent axis, each
  * half at the median of the second, recursively; a node of at most four
  * elements has them as children. */
-#include "implicit.h"
+#include "implicit_hierarchy.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -37,7 +37,7 @@
  * gave the same links but cost 1.6 times the CPU and more wall time on
  * this shared 2-core machine.)
  */
-#include "implicit.h"
+#include "implicit_links.h"
 
 #include "brdf.h"
 #include "progress.h"

@@ -6,7 +6,8 @@
  * up (each comes after its children) from their children, like refitting a
  * bounding volume hierarchy. gb_implicit_create_surfels uses the leaves'
  * part once at the start. */
-#include "implicit.h"
+#include "implicit_update.h"
+#include "implicit_hierarchy.h"
 
 #include <math.h>
 #include <stdlib.h>

@@ -1,0 +1,56 @@
+/* implicit_links.h — CreateHierarchicalLinks, RefineHierarchicalLinks and
+ * PushdownLinks (4.2.2 - 4.2.4; implicit_links.c). The caller owns the
+ * links from create until free. */
+#ifndef GB_IMPLICIT_LINKS_H
+#define GB_IMPLICIT_LINKS_H
+
+#include <stdint.h>
+
+#include "implicit_bins.h"
+#include "implicit_model.h"
+#include "result.h"
+#include "scene.h"
+
+/* Seconds (wall clock, or CPU time of the process: both threads count) of
+ * CreateHierarchicalLinks, Refine + PushdownLinks, and the per-element
+ * lists with the lights' visibility. */
+typedef struct gb_implicit_link_seconds {
+    double create, refine, compact;
+} gb_implicit_link_seconds;
+
+/* Links after PushdownLinks: each element's receiving links, one per
+ * filled bin, weighted by the bin's max(0, cos) solid angle, normalised so
+ * that the weights of all bins above the element sum to pi. */
+typedef struct gb_implicit_links {
+    uint32_t *first;            /* element_count + 1 */
+    uint32_t *source;           /* first[element_count]: the node seen */
+    float *weight;
+    float *environment_weight;  /* element_count: the empty bins' share */
+    float *environment_irradiance;  /* element_count * 3 when the links were
+                                   made with an environment map: sum over the
+                                   empty bins of weight x its radiance; else NULL */
+    uint8_t *light_visible;     /* element_count * light_count, or NULL: 1 when
+                                   the bin toward the light holds no nearer link */
+    uint32_t light_count;
+    uint64_t created;           /* links stored while creating (statistics) */
+    gb_implicit_link_seconds wall, cpu;  /* statistics: time of each step */
+} gb_implicit_links;
+
+typedef struct gb_implicit_link_options {
+    int hierarchical;           /* 0: every element pair (the brute force) */
+    const gb_scene *lights;     /* its point, spot and directional lights get
+                                   implicit shadows; NULL: unshadowed */
+    const float *environment;   /* bins->count * 3: the environment's radiance
+                                   a bin (gb_implicit_environment_bins), or
+                                   NULL: the scene's constant colour */
+} gb_implicit_link_options;
+
+/* Steps 5-7 for a static scene. bin_targets, when not NULL, receives the
+ * node_count * bins->count bins before compaction (tests), the caller frees. */
+gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_implicit_bins *bins,
+                                   const gb_implicit_link_options *options,
+                                   gb_implicit_links *links, uint32_t **bin_targets,
+                                   gb_error *error);
+void gb_implicit_links_free(gb_implicit_links *links);
+
+#endif

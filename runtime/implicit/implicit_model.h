@@ -1,0 +1,56 @@
+/* implicit_model.h — the model every step of implicit visibility works on
+ * (implicit.h lists the steps): the elements and the geometric hierarchy
+ * above them, as nodes; made by implicit_elements.c, the caller owns it. */
+#ifndef GB_IMPLICIT_MODEL_H
+#define GB_IMPLICIT_MODEL_H
+
+#include <stdint.h>
+
+#define GB_IMPLICIT_SEGMENT_DEGREES 30.0
+#define GB_IMPLICIT_NO_NODE 0xffffffffu
+
+/* (b - a) x (c - a) in double: twice the triangle's area along its normal. */
+static inline void gb_implicit_triangle_cross(const float *a, const float *b, const float *c,
+                                              double n[3])
+{
+    double u[3], v[3];
+    for (int k = 0; k < 3; ++k) {
+        u[k] = (double)b[k] - a[k];
+        v[k] = (double)c[k] - a[k];
+    }
+    n[0] = u[1] * v[2] - u[2] * v[1];
+    n[1] = u[2] * v[0] - u[0] * v[2];
+    n[2] = u[0] * v[1] - u[1] * v[0];
+}
+
+/* A node of the geometric hierarchy: nodes [0, element_count) are the
+ * elements (leaves); internal nodes follow, each after all its children. */
+typedef struct gb_implicit_node {
+    float position[3];          /* area-weighted mean of the children */
+    float normal[3];            /* unit, area-weighted mean */
+    float area;
+    float box_min[3], box_max[3];
+    uint32_t first_child, child_count;  /* into children[]; 0 children: a leaf */
+    uint32_t segment;
+} gb_implicit_node;
+
+typedef struct gb_implicit_model {
+    uint32_t segment_count;
+    uint32_t *triangle_segment; /* scene triangle -> segment */
+    uint32_t element_count, node_count;
+    gb_implicit_node *nodes;
+    uint32_t *children;
+    uint32_t root_count;        /* one per segment */
+    uint32_t *roots;
+    float *Kd, *Le;             /* element_count * 3: diffuse reflectance, emission */
+    float *vertices;            /* element_count * 3: the vertex of each element
+                                   (its node's position is the centroid of its area) */
+    uint32_t triangle_count;    /* the finer mesh, for display */
+    uint32_t *triangles;        /* triangle_count * 3 elements */
+    float element_size;         /* target edge of the finer mesh */
+} gb_implicit_model;
+
+/* Element size as a fraction of the scene's bounding diagonal, by default. */
+#define GB_IMPLICIT_ELEMENTS_PER_DIAGONAL 28.0f
+
+#endif
