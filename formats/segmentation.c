@@ -469,8 +469,8 @@ static int same_length(double a, double b)
     return fabs(a - b) <= 1e-9 * (fabs(a) + fabs(b)) + 1e-12;
 }
 
-gb_result gb_segmentation_check_grid(const gb_segmentation *s, const gb_voxel_grid *frame,
-                                     const int32_t *nearest, const char *path, gb_error *error)
+gb_result gb_segmentation_check_frame(const gb_segmentation *s, const gb_voxel_grid *frame,
+                                      const char *path, gb_error *error)
 {
     if (frame->scene_hash != s->scene_hash)
         return gb_fail(error, GB_ERROR_STALE,
@@ -488,7 +488,21 @@ gb_result gb_segmentation_check_grid(const gb_segmentation *s, const gb_voxel_gr
                        (int)frame->size[1], (int)frame->size[2], frame->voxel_size,
                        (int)s->grid_size[0], (int)s->grid_size[1], (int)s->grid_size[2],
                        s->voxel_size);
-    size_t count = (size_t)s->grid_size[0] * (size_t)s->grid_size[1] * (size_t)s->grid_size[2];
+    return GB_OK;
+}
+
+static size_t voxel_count(const gb_segmentation *s)
+{
+    return (size_t)s->grid_size[0] * (size_t)s->grid_size[1] * (size_t)s->grid_size[2];
+}
+
+gb_result gb_segmentation_check_grid(const gb_segmentation *s, const gb_voxel_grid *frame,
+                                     const int32_t *nearest, const char *path, gb_error *error)
+{
+    gb_result result = gb_segmentation_check_frame(s, frame, path, error);
+    if (result != GB_OK)
+        return result;
+    size_t count = voxel_count(s);
     for (size_t v = 0; v < count; ++v)
         if (nearest[v] < -1 || (nearest[v] >= 0 && (uint32_t)nearest[v] >= s->skeleton_node_count))
             return gb_fail(error, GB_ERROR_INVALID,
@@ -512,4 +526,19 @@ int32_t gb_segmentation_cluster_at(const gb_segmentation *s, const int32_t *near
     if (node < 0 || (uint32_t)node >= s->skeleton_node_count)
         return -1;
     return (int32_t)s->cluster[s->node_map[node]];
+}
+
+int32_t *gb_segmentation_voxel_clusters(const gb_segmentation *s, const int32_t *nearest)
+{
+    size_t n = voxel_count(s);
+    int32_t *clusters = malloc((n ? n : 1) * sizeof *clusters);
+    if (!clusters)
+        return NULL;
+    for (size_t i = 0; i < n; ++i) {
+        int32_t node = nearest[i];
+        clusters[i] = node >= 0 && (uint32_t)node < s->skeleton_node_count
+                          ? (int32_t)s->cluster[s->node_map[node]]
+                          : -1;
+    }
+    return clusters;
 }

@@ -21,6 +21,7 @@
  * "nearest_node" grid → node_map → cluster:
  *   gb_segmentation_check_grid(&s, &frame, nearest, "scene.grid.vdb", &error);
  *   int32_t c = gb_segmentation_cluster_at(&s, nearest, point);   // -1: none
+ *   int32_t *per_voxel = gb_segmentation_voxel_clusters(&s, nearest);  // free()
  *
  * The caller owns the gb_segmentation; gb_segmentation_read and gb_segment
  * fill it with malloc'ed arrays that gb_segmentation_free releases (also on a
@@ -96,10 +97,18 @@ gb_result gb_segmentation_validate(const gb_segmentation *segmentation, const ch
                                    gb_error *error);
 void gb_segmentation_free(gb_segmentation *segmentation);
 
+/* Checks that a voxel file (voxelize's .vdb, or the frame of thin's grid)
+ * was made in the segmentation's voxel frame: same voxel size, origin, size
+ * and scene hash (GB_ERROR_STALE otherwise). path is the file's, for
+ * messages. */
+gb_result gb_segmentation_check_frame(const gb_segmentation *segmentation,
+                                      const gb_voxel_grid *frame, const char *path,
+                                      gb_error *error);
+
 /* Checks that a nearest-node grid (frame and values, as
- * gb_voxel_grid_read_int32 returns them) belongs with the segmentation: same
- * voxel size, origin, size and scene hash, and every value -1 or a skeleton
- * node. path is the grid's, for messages. */
+ * gb_voxel_grid_read_int32 returns them) belongs with the segmentation:
+ * gb_segmentation_check_frame, and every value -1 or a skeleton node. path
+ * is the grid's, for messages. */
 gb_result gb_segmentation_check_grid(const gb_segmentation *segmentation,
                                      const gb_voxel_grid *frame, const int32_t *nearest,
                                      const char *path, gb_error *error);
@@ -110,5 +119,13 @@ gb_result gb_segmentation_check_grid(const gb_segmentation *segmentation,
  * gb_segmentation_check_grid. */
 int32_t gb_segmentation_cluster_at(const gb_segmentation *segmentation,
                                    const int32_t *nearest, const double point[3]);
+
+/* The visibility cluster of every voxel of the frame (x fastest, then y,
+ * then z; -1 where the voxel has no node): the lookup above folded once
+ * over the whole grid, for segment's gate openings and the runtime's 3-D
+ * texture. nearest must have passed gb_segmentation_check_grid. malloc'ed,
+ * the caller frees it; NULL when out of memory. */
+int32_t *gb_segmentation_voxel_clusters(const gb_segmentation *segmentation,
+                                        const int32_t *nearest);
 
 #endif

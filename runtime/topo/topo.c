@@ -102,7 +102,7 @@ static gb_result load_clusters(topo_state *t, const gb_bake_files *bake, gb_erro
         result = gb_voxel_grid_read_int32(grid_path, "nearest_node", &frame, &nearest, error);
     if (result == GB_OK)
         result = gb_segmentation_check_grid(&t->segmentation, &frame, nearest, grid_path, error);
-    if (result == GB_OK && !(t->voxel_clusters = gb_topo_voxel_clusters(&t->segmentation, nearest)))
+    if (result == GB_OK && !(t->voxel_clusters = gb_segmentation_voxel_clusters(&t->segmentation, nearest)))
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "topo: out of memory");
     if (result == GB_OK)
         result = build_gates(t, bake, error);

@@ -65,10 +65,10 @@ enum { GB_TOPO_NO_GATE = 0xffffffffu };
 gb_result gb_topo_vpls_generate(const gb_scene *scene, uint32_t count, uint64_t seed,
                                 gb_vpl_set *set, gb_error *error);
 
-/* ---- visibility clusters (topo_clusters.c) ----------------------------- */
-/* The cluster of each voxel of the nearest-node grid (-1: none): what the
- * GPU looks a fragment up in. malloc'ed, NULL when out of memory. */
-int32_t *gb_topo_voxel_clusters(const gb_segmentation *segmentation, const int32_t *nearest);
+/* ---- visibility clusters (topo_clusters.c) -----------------------------
+ * The cluster of each voxel of the nearest-node grid, -1 where none
+ * (gb_segmentation_voxel_clusters, formats/segmentation.h), is what the GPU
+ * looks a fragment up in. */
 
 /* Marks the voxels voxelize flagged as surface: cluster c becomes
  * GB_TOPO_SURFACE_CLUSTER(c) = -c - 2 (its own inverse), which the lookups

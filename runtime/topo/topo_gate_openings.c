@@ -8,7 +8,7 @@
  * the shape of the separation better.
  *
  * The separation is known exactly once the voxels have their clusters
- * (gb_topo_voxel_clusters): the faces between an empty voxel of cluster a
+ * (gb_segmentation_voxel_clusters): the faces between an empty voxel of cluster a
  * and an empty voxel of cluster b. Each such face goes to the gate between a
  * and b whose centre (before fitting) is nearest; a gate's new disk has the
  * faces' centroid as centre, their mean normal (oriented from clusters[0]

@@ -4,7 +4,8 @@
  * (visibility gates) on a graph where the answer is known, the cases the
  * paper leaves open (rings, loops, coincident nodes, isolated nodes, equal
  * radii), the invariants on a random graph, the .seg file (same bytes, bad
- * files refused), the point -> cluster lookup and the evaluation against
+ * files refused), the point -> cluster lookup (and its fold over every
+ * voxel) and the evaluation against
  * Embree in a box. */
 #include "../../tools/segment/coverage_nodes.h"
 #include "../../tools/segment/curvature_nodes.h"
@@ -862,6 +863,16 @@ static void test_lookup(void)
     for (int i = 0; i < 8; ++i)
         all &= gb_segmentation_cluster_at(&seg, nearest, points[i]) == expected[i];
     CHECK(all, "lookup: point -> voxel -> nearest node -> segmented node -> cluster");
+    int32_t *per_voxel = gb_segmentation_voxel_clusters(&seg, nearest);
+    const int32_t voxel_expected[8] = {0, 0, 1, 1, -1, 0, 1, 1};
+    all = per_voxel != NULL;
+    for (int v = 0; all && v < 8; ++v) {
+        double centre[3] = {-1.0 + 0.5 * (v % 4 + 0.5), 0.5 * (v / 4 + 0.5), 0.25};
+        all &= per_voxel[v] == voxel_expected[v] &&
+               per_voxel[v] == gb_segmentation_cluster_at(&seg, nearest, centre);
+    }
+    CHECK(all, "lookup: the cluster of every voxel, as the lookup at its centre gives it");
+    free(per_voxel);
 
     frame.scene_hash = 43;
     CHECK(gb_segmentation_check_grid(&seg, &frame, nearest, "grid", &error) == GB_ERROR_STALE,
