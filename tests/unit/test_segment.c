@@ -669,6 +669,7 @@ static int segmentations_equal(const gb_segmentation *a, const gb_segmentation *
            a->edge_count == b->edge_count && a->cluster_count == b->cluster_count &&
            a->gate_count == b->gate_count && a->alpha == b->alpha &&
            a->scene_hash == b->scene_hash && a->voxel_size == b->voxel_size &&
+           a->gates_fitted == b->gates_fitted &&
            !memcmp(a->grid_size, b->grid_size, sizeof a->grid_size) &&
            !memcmp(a->nodes, b->nodes, a->node_count * sizeof *a->nodes) &&
            !memcmp(a->edges, b->edges, 2 * a->edge_count * sizeof *a->edges) &&
@@ -677,20 +678,21 @@ static int segmentations_equal(const gb_segmentation *a, const gb_segmentation *
            !memcmp(a->gates, b->gates, a->gate_count * sizeof *a->gates);
 }
 
-/* Rewrites a valid file with one section's bytes changed by edit (the
- * container checksums then match: only the .seg checks can refuse it). */
-static gb_result parse_edited(const unsigned char *bytes, size_t size, const char *section,
-                              void (*edit)(uint8_t *data, uint64_t size), const char *path,
-                              gb_error *error)
+/* Rewrites a valid file as format version, with one section's bytes changed
+ * by edit (the container checksums then match: only the .seg checks can
+ * refuse it). */
+static gb_result parse_rewritten(const unsigned char *bytes, size_t size, uint32_t version,
+                                 const char *section, void (*edit)(uint8_t *data, uint64_t size),
+                                 const char *path, gb_error *error)
 {
     gb_container c;
     gb_container_parse(bytes, size, "valid", "SEGM", &c, NULL);
-    gb_container_writer *w = gb_container_writer_create("SEGM", GB_SEGMENTATION_VERSION);
+    gb_container_writer *w = gb_container_writer_create("SEGM", version);
     uint8_t *copies[8] = {0};
     for (uint32_t i = 0; i < c.section_count; ++i) {
         copies[i] = malloc(c.sections[i].size + 1);
         memcpy(copies[i], c.sections[i].data, c.sections[i].size);
-        if (!strcmp(c.sections[i].name, section))
+        if (edit && !strcmp(c.sections[i].name, section))
             edit(copies[i], c.sections[i].size);
         gb_container_add(w, c.sections[i].name, copies[i], c.sections[i].size, NULL);
     }
@@ -734,7 +736,7 @@ static void alpha_too_big(uint8_t *d, uint64_t size)
     double alpha = 101.0;
     memcpy(d + 24, &alpha, 8);
 }
-static void reserved_set(uint8_t *d, uint64_t size) { (void)size; d[84] = 1; }
+static void gates_fitted_two(uint8_t *d, uint64_t size) { (void)size; d[84] = 2; }
 
 static void test_file(void)
 {
@@ -785,14 +787,23 @@ static void test_file(void)
         {"gates", gate_other_edge, "corrupt: a gate on another edge"},
         {"edges", edge_reversed, "corrupt: an edge (b, a)"},
         {"header", alpha_too_big, "corrupt: alpha 101"},
-        {"header", reserved_set, "corrupt: reserved header bytes set"},
+        {"header", gates_fitted_two, "corrupt: gates fitted 2"},
     };
     for (size_t i = 0; i < sizeof edits / sizeof edits[0]; ++i) {
-        gb_result result = parse_edited(b1, size1, edits[i].section, edits[i].edit, p3, &error);
+        gb_result result = parse_rewritten(b1, size1, GB_SEGMENTATION_VERSION, edits[i].section,
+                                           edits[i].edit, p3, &error);
         CHECK(result == GB_ERROR_INVALID || result == GB_ERROR_FORMAT, edits[i].what);
         if (result)
             printf("#   %s\n", error.message);
     }
+
+    /* version 1, whose gates the runtime refitted at load: bake it again */
+    gb_result result = parse_rewritten(b1, size1, 1, "", NULL, p3, &error);
+    CHECK(result == GB_ERROR_FORMAT && strstr(error.message, "format version 1") &&
+              strstr(error.message, "bake it again"),
+          "version 1: refused, 'bake it again'");
+    if (result)
+        printf("#   %s\n", error.message);
 
     /* a failed write leaves nothing */
     seg.cluster[0] = seg.cluster_count;
@@ -806,6 +817,91 @@ static void test_file(void)
     gb_segmentation_free(&seg);
     gb_segmentation_free(&again);
     gb_skeleton_free(&s);
+}
+
+/* ---- fitted gates in the file ---- */
+
+/* Three clusters along x in a 4 x 2 x 1 frame of voxels of 0.5 from
+ * (-1, 0, 0): nodes 0 and 1 joined by an edge (its gate, the paper's disk),
+ * node 2 alone; gates[1] is an opening gate between clusters 1 and 2. */
+static gb_segmentation three_clusters(gb_visibility_gate gates[3])
+{
+    static gb_segmented_node nodes[3] = {{0, GB_NODE_TOPOLOGY, {-0.75f, 0.5f, 0.25f}, 0.25f},
+                                         {1, GB_NODE_TOPOLOGY, {-0.25f, 0.5f, 0.25f}, 0.5f},
+                                         {2, GB_NODE_TOPOLOGY, {0.75f, 0.5f, 0.25f}, 0.25f}};
+    static uint32_t edges[2] = {0, 1}, cluster[3] = {0, 1, 2}, node_map[3] = {0, 1, 2};
+    gates[0] = (gb_visibility_gate){{-0.5f, 0.5f, 0.25f}, {1, 0, 0}, 0.25f, {0, 1}, 0};
+    gates[1] = (gb_visibility_gate){{0.5f, 0.5f, 0.25f}, {1, 0, 0}, 0.5f, {1, 2},
+                                    GB_SEGMENTATION_NO_EDGE};
+    gates[2] = gates[1];
+    return (gb_segmentation){.skeleton_node_count = 3, .node_count = 3, .edge_count = 1,
+                             .cluster_count = 3, .gate_count = 1, .nodes = nodes,
+                             .edges = edges, .cluster = cluster, .node_map = node_map,
+                             .gates = gates, .alpha = 20, .scene_hash = 42, .voxel_size = 0.5,
+                             .world_origin = {-1, 0, 0}, .grid_size = {4, 2, 1},
+                             .resolution = 4};
+}
+
+static int valid(const gb_segmentation *seg, const char *what)
+{
+    gb_error error;
+    gb_result result = gb_segmentation_validate(seg, "three", &error);
+    if (result)
+        printf("#   %s: %s\n", what, error.message);
+    return result == GB_OK;
+}
+
+/* What gb_segmentation_validate takes with gates_fitted and what it still
+ * refuses; the fitted file written and read back. */
+static void test_fitted_gates(void)
+{
+    gb_visibility_gate gates[3];
+    gb_segmentation seg = three_clusters(gates);
+    CHECK(valid(&seg, "paper"), "fitted gates: the paper's gate, not fitted: valid");
+    seg.gate_count = 2;
+    CHECK(!valid(&seg, "opening, not fitted"), "fitted gates: no opening gate unless fitted");
+    seg.gates_fitted = 1;
+    CHECK(valid(&seg, "opening"), "fitted gates: the paper's disk and an opening gate: valid");
+    gates[0] = (gb_visibility_gate){{-0.5f, 0.75f, 0.25f}, {0.6f, 0.8f, 0}, 0.6f, {0, 1}, 0};
+    CHECK(valid(&seg, "fitted disk"), "fitted gates: a disk fitted off the edge: valid");
+    seg.gates_fitted = 0;
+    seg.gate_count = 1;
+    CHECK(!valid(&seg, "fitted disk, not fitted"),
+          "fitted gates: a disk off the edge in a file not fitted: refused");
+    seg.gates_fitted = 1;
+    seg.gate_count = 2;
+    gates[0].radius = 0.2f;
+    CHECK(!valid(&seg, "small"), "fitted gates: a radius below the paper's min(maxball): refused");
+    gates[0].radius = 0.6f;
+    gates[0].centre[0] = 2.0f;
+    CHECK(!valid(&seg, "outside"), "fitted gates: a centre outside the voxel frame: refused");
+    gates[0].centre[0] = -0.5f;
+    gates[1].clusters[0] = 2;
+    gates[1].clusters[1] = 1;
+    CHECK(!valid(&seg, "reversed"), "fitted gates: an opening gate (2, 1): refused");
+    gates[1].clusters[0] = 0;
+    CHECK(!valid(&seg, "edge's pair"),
+          "fitted gates: an opening gate where an edge gate is: refused");
+    gates[1] = gates[2];
+    gates[1].edge = 0;
+    CHECK(!valid(&seg, "on an edge"),
+          "fitted gates: a gate on an edge after the edge gates: refused");
+    gates[1] = gates[2];
+    seg.gate_count = 3;
+    CHECK(!valid(&seg, "twice"), "fitted gates: the same opening gate twice: refused");
+    seg.gate_count = 2;
+
+    scratch_create("fitted");
+    const char *path = scratch_path("fitted.seg");
+    gb_segmentation back;
+    gb_error error;
+    CHECK(gb_segmentation_write(path, &seg, &error) == GB_OK &&
+              gb_segmentation_read(path, &back, &error) == GB_OK,
+          "fitted gates: written and read back");
+    CHECK(segmentations_equal(&seg, &back) && back.gates_fitted == 1,
+          "fitted gates: read back as written, gates fitted");
+    gb_segmentation_free(&back);
+    scratch_remove();
 }
 
 /* ---- the lookup ---- */
@@ -909,7 +1005,7 @@ static void evaluate_box(int wall, gb_segment_evaluation *out)
     static uint32_t edges[2] = {0, 1}, cluster[2] = {0, 1}, node_map[2] = {0, 1};
     static gb_visibility_gate gate = {{1, 0.5f, 0.5f}, {1, 0, 0}, 1, {0, 1}, 0};
     gb_segmentation seg = {2, 2, 1, 2, 1, nodes, edges, cluster, node_map, &gate, 20,
-                           scene.hash, 0.25, {-0.25, -0.25, -0.25}, {10, 6, 6}, 8};
+                           scene.hash, 0.25, {-0.25, -0.25, -0.25}, {10, 6, 6}, 8, 0};
     int32_t nearest[10 * 6 * 6];
     for (int v = 0; v < 360; ++v)
         nearest[v] = (v % 10) < 5 ? 0 : 1; /* voxel centres x < 1: node 0 */
@@ -1047,6 +1143,7 @@ int main(void)
     test_isolated_nodes();
     test_equal_radii();
     test_file();
+    test_fitted_gates();
     test_lookup();
     test_evaluate();
     test_convex_room();
