@@ -4,11 +4,14 @@
  * (visibility gates) on a graph where the answer is known, the cases the
  * paper leaves open (rings, loops, coincident nodes, isolated nodes, equal
  * radii), the invariants on a random graph, the .seg file (same bytes, bad
- * files refused), the point -> cluster lookup (and its fold over every
- * voxel) and the evaluation against
+ * files refused; fitted gates), the gates fitted to the voxels' openings
+ * (on a wall with a door; on a real bake, against the faces counted here),
+ * the point -> cluster lookup (and its fold over every voxel) and the
+ * evaluation against
  * Embree in a box. */
 #include "../../tools/segment/coverage_nodes.h"
 #include "../../tools/segment/curvature_nodes.h"
+#include "../../tools/segment/gate_openings.h"
 #include "../../tools/segment/segment.h"
 #include "../../tools/thin/thin.h"
 #include "../../tools/voxelize/voxelize.h"
@@ -19,6 +22,7 @@
 #include "scratch.h"
 #include "tap.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -904,6 +908,204 @@ static void test_fitted_gates(void)
     scratch_remove();
 }
 
+/* ---- gates fitted to the openings (gate_openings.h) ---- */
+
+/* Two rooms along x in a 20 x 10 x 10 grid of unit voxels, split by a wall
+ * at x = 10 (surface voxels) with a 6 x 6 opening (y, z in 2..8); the
+ * segmented skeleton's gate there has the paper's radius, min maxball 0.5.
+ * The opening's faces lie at x = 10, their centres y, z in 2.5 .. 7.5: the
+ * disk's centre (10, 5, 5), normal +x (cluster 0 to 1), radius sqrt(2 <r^2>)
+ * = sqrt(2 (35/12 + 35/12)) = sqrt(35/3). */
+static void test_gate_fitted_to_opening(void)
+{
+    enum { NX = 20, NY = 10, NZ = 10 };
+    gb_visibility_gate gate = {{10, 5, 5}, {1, 0, 0}, 0.5f, {0, 1}, 0};
+    gb_segmentation s = {.cluster_count = 2, .gate_count = 1, .gates = &gate,
+                         .voxel_size = 1.0, .grid_size = {NX, NY, NZ}};
+    int32_t *clusters = malloc(NX * NY * NZ * sizeof *clusters);
+    uint8_t *surface = calloc(NX * NY * NZ, 1);
+    for (int i = 0; i < NX * NY * NZ; ++i) {
+        int x = i % NX, y = (i / NX) % NY, z = i / (NX * NY);
+        int opening = y >= 2 && y < 8 && z >= 2 && z < 8;
+        surface[i] = x == 10 && !opening;
+        clusters[i] = x < 10 ? 0 : 1;    /* wall voxels too, as thin's grid gives them */
+    }
+    gb_error error;
+    uint32_t fitted = 0;
+    CHECK(gb_gate_openings_fit(&s, clusters, surface, &fitted, &error) == GB_OK && fitted == 1,
+          "openings: gate fitted");
+    printf("# opening: centre %.2f %.2f %.2f normal %.2f %.2f %.2f radius %.4f\n", gate.centre[0],
+           gate.centre[1], gate.centre[2], gate.normal[0], gate.normal[1], gate.normal[2],
+           gate.radius);
+    CHECK(fabsf(gate.centre[0] - 10) < 1e-5f && fabsf(gate.centre[1] - 5) < 1e-5f &&
+              fabsf(gate.centre[2] - 5) < 1e-5f && gate.normal[0] == 1.0f,
+          "openings: disk at the opening's centre, facing from cluster 0 to 1");
+    CHECK_NEAR(gate.radius, sqrt(35.0 / 3.0), 1e-5,
+               "openings: radius sqrt(35/3), the 6 x 6 opening's (the wall's voxels are not in it)");
+
+    /* a third room behind x = 15 that no skeleton edge joins to room 1: its
+     * faces fill the whole 10 x 10 section, radius sqrt(2 (99/12 + 99/12)) */
+    for (int i = 0; i < NX * NY * NZ; ++i)
+        if (i % NX >= 15)
+            clusters[i] = 2;
+    s.cluster_count = 3;
+    s.gates = malloc(sizeof *s.gates);
+    s.gates[0] = gate;
+    uint32_t added = 0;
+    CHECK(gb_gate_openings_add(&s, clusters, surface, &added, &error) == GB_OK &&
+              added == 1 && s.gate_count == 2 && s.gates[1].clusters[0] == 1 &&
+              s.gates[1].clusters[1] == 2 && s.gates[1].edge == GB_SEGMENTATION_NO_EDGE,
+          "openings: clusters 1 and 2 touch without a gate: one is added");
+    CHECK(gb_gate_openings_fit(&s, clusters, surface, &fitted, &error) == GB_OK && fitted == 2 &&
+              fabsf(s.gates[1].centre[0] - 15) < 1e-5f && s.gates[1].normal[0] == 1.0f &&
+              fabsf(s.gates[1].radius - sqrtf(33.0f)) < 1e-4f,
+          "openings: ... fitted to the whole x = 15 section, radius sqrt(33)");
+    CHECK(gb_gate_openings_add(&s, clusters, surface, &added, &error) == GB_OK && added == 0,
+          "openings: added once");
+    free(s.gates);
+    free(clusters);
+    free(surface);
+}
+
+/* The faces between empty voxels of clusters a < b of a bake: their count,
+ * the sum of their centres and of their normals (oriented from a to b). */
+typedef struct face_sums {
+    uint32_t a, b;
+    double count, centre[3], normal[3];
+} face_sums;
+
+static face_sums *faces_of(face_sums *sums, uint32_t *count, uint32_t a, uint32_t b)
+{
+    for (uint32_t i = 0; i < *count; ++i)
+        if (sums[i].a == a && sums[i].b == b)
+            return &sums[i];
+    sums[*count] = (face_sums){a, b, 0, {0, 0, 0}, {0, 0, 0}};
+    return &sums[(*count)++];
+}
+
+/* Every face between two clusters, by pair, counted voxel by voxel. */
+static uint32_t count_faces(const gb_voxel_grid *g, const int32_t *clusters, face_sums *sums)
+{
+    uint32_t count = 0;
+    for (int32_t k = 0; k < g->size[2]; ++k)
+        for (int32_t j = 0; j < g->size[1]; ++j)
+            for (int32_t i = 0; i < g->size[0]; ++i)
+                for (int axis = 0; axis < 3; ++axis) {
+                    int32_t v[3] = {i, j, k}, w[3] = {i, j, k};
+                    if (++w[axis] >= g->size[axis])
+                        continue;
+                    size_t p = gb_voxel_index(g, v[0], v[1], v[2]);
+                    size_t q = gb_voxel_index(g, w[0], w[1], w[2]);
+                    int32_t cp = clusters[p], cq = clusters[q];
+                    if (cp < 0 || cq < 0 || cp == cq || g->surface[p] || g->surface[q])
+                        continue;
+                    face_sums *f = faces_of(sums, &count, (uint32_t)(cp < cq ? cp : cq),
+                                            (uint32_t)(cp < cq ? cq : cp));
+                    f->count += 1.0;
+                    f->normal[axis] += cp < cq ? 1.0 : -1.0;
+                    for (int a = 0; a < 3; ++a)
+                        f->centre[a] += g->world_origin[a] +
+                                        (v[a] + 0.5 + (a == axis ? 0.5 : 0.0)) * g->voxel_size;
+                }
+    return count;
+}
+
+/* The gates joining clusters a and b; *last: the last of them. */
+static int gates_joining(const gb_segmentation *seg, uint32_t a, uint32_t b, uint32_t *last)
+{
+    int count = 0;
+    for (uint32_t g = 0; g < seg->gate_count; ++g) {
+        const uint32_t *c = seg->gates[g].clusters;
+        if ((c[0] == a && c[1] == b) || (c[0] == b && c[1] == a)) {
+            *last = g;
+            ++count;
+        }
+    }
+    return count;
+}
+
+/* A pair's one gate: at the centroid of its faces, along their mean normal
+ * (oriented from the gate's first cluster). */
+static int gate_on_faces(const gb_visibility_gate *gate, const face_sums *f, double voxel)
+{
+    double sign = gate->clusters[0] == f->a ? 1.0 : -1.0, length = 0.0, off = 0.0, along = 0.0;
+    for (int a = 0; a < 3; ++a)
+        length += f->normal[a] * f->normal[a];
+    length = sqrt(length);
+    for (int a = 0; a < 3; ++a) {
+        double c = f->centre[a] / f->count - gate->centre[a];
+        off += c * c;
+        along += length > 0.0 ? sign * f->normal[a] / length * gate->normal[a] : 1.0 / 3.0;
+    }
+    return sqrt(off) <= 1e-4 * voxel && along >= 1.0 - 1e-5;
+}
+
+/* voxelize, thin, segment and gb_segment_fit_gates on the Cornell box at 32,
+ * written and read back: the gates are fitted, and against the faces
+ * between the clusters' empty voxels counted here, every touching pair of
+ * clusters has a gate, and a pair with one gate has it at its faces'
+ * centroid along their mean normal. */
+static void test_fitted_bake(void)
+{
+    gb_scene scene = {0};
+    build_cornell_box(&scene, 16, 16);
+    gb_voxelize_options voxelize = {.resolution = 32};
+    gb_voxel_grid grid = {0};
+    gb_skeleton skeleton = {0};
+    gb_segmentation seg = {0}, back = {0};
+    gb_segment_stats stats;
+    int32_t *nearest = NULL;
+    gb_error error;
+    scratch_create("fitted-bake");
+    const char *path = scratch_path("cornell.seg");
+    gb_result result = gb_voxelize_scene(&scene, &voxelize, &grid, &error);
+    if (result == GB_OK)
+        result = gb_thin(&grid, NULL, &skeleton, &nearest, NULL, &error);
+    if (result == GB_OK)
+        result = gb_segment(&skeleton, NULL, &seg, &stats, &error);
+    if (result == GB_OK)
+        result = gb_segment_fit_gates(&seg, &grid, nearest, &stats, &error);
+    if (result == GB_OK)
+        result = gb_segmentation_write(path, &seg, &error);
+    if (result == GB_OK)
+        result = gb_segmentation_read(path, &back, &error);
+    if (result != GB_OK)
+        printf("#   %s\n", error.message);
+    CHECK(result == GB_OK && back.gates_fitted == 1 && segmentations_equal(&seg, &back),
+          "fitted bake: voxelize, thin, segment, fit, written and read back, gates fitted");
+    if (result == GB_OK) {
+        int32_t *clusters = gb_segmentation_voxel_clusters(&back, nearest);
+        face_sums *sums = malloc(((size_t)back.cluster_count * back.cluster_count + 1) *
+                                 sizeof *sums);
+        uint32_t pairs = count_faces(&grid, clusters, sums), single = 0, joined = 0, on = 0;
+        for (uint32_t i = 0; i < pairs; ++i) {
+            uint32_t last = 0;
+            int n = gates_joining(&back, sums[i].a, sums[i].b, &last);
+            joined += n > 0;
+            single += n == 1;
+            on += n == 1 && gate_on_faces(&back.gates[last], &sums[i], back.voxel_size);
+        }
+        printf("# fitted bake: %u clusters, %u gates (%u opening gates, %u fitted), %u touching "
+               "pairs, %u with one gate\n", back.cluster_count, back.gate_count,
+               stats.opening_gates, stats.fitted_gates, pairs, single);
+        CHECK(pairs > 0 && stats.opening_gates > 0 && joined == pairs,
+              "fitted bake: every pair of touching clusters has a gate");
+        CHECK(single > 0 && on == single,
+              "fitted bake: a pair's one gate sits at its faces' centroid, along their normal");
+        free(sums);
+        free(clusters);
+    }
+    CHECK(gb_segment_fit_gates(&back, &grid, nearest, NULL, &error) == GB_ERROR_ARGUMENT,
+          "fitted bake: fitting twice is refused");
+    scratch_remove();
+    gb_segmentation_free(&back);
+    free(nearest);
+    gb_segmentation_free(&seg);
+    gb_skeleton_free(&skeleton);
+    gb_voxel_grid_free(&grid);
+    gb_scene_free(&scene);
+}
+
 /* ---- the lookup ---- */
 
 /* Two segmented nodes in clusters 0 and 1 over a 4 x 2 x 1 grid of voxels of
@@ -1125,8 +1327,7 @@ static void test_convex_room(void)
 
 int main(void)
 {
-    (void)build_cornell_box; /* scene_builder.h helpers these tests do not use */
-    (void)add_point_light;
+    (void)add_point_light; /* a scene_builder.h helper these tests do not use */
     test_measures();
     test_bent_line();
     test_shrinking_balls();
@@ -1144,6 +1345,8 @@ int main(void)
     test_equal_radii();
     test_file();
     test_fitted_gates();
+    test_gate_fitted_to_opening();
+    test_fitted_bake();
     test_lookup();
     test_evaluate();
     test_convex_room();
