@@ -226,8 +226,11 @@ $(BAKE)/%.vdb: %.scene $(BIN)/voxelize
 $(BAKE)/%.skel $(BAKE)/%.grid.vdb: $(BAKE)/%.vdb $(BIN)/thin
 	$(call timed,thin) $(BIN)/thin $(THIN_FLAGS) $< -o $(BAKE)/$*.skel --grid $(BAKE)/$*.grid.vdb
 
-$(BAKE)/%.seg: $(BAKE)/%.skel $(BIN)/segment
-	$(call timed,segment) $(BIN)/segment $(SEGMENT_FLAGS) $< -o $@
+# segment fits the gates to the voxels' openings (--voxels, --grid): the
+# gates the runtime draws.
+$(BAKE)/%.seg: $(BAKE)/%.skel $(BAKE)/%.vdb $(BAKE)/%.grid.vdb $(BIN)/segment
+	$(call timed,segment) $(BIN)/segment $(SEGMENT_FLAGS) $< --voxels $(BAKE)/$*.vdb \
+	  --grid $(BAKE)/$*.grid.vdb -o $@
 
 PHOTONS_FLAGS ?=
 $(BAKE)/%.phot: %.scene $(BIN)/photons

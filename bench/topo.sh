@@ -53,12 +53,14 @@ ratio() {
     awk -v a="$1" -v b="$2" 'BEGIN { if (b + 0 > 0) printf "%.2f", a / b; else print "n/a" }'
 }
 
-# bake NAME SCENE VOXELS: voxelize, thin --grid, segment into $dir/NAME
+# bake NAME SCENE VOXELS: voxelize, thin --grid, segment --voxels --grid
+# into $dir/NAME, as make bake does
 bake() {
     mkdir -p "$dir/$1"
     "$GB_BIN/voxelize" -q -r "$3" "$2" -o "$dir/$1/$1.vdb" &&
         "$GB_BIN/thin" -q "$dir/$1/$1.vdb" -o "$dir/$1/$1.skel" --grid "$dir/$1/$1.grid.vdb" &&
-        "$GB_BIN/segment" -q "$dir/$1/$1.skel" -o "$dir/$1/$1.seg"
+        "$GB_BIN/segment" -q "$dir/$1/$1.skel" --voxels "$dir/$1/$1.vdb" \
+            --grid "$dir/$1/$1.grid.vdb" -o "$dir/$1/$1.seg"
 }
 
 # The gallery view: sponza.scene with its mesh path made absolute and

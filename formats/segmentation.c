@@ -49,9 +49,13 @@ static gb_result check_header(const gb_segmentation *s, const char *path, gb_err
     if (s->cluster_count > s->node_count || (s->node_count && !s->cluster_count))
         return gb_fail(error, GB_ERROR_INVALID, "%s: %u clusters for %u nodes", path,
                        s->cluster_count, s->node_count);
-    if (s->gate_count > s->edge_count)
-        return gb_fail(error, GB_ERROR_INVALID, "%s: %u gates for %u edges", path, s->gate_count,
-                       s->edge_count);
+    if (s->gates_fitted > 1)
+        return gb_fail(error, GB_ERROR_INVALID, "%s: gates fitted %u is neither 0 nor 1", path,
+                       s->gates_fitted);
+    uint64_t c = s->cluster_count, pairs = c ? c * (c - 1) / 2 : 0;
+    if (s->gate_count > s->edge_count + (s->gates_fitted ? pairs : 0))
+        return gb_fail(error, GB_ERROR_INVALID, "%s: %u gates for %u edges and %u clusters",
+                       path, s->gate_count, s->edge_count, s->cluster_count);
     return GB_OK;
 }
 
@@ -131,8 +135,14 @@ static gb_result check_node_map(const gb_segmentation *s, const char *path, gb_e
     return GB_OK;
 }
 
-/* The gate of edge e must sit at its middle, along it, with the min radius. */
-static int gate_matches_edge(const gb_segmentation *s, const gb_visibility_gate *g)
+static int clusters_of_edge(const gb_segmentation *s, const gb_visibility_gate *g)
+{
+    return g->clusters[0] == s->cluster[s->edges[2 * g->edge]] &&
+           g->clusters[1] == s->cluster[s->edges[2 * g->edge + 1]];
+}
+
+/* The paper's disk of edge e: at its middle, along it, with the min radius. */
+static int paper_disk(const gb_segmentation *s, const gb_visibility_gate *g)
 {
     const gb_segmented_node *a = &s->nodes[s->edges[2 * g->edge]];
     const gb_segmented_node *b = &s->nodes[s->edges[2 * g->edge + 1]];
@@ -149,13 +159,43 @@ static int gate_matches_edge(const gb_segmentation *s, const gb_visibility_gate 
     double scale = 1.0 + length + fabs(a->position[0]) + fabs(a->position[1]) +
                    fabs(a->position[2]);
     return length > 0.0 && fabs(norm2 - 1.0) <= 1e-4 && along >= 0.9999 * length &&
-           sqrt(off2) <= 1e-5 * scale && g->radius == fminf(a->radius, b->radius) &&
-           g->clusters[0] == s->cluster[s->edges[2 * g->edge]] &&
-           g->clusters[1] == s->cluster[s->edges[2 * g->edge + 1]];
+           sqrt(off2) <= 1e-5 * scale && g->radius == fminf(a->radius, b->radius);
 }
 
-/* Gates are sorted by edge, and exactly the edges between two clusters have one. */
-static gb_result check_gates(const gb_segmentation *s, const char *path, gb_error *error)
+/* A disk fitted to an opening: unit normal, centre in the voxel frame (give
+ * or take a voxel), radius at least min_radius. */
+static int fitted_disk(const gb_segmentation *s, const gb_visibility_gate *g, float min_radius)
+{
+    double norm2 = 0.0;
+    int inside = 1;
+    for (int i = 0; i < 3; ++i) {
+        double low = s->world_origin[i] - s->voxel_size;
+        double high = s->world_origin[i] + (s->grid_size[i] + 1.0) * s->voxel_size;
+        norm2 += (double)g->normal[i] * g->normal[i];
+        inside &= g->centre[i] >= low && g->centre[i] <= high;
+    }
+    return fabs(norm2 - 1.0) <= 1e-4 && inside && g->radius >= min_radius;
+}
+
+static int finite_gate(const gb_visibility_gate *g)
+{
+    return finite3(g->centre) && finite3(g->normal) && isfinite(g->radius);
+}
+
+/* The paper's disk, or with gates_fitted a fitted one of at least the
+ * paper's radius; the clusters of the edge's nodes. */
+static int edge_gate_valid(const gb_segmentation *s, const gb_visibility_gate *g)
+{
+    float paper_radius = fminf(s->nodes[s->edges[2 * g->edge]].radius,
+                               s->nodes[s->edges[2 * g->edge + 1]].radius);
+    return finite_gate(g) && clusters_of_edge(s, g) &&
+           (paper_disk(s, g) || (s->gates_fitted && fitted_disk(s, g, paper_radius)));
+}
+
+/* The edge gates come first, sorted by edge, and exactly the edges between
+ * two clusters have one; *count of them. */
+static gb_result check_edge_gates(const gb_segmentation *s, const char *path, uint32_t *count,
+                                  gb_error *error)
 {
     uint32_t next_gate = 0;
     for (uint32_t e = 0; e < s->edge_count; ++e) {
@@ -167,18 +207,98 @@ static gb_result check_gates(const gb_segmentation *s, const char *path, gb_erro
                            has_gate ? "a gate" : "no gate");
         if (!has_gate)
             continue;
-        const gb_visibility_gate *g = &s->gates[next_gate];
-        if (!finite3(g->centre) || !finite3(g->normal) || !isfinite(g->radius) ||
-            !gate_matches_edge(s, g))
+        if (!edge_gate_valid(s, &s->gates[next_gate]))
             return gb_fail(error, GB_ERROR_INVALID,
                            "%s: gate %u does not match edge %u (centre, normal, radius or "
                            "clusters)", path, next_gate, e);
         ++next_gate;
     }
-    if (next_gate != s->gate_count)
-        return gb_fail(error, GB_ERROR_INVALID, "%s: gate %u names a missing or repeated edge",
-                       path, next_gate);
+    *count = next_gate;
     return GB_OK;
+}
+
+/* The clusters of a gate as one key, the smaller in the high half. */
+static uint64_t cluster_pair(const gb_visibility_gate *g)
+{
+    uint32_t a = g->clusters[0], b = g->clusters[1];
+    return (uint64_t)(a < b ? a : b) << 32 | (a < b ? b : a);
+}
+
+static int compare_u64(const void *a, const void *b)
+{
+    uint64_t x = *(const uint64_t *)a, y = *(const uint64_t *)b;
+    return x < y ? -1 : x > y;
+}
+
+/* The cluster pairs of gates [0, count), sorted; NULL when out of memory. */
+static uint64_t *sorted_pairs(const gb_segmentation *s, uint32_t count)
+{
+    uint64_t *pairs = malloc((count ? count : 1) * sizeof *pairs);
+    if (!pairs)
+        return NULL;
+    for (uint32_t g = 0; g < count; ++g)
+        pairs[g] = cluster_pair(&s->gates[g]);
+    qsort(pairs, count, sizeof *pairs, compare_u64);
+    return pairs;
+}
+
+/* Gate g, an opening gate after the first: no edge, clusters a < b in
+ * increasing pairs, a fitted disk. */
+static gb_result check_opening_gate(const gb_segmentation *s, uint32_t first, uint32_t g,
+                                    const char *path, gb_error *error)
+{
+    const gb_visibility_gate *gate = &s->gates[g];
+    const uint32_t *c = gate->clusters;
+    if (gate->edge != GB_SEGMENTATION_NO_EDGE)
+        return gb_fail(error, GB_ERROR_INVALID, "%s: gate %u names a missing or repeated edge",
+                       path, g);
+    if (!s->gates_fitted)
+        return gb_fail(error, GB_ERROR_INVALID,
+                       "%s: gate %u is an opening gate, but the gates are not fitted", path, g);
+    if (!(c[0] < c[1] && c[1] < s->cluster_count))
+        return gb_fail(error, GB_ERROR_INVALID,
+                       "%s: opening gate %u: clusters (%u, %u) are not an ordered pair of the "
+                       "%u clusters", path, g, c[0], c[1], s->cluster_count);
+    if (g > first && cluster_pair(&s->gates[g - 1]) >= cluster_pair(gate))
+        return gb_fail(error, GB_ERROR_INVALID, "%s: opening gate %u is out of order or repeated",
+                       path, g);
+    if (!finite_gate(gate) || !fitted_disk(s, gate, 0.0f))
+        return gb_fail(error, GB_ERROR_INVALID,
+                       "%s: opening gate %u: centre, normal or radius is not valid", path, g);
+    return GB_OK;
+}
+
+/* The opening gates after the edge_gates, each on a pair of clusters that
+ * no edge gate joins. */
+static gb_result check_opening_gates(const gb_segmentation *s, uint32_t edge_gates,
+                                     const char *path, gb_error *error)
+{
+    if (edge_gates == s->gate_count)
+        return GB_OK;
+    uint64_t *pairs = sorted_pairs(s, edge_gates);
+    if (!pairs)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    gb_result result = GB_OK;
+    for (uint32_t g = edge_gates; g < s->gate_count && !result; ++g) {
+        uint64_t key = cluster_pair(&s->gates[g]);
+        result = check_opening_gate(s, edge_gates, g, path, error);
+        if (!result && bsearch(&key, pairs, edge_gates, sizeof *pairs, compare_u64))
+            result = gb_fail(error, GB_ERROR_INVALID,
+                             "%s: opening gate %u joins clusters %u and %u, which an edge "
+                             "gate joins already", path, g, s->gates[g].clusters[0],
+                             s->gates[g].clusters[1]);
+    }
+    free(pairs);
+    return result;
+}
+
+static gb_result check_gates(const gb_segmentation *s, const char *path, gb_error *error)
+{
+    uint32_t edge_gates = 0;
+    gb_result result = check_edge_gates(s, path, &edge_gates, error);
+    if (!result)
+        result = check_opening_gates(s, edge_gates, path, error);
+    return result;
 }
 
 gb_result gb_segmentation_validate(const gb_segmentation *s, const char *path, gb_error *error)
@@ -218,7 +338,7 @@ static void encode_header(const gb_segmentation *s, uint8_t header[HEADER_SIZE])
         gb_put_f64(header + 48 + 8 * a, s->world_origin[a]);
     for (int a = 0; a < 3; ++a)
         gb_put_u32(header + 72 + 4 * a, (uint32_t)s->grid_size[a]);
-    /* bytes 84..87: reserved, 0 */
+    gb_put_u32(header + 84, s->gates_fitted);
 }
 
 static void decode_header(const uint8_t header[HEADER_SIZE], gb_segmentation *s)
@@ -236,6 +356,7 @@ static void decode_header(const uint8_t header[HEADER_SIZE], gb_segmentation *s)
         s->world_origin[a] = gb_get_f64(header + 48 + 8 * a);
     for (int a = 0; a < 3; ++a)
         s->grid_size[a] = (int32_t)gb_get_u32(header + 72 + 4 * a);
+    s->gates_fitted = gb_get_u32(header + 84);
 }
 
 static void encode_node(const gb_segmented_node *node, uint8_t *p)
@@ -418,13 +539,16 @@ static gb_result decode_container(const gb_container *c, const char *path, void 
                                   gb_error *error)
 {
     gb_segmentation *s = object;
+    if (c->version < GB_SEGMENTATION_VERSION)
+        return gb_fail(error, GB_ERROR_FORMAT,
+                       "%s: format version %u, from an older segment whose gates the runtime "
+                       "fitted at load; bake it again (segment --voxels --grid)", path,
+                       (unsigned)c->version);
     const gb_section *header;
     gb_result result =
         gb_container_find_array(c, "header", 1, HEADER_SIZE, 1, path, &header, error);
     if (result)
         return result;
-    if (gb_get_u32((const uint8_t *)header->data + 84) != 0)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: reserved header bytes are not zero", path);
     decode_header(header->data, s);
     result = check_header(s, path, error);
     if (!result)
@@ -469,8 +593,8 @@ static int same_length(double a, double b)
     return fabs(a - b) <= 1e-9 * (fabs(a) + fabs(b)) + 1e-12;
 }
 
-gb_result gb_segmentation_check_grid(const gb_segmentation *s, const gb_voxel_grid *frame,
-                                     const int32_t *nearest, const char *path, gb_error *error)
+gb_result gb_segmentation_check_frame(const gb_segmentation *s, const gb_voxel_grid *frame,
+                                      const char *path, gb_error *error)
 {
     if (frame->scene_hash != s->scene_hash)
         return gb_fail(error, GB_ERROR_STALE,
@@ -488,7 +612,21 @@ gb_result gb_segmentation_check_grid(const gb_segmentation *s, const gb_voxel_gr
                        (int)frame->size[1], (int)frame->size[2], frame->voxel_size,
                        (int)s->grid_size[0], (int)s->grid_size[1], (int)s->grid_size[2],
                        s->voxel_size);
-    size_t count = (size_t)s->grid_size[0] * (size_t)s->grid_size[1] * (size_t)s->grid_size[2];
+    return GB_OK;
+}
+
+static size_t voxel_count(const gb_segmentation *s)
+{
+    return (size_t)s->grid_size[0] * (size_t)s->grid_size[1] * (size_t)s->grid_size[2];
+}
+
+gb_result gb_segmentation_check_grid(const gb_segmentation *s, const gb_voxel_grid *frame,
+                                     const int32_t *nearest, const char *path, gb_error *error)
+{
+    gb_result result = gb_segmentation_check_frame(s, frame, path, error);
+    if (result != GB_OK)
+        return result;
+    size_t count = voxel_count(s);
     for (size_t v = 0; v < count; ++v)
         if (nearest[v] < -1 || (nearest[v] >= 0 && (uint32_t)nearest[v] >= s->skeleton_node_count))
             return gb_fail(error, GB_ERROR_INVALID,
@@ -512,4 +650,19 @@ int32_t gb_segmentation_cluster_at(const gb_segmentation *s, const int32_t *near
     if (node < 0 || (uint32_t)node >= s->skeleton_node_count)
         return -1;
     return (int32_t)s->cluster[s->node_map[node]];
+}
+
+int32_t *gb_segmentation_voxel_clusters(const gb_segmentation *s, const int32_t *nearest)
+{
+    size_t n = voxel_count(s);
+    int32_t *clusters = malloc((n ? n : 1) * sizeof *clusters);
+    if (!clusters)
+        return NULL;
+    for (size_t i = 0; i < n; ++i) {
+        int32_t node = nearest[i];
+        clusters[i] = node >= 0 && (uint32_t)node < s->skeleton_node_count
+                          ? (int32_t)s->cluster[s->node_map[node]]
+                          : -1;
+    }
+    return clusters;
 }

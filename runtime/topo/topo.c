@@ -1,8 +1,9 @@
 /* topo.c — gb_topo_method: VPL indirect light with implicit visibility
  * through visibility clusters and gates (Noël & Biri 2014, §V). Load time:
- * the bake's .seg and .grid.vdb, the gates' disks fitted to the openings
- * between clusters when the bake has the voxels (.vdb; topo_gate_openings.c),
- * the VPLs (topo_vpls.c) and their clusters.
+ * the bake's .seg, whose gates are drawn as they are (segment fitted them
+ * to the openings, tools/segment/gate_openings.h), and .grid.vdb, the
+ * voxels' surface flags marked in the cluster lookup when the bake has its
+ * .vdb (topo_clusters.c), the VPLs (topo_vpls.c) and their clusters.
  * Each frame: visibility cluster per fragment (GPU compute), IUGC (GPU
  * compute, topo_geometry_clusters_gpu.c; with GB_TOPO_IUGC=cpu in the
  * environment, gb_topo_geometry_clusters_build on the G-buffer read back),
@@ -59,34 +60,20 @@ static gb_result need_bake(const gb_bake_files *bake, gb_error *error)
     return GB_OK;
 }
 
-/* The gates' lists, after gates for the openings the voxels show and with
- * disks measured on them when the bake has its voxels
- * (topo_gate_openings.c). */
-static gb_result build_gates(topo_state *t, const gb_bake_files *bake, gb_error *error)
+/* The voxels' surface flags marked in the voxels' clusters, when the bake
+ * has its voxels: the lookup then takes a surface voxel's cluster only as a
+ * last resort (topo_clusters.c). */
+static gb_result mark_surface(topo_state *t, const gb_bake_files *bake, gb_error *error)
 {
     if (!bake->usable[GB_BAKE_VOXELS])
-        return gb_topo_gates_build(&t->segmentation, &t->gates, error);
-    const char *voxels_path = bake->paths[GB_BAKE_VOXELS];
+        return GB_OK;
+    const char *path = bake->paths[GB_BAKE_VOXELS];
     gb_voxel_grid voxels = {0};
-    gb_result result = gb_voxel_grid_read(voxels_path, &voxels, error);
-    const gb_segmentation *s = &t->segmentation;
-    if (result == GB_OK && (voxels.size[0] != s->grid_size[0] ||
-                            voxels.size[1] != s->grid_size[1] ||
-                            voxels.size[2] != s->grid_size[2]))
-        result = gb_fail(error, GB_ERROR_STALE, "%s: voxel grid %dx%dx%d, segmentation %dx%dx%d",
-                         voxels_path, voxels.size[0], voxels.size[1], voxels.size[2],
-                         s->grid_size[0], s->grid_size[1], s->grid_size[2]);
-    uint32_t added = 0;
+    gb_result result = gb_voxel_grid_read(path, &voxels, error);
     if (result == GB_OK)
-        gb_topo_voxel_clusters_mark_surface(s, t->voxel_clusters, voxels.surface);
+        result = gb_segmentation_check_frame(&t->segmentation, &voxels, path, error);
     if (result == GB_OK)
-        result = gb_topo_gates_add_openings(&t->segmentation, t->voxel_clusters, voxels.surface,
-                                            &added, error);
-    if (result == GB_OK)
-        result = gb_topo_gates_build(&t->segmentation, &t->gates, error);
-    if (result == GB_OK)
-        result = gb_topo_gates_fit_openings(&t->segmentation, &t->gates, t->voxel_clusters,
-                                            voxels.surface, error);
+        gb_topo_voxel_clusters_mark_surface(&t->segmentation, t->voxel_clusters, voxels.surface);
     gb_voxel_grid_free(&voxels);
     return result;
 }
@@ -102,10 +89,12 @@ static gb_result load_clusters(topo_state *t, const gb_bake_files *bake, gb_erro
         result = gb_voxel_grid_read_int32(grid_path, "nearest_node", &frame, &nearest, error);
     if (result == GB_OK)
         result = gb_segmentation_check_grid(&t->segmentation, &frame, nearest, grid_path, error);
-    if (result == GB_OK && !(t->voxel_clusters = gb_topo_voxel_clusters(&t->segmentation, nearest)))
+    if (result == GB_OK && !(t->voxel_clusters = gb_segmentation_voxel_clusters(&t->segmentation, nearest)))
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "topo: out of memory");
     if (result == GB_OK)
-        result = build_gates(t, bake, error);
+        result = mark_surface(t, bake, error);
+    if (result == GB_OK)
+        result = gb_topo_gates_build(&t->segmentation, &t->gates, error);
     free(nearest);
     gb_voxel_grid_free(&frame);
     return result;

@@ -3,8 +3,8 @@
  * them each frame:
  *
  *   VPLs      topo_vpls.c               paths from the primary lights (Embree, once)
- *   gates     topo_gate_openings.c      (once) gate disks fitted to the openings
- *                                       between the clusters' voxels
+ *   gates     topo_assignment.c         (once) the .seg's gates, as segment fitted
+ *                                       them, in lists per cluster, with routes
  *   GP        gbuffer.c + topo_clusters.c  the visibility cluster of each fragment (GPU)
  *   IUGC      topo_geometry_clusters_gpu.c  geometry clusters (Olsson et al. 2012)
  *                                       that never straddle two visibility clusters
@@ -65,10 +65,10 @@ enum { GB_TOPO_NO_GATE = 0xffffffffu };
 gb_result gb_topo_vpls_generate(const gb_scene *scene, uint32_t count, uint64_t seed,
                                 gb_vpl_set *set, gb_error *error);
 
-/* ---- visibility clusters (topo_clusters.c) ----------------------------- */
-/* The cluster of each voxel of the nearest-node grid (-1: none): what the
- * GPU looks a fragment up in. malloc'ed, NULL when out of memory. */
-int32_t *gb_topo_voxel_clusters(const gb_segmentation *segmentation, const int32_t *nearest);
+/* ---- visibility clusters (topo_clusters.c) -----------------------------
+ * The cluster of each voxel of the nearest-node grid, -1 where none
+ * (gb_segmentation_voxel_clusters, formats/segmentation.h), is what the GPU
+ * looks a fragment up in. */
 
 /* Marks the voxels voxelize flagged as surface: cluster c becomes
  * GB_TOPO_SURFACE_CLUSTER(c) = -c - 2 (its own inverse), which the lookups
@@ -202,23 +202,12 @@ typedef struct gb_topo_gates {
     gb_topo_route_group *groups;    /* the groups of each cluster, by target */
 } gb_topo_gates;
 
+/* The lists above from the segmentation's gates as they are (with the
+ * bake's voxels, segment fitted them to the openings and added the opening
+ * gates: tools/segment/gate_openings.h). */
 gb_result gb_topo_gates_build(const gb_segmentation *segmentation, gb_topo_gates *gates,
                               gb_error *error);
 void gb_topo_gates_free(gb_topo_gates *gates);
-
-/* (topo_gate_openings.c) A gate (edge UINT32_MAX, disk to be fitted) for
- * every pair of clusters whose empty voxels share a face but that no gate
- * joins yet; *added of them. Build the gates' lists after this. */
-gb_result gb_topo_gates_add_openings(gb_segmentation *segmentation, const int32_t *voxel_clusters,
-                                     const uint8_t *surface, uint32_t *added, gb_error *error);
-/* Each gate's disk refitted to the faces between the empty voxels of its
- * two clusters (each face goes to the nearest gate of the pair): centroid, mean normal, radius
- * sqrt(2 <r^2>) in its plane (at least the paper's min maxball). surface:
- * voxelize's surface flags in the same frame, or NULL (every voxel with a
- * cluster counts as empty). Gates without such faces are left alone. */
-gb_result gb_topo_gates_fit_openings(gb_segmentation *segmentation, const gb_topo_gates *gates,
-                                     const int32_t *voxel_clusters, const uint8_t *surface,
-                                     gb_error *error);
 
 /* A VPL assigned to a geometry cluster, with the group of routes its light
  * may take (GB_TOPO_NO_GATE: same visibility cluster). */

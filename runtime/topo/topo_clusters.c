@@ -29,21 +29,6 @@
 enum { OFFSET_STEPS = 3, UNIT_VOXEL_CLUSTERS = 12 };
 #define OFFSET_MARGIN 1.01f
 
-int32_t *gb_topo_voxel_clusters(const gb_segmentation *s, const int32_t *nearest)
-{
-    size_t n = (size_t)s->grid_size[0] * (size_t)s->grid_size[1] * (size_t)s->grid_size[2];
-    int32_t *clusters = malloc((n ? n : 1) * sizeof *clusters);
-    if (!clusters)
-        return NULL;
-    for (size_t i = 0; i < n; ++i) {
-        int32_t node = nearest[i];
-        clusters[i] = node >= 0 && (uint32_t)node < s->skeleton_node_count
-                          ? (int32_t)s->cluster[s->node_map[node]]
-                          : -1;
-    }
-    return clusters;
-}
-
 void gb_topo_voxel_clusters_mark_surface(const gb_segmentation *s, int32_t *voxel_clusters,
                                          const uint8_t *surface)
 {

@@ -88,8 +88,8 @@ succeeded() {
     [ "$(cat "$dir/$1/$2.status")" = 0 ]
 }
 
-# bake CASE: voxelize, thin, segment, photons, cluster of CASE/scene.scene
-# into CASE/bake/scene.*, small.
+# bake CASE: voxelize, thin, segment (the gates fitted, as make bake),
+# photons, cluster of CASE/scene.scene into CASE/bake/scene.*, small.
 bake() {
     b_scene=$dir/$1/scene.scene b_dir=$dir/$1/bake
     mkdir -p "$b_dir"
@@ -98,7 +98,7 @@ bake() {
     step "$1" thin "$b_dir/scene.skel" "$GB_BIN/thin" -q --stats "$b_dir/scene.vdb" \
         -o "$b_dir/scene.skel" --grid "$b_dir/scene.grid.vdb"
     step "$1" segment "$b_dir/scene.seg" "$GB_BIN/segment" -q --stats "$b_dir/scene.skel" \
-        -o "$b_dir/scene.seg"
+        --voxels "$b_dir/scene.vdb" --grid "$b_dir/scene.grid.vdb" -o "$b_dir/scene.seg"
     step "$1" photons "$b_dir/scene.phot" "$GB_BIN/photons" -q --stats -n 20000 "$b_scene" \
         -o "$b_dir/scene.phot"
     step "$1" cluster "$b_dir/scene.lot" "$GB_BIN/cluster" -q --stats --depth 4 "$b_scene" \

@@ -1,8 +1,9 @@
 #!/bin/sh
 # segment.t — the segment tool as a user runs it: voxelize the Cornell box at
-# 48 voxels, thin it, segment the skeleton, evaluate the segmentation; exit
-# codes, same bytes twice, precision and recall in [0, 1], and bad input
-# refused with "segment: ..." and no output left behind. Prints TAP.
+# 48 voxels, thin it, segment the skeleton (with the voxels, the gates fitted,
+# as make bake does, and without), evaluate the segmentation; exit codes,
+# same bytes twice, precision and recall in [0, 1], and bad input refused
+# with "segment: ..." and no output left behind. Prints TAP.
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
@@ -33,6 +34,7 @@ for tool in voxelize thin segment; do
 done
 
 expect_status "voxelize" 0 "$GB_BIN/voxelize" -q -r 48 "$scene" -o "$dir/c.vdb"
+"$GB_BIN/voxelize" -q -r 32 "$scene" -o "$dir/c32.vdb"
 expect_status "thin" 0 "$GB_BIN/thin" -q "$dir/c.vdb" -o "$dir/c.skel" --grid "$dir/c.grid.vdb"
 expect_status "segment" 0 "$GB_BIN/segment" -q "$dir/c.skel" -o "$dir/c.seg"
 ok "$([ -s "$dir/c.seg" ]; echo $?)" "segment: writes the .seg file"
@@ -44,6 +46,27 @@ ok $? "segment --stats: prints the clusters and alpha"
 "$GB_BIN/segment" -q "$dir/c.skel" -o "$dir/again.seg"
 cmp -s "$dir/c.seg" "$dir/again.seg"
 ok $? "segment: the same skeleton gives the same bytes"
+
+# the gates fitted to the voxels (make bake's way)
+fit="--voxels $dir/c.vdb --grid $dir/c.grid.vdb"
+expect_status "segment --voxels --grid --stats" 0 "$GB_BIN/segment" --stats "$dir/c.skel" $fit \
+    -o "$dir/fitted.seg"
+fitted=$(awk '$1 == "fitted" && $2 == "gates" { print $3 }' "$dir/out")
+opening=$(awk '$1 == "opening" && $2 == "gates" { print $3 }' "$dir/out")
+gates=$(awk '$1 == "gates" { print $2 }' "$dir/out")
+echo "# fitted: $gates gates, $opening opening gates, $fitted fitted"
+ok "$([ "${fitted:-0}" -gt 0 ] && [ "${opening:-0}" -gt 0 ] &&
+    [ "$gates" -ge "$fitted" ]; echo $?)" \
+    "segment --voxels --grid: gates fitted ($fitted of $gates) and opening gates added ($opening)"
+ok "$(! cmp -s "$dir/c.seg" "$dir/fitted.seg"; echo $?)" \
+    "segment --voxels --grid: other gates than the paper's"
+"$GB_BIN/segment" -q "$dir/c.skel" $fit -o "$dir/fitted2.seg"
+cmp -s "$dir/fitted.seg" "$dir/fitted2.seg"
+ok $? "segment --voxels --grid: the same inputs give the same bytes"
+expect_status "evaluate the fitted gates" 0 "$GB_BIN/segment" --evaluate -q "$scene" \
+    "$dir/fitted.seg" "$dir/c.grid.vdb" --pairs 2000
+grep -q "^gates  *$gates\$" "$dir/out"
+ok $? "evaluate: the fitted file's $gates gates"
 
 expect_status "evaluate" 0 "$GB_BIN/segment" --evaluate -q "$scene" "$dir/c.seg" \
     "$dir/c.grid.vdb" --pairs 2000 --seed 7
@@ -74,6 +97,21 @@ expect_status "no output" 2 "$GB_BIN/segment" "$dir/c.skel"
 expect_status "alpha 101" 2 "$GB_BIN/segment" --alpha 101 "$dir/c.skel" -o "$dir/x.seg"
 expect_status "pairs 0" 2 "$GB_BIN/segment" --evaluate "$scene" "$dir/c.seg" "$dir/c.grid.vdb" \
     --pairs 0
+expect_status "--voxels without --grid" 2 "$GB_BIN/segment" "$dir/c.skel" --voxels "$dir/c.vdb" \
+    -o "$dir/x.seg"
+grep -q "^segment: --voxels and --grid go together" "$dir/err"
+ok $? "--voxels without --grid: says they go together"
+expect_status "--evaluate with --grid" 2 "$GB_BIN/segment" --evaluate "$scene" "$dir/c.seg" \
+    "$dir/c.grid.vdb" --grid "$dir/c.grid.vdb"
+expect_status "--voxels of another resolution" 1 "$GB_BIN/segment" "$dir/c.skel" \
+    --voxels "$dir/c32.vdb" --grid "$dir/c.grid.vdb" -o "$dir/x.seg"
+grep -q "^segment: $dir/c32.vdb: its voxel frame is not the segmentation's" "$dir/err"
+ok $? "--voxels of another resolution: refused as stale, naming the file"
+ok "$([ ! -e "$dir/x.seg" ]; echo $?)" "--voxels of another resolution: no output left"
+expect_status "--grid of another file kind" 1 "$GB_BIN/segment" "$dir/c.skel" --voxels "$dir/c.vdb" \
+    --grid "$dir/c.vdb" -o "$dir/x.seg"
+grep -q "^segment: $dir/c.vdb: " "$dir/err"
+ok $? "--grid of a voxel file without nearest_node: the message names the file"
 expect_status "missing skeleton" 1 "$GB_BIN/segment" "$dir/missing.skel" -o "$dir/x.seg"
 grep -q "^segment: $dir/missing.skel: " "$dir/err"
 ok $? "missing skeleton: the message names the file"
@@ -96,5 +134,10 @@ expect_status "another scene" 1 "$GB_BIN/segment" --evaluate "$dir/other.obj" "$
     "$dir/c.grid.vdb" --pairs 10
 grep -q "another scene" "$dir/err"
 ok $? "another scene: refused as stale"
+"$GB_BIN/voxelize" -q -r 48 "$dir/other.obj" -o "$dir/other.vdb"
+expect_status "--voxels of another scene" 1 "$GB_BIN/segment" "$dir/c.skel" \
+    --voxels "$dir/other.vdb" --grid "$dir/c.grid.vdb" -o "$dir/x.seg"
+grep -q "^segment: $dir/other.vdb: made from another scene" "$dir/err"
+ok $? "--voxels of another scene: refused as stale, naming the file"
 
 tap_done

@@ -1,11 +1,11 @@
 #!/bin/sh
 # topo.t — gbview's topological method (Noël & Biri 2014) as a user runs it:
-# bake the Cornell box at 48 voxels (voxelize, thin --grid, segment), render
-# headless with --method topo, write its VPLs and render the same VPLs with
-# `reference --vpl`; exit codes, determinism, the variants, and the error
-# of the indirect light against the reference (below no indirect light,
-# gates at least as good as clusters alone, within 1.1 x no visibility).
-# Prints TAP.
+# bake the Cornell box at 48 voxels (voxelize, thin --grid, segment --voxels
+# --grid, as make bake), render headless with --method topo, write its VPLs
+# and render the same VPLs with `reference --vpl`; exit codes, determinism,
+# the variants, and the error of the indirect light against the reference
+# (below no indirect light, gates at least as good as clusters alone, within
+# 1.1 x no visibility). Prints TAP.
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
@@ -18,8 +18,9 @@ bake=$dir/bake
 mkdir "$bake"
 "$GB_BIN/voxelize" -q -r 48 "$scene" -o "$bake/cornell.vdb" &&
     "$GB_BIN/thin" -q "$bake/cornell.vdb" -o "$bake/cornell.skel" --grid "$bake/cornell.grid.vdb" &&
-    "$GB_BIN/segment" -q "$bake/cornell.skel" -o "$bake/cornell.seg"
-ok $? "bake: voxelize -r 48, thin --grid, segment"
+    "$GB_BIN/segment" -q "$bake/cornell.skel" --voxels "$bake/cornell.vdb" \
+        --grid "$bake/cornell.grid.vdb" -o "$bake/cornell.seg"
+ok $? "bake: voxelize -r 48, thin --grid, segment --voxels --grid"
 
 small="--headless --resolution 96x96 --quiet --method topo --vpls 256"
 

@@ -5,8 +5,8 @@
  * VPL in room A reaches room B only inside the cone through the door gate;
  * three rooms: room C only through both doors' cones; a VPL at a door
  * lights through the disk only; the lookup off a tilted wall never lands in
- * the wall's voxels; a gate refitted to its opening (and a gate added where
- * clusters touch without one);
+ * the wall's voxels; a gate fitted to its opening lets light through its
+ * edge (the fit itself: test_segment);
  * LA on the GPU gives the CPU's lists, and the GPU's visibility cluster of
  * each fragment is the CPU's (headless GL, skipped without it). */
 #include <math.h>
@@ -282,65 +282,18 @@ static void test_lookup_off_the_wall(void)
     free(surface);
 }
 
-/* Two rooms along x in a 20 x 10 x 10 grid, split by a wall at x = 10
- * (surface voxels) with a 6 x 6 opening (y, z in 2..8); the segmented
- * skeleton's gate there has the paper's radius, min maxball = 0.5. */
-static void test_gate_fitted_to_opening(void)
+/* The door of tests/unit/test_segment.c's two rooms (a 6 x 6 opening in a
+ * wall at x = 10): the paper's disk there has radius 0.5, the disk segment
+ * fits to the opening radius sqrt(35 / 3) (its faces' second moment). A
+ * VPL's light through the opening's edge passes the fitted disk only. */
+static void test_fitted_gate_cone(void)
 {
-    enum { NX = 20, NY = 10, NZ = 10 };
-    gb_segmentation s = unit_frame(NX, NY, NZ);
-    gb_visibility_gate gate = {{10, 5, 5}, {1, 0, 0}, 0.5f, {0, 1}, 0};
-    s.cluster_count = 2;
-    s.gate_count = 1;
-    s.gates = &gate;
-    int32_t *clusters = malloc(NX * NY * NZ * sizeof *clusters);
-    uint8_t *surface = calloc(NX * NY * NZ, 1);
-    for (int i = 0; i < NX * NY * NZ; ++i) {
-        int x = i % NX, y = (i / NX) % NY, z = i / (NX * NY);
-        int opening = y >= 2 && y < 8 && z >= 2 && z < 8;
-        surface[i] = x == 10 && !opening;
-        clusters[i] = x < 10 ? 0 : 1;    /* wall voxels too, as thin's grid gives them */
-    }
-    gb_topo_gates gates;
-    gb_error error;
+    gb_visibility_gate paper = {{10, 5, 5}, {1, 0, 0}, 0.5f, {0, 1}, 0};
+    gb_visibility_gate fitted = paper;
+    fitted.radius = sqrtf(35.0f / 3.0f);
     float vpl[3] = {4, 5, 5}, lit[3] = {16, 9.5f, 5};
-    int before = gb_topo_cone_contains(vpl, &gate, lit);
-    CHECK(gb_topo_gates_build(&s, &gates, &error) == GB_OK &&
-              gb_topo_gates_fit_openings(&s, &gates, clusters, surface, &error) == GB_OK,
-          "openings: gate fitted");
-    printf("# opening: centre %.2f %.2f %.2f normal %.2f %.2f %.2f radius %.3f\n", gate.centre[0],
-           gate.centre[1], gate.centre[2], gate.normal[0], gate.normal[1], gate.normal[2],
-           gate.radius);
-    CHECK(fabsf(gate.centre[0] - 10) < 1e-4f && fabsf(gate.centre[1] - 5) < 1e-4f &&
-              fabsf(gate.centre[2] - 5) < 1e-4f && gate.normal[0] > 0.999f,
-          "openings: disk at the opening's centre, facing from cluster 0 to 1");
-    CHECK(gate.radius > 3.0f && gate.radius < 4.25f,
-          "openings: radius between the opening's inscribed and circumscribed circles "
-          "(the wall's voxels are not part of it)");
-    CHECK(!before && gb_topo_cone_contains(vpl, &gate, lit),
-          "openings: light through the opening's edge, cut by the paper's disk, passes");
-    gb_topo_gates_free(&gates);
-
-    /* a third room behind x = 15 that no skeleton edge joins to room 1 */
-    for (int i = 0; i < NX * NY * NZ; ++i)
-        if (i % NX >= 15)
-            clusters[i] = 2;
-    s.cluster_count = 3;
-    s.gates = malloc(sizeof *s.gates);
-    s.gates[0] = gate;
-    uint32_t added = 0;
-    CHECK(gb_topo_gates_add_openings(&s, clusters, surface, &added, &error) == GB_OK &&
-              added == 1 && s.gate_count == 2 && s.gates[1].clusters[0] == 1 &&
-              s.gates[1].clusters[1] == 2 && s.gates[1].edge == UINT32_MAX,
-          "openings: clusters 1 and 2 touch without a gate: one is added");
-    CHECK(gb_topo_gates_build(&s, &gates, &error) == GB_OK &&
-              gb_topo_gates_fit_openings(&s, &gates, clusters, surface, &error) == GB_OK &&
-              fabsf(s.gates[1].centre[0] - 15) < 1e-4f && s.gates[1].radius > 5.0f,
-          "openings: ... fitted to the whole x = 15 section");
-    gb_topo_gates_free(&gates);
-    free(s.gates);
-    free(clusters);
-    free(surface);
+    CHECK(!gb_topo_cone_contains(vpl, &paper, lit) && gb_topo_cone_contains(vpl, &fitted, lit),
+          "fitted gate: light through the opening's edge, cut by the paper's disk, passes");
 }
 
 /* 64 x 40 pixels, camera at the origin looking down -z: columns < 20 see
@@ -636,7 +589,7 @@ int main(void)
     test_routes();
     test_vpl_at_the_door();
     test_lookup_off_the_wall();
-    test_gate_fitted_to_opening();
+    test_fitted_gate_cone();
     test_iugc();
     test_la_cpu_equals_gpu();
     test_cluster_lookup_gpu();

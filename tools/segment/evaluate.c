@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "embree_scene.h"
+#include "gate_pairs.h"
 #include "random.h"
 #include "segment.h"
 
@@ -18,38 +19,22 @@ typedef struct surface_point {
     gb_vec3 normal;             /* geometric, unit */
 } surface_point;
 
-/* Gates ordered by their (smaller, larger) cluster pair, for a binary search. */
-typedef struct gate_key {
-    uint32_t low, high, gate;
-} gate_key;
-
 typedef struct evaluation {
     const gb_scene *scene;
     const gb_segmentation *seg;
     const int32_t *nearest;
     gb_embree_scene *rays;
     double *area_cdf;           /* triangle_count prefix sums of areas */
-    gate_key *gates;
+    gb_gate_pairs gates;        /* for the one-gate predictor */
     float epsilon;              /* ray offset off the surfaces */
     uint64_t ray_count;
 } evaluation;
-
-static int compare_gate_keys(const void *a, const void *b)
-{
-    const gate_key *x = a, *y = b;
-    if (x->low != y->low)
-        return x->low < y->low ? -1 : 1;
-    if (x->high != y->high)
-        return x->high < y->high ? -1 : 1;
-    return x->gate < y->gate ? -1 : x->gate > y->gate;
-}
 
 static gb_result build_tables(evaluation *ev, gb_error *error)
 {
     const gb_scene *scene = ev->scene;
     ev->area_cdf = malloc((scene->triangle_count + 1) * sizeof *ev->area_cdf);
-    ev->gates = malloc((ev->seg->gate_count + 1) * sizeof *ev->gates);
-    if (!ev->area_cdf || !ev->gates)
+    if (!ev->area_cdf)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory for the sampling tables");
     double total = 0.0;
     for (uint32_t t = 0; t < scene->triangle_count; ++t) {
@@ -58,12 +43,7 @@ static gb_result build_tables(evaluation *ev, gb_error *error)
     }
     if (!(total > 0.0))
         return gb_fail(error, GB_ERROR_INVALID, "the scene has no surface to sample");
-    for (uint32_t g = 0; g < ev->seg->gate_count; ++g) {
-        const uint32_t *c = ev->seg->gates[g].clusters;
-        ev->gates[g] = (gate_key){c[0] < c[1] ? c[0] : c[1], c[0] < c[1] ? c[1] : c[0], g};
-    }
-    qsort(ev->gates, ev->seg->gate_count, sizeof *ev->gates, compare_gate_keys);
-    return GB_OK;
+    return gb_gate_pairs_build(ev->seg, &ev->gates, error);
 }
 
 /* The first triangle whose cumulated area exceeds u * total. */
@@ -140,18 +120,9 @@ static int crosses_gate(const gb_visibility_gate *g, gb_vec3 p, gb_vec3 q)
 
 static int through_one_gate(const evaluation *ev, uint32_t a, uint32_t b, gb_vec3 p, gb_vec3 q)
 {
-    gate_key key = {a < b ? a : b, a < b ? b : a, 0};
-    uint32_t low = 0, high = ev->seg->gate_count;
-    while (low < high) {
-        uint32_t middle = low + (high - low) / 2;
-        if (compare_gate_keys(&ev->gates[middle], &key) < 0)
-            low = middle + 1;
-        else
-            high = middle;
-    }
-    for (uint32_t i = low; i < ev->seg->gate_count && ev->gates[i].low == key.low &&
-                           ev->gates[i].high == key.high; ++i)
-        if (crosses_gate(&ev->seg->gates[ev->gates[i].gate], p, q))
+    uint32_t first, count = gb_gate_pairs_find(&ev->gates, a, b, &first);
+    for (uint32_t i = first; i < first + count; ++i)
+        if (crosses_gate(&ev->seg->gates[ev->gates.pairs[i].gate], p, q))
             return 1;
     return 0;
 }
@@ -268,7 +239,7 @@ gb_result gb_segment_evaluate(const gb_scene *scene, const gb_segmentation *segm
     if (ev.rays)
         gb_embree_scene_destroy(ev.rays);
     free(ev.area_cdf);
-    free(ev.gates);
+    gb_gate_pairs_free(&ev.gates);
     out->seconds = gb_seconds() - start;
     return result;
 }

@@ -1,7 +1,8 @@
 /* segment — the segmented skeleton, visibility clusters and visibility gates
- * of a skeleton (noel-biri-2014 §IV.B, §IV.C; tools/segment/segment.h), and
- * the measure of how well they predict visibility (--evaluate). Parses the
- * command line, reads the inputs, calls the library, writes the outputs. */
+ * of a skeleton (noel-biri-2014 §IV.B, §IV.C; tools/segment/segment.h), the
+ * gates fitted to the voxels (--voxels --grid), and the measure of how well
+ * they predict visibility (--evaluate). Parses the command line, reads the
+ * inputs, calls the library, writes the outputs. */
 
 #include <getopt.h>
 #include <stdio.h>
@@ -19,17 +20,25 @@
 #include "voxel_grid.h"
 
 static const char usage[] =
-    "usage: segment [options] IN.skel -o OUT.seg\n"
+    "usage: segment [options] IN.skel -o OUT.seg [--voxels IN.vdb --grid IN.grid.vdb]\n"
     "       segment --evaluate SCENE IN.seg GRID.vdb [--pairs N] [--seed S]\n"
     "Segments the skeleton IN.skel (written by thin) into topology, curvature and\n"
     "coverage nodes, grows visibility clusters over the segmented skeleton and puts\n"
     "a visibility gate on every edge between two clusters; writes OUT.seg.\n"
+    "With --voxels and --grid (voxelize's voxels and thin's nearest-node grid of\n"
+    "the same bake; make bake passes them), fits each gate's disk to the opening\n"
+    "between its two clusters' voxels and adds a gate wherever two clusters touch\n"
+    "with no edge between them: the gates gbview draws. Without them the gates are\n"
+    "the paper's disks.\n"
     "With --evaluate, samples pairs of points on SCENE's surfaces, predicts their\n"
     "visibility from IN.seg and thin's nearest-node grid GRID.vdb (\"same cluster\",\n"
     "\"same cluster or through one gate\"), checks it with Embree rays and prints\n"
     "precision and recall.\n"
     "\n"
     "  -o, --output FILE      the segmentation file (required without --evaluate)\n"
+    "      --voxels FILE      voxelize's voxels (.vdb), to fit the gates (with --grid)\n"
+    "  -g, --grid FILE        thin's nearest-node grid (.grid.vdb), to fit the gates\n"
+    "                         (with --voxels)\n"
     "  -a, --alpha PERCENT    how much a neighbour's maximal ball may differ from the\n"
     "                         cluster's largest to join it, 0 to 100 (default 20)\n"
     "  -e, --evaluate         evaluate IN.seg on SCENE instead of segmenting\n"
@@ -40,10 +49,10 @@ static const char usage[] =
     "  -h, --help             this help\n"
     "  -V, --version          the version\n";
 
-enum { OPTION_SEED = 256 };
+enum { OPTION_SEED = 256, OPTION_VOXELS };
 
 typedef struct arguments {
-    const char *input, *output, *scene, *grid;
+    const char *input, *output, *scene, *grid, *voxels;
     gb_segment_options options;
     gb_segment_evaluate_options evaluate_options;
     int evaluate, quiet, stats;
@@ -51,6 +60,8 @@ typedef struct arguments {
 
 static const struct option long_options[] = {
     GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("voxels", OPTION_VOXELS),
+    GB_CLI_VALUE("grid", 'g'),
     GB_CLI_VALUE("alpha", 'a'),
     GB_CLI_FLAG("evaluate", 'e'),
     GB_CLI_VALUE("pairs", 'n'),
@@ -66,6 +77,8 @@ static int parse_option(int option, const char *text, void *context)
     gb_segment_evaluate_options *e = &args->evaluate_options;
     switch (option) {
     case 'o': args->output = text; return 0;
+    case OPTION_VOXELS: args->voxels = text; return 0;
+    case 'g': args->grid = text; return 0;
     case 'e': args->evaluate = 1; return 0;
     case 's': args->stats = 1; return 0;
     case 'q': args->quiet = 1; return 0;
@@ -77,15 +90,15 @@ static int parse_option(int option, const char *text, void *context)
     }
 }
 
-/* IN.skel and -o, or with --evaluate SCENE IN.seg GRID.vdb; GB_CLI_GO_ON,
- * else the exit status. */
+/* IN.skel and -o (--voxels and --grid both or neither), or with --evaluate
+ * SCENE IN.seg GRID.vdb; GB_CLI_GO_ON, else the exit status. */
 static int check_operands(int count, char **operands, void *context)
 {
     arguments *args = context;
     if (args->evaluate) {
-        if (count != 3 || args->output)
-            return gb_cli_usage_error("segment",
-                                      "--evaluate expects SCENE IN.seg GRID.vdb and no -o");
+        if (count != 3 || args->output || args->voxels || args->grid)
+            return gb_cli_usage_error("segment", "--evaluate expects SCENE IN.seg GRID.vdb "
+                                                 "and no -o, --voxels or --grid");
         args->scene = operands[0];
         args->input = operands[1];
         args->grid = operands[2];
@@ -93,6 +106,9 @@ static int check_operands(int count, char **operands, void *context)
     }
     if (count != 1 || !args->output)
         return gb_cli_usage_error("segment", "expected one IN.skel and -o OUT.seg");
+    if (!args->voxels != !args->grid)
+        return gb_cli_usage_error("segment", "--voxels and --grid go together (the gates "
+                                             "are fitted to both)");
     args->input = operands[0];
     return GB_CLI_GO_ON;
 }
@@ -112,28 +128,79 @@ static void print_stats(const gb_segmentation *s, const gb_segment_stats *stats)
     printf("segmented edges  %u\n", s->edge_count);
     printf("clusters         %u (alpha %g %%)\n", s->cluster_count, s->alpha);
     printf("gates            %u\n", s->gate_count);
+    printf("opening gates    %u\n", stats->opening_gates);
+    printf("fitted gates     %u\n", stats->fitted_gates);
     printf("seconds          %.4f\n", stats->seconds);
+}
+
+/* What the gates are fitted to: voxelize's voxels, thin's grid. */
+typedef struct fit_inputs {
+    gb_voxel_grid voxels, frame;
+    int32_t *nearest;
+} fit_inputs;
+
+static gb_result read_fit_inputs(const arguments *args, fit_inputs *in, gb_error *error)
+{
+    gb_result result = gb_voxel_grid_read(args->voxels, &in->voxels, error);
+    if (result == GB_OK)
+        result = gb_voxel_grid_read_int32(args->grid, "nearest_node", &in->frame, &in->nearest,
+                                          error);
+    return result;
+}
+
+static void free_fit_inputs(fit_inputs *in)
+{
+    gb_voxel_grid_free(&in->voxels);
+    gb_voxel_grid_free(&in->frame);
+    free(in->nearest);
+}
+
+/* The gates fitted to the voxels, once both grids are known to be the
+ * segmentation's. */
+static gb_result fit_gates(const arguments *args, const fit_inputs *in, gb_segmentation *s,
+                           gb_segment_stats *stats, gb_error *error)
+{
+    gb_result result = gb_segmentation_check_frame(s, &in->voxels, args->voxels, error);
+    if (result == GB_OK)
+        result = gb_segmentation_check_grid(s, &in->frame, in->nearest, args->grid, error);
+    gb_error reason;
+    if (result == GB_OK &&
+        (result = gb_segment_fit_gates(s, &in->voxels, in->nearest, stats, &reason)) != GB_OK)
+        gb_fail(error, result, "%s: %s", args->input, reason.message);
+    return result;
+}
+
+/* The skeleton segmented, then with --voxels and --grid its gates fitted. */
+static gb_result make_segmentation(const arguments *args, const gb_skeleton *skeleton,
+                                   const fit_inputs *in, gb_segmentation *s,
+                                   gb_segment_stats *stats, gb_error *error)
+{
+    gb_error reason;
+    gb_result result = gb_segment(skeleton, &args->options, s, stats, &reason);
+    if (result != GB_OK)
+        return gb_fail(error, result, "%s: %s", args->input, reason.message);
+    return args->voxels ? fit_gates(args, in, s, stats, error) : GB_OK;
 }
 
 static gb_result run_segment(const arguments *args, gb_error *error)
 {
-    gb_skeleton skeleton;
+    gb_skeleton skeleton = {0};
+    fit_inputs in = {0};
+    gb_segmentation segmentation = {0};
+    gb_segment_stats stats;
     gb_result result = gb_output_file_check(args->output, error);
     if (result == GB_OK)
         result = gb_skeleton_read(args->input, &skeleton, error);
-    if (result != GB_OK)
-        return result;
-    gb_segmentation segmentation;
-    gb_segment_stats stats;
-    gb_error reason;
-    result = gb_segment(&skeleton, &args->options, &segmentation, &stats, &reason);
-    if (result != GB_OK)
-        gb_fail(error, result, "%s: %s", args->input, reason.message);
-    else
+    if (result == GB_OK && args->voxels)
+        result = read_fit_inputs(args, &in, error);
+    if (result == GB_OK)
+        result = make_segmentation(args, &skeleton, &in, &segmentation, &stats, error);
+    if (result == GB_OK)
         result = gb_segmentation_write(args->output, &segmentation, error);
     if (result == GB_OK && args->stats)
         print_stats(&segmentation, &stats);
     gb_segmentation_free(&segmentation);
+    free_fit_inputs(&in);
     gb_skeleton_free(&skeleton);
     return result;
 }

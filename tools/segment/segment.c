@@ -8,6 +8,7 @@
 #include "adjacency.h"
 #include "coverage_nodes.h"
 #include "curvature_nodes.h"
+#include "gate_openings.h"
 #include "lines.h"
 #include "segmented_skeleton.h"
 #include "topology_nodes.h"
@@ -118,4 +119,46 @@ gb_result gb_segment(const gb_skeleton *skeleton, const gb_segment_options *opti
     count_classes(out, stats);
     stats->seconds = gb_seconds() - start;
     return GB_OK;
+}
+
+static int same_frame(const gb_segmentation *s, const gb_voxel_grid *voxels)
+{
+    return voxels->size[0] == s->grid_size[0] && voxels->size[1] == s->grid_size[1] &&
+           voxels->size[2] == s->grid_size[2];
+}
+
+/* The openings' gates added, then every disk fitted. */
+static gb_result fit_to_openings(gb_segmentation *s, const int32_t *voxel_clusters,
+                                 const uint8_t *surface, gb_segment_stats *stats,
+                                 gb_error *error)
+{
+    gb_result result = gb_gate_openings_add(s, voxel_clusters, surface, &stats->opening_gates,
+                                            error);
+    if (!result)
+        result = gb_gate_openings_fit(s, voxel_clusters, surface, &stats->fitted_gates, error);
+    return result;
+}
+
+gb_result gb_segment_fit_gates(gb_segmentation *s, const gb_voxel_grid *voxels,
+                               const int32_t *nearest, gb_segment_stats *stats,
+                               gb_error *error)
+{
+    gb_segment_stats local = {0};
+    if (!stats)
+        stats = &local;
+    if (s->gates_fitted)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "the gates are fitted already");
+    if (!same_frame(s, voxels))
+        return gb_fail(error, GB_ERROR_ARGUMENT, "the voxels are not in the segmentation's frame");
+    double start = gb_seconds();
+    int32_t *voxel_clusters = gb_segmentation_voxel_clusters(s, nearest);
+    if (!voxel_clusters)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory for the voxels' clusters");
+    gb_result result = fit_to_openings(s, voxel_clusters, voxels->surface, stats, error);
+    free(voxel_clusters);
+    s->gates_fitted = 1;
+    if (!result)
+        result = gb_segmentation_validate(s, "segmentation", error);
+    stats->seconds += gb_seconds() - start;
+    return result;
 }

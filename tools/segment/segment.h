@@ -1,6 +1,7 @@
 /* segment.h — from thin's curvilinear skeleton to the segmented skeleton,
  * its visibility clusters and its visibility gates (noel-biri-2014 §IV.B and
- * §IV.C), and the measure of how well they predict visibility.
+ * §IV.C), the gates fitted to the openings the voxels show, and the measure
+ * of how well they predict visibility.
  *
  * The steps, one file each, in the paper's order and with its names:
  *   topology_nodes.h      degree != 2 (rings get an anchor)
@@ -10,6 +11,8 @@
  *   segmented_skeleton.h  classified nodes, edges, skeleton node -> nearest extremum
  *   visibility_clusters.h stack-based greedy growth with alpha
  *   visibility_gates.h    a disk at the middle of every edge between clusters
+ *   gate_openings.h       (with the voxels) the disks fitted to the openings,
+ *                         a gate where clusters touch with no edge
  *   evaluate.c            random surface point pairs against Embree
  * Each header states the cases the paper leaves open and how they are decided
  * (rings, loops, coincident nodes, isolated nodes, equal radii).
@@ -17,6 +20,7 @@
  *   gb_segment_options options = {0};          // zero = defaults (alpha 20 %)
  *   gb_segmentation seg;
  *   gb_segment(&skeleton, &options, &seg, NULL, &error);
+ *   gb_segment_fit_gates(&seg, &voxels, nearest, NULL, &error);   // optional
  *   gb_segmentation_write("scene.seg", &seg, &error);
  *   gb_segmentation_free(&seg);
  *
@@ -33,6 +37,7 @@
 #include "scene.h"
 #include "segmentation.h"
 #include "skeleton.h"
+#include "voxel_grid.h"
 
 enum { GB_SEGMENT_DEFAULT_ALPHA = 20, GB_SEGMENT_DEFAULT_PAIRS = 100000 };
 
@@ -50,6 +55,8 @@ typedef struct gb_segment_stats {
     uint32_t rings;             /* rings (cycles without topology node) anchored */
     uint32_t loops;             /* lines from a node back to itself, opened */
     uint32_t lines;             /* lines between topology nodes, before any split */
+    uint32_t opening_gates;     /* gates added where clusters touch with no edge */
+    uint32_t fitted_gates;      /* gates whose disk was fitted to their opening */
     double seconds;
 } gb_segment_stats;
 
@@ -58,6 +65,17 @@ typedef struct gb_segment_stats {
  * failure out is left empty. */
 gb_result gb_segment(const gb_skeleton *skeleton, const gb_segment_options *options,
                      gb_segmentation *out, gb_segment_stats *stats, gb_error *error);
+
+/* The gates of a segmentation gb_segment made (not yet fitted), fitted to
+ * the voxels (gate_openings.h): opening gates added, every disk fitted,
+ * gates_fitted set. voxels: voxelize's grid, whose surface flags it reads;
+ * nearest: thin's nearest-node grid; both in the segmentation's frame
+ * (gb_segmentation_check_frame, gb_segmentation_check_grid). stats may be
+ * NULL; it gets opening_gates and fitted_gates, and the time is added to its
+ * seconds. On failure the gates may be half fitted: free the segmentation. */
+gb_result gb_segment_fit_gates(gb_segmentation *segmentation, const gb_voxel_grid *voxels,
+                               const int32_t *nearest, gb_segment_stats *stats,
+                               gb_error *error);
 
 /* ---- evaluation ---- */
 

@@ -1,35 +1,11 @@
-/* topo_gate_openings.c — each visibility gate's disk fitted to the opening
- * it stands for. segment places the paper's disk (Noël & Biri 2014, §IV.C)
- * at the middle of the segmented edge, radius min(maxball(n1), maxball(n2)):
- * the inscribed ball of the narrowest end, often far smaller than the real
- * separation between the two clusters (a court cut at mid-height: the disk
- * has the radius of the court's half width, the opening is the whole court).
- * The paper names the result (darker images, §VI.B) and suggests matching
- * the shape of the separation better.
- *
- * The separation is known exactly once the voxels have their clusters
- * (gb_topo_voxel_clusters): the faces between an empty voxel of cluster a
- * and an empty voxel of cluster b. Each such face goes to the gate between a
- * and b whose centre (before fitting) is nearest; a gate's new disk has the
- * faces' centroid as centre, their mean normal (oriented from clusters[0]
- * to clusters[1]) as normal, and the radius of the disk with the same second
- * moment in its plane, sqrt(2 <r^2>) (exact for faces filling a disk),
- * never below the paper's radius. A gate without faces keeps the paper's
- * disk.
- *
- * Gates come from the segmented skeleton's edges, but the voxels decide
- * which clusters touch: the nearest-node partition often makes two clusters
- * meet with no edge between them (a room's corner near an opening belongs
- * to the skeleton outside). gb_topo_gates_add_openings gives every such
- * pair of clusters a gate of its own (edge UINT32_MAX), fitted the same way,
- * so that light crosses every opening the voxels show.
- *
- * The caller owns everything; the gates are changed in place. */
+/* gate_openings.c — the gates' disks fitted to the openings between the
+ * clusters' voxels, and the opening gates (gate_openings.h). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "topo.h"
+#include "gate_openings.h"
+#include "gate_pairs.h"
 
 typedef struct opening {
     double count;
@@ -38,29 +14,21 @@ typedef struct opening {
     double normal[3];           /* sum of oriented face normals */
 } opening;
 
-static uint32_t other_side(const gb_visibility_gate *gate, uint32_t c)
-{
-    return gate->clusters[0] == c ? gate->clusters[1] : gate->clusters[0];
-}
-
 /* The gate between clusters a and b whose anchor (its centre before any
- * fitting) is nearest to x; UINT32_MAX: none. */
-static uint32_t gate_between(const gb_segmentation *s, const gb_topo_gates *gates,
-                             const float (*anchors)[3], uint32_t a, uint32_t b, const double x[3])
+ * fitting) is nearest to x, the smaller index on a tie; UINT32_MAX: none. */
+static uint32_t gate_between(const gb_gate_pairs *pairs, const float (*anchors)[3], uint32_t a,
+                             uint32_t b, const double x[3])
 {
-    uint32_t best = UINT32_MAX;
+    uint32_t best = UINT32_MAX, first, count = gb_gate_pairs_find(pairs, a, b, &first);
     double best_d2 = INFINITY;
-    for (uint32_t k = gates->offsets[a]; k < gates->offsets[a + 1]; ++k) {
-        const gb_visibility_gate *g = &s->gates[gates->gates[k]];
-        if (other_side(g, a) != b)
-            continue;
-        const float *anchor = anchors[gates->gates[k]];
+    for (uint32_t k = first; k < first + count; ++k) {
+        uint32_t g = pairs->pairs[k].gate;
         double d2 = 0.0;
         for (int i = 0; i < 3; ++i)
-            d2 += (x[i] - anchor[i]) * (x[i] - anchor[i]);
+            d2 += (x[i] - anchors[g][i]) * (x[i] - anchors[g][i]);
         if (d2 < best_d2) {
             best_d2 = d2;
-            best = gates->gates[k];
+            best = g;
         }
     }
     return best;
@@ -146,7 +114,7 @@ static void visit_cluster_faces(const gb_segmentation *s, const int32_t *voxel_c
 
 typedef struct face_gathering {
     const gb_segmentation *s;
-    const gb_topo_gates *gates;
+    const gb_gate_pairs *pairs;
     const float (*anchors)[3];
     opening *openings;
 } face_gathering;
@@ -159,7 +127,7 @@ static int gather_face(void *user, const int32_t ijk[3], int axis, int32_t a, in
     for (int i = 0; i < 3; ++i)
         centre[i] = f->s->world_origin[i] +
                     (ijk[i] + 0.5 + (i == axis ? 0.5 : 0.0)) * f->s->voxel_size;
-    uint32_t g = gate_between(f->s, f->gates, f->anchors, (uint32_t)a, (uint32_t)b, centre);
+    uint32_t g = gate_between(f->pairs, f->anchors, (uint32_t)a, (uint32_t)b, centre);
     if (g != UINT32_MAX) {
         normal[axis] = f->s->gates[g].clusters[0] == (uint32_t)a ? 1.0 : -1.0;
         add_face(&f->openings[g], centre, normal);
@@ -220,65 +188,81 @@ static uint64_t *touching_pairs(const gb_segmentation *s, const int32_t *voxel_c
     return list.pairs;
 }
 
-static int has_gate(const gb_segmentation *s, uint32_t a, uint32_t b)
+/* Appends an opening gate for each touching pair that no gate joins. */
+static void append_opening_gates(gb_segmentation *s, const gb_gate_pairs *joined,
+                                 const uint64_t *pairs, size_t count)
 {
-    for (uint32_t g = 0; g < s->gate_count; ++g) {
-        const uint32_t *c = s->gates[g].clusters;
-        if ((c[0] == a && c[1] == b) || (c[0] == b && c[1] == a))
-            return 1;
+    for (size_t i = 0; i < count; ++i) {
+        uint32_t a = (uint32_t)(pairs[i] >> 32), b = (uint32_t)pairs[i], first;
+        if (gb_gate_pairs_find(joined, a, b, &first))
+            continue;
+        /* centre, normal and radius come from the faces (fit_disk) */
+        s->gates[s->gate_count++] = (gb_visibility_gate){.normal = {1.0f, 0.0f, 0.0f},
+                                                         .radius = 0.0f,
+                                                         .clusters = {a, b},
+                                                         .edge = GB_SEGMENTATION_NO_EDGE};
     }
-    return 0;
 }
 
-gb_result gb_topo_gates_add_openings(gb_segmentation *s, const int32_t *voxel_clusters,
-                                     const uint8_t *surface, uint32_t *added, gb_error *error)
+gb_result gb_gate_openings_add(gb_segmentation *s, const int32_t *voxel_clusters,
+                               const uint8_t *surface, uint32_t *added, gb_error *error)
 {
     *added = 0;
     size_t count = 0;
+    gb_gate_pairs joined;
+    gb_result result = gb_gate_pairs_build(s, &joined, error);
+    if (result != GB_OK)
+        return result;
     uint64_t *pairs = touching_pairs(s, voxel_clusters, surface, &count);
-    if (!pairs)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "gate openings: out of memory");
-    gb_visibility_gate *gates = realloc(s->gates, ((size_t)s->gate_count + count + 1) *
-                                                      sizeof *gates);
-    if (!gates) {
-        free(pairs);
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "gate openings: out of memory");
+    gb_visibility_gate *gates =
+        pairs ? realloc(s->gates, ((size_t)s->gate_count + count + 1) * sizeof *gates) : NULL;
+    if (gates) {
+        s->gates = gates;
+        uint32_t old_count = s->gate_count;
+        append_opening_gates(s, &joined, pairs, count);
+        *added = s->gate_count - old_count;
+    } else {
+        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "gate openings: out of memory");
     }
-    s->gates = gates;
-    uint32_t old_count = s->gate_count;
-    for (size_t i = 0; i < count; ++i) {
-        uint32_t a = (uint32_t)(pairs[i] >> 32), b = (uint32_t)pairs[i];
-        if (has_gate(s, a, b))
-            continue;
-        /* centre, normal and radius come from the faces (fit_disk) */
-        s->gates[s->gate_count++] = (gb_visibility_gate){
-            .normal = {1.0f, 0.0f, 0.0f}, .radius = 0.0f, .clusters = {a, b}, .edge = UINT32_MAX};
-    }
-    *added = s->gate_count - old_count;
     free(pairs);
-    return GB_OK;
+    gb_gate_pairs_free(&joined);
+    return result;
 }
 
-gb_result gb_topo_gates_fit_openings(gb_segmentation *s, const gb_topo_gates *gates,
-                                     const int32_t *voxel_clusters, const uint8_t *surface,
-                                     gb_error *error)
+/* The disks of the gates that have faces, from the openings gathered. */
+static uint32_t fit_disks(gb_segmentation *s, const opening *openings)
 {
+    uint32_t fitted = 0;
+    for (uint32_t g = 0; g < s->gate_count; ++g)
+        if (openings[g].count > 0.0) {
+            fit_disk(&openings[g], &s->gates[g]);
+            ++fitted;
+        }
+    return fitted;
+}
+
+gb_result gb_gate_openings_fit(gb_segmentation *s, const int32_t *voxel_clusters,
+                               const uint8_t *surface, uint32_t *fitted, gb_error *error)
+{
+    *fitted = 0;
     uint32_t count = s->gate_count;
+    gb_gate_pairs pairs;
+    gb_result result = gb_gate_pairs_build(s, &pairs, error);
+    if (result != GB_OK)
+        return result;
     opening *openings = calloc(count ? count : 1, sizeof *openings);
     float (*anchors)[3] = malloc((count ? count : 1) * sizeof *anchors);
-    if (!openings || !anchors) {
-        free(openings);
-        free(anchors);
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "gate openings: out of memory");
+    if (openings && anchors) {
+        for (uint32_t g = 0; g < count; ++g)
+            memcpy(anchors[g], s->gates[g].centre, sizeof anchors[g]);
+        face_gathering gathering = {s, &pairs, (const float (*)[3])anchors, openings};
+        visit_cluster_faces(s, voxel_clusters, surface, gather_face, &gathering);
+        *fitted = fit_disks(s, openings);
+    } else {
+        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "gate openings: out of memory");
     }
-    for (uint32_t g = 0; g < count; ++g)
-        memcpy(anchors[g], s->gates[g].centre, sizeof anchors[g]);
-    face_gathering gathering = {s, gates, (const float (*)[3])anchors, openings};
-    visit_cluster_faces(s, voxel_clusters, surface, gather_face, &gathering);
-    for (uint32_t g = 0; g < count; ++g)
-        if (openings[g].count > 0.0)
-            fit_disk(&openings[g], &s->gates[g]);
     free(openings);
     free(anchors);
-    return GB_OK;
+    gb_gate_pairs_free(&pairs);
+    return result;
 }
