@@ -29,6 +29,7 @@
 #include "result.h"
 #include "scene.h"
 #include "segmentation.h"
+#include "topo_clusters.h"
 #include "vpl.h"
 
 extern const gb_indirect_method gb_topo_method;
@@ -64,43 +65,6 @@ enum { GB_TOPO_NO_GATE = 0xffffffffu };
  * with no light, gb_scene_has_light) give no VPL: set->count 0. */
 gb_result gb_topo_vpls_generate(const gb_scene *scene, uint32_t count, uint64_t seed,
                                 gb_vpl_set *set, gb_error *error);
-
-/* ---- visibility clusters (topo_clusters.c) -----------------------------
- * The cluster of each voxel of the nearest-node grid, -1 where none
- * (gb_segmentation_voxel_clusters, formats/segmentation.h), is what the GPU
- * looks a fragment up in. */
-
-/* Marks the voxels voxelize flagged as surface: cluster c becomes
- * GB_TOPO_SURFACE_CLUSTER(c) = -c - 2 (its own inverse), which the lookups
- * below use only as a last resort: thin gives a surface voxel the node of
- * its best empty neighbour, often across the wall. */
-#define GB_TOPO_SURFACE_CLUSTER(c) (-(c) - 2)
-void gb_topo_voxel_clusters_mark_surface(const gb_segmentation *segmentation,
-                                         int32_t *voxel_clusters, const uint8_t *surface);
-
-/* The cluster of a surface point x of geometric normal ng: x moved into the
- * empty side by |ng|_1 voxels (out of the surface's own voxels), then 1 and
- * 2 voxels more, until one has a cluster; failing that, the first marked
- * surface voxel's cluster on the way. -1: none. The CPU twin of the GPU
- * lookup. */
-int32_t gb_topo_surface_cluster(const gb_segmentation *segmentation, const int32_t *voxel_clusters,
-                                const float x[3], const float ng[3]);
-
-/* GPU: the compute program that fills the G-buffer's clusters.x. */
-typedef struct gb_topo_cluster_pass {
-    GLuint program;
-    GLuint voxel_clusters;      /* 3-D R32I texture */
-} gb_topo_cluster_pass;
-
-gb_result gb_topo_cluster_pass_create(const gb_segmentation *segmentation,
-                                      const int32_t *voxel_clusters, gb_topo_cluster_pass *pass,
-                                      gb_error *error);
-/* view_to_world: column-major; tan_half_fov x, y. Writes clusters (RG32UI)
- * x = visibility cluster, y = GB_NO_CLUSTER. */
-void gb_topo_cluster_pass_run(const gb_topo_cluster_pass *pass, GLuint depth, GLuint normal,
-                              GLuint clusters, int width, int height, const float view_to_world[16],
-                              const float tan_half_fov[2], float near);
-void gb_topo_cluster_pass_destroy(gb_topo_cluster_pass *pass);
 
 /* ---- IUGC (topo_geometry_clusters.c) ----------------------------------- */
 typedef struct gb_geometry_cluster {

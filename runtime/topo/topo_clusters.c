@@ -11,7 +11,7 @@
 
 #include "gbuffer.h"
 #include "gl_util.h"
-#include "topo.h"
+#include "topo_clusters.h"
 
 /* The fragment moves off its surface along its geometric normal ng until it
  * leaves the surface's voxels: voxelize marks every voxel a triangle touches,
