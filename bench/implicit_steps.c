@@ -18,7 +18,8 @@
  *   implicit_steps scale BINS FRAMES VERTICES...
  *       one line per model size, the same columns
  *   implicit_steps scene FILE FRAMES BOUNCES BINS...
- *       a scene file's model at the runtime's element size, the same columns
+ *       a scene file's model at the runtime's element size and cell (the
+ *       others keep one element a vertex), the same columns
  *
  * The gathering runs on 2 threads (implicit_bounce.c), the rest on one: on
  * a loaded machine the CPU times are the steadier figures; on an idle
@@ -178,9 +179,9 @@ static float longest_edge(const gb_scene *scene)
  * 2 % of their height round the vertical axis. */
 static void deform(gb_implicit_model *m, const float *rest, int frame)
 {
-    for (uint32_t e = 0; e < m->element_count; ++e) {
-        const float *p = &rest[3 * (size_t)e];
-        float *q = &m->vertices[3 * (size_t)e];
+    for (uint32_t v = 0; v < m->vertex_count; ++v) {
+        const float *p = &rest[3 * (size_t)v];
+        float *q = &m->vertices[3 * (size_t)v];
         float s = p[1] > 0.01f ? 1.0f + 0.02f * sinf(0.7f * (float)frame + 3.0f * p[0]) : 1.0f;
         q[0] = p[0] * s;
         q[1] = p[1];
@@ -193,13 +194,13 @@ typedef struct step_times {
     double update, create, refine, illuminate, total, wall;
 } step_times;
 
-static gb_result run(const gb_scene *scene, float element_size, int bins_n, int frames,
-                     int bounces, int deforming, gb_error *error)
+static gb_result run(const gb_scene *scene, float element_size, float element_cell, int bins_n,
+                     int frames, int bounces, int deforming, gb_error *error)
 {
     gb_implicit_model m;
     gb_implicit_bins bins;
     double prepare = gb_cpu_seconds();
-    gb_result result = gb_implicit_model_create(scene, element_size, &m, error);
+    gb_result result = gb_implicit_model_create(scene, element_size, element_cell, &m, error);
     if (result != GB_OK)
         return result;
     prepare = gb_cpu_seconds() - prepare;
@@ -207,9 +208,9 @@ static gb_result run(const gb_scene *scene, float element_size, int bins_n, int 
     gb_implicit_solution solution;
     if (result == GB_OK)
         result = gb_implicit_solution_create(&m, &solution, error);
-    float *rest = malloc(3 * (size_t)m.element_count * sizeof *rest + 1);
+    float *rest = malloc(3 * (size_t)m.vertex_count * sizeof *rest + 1);
     if (rest)
-        memcpy(rest, m.vertices, 3 * (size_t)m.element_count * sizeof *rest);
+        memcpy(rest, m.vertices, 3 * (size_t)m.vertex_count * sizeof *rest);
     else if (result == GB_OK)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit_steps: out of memory");
     step_times sum = {0};
@@ -278,20 +279,21 @@ int main(int argc, char **argv)
     if (strcmp(argv[1], "table") == 0) {
         make_model(atoi(argv[2]), &scene);
         for (int i = 5; i < argc && result == GB_OK; ++i)
-            result = run(&scene, longest_edge(&scene), atoi(argv[i]), atoi(argv[3]),
+            result = run(&scene, longest_edge(&scene), 0.0f, atoi(argv[i]), atoi(argv[3]),
                          atoi(argv[4]), 1, &error);
         gb_scene_free(&scene);
     } else if (strcmp(argv[1], "scale") == 0) {
         for (int i = 4; i < argc && result == GB_OK; ++i) {
             make_model(atoi(argv[i]), &scene);
-            result = run(&scene, longest_edge(&scene), atoi(argv[2]), atoi(argv[3]), 1, 1,
+            result = run(&scene, longest_edge(&scene), 0.0f, atoi(argv[2]), atoi(argv[3]), 1, 1,
                          &error);
             gb_scene_free(&scene);
         }
     } else if (strcmp(argv[1], "scene") == 0) {
         result = gb_scene_load(argv[2], NULL, &scene, &error);
         for (int i = 5; i < argc && result == GB_OK; ++i)
-            result = run(&scene, 0.0f, atoi(argv[i]), atoi(argv[3]), atoi(argv[4]), 0, &error);
+            result = run(&scene, 0.0f, GB_IMPLICIT_ELEMENT_CELL, atoi(argv[i]), atoi(argv[3]),
+                         atoi(argv[4]), 0, &error);
         gb_scene_free(&scene);
     } else {
         return usage();

@@ -31,6 +31,7 @@ typedef struct implicit_state {
     gb_implicit_bins bins;
     gb_implicit_links links;
     gb_implicit_solution solution;
+    float *vertex_incident;     /* model.vertex_count * 3: its element's display */
     float *environment;         /* bins.count * 3 from the scene's map, or NULL */
     int bounces;
     double build_seconds;       /* the last Update + links */
@@ -75,10 +76,10 @@ static void make_mesh(implicit_state *s)
 {
     const gb_implicit_model *m = &s->model;
     glCreateBuffers(1, &s->position_buffer);
-    glNamedBufferStorage(s->position_buffer, 3 * (GLsizeiptr)m->element_count * sizeof(float),
+    glNamedBufferStorage(s->position_buffer, 3 * (GLsizeiptr)m->vertex_count * sizeof(float),
                          m->vertices, 0);
     glCreateBuffers(1, &s->incident_buffer);
-    glNamedBufferStorage(s->incident_buffer, 3 * (GLsizeiptr)m->element_count * sizeof(float),
+    glNamedBufferStorage(s->incident_buffer, 3 * (GLsizeiptr)m->vertex_count * sizeof(float),
                          NULL, GL_DYNAMIC_STORAGE_BIT);
     glCreateBuffers(1, &s->index_buffer);
     glNamedBufferStorage(s->index_buffer, 3 * (GLsizeiptr)m->triangle_count * sizeof(uint32_t),
@@ -112,6 +113,7 @@ static void implicit_destroy(void *state)
     GLuint textures[2] = {s->incident_texture, s->depth_texture};
     glDeleteTextures(2, textures);
     gb_implicit_solution_free(&s->solution);
+    free(s->vertex_incident);
     gb_implicit_links_free(&s->links);
     free(s->environment);
     gb_implicit_bins_free(&s->bins);
@@ -168,7 +170,8 @@ static gb_result make_environment(implicit_state *s, gb_error *error)
 
 static gb_result build(implicit_state *s, int bins, gb_error *error)
 {
-    gb_result result = gb_implicit_model_create(s->scene, 0.0f, &s->model, error);
+    gb_result result =
+        gb_implicit_model_create(s->scene, 0.0f, GB_IMPLICIT_ELEMENT_CELL, &s->model, error);
     if (result == GB_OK)
         result = gb_implicit_bins_create(bins, &s->bins, error);
     if (result == GB_OK)
@@ -201,6 +204,11 @@ static gb_result implicit_create(const gb_indirect_setup *setup, void **state, g
     s->scene = setup->scene;
     s->bounces = bounces;
     result = build(s, bins, error);
+    if (result == GB_OK) {
+        s->vertex_incident = malloc(3 * (size_t)s->model.vertex_count * sizeof(float) + 1);
+        if (!s->vertex_incident)
+            result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    }
     if (result == GB_OK)
         result = gb_gl_program("implicit mesh", mesh_vertex_shader, mesh_fragment_shader,
                                &s->mesh_program, error);
@@ -255,9 +263,12 @@ static void implicit_draw(void *state, const gb_indirect_frame *frame)
     gb_implicit_illuminate(s->scene, &s->model, &s->links, s->bounces, &s->solution);
     s->times.illuminate_ms += 1e3 * (gb_seconds() - start);
     ++s->times.frames;
+    for (uint32_t v = 0; v < s->model.vertex_count; ++v)
+        memcpy(&s->vertex_incident[3 * (size_t)v],
+               &s->solution.display[3 * (size_t)s->model.vertex_element[v]], 3 * sizeof(float));
     glNamedBufferSubData(s->incident_buffer, 0,
-                         3 * (GLsizeiptr)s->model.element_count * sizeof(float),
-                         s->solution.display);
+                         3 * (GLsizeiptr)s->model.vertex_count * sizeof(float),
+                         s->vertex_incident);
     draw_incident(s, frame);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
     glViewport(0, 0, frame->width, frame->height);

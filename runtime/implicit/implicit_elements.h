@@ -7,8 +7,11 @@
 #include "result.h"
 #include "scene.h"
 
-/* Steps 1-2. element_size 0: the default. */
-gb_result gb_implicit_model_create(const gb_scene *scene, float element_size,
+/* Steps 1-2. element_size 0: the default. element_cell: the grid cell
+ * whose vertices make one element, a fraction of element_size (the
+ * runtime's: GB_IMPLICIT_ELEMENT_CELL); 0: one element a vertex, as in
+ * the paper. */
+gb_result gb_implicit_model_create(const gb_scene *scene, float element_size, float element_cell,
                                    gb_implicit_model *model, gb_error *error);
 void gb_implicit_model_free(gb_implicit_model *model);
 /* implicit_elements.c: the elements of the finer mesh. */

@@ -1,6 +1,10 @@
 /* implicit_links.c — the hierarchical link structure (Dong 2007, 4.2):
  *
- * CreateHierarchicalLinks links every pair of segment roots. Before a link
+ * CreateHierarchicalLinks links the root of all with itself (every pair of
+ * its children, recursively: implicit_hierarchy.c's tree over the
+ * segments' roots, which stands for the paper's pairs of charts). A node
+ * of several segments has no side it faces: the tests along its normal
+ * below pass for it. Before a link
  * between A and B is made, the two rules of 4.2.2:
  *   1. when B seen from A covers more solid angle (area / r^2) than the bin
  *      the link falls in, B is subdivided (and A seen from B alike; the
@@ -89,9 +93,16 @@ static float disc_reach(const gb_implicit_node *b, const float n[3])
     return sqrtf(b->area / GB_PI) * sqrtf(fmaxf(0.0f, 1.0f - c * c));
 }
 
+static int has_side(const gb_implicit_node *node)
+{
+    return node->segment != GB_IMPLICIT_SEVERAL_SEGMENTS;
+}
+
 /* Whether some of b (its box, widened by its disc) may lie in front of a. */
 static int may_see(const linker *l, const gb_implicit_node *a, const gb_implicit_node *b)
 {
+    if (!has_side(a) || !has_side(b))
+        return 1;
     return box_extreme(b, a->normal, 1) + disc_reach(b, a->normal) >
            box_extreme(a, a->normal, 0) + l->epsilon;
 }
@@ -138,7 +149,8 @@ static void spread_disc(linker *l, uint32_t a, uint32_t b, float covered_bins)
         for (int k = 0; k < 3; ++k)
             d[k] = nb->position[k] + r * (l->spiral[i][0] * t[0][k] + l->spiral[i][1] * t[1][k]) -
                    na->position[k];
-        if (d[0] * na->normal[0] + d[1] * na->normal[1] + d[2] * na->normal[2] <= 0.0f)
+        if (has_side(na) &&
+            d[0] * na->normal[0] + d[1] * na->normal[1] + d[2] * na->normal[2] <= 0.0f)
             continue;
         float distance = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         store(l, a, gb_implicit_bin(l->bins->n, d), b, distance);
@@ -194,8 +206,10 @@ static void link_nodes(linker *l, uint32_t a, uint32_t b)
         return;
     }
     float r = sqrtf(r2);
-    float height_b = d[0] * na->normal[0] + d[1] * na->normal[1] + d[2] * na->normal[2];
-    float height_a = back[0] * nb->normal[0] + back[1] * nb->normal[1] + back[2] * nb->normal[2];
+    float height_b = has_side(na) ? d[0] * na->normal[0] + d[1] * na->normal[1] +
+                                        d[2] * na->normal[2] : r;
+    float height_a = has_side(nb) ? back[0] * nb->normal[0] + back[1] * nb->normal[1] +
+                                        back[2] * nb->normal[2] : r;
     if (bin_a < 0 || height_b + disc_reach(nb, na->normal) <= 0.0f ||
         height_a + disc_reach(na, nb->normal) <= 0.0f)
         return;
@@ -207,14 +221,13 @@ static void link_nodes(linker *l, uint32_t a, uint32_t b)
     spread_disc(l, b, a, na->area / (omega_b * r2));
 }
 
-/* CreateHierarchicalLinks: every pair of roots (or of elements). */
+/* CreateHierarchicalLinks: the root of all with itself (or every pair of
+ * elements). */
 static void create_hierarchical_links(linker *l, int hierarchical)
 {
     const gb_implicit_model *m = l->model;
     if (hierarchical) {
-        for (uint32_t i = 0; i < m->root_count; ++i)
-            for (uint32_t j = i; j < m->root_count; ++j)
-                link_nodes(l, m->roots[i], m->roots[j]);
+        link_nodes(l, m->top, m->top);
         return;
     }
     for (uint32_t i = 0; i < m->element_count; ++i)
@@ -222,15 +235,14 @@ static void create_hierarchical_links(linker *l, int hierarchical)
             link_nodes(l, i, j);
 }
 
-/* RefineHierarchicalLinks + PushdownLinks, breadth first from the roots. */
+/* RefineHierarchicalLinks + PushdownLinks, breadth first from the top. */
 static gb_result refine_and_push_down(linker *l, gb_error *error)
 {
     const gb_implicit_model *m = l->model;
     uint32_t *queue = malloc(((size_t)m->node_count + 1) * sizeof *queue), head = 0, tail = 0;
     if (!queue)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
-    for (uint32_t i = 0; i < m->root_count; ++i)
-        queue[tail++] = m->roots[i];
+    queue[tail++] = m->top;
     uint32_t count = l->bins->count;
     while (head < tail) {
         const gb_implicit_node *parent = &m->nodes[queue[head]];

@@ -13,14 +13,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Adds a third of the finer triangle (e0, e1, e2)'s area, its area-weighted
+/* Adds a third of the finer triangle (v0, v1, v2)'s area, its area-weighted
  * normal and the centroid of the corner's third, (22 a + 7 b + 7 c) / 36, to
  * each corner's element. sums: normal xyz, centroid xyz times area. */
-static void add_triangle(gb_implicit_model *model, const uint32_t e[3], double *sums)
+static void add_triangle(gb_implicit_model *model, const uint32_t v[3], double *sums)
 {
     const float *p[3];
-    for (int k = 0; k < 3; ++k)
-        p[k] = &model->vertices[3 * (size_t)e[k]];
+    uint32_t e[3];
+    for (int k = 0; k < 3; ++k) {
+        p[k] = &model->vertices[3 * (size_t)v[k]];
+        e[k] = model->vertex_element[v[k]];
+    }
     double n[3];
     gb_implicit_triangle_cross(p[0], p[1], p[2], n);
     double area = 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
@@ -36,8 +39,9 @@ static void add_triangle(gb_implicit_model *model, const uint32_t e[3], double *
     }
 }
 
-/* An element of no area (its triangles all degenerate) keeps its vertex as
- * position and gets the zero normal: it sends and receives nothing. */
+/* An element of no area (its triangles all degenerate) keeps its position
+ * (at first, its first vertex) and gets the zero normal: it sends and
+ * receives nothing. */
 static void finish_leaf(gb_implicit_model *model, uint32_t e, const double *sum)
 {
     gb_implicit_node *node = &model->nodes[e];
@@ -45,7 +49,7 @@ static void finish_leaf(gb_implicit_model *model, uint32_t e, const double *sum)
     for (int k = 0; k < 3; ++k) {
         node->normal[k] = length > 0.0 ? (float)(sum[k] / length) : 0.0f;
         node->position[k] = node->area > 0.0f ? (float)(sum[3 + k] / node->area)
-                                              : model->vertices[3 * (size_t)e + k];
+                                              : node->position[k];
         node->box_min[k] = node->box_max[k] = node->position[k];
     }
 }

@@ -1,6 +1,7 @@
 /* test_implicit.c — implicit visibility (runtime/implicit/implicit.h) on the CPU:
  * direction to bin at the cube map's edges and corners, element areas,
- * the hierarchy, the shortest-link rule between parallel squares, and a
+ * the elements a grid cell makes, the hierarchy, the shortest-link rule
+ * between parallel squares, and a
  * furnace: a closed box whose walls all emit, where one bounce must give
  * the analytic answer. Also the Cornell box's sizes and times (# lines).
  * The Cornell box is found through $GB_ROOT (default "."). */
@@ -28,6 +29,8 @@
  * inconsistency RefineHierarchicalLinks cannot see when no node of B holds
  * that bin): measured 0.03 % of A's link weight; the brute force none. */
 #define HIDDEN_WEIGHT_MAX 0.01
+/* The runtime's grid cell of an element. */
+#define RUNTIME_CELL GB_IMPLICIT_ELEMENT_CELL
 
 static void test_bins_at_edges_and_corners(int n)
 {
@@ -99,13 +102,60 @@ static void visit(const gb_implicit_model *m, uint32_t node, uint32_t *seen)
         visit(m, m->children[m->nodes[node].first_child + c], seen);
 }
 
+/* A unit square as a grid of side x side quads sharing their vertices,
+ * element size 0.25: the finer mesh's
+ * vertices of one cell of GB_IMPLICIT_ELEMENT_CELL x 0.25 are one element. */
+static void test_element_cells(int side, float cell, uint32_t vertices_expected,
+                               uint32_t elements_expected)
+{
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    uint32_t grey = add_grey(&scene, 0.5f, 0.0f), row = (uint32_t)side + 1;
+    scene.vertex_count = row * row;
+    scene.positions = builder_grow(NULL, 3 * (size_t)scene.vertex_count, sizeof(float));
+    for (uint32_t v = 0; v < scene.vertex_count; ++v) {
+        scene.positions[3 * v] = (float)(v % row) / side;
+        scene.positions[3 * v + 1] = (float)(v / row) / side;
+        scene.positions[3 * v + 2] = 0.0f;
+    }
+    for (uint32_t i = 0; i < (uint32_t)side; ++i)
+        for (uint32_t j = 0; j < (uint32_t)side; ++j) {
+            uint32_t v = j * row + i;
+            add_triangle(&scene, v, v + 1, v + row + 1, grey);
+            add_triangle(&scene, v, v + row + 1, v + row, grey);
+        }
+    scene_done(&scene);
+    gb_implicit_model m;
+    gb_error error;
+    char what[160];
+    snprintf(what, sizeof what, "square of %d x %d quads: model created", side, side);
+    if (!CHECK(gb_implicit_model_create(&scene, 0.25f, cell, &m, &error) == GB_OK, what)) {
+        gb_scene_free(&scene);
+        return;
+    }
+    snprintf(what, sizeof what, "square of %d x %d quads: %u vertices", side, side,
+             vertices_expected);
+    CHECK_EQ_INT(m.vertex_count, vertices_expected, what);
+    snprintf(what, sizeof what, "square of %d x %d quads, cell %g: %u elements", side, side,
+             cell, elements_expected);
+    CHECK_EQ_INT(m.element_count, elements_expected, what);
+    double area = 0.0;
+    for (uint32_t e = 0; e < m.element_count; ++e)
+        area += m.nodes[e].area;
+    snprintf(what, sizeof what, "square of %d x %d quads: the elements' areas sum to 1", side,
+             side);
+    CHECK_NEAR(area, 1.0, 1e-5, what);
+    gb_implicit_model_free(&m);
+    gb_scene_free(&scene);
+}
+
 static void test_model(const gb_scene *scene, const char *name)
 {
     gb_implicit_model m;
     gb_error error;
     char what[160];
     snprintf(what, sizeof what, "%s: elements and hierarchy created", name);
-    if (!CHECK(gb_implicit_model_create(scene, 0.0f, &m, &error) == GB_OK, what)) {
+    if (!CHECK(gb_implicit_model_create(scene, 0.0f, RUNTIME_CELL, &m, &error) == GB_OK, what)) {
         printf("# %s\n", error.message);
         return;
     }
@@ -118,9 +168,10 @@ static void test_model(const gb_scene *scene, const char *name)
     CHECK_NEAR(area / mesh_area(scene), 1.0, 1e-5, what);
     snprintf(what, sizeof what, "%s: the roots' areas sum to it too", name);
     CHECK_NEAR(root_area / mesh_area(scene), 1.0, 1e-5, what);
+    snprintf(what, sizeof what, "%s: and the root of all has it", name);
+    CHECK_NEAR(m.nodes[m.top].area / mesh_area(scene), 1.0, 1e-5, what);
     uint32_t *seen = calloc(m.node_count, sizeof *seen);
-    for (uint32_t r = 0; r < m.root_count; ++r)
-        visit(&m, m.roots[r], seen);
+    visit(&m, m.top, seen);
     int once = 1;
     for (uint32_t i = 0; i < m.node_count; ++i)
         once &= seen[i] == 1;
@@ -172,7 +223,7 @@ static void test_shortest_link(int hierarchical)
     gb_implicit_link_options options = {.hierarchical = hierarchical};
     const char *kind = hierarchical ? "hierarchical" : "brute force";
     char what[160];
-    int ok = gb_implicit_model_create(&scene, 0.1f, &m, &error) == GB_OK &&
+    int ok = gb_implicit_model_create(&scene, 0.1f, RUNTIME_CELL, &m, &error) == GB_OK &&
              gb_implicit_bins_create(8, &bins, &error) == GB_OK &&
              gb_implicit_create_links(&m, &bins, &options, &links, &targets, &error) == GB_OK;
     snprintf(what, sizeof what, "three squares, %s: links created", kind);
@@ -232,7 +283,7 @@ static void test_furnace(int bins_n)
     gb_error error;
     gb_implicit_link_options options = {.hierarchical = 1};
     double start = gb_seconds();
-    int ok = gb_implicit_model_create(&scene, 1.0f / 10.0f, &m, &error) == GB_OK &&
+    int ok = gb_implicit_model_create(&scene, 0.1f, RUNTIME_CELL, &m, &error) == GB_OK &&
              gb_implicit_bins_create(bins_n, &bins, &error) == GB_OK &&
              gb_implicit_create_links(&m, &bins, &options, &links, NULL, &error) == GB_OK &&
              gb_implicit_solution_create(&m, &s, &error) == GB_OK;
@@ -309,7 +360,7 @@ static void test_hierarchical_against_brute_force(const gb_scene *scene)
     gb_implicit_model m;
     gb_implicit_solution h, b;
     gb_error error;
-    if (!CHECK(gb_implicit_model_create(scene, 60.0f, &m, &error) == GB_OK &&
+    if (!CHECK(gb_implicit_model_create(scene, 60.0f, RUNTIME_CELL, &m, &error) == GB_OK &&
                    solve(scene, &m, 1, &h) && solve(scene, &m, 0, &b),
                "Cornell box: hierarchical and brute-force links solved"))
         return;
@@ -349,7 +400,7 @@ static void test_point_light(void)
     gb_implicit_links links;
     gb_implicit_solution s;
     gb_error error;
-    int ok = gb_implicit_model_create(&scene, 0.1f, &m, &error) == GB_OK &&
+    int ok = gb_implicit_model_create(&scene, 0.1f, RUNTIME_CELL, &m, &error) == GB_OK &&
              gb_implicit_bins_create(8, &bins, &error) == GB_OK &&
              gb_implicit_create_links(&m, &bins, NULL, &links, NULL, &error) == GB_OK &&
              gb_implicit_solution_create(&m, &s, &error) == GB_OK;
@@ -398,7 +449,7 @@ static void test_implicit_shadow(void)
     gb_error error;
     gb_implicit_link_options with = {.hierarchical = 1, .lights = &scene};
     gb_implicit_link_options without = {.hierarchical = 1};
-    int ok = gb_implicit_model_create(&scene, 0.1f, &m, &error) == GB_OK &&
+    int ok = gb_implicit_model_create(&scene, 0.1f, RUNTIME_CELL, &m, &error) == GB_OK &&
              gb_implicit_bins_create(8, &bins, &error) == GB_OK &&
              gb_implicit_create_links(&m, &bins, &with, &shadowed, NULL, &error) == GB_OK &&
              gb_implicit_create_links(&m, &bins, &without, &unshadowed, NULL, &error) == GB_OK &&
@@ -481,7 +532,8 @@ static int light_model(const gb_scene *scene, float element_size, int bounces, l
     gb_error error;
     gb_implicit_link_options options = {.hierarchical = 1, .lights = scene};
     memset(x, 0, sizeof *x);
-    int ok = gb_implicit_model_create(scene, element_size, &x->m, &error) == GB_OK &&
+    int ok =
+        gb_implicit_model_create(scene, element_size, RUNTIME_CELL, &x->m, &error) == GB_OK &&
              gb_implicit_bins_create(8, &x->bins, &error) == GB_OK &&
              gb_implicit_create_links(&x->m, &x->bins, &options, &x->links, NULL, &error) ==
                  GB_OK &&
@@ -673,9 +725,9 @@ static void test_dynamic_update(void)
                                     fabs(x.m.nodes[i].box_max[k] - before[i].box_max[k]));
     CHECK_NEAR(still, 0.0, 1e-6, "UpdateElements: unmoved vertices, unchanged nodes");
     const float shift[3] = {1, 2, 3};
-    for (uint32_t e = 0; e < elements; ++e)
+    for (uint32_t v = 0; v < x.m.vertex_count; ++v)
         for (int k = 0; k < 3; ++k)
-            x.m.vertices[3 * e + k] = 2.0f * x.m.vertices[3 * e + k] + shift[k];
+            x.m.vertices[3 * v + k] = 2.0f * x.m.vertices[3 * v + k] + shift[k];
     gb_implicit_update_elements(&x.m, &error);
     double moved = 0.0, area = 0.0, normal = 0.0;
     for (uint32_t i = 0; i < nodes; ++i) {
@@ -748,7 +800,7 @@ static double square_sky(const gb_implicit_bins *bins, const float *radiance,
     gb_error error;
     gb_implicit_link_options options = {.hierarchical = 1, .environment = radiance};
     double mean = -1.0;
-    if (gb_implicit_model_create(&scene, 0.25f, &m, &error) == GB_OK) {
+    if (gb_implicit_model_create(&scene, 0.25f, RUNTIME_CELL, &m, &error) == GB_OK) {
         if (gb_implicit_create_links(&m, bins, &options, &links, NULL, &error) == GB_OK &&
             gb_implicit_solution_create(&m, &s, &error) == GB_OK) {
             gb_implicit_illuminate(&scene, &m, &links, 1, &s);
@@ -839,6 +891,13 @@ int main(void)
         test_exact_face_edges(n);
     }
     test_bad_directions();
+    /* 64 x 64: 65^2 vertices 1/64 apart, in cells of 1/8: llround(i / 8) for
+     * i in 0..64 takes 9 values a side. One quad, cut into 6 x 6 (its
+     * diagonal over 0.25): vertices 1/6 apart, more than a cell, stay one
+     * element each; cell 0 keeps one element a vertex. */
+    test_element_cells(64, 0.5f, 65 * 65, 9 * 9);
+    test_element_cells(64, 0.0f, 65 * 65, 65 * 65);
+    test_element_cells(1, 0.5f, 7 * 7, 7 * 7);
     gb_scene squares;
     uint32_t b, c;
     build_three_squares(&squares, &b, &c);

@@ -1,0 +1,58 @@
+#!/bin/sh
+# implicit_large.sh — implicit visibility (Dong et al. 2007) on the shared
+# scenes of 66 000 triangles and more, at the runtime's defaults (6x12x12
+# bins, 1 bounce, element size and cell):
+#   the model (vertices of the finer mesh, elements), the CPU seconds of
+#   CreateHierarchicalLinks and of Refine + Push (bench/implicit_steps.c,
+#   one frame) and that helper's peak memory;
+#   the error (imgdiff relative_mse) of gbview --method implicit and of
+#   gbview --method direct (direct light only) against reference --mode
+#   full (IMPLICIT_SPP samples a pixel, default 256) at IMPLICIT_SIZE
+#   (default 128x128).
+# IMPLICIT_SCENES: the scene files (default scenes/shared/{sponza,
+# staircase,living-room}.scene). Prints a Markdown table on stdout.
+#
+# Run by `make bench` (GB_BIN: the tools folder, build/bin by default).
+
+root=$(cd "$(dirname "$0")/.." && pwd)
+GB_BIN=${GB_BIN:-$root/build/bin}
+IMPLICIT_SPP=${IMPLICIT_SPP:-256}
+IMPLICIT_SIZE=${IMPLICIT_SIZE:-128x128}
+IMPLICIT_SCENES=${IMPLICIT_SCENES:-"$root/scenes/shared/sponza.scene $root/scenes/shared/staircase.scene $root/scenes/shared/living-room.scene"}
+helper=$(dirname "$GB_BIN")/bench/implicit_steps
+dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-implicit-large.XXXXXX") || exit 1
+trap 'rm -rf "$dir"' EXIT INT TERM
+
+if [ ! -x "$helper" ]; then
+    echo "implicit_large.sh: $helper not built: run make bench" >&2
+    exit 1
+fi
+
+relative_mse() {
+    "$GB_BIN/imgdiff" "$1" "$2" | awk '$1 == "relative_mse" { print $2 }'
+}
+
+echo "implicit visibility on large scenes; $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg);" \
+    "$(date -u +%Y-%m-%d)"
+echo
+echo "| scene | vertices | elements | create links (s) | refine & push (s) | peak memory (MiB) |" \
+    "implicit: relative MSE | direct only: relative MSE |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+for scene in $IMPLICIT_SCENES; do
+    name=$(basename "$scene" .scene)
+    /usr/bin/time -f "%M" -o "$dir/memory" "$helper" scene "$scene" 1 1 12 \
+        >"$dir/steps" 2>"$dir/err" || { cat "$dir/err" >&2; exit 1; }
+    for method in implicit direct; do
+        "$GB_BIN/gbview" --headless --quiet -m "$method" -r "$IMPLICIT_SIZE" \
+            -o "$dir/$method.exr" "$scene" || exit 1
+    done
+    "$GB_BIN/reference" --quiet --mode full --spp "$IMPLICIT_SPP" -r "$IMPLICIT_SIZE" \
+        -o "$dir/reference.exr" "$scene" || exit 1
+    implicit=$(relative_mse "$dir/implicit.exr" "$dir/reference.exr")
+    direct=$(relative_mse "$dir/direct.exr" "$dir/reference.exr")
+    awk -v name="$name" -v memory="$(cat "$dir/memory")" -v implicit="$implicit" \
+        -v direct="$direct" 'NR == 2 {
+        printf "| %s | %s | %s | %.1f | %.1f | %.0f | %.3f | %.3f |\n",
+            name, $2, $3, $5 / 1000, $6 / 1000, memory / 1024, implicit, direct
+    }' "$dir/steps"
+done
