@@ -16,10 +16,9 @@
  * into n x n smaller ones (n = ceil(longest edge / element size)) and the
  * elements are the vertices of that finer mesh, welded within a segment. A
  * vertex where segments meet (a box's corner) is one element in each. A
- * scene finer than that (Sponza: 115 585 vertices) gets one element a
- * grid cell of half the element size and segment (41 591), and one tree
- * over the segments' roots (15 692 of them) stands for the paper's pairs
- * of charts.
+ * scene finer than that gets one element a grid cell of half the element
+ * size and segment (Sponza: 41 591), and one tree over the segments' roots
+ * (Sponza has 15 692) stands for the paper's pairs of charts.
  *
  * Segments stand for the paper's UV charts, which scene files do not have:
  * triangles grown from a seed across shared edges while they have the

@@ -64,7 +64,7 @@ typedef struct gb_implicit_model {
 /* The runtime's element_cell: the finer mesh's vertices of one segment in
  * one cell of a grid of this fraction of the element size are one element,
  * so that a finely tessellated scene gets as many elements as its size
- * needs, not one a vertex (Sponza: 115 585 vertices, 41 591 elements). */
+ * needs, not one a vertex (Sponza: 41 591 elements). */
 #define GB_IMPLICIT_ELEMENT_CELL 0.5f
 
 #endif
