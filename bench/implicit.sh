@@ -10,6 +10,9 @@
 #            6x8x8, and the exponent p of a least-squares fit t ~ N^p (the
 #            paper: about O(N log N); over the same range N log N has the
 #            slope printed beside it);
+#   the same models at the runtime's element size and cell, from 1 000 to
+#            300 000 vertices (IMPLICIT_RUNTIME_SIZES), with each run's peak
+#            memory: the elements a scene gets stop growing with its mesh;
 #   the Cornell box (scenes/cornell) at the runtime's element size.
 # Means over IMPLICIT_FRAMES frames (default 3; 1 for the scaling). Prints
 # Markdown tables on stdout.
@@ -21,6 +24,7 @@ GB_BIN=${GB_BIN:-$root/build/bin}
 IMPLICIT_VERTICES=${IMPLICIT_VERTICES:-3400}
 IMPLICIT_FRAMES=${IMPLICIT_FRAMES:-3}
 IMPLICIT_SIZES=${IMPLICIT_SIZES:-"1000 2000 4000 8000 16000 32000 50000"}
+IMPLICIT_RUNTIME_SIZES=${IMPLICIT_RUNTIME_SIZES:-"1000 3000 10000 30000 100000 300000"}
 helper=$(dirname "$GB_BIN")/bench/implicit_steps
 out=$(mktemp "${TMPDIR:-/tmp}/gibake-bench-implicit.XXXXXX") || exit 1
 err=$out.err
@@ -74,6 +78,22 @@ awk 'NR > 1 && $8 > 0 {
         printf "\nfit of frame CPU ms ~ N^p over N = %d..%d vertices: p = %.2f (N log N over that range: p = %.2f)\n",
             first, last, (n * sxy - sx * sy) / d, (n * sxz - sx * sz) / d
     }' "$out"
+
+echo
+echo "Scaling at the runtime's element size and cell, 6x8x8, 1 bounce, CPU ms a frame" \
+    "(wall: the frame), and the run's peak memory"
+echo
+echo "| vertices | elements | update | create links | refine & push | illumination | total | wall | once: steps 1-2 | peak memory (MiB) |"
+echo "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+for size in $IMPLICIT_RUNTIME_SIZES; do
+    /usr/bin/time -f "%M" -o "$err.memory" "$helper" runtime-scale 8 1 "$size" >"$out" 2>"$err" ||
+        { cat "$err" >&2; exit 1; }
+    awk -v memory="$(cat "$err.memory")" 'NR > 1 {
+        printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %.0f |\n",
+            $2, $3, $4, $5, $6, $7, $8, $9, $10, memory / 1024
+    }' "$out"
+done
+rm -f "$err.memory"
 
 echo
 echo "Cornell box (scenes/cornell, runtime element size), 1 bounce, CPU ms a frame (wall: the frame)"

@@ -17,6 +17,8 @@
  *       frames; then the CPU ms of steps 1-2 (elements and hierarchy, once)
  *   implicit_steps scale BINS FRAMES VERTICES...
  *       one line per model size, the same columns
+ *   implicit_steps runtime-scale BINS FRAMES VERTICES...
+ *       the same models at the runtime's element size and cell
  *   implicit_steps scene FILE FRAMES BOUNCES BINS...
  *       a scene file's model at the runtime's element size and cell (the
  *       others keep one element a vertex), the same columns
@@ -262,13 +264,14 @@ static int usage(void)
 {
     fprintf(stderr, "usage: implicit_steps table VERTICES FRAMES BOUNCES BINS...\n"
                     "       implicit_steps scale BINS FRAMES VERTICES...\n"
+                    "       implicit_steps runtime-scale BINS FRAMES VERTICES...\n"
                     "       implicit_steps scene FILE FRAMES BOUNCES BINS...\n");
     return 2;
 }
 
 int main(int argc, char **argv)
 {
-    if (argc < 6)
+    if (argc < 5)
         return usage();
     gb_error error;
     gb_result result = GB_OK;
@@ -282,11 +285,13 @@ int main(int argc, char **argv)
             result = run(&scene, longest_edge(&scene), 0.0f, atoi(argv[i]), atoi(argv[3]),
                          atoi(argv[4]), 1, &error);
         gb_scene_free(&scene);
-    } else if (strcmp(argv[1], "scale") == 0) {
+    } else if (strcmp(argv[1], "scale") == 0 || strcmp(argv[1], "runtime-scale") == 0) {
+        int runtime = strcmp(argv[1], "runtime-scale") == 0;
         for (int i = 4; i < argc && result == GB_OK; ++i) {
             make_model(atoi(argv[i]), &scene);
-            result = run(&scene, longest_edge(&scene), 0.0f, atoi(argv[2]), atoi(argv[3]), 1, 1,
-                         &error);
+            result = run(&scene, runtime ? 0.0f : longest_edge(&scene),
+                         runtime ? GB_IMPLICIT_ELEMENT_CELL : 0.0f, atoi(argv[2]), atoi(argv[3]),
+                         1, 1, &error);
             gb_scene_free(&scene);
         }
     } else if (strcmp(argv[1], "scene") == 0) {
