@@ -1,9 +1,8 @@
 /* test_implicit.c — implicit visibility (runtime/implicit/implicit.h) on the CPU:
  * direction to bin at the cube map's edges and corners, element areas,
  * the elements a grid cell makes, the hierarchy, the shortest-link rule
- * between parallel squares, and a
- * furnace: a closed box whose walls all emit, where one bounce must give
- * the analytic answer. Also the Cornell box's sizes and times (# lines).
+ * between parallel squares, and a furnace: a closed box whose walls all
+ * emit, where one bounce must give the analytic answer. Also the Cornell box's sizes and times (# lines).
  * The Cornell box is found through $GB_ROOT (default "."). */
 
 #include <math.h>
@@ -103,8 +102,8 @@ static void visit(const gb_implicit_model *m, uint32_t node, uint32_t *seen)
 }
 
 /* A unit square as a grid of side x side quads sharing their vertices,
- * element size 0.25: the finer mesh's
- * vertices of one cell of GB_IMPLICIT_ELEMENT_CELL x 0.25 are one element. */
+ * element size 0.25: the finer mesh's vertices in one cell of cell x 0.25
+ * are one element. */
 static void test_element_cells(int side, float cell, uint32_t vertices_expected,
                                uint32_t elements_expected)
 {
