@@ -29,7 +29,7 @@ if [ ! -x "$helper" ]; then
 fi
 
 relative_mse() {
-    "$GB_BIN/imgdiff" "$1" "$2" | awk '$1 == "relative_mse" { print $2 }'
+    "$GB_BIN/imgdiff" "$1" "$2" | sed -n 's/^relative_mse //p'
 }
 
 echo "implicit visibility on large scenes; $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg);" \
