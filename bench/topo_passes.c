@@ -20,7 +20,7 @@ typedef struct pass_ms {
 } pass_ms;
 
 /* Means of FRAMES frames after the first; iugc: "gpu" or "cpu". */
-static gb_result measure(const gb_scene *scene, const gb_bake_files *bake, int width,
+static gb_result measure(const gb_scene *scene, const gb_bake *bake, int width,
                          int height, int frames, int vpls, const char *iugc, pass_ms *ms,
                          gb_error *error)
 {
@@ -67,9 +67,9 @@ int main(int argc, char **argv)
     }
     gb_error error;
     gb_scene scene;
-    gb_bake_files bake;
+    gb_bake *bake = NULL;
     if (gb_scene_load(argv[1], NULL, &scene, &error) != GB_OK ||
-        gb_bake_files_check(&scene, argv[1], argv[2], &bake, &error) != GB_OK) {
+        gb_bake_open(&scene, argv[1], argv[2], &bake, &error) != GB_OK) {
         fprintf(stderr, "topo_passes: %s\n", error.message);
         return 1;
     }
@@ -79,8 +79,8 @@ int main(int argc, char **argv)
     for (int i = 5; i < argc && !status; ++i) {
         pass_ms gpu, cpu;
         int vpls = atoi(argv[i]), frames = atoi(argv[4]);
-        if (measure(&scene, &bake, width, height, frames, vpls, "gpu", &gpu, &error) != GB_OK ||
-            measure(&scene, &bake, width, height, frames, vpls, "cpu", &cpu, &error) != GB_OK) {
+        if (measure(&scene, bake, width, height, frames, vpls, "gpu", &gpu, &error) != GB_OK ||
+            measure(&scene, bake, width, height, frames, vpls, "cpu", &cpu, &error) != GB_OK) {
             fprintf(stderr, "topo_passes: %s\n", error.message);
             status = 1;
             break;
@@ -89,6 +89,7 @@ int main(int argc, char **argv)
                gpu.il, gpu.total, cpu.iugc);
         fflush(stdout);
     }
+    gb_bake_release(bake);
     gb_scene_free(&scene);
     return status;
 }

@@ -16,7 +16,7 @@
 
 #include <stdint.h>
 
-#include "bake_files.h"
+#include "bake.h"
 #include "gbuffer.h"
 #include "gpu_scene.h"
 #include "mat4.h"
@@ -46,7 +46,8 @@ typedef struct gb_indirect_setup {
     const gb_scene *scene;
     const gb_gpu_scene *gpu_scene;
     const gb_shadow_maps *shadows;
-    const gb_bake_files *bake;  /* NULL when gbview was given no bake folder */
+    const gb_bake *bake;        /* NULL when gbview was given no bake folder; the
+                                   method borrows its files (bake.h) */
     const gb_method_parameters *parameters;
     int width, height;
 } gb_indirect_setup;

@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "bake_files.h"
+#include "bake.h"
 #include "cli.h"
 #include "flc/flc.h"
 #include "headless.h"
@@ -236,17 +236,23 @@ static int check_operands(int count, char **operands, void *context)
 static const gb_cli_command command = {"gbview", usage, long_options, parse_option,
                                        check_operands};
 
-/* One warning per missing or bad baked file, which is skipped; an error only
- * when the files cannot be looked for at all. */
-static gb_result check_bake(const gb_scene *scene, const arguments *a, gb_bake_files *files,
-                            gb_error *error)
+/* The bake of a->bake (*bake NULL without --bake): one warning per missing
+ * or bad file, which is skipped; an error only when the files cannot be
+ * looked for at all. */
+static gb_result open_bake(const gb_scene *scene, const arguments *a, gb_bake **bake,
+                           gb_error *error)
 {
-    gb_result result = gb_bake_files_check(scene, a->scene_path, a->bake, files, error);
+    *bake = NULL;
+    if (!a->bake)
+        return GB_OK;
+    gb_result result = gb_bake_open(scene, a->scene_path, a->bake, bake, error);
     if (result != GB_OK)
         return result;
-    for (int kind = 0; kind < GB_BAKE_KIND_COUNT; ++kind)
-        if (files->has_problem[kind])
-            fprintf(stderr, "gbview: warning: skipped: %s\n", files->problems[kind].message);
+    for (int kind = 0; kind < GB_BAKE_KIND_COUNT; ++kind) {
+        const char *problem = gb_bake_problem(*bake, (gb_bake_kind)kind);
+        if (problem)
+            fprintf(stderr, "gbview: warning: skipped: %s\n", problem);
+    }
     return GB_OK;
 }
 
@@ -322,12 +328,12 @@ static gb_result run(void *context, gb_error *error)
         return result;
     if (!a->quiet)  /* with no light every method draws black, as it should */
         gb_scene_warn("gbview", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
-    gb_bake_files files;
-    if (a->bake)
-        result = check_bake(&scene, a, &files, error);
-    a->renderer.bake = a->bake ? &files : NULL;
+    gb_bake *bake;
+    result = open_bake(&scene, a, &bake, error);
+    a->renderer.bake = bake;
     if (result == GB_OK)
         result = render(&scene, a, error);
+    gb_bake_release(bake);
     gb_scene_free(&scene);
     return result;
 }

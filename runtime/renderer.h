@@ -35,7 +35,8 @@ typedef struct gb_renderer_options {
     int finish_passes;          /* glFinish after each timed pass, so that its
                                    timestamps hold its work on renderers that
                                    defer it to the flush (llvmpipe); --timings */
-    const gb_bake_files *bake;  /* the baked files found, or NULL; must outlive the renderer */
+    const gb_bake *bake;        /* the bake's files (bake.h), or NULL; must outlive
+                                   the renderer */
     gb_method_parameters parameters;
 } gb_renderer_options;
 

@@ -11,7 +11,7 @@
 enum { SSBO_NODES = 0, SSBO_LEAVES = 1, SSBO_VDLS = 2 };
 
 typedef struct octree_state {
-    gb_light_octree octree;
+    const gb_light_octree *octree;  /* borrowed from the bake */
     GLuint buffers[3];          /* nodes, leaves, VDLs */
     GLuint program, empty_vertex_array;
 } octree_state;
@@ -30,27 +30,20 @@ static void octree_destroy(void *state)
         glDeleteVertexArrays(1, &s->empty_vertex_array);
     if (s->program)
         glDeleteProgram(s->program);
-    gb_light_octree_free(&s->octree);
     free(s);
 }
 
-static gb_result read_octree(const gb_indirect_setup *setup, gb_light_octree *octree,
-                             gb_error *error)
+static gb_result borrow_octree(const gb_indirect_setup *setup, const gb_light_octree **octree,
+                               gb_error *error)
 {
-    const gb_bake_files *bake = setup->bake;
+    const gb_bake *bake = setup->bake;
     if (!bake)
         return gb_fail(error, GB_ERROR_IO,
                        "octree: needs a light octree (NAME.lot from cluster): give --bake DIR");
-    if (!bake->usable[GB_BAKE_LIGHT_OCTREE])
+    if (!(*octree = gb_bake_light_octree(bake)))
         return gb_fail(error, GB_ERROR_IO, "octree: no usable light octree: %s",
-                       bake->has_problem[GB_BAKE_LIGHT_OCTREE]
-                           ? bake->problems[GB_BAKE_LIGHT_OCTREE].message
-                           : bake->paths[GB_BAKE_LIGHT_OCTREE]);
-    gb_result result = gb_light_octree_read(bake->paths[GB_BAKE_LIGHT_OCTREE], octree, error);
-    if (result == GB_OK)
-        result = gb_light_octree_check_scene(octree, setup->scene->hash,
-                                             bake->paths[GB_BAKE_LIGHT_OCTREE], error);
-    return result;
+                       gb_bake_problem(bake, GB_BAKE_LIGHT_OCTREE));
+    return GB_OK;
 }
 
 /* A buffer of count * size bytes (at least 16: GL refuses empty storage). */
@@ -70,7 +63,7 @@ static GLuint make_buffer(const void *data, size_t count, size_t size)
 
 static void upload(octree_state *s)
 {
-    const gb_light_octree *o = &s->octree;
+    const gb_light_octree *o = s->octree;
     s->buffers[SSBO_NODES] = make_buffer(o->nodes, o->header.node_count, sizeof *o->nodes);
     s->buffers[SSBO_LEAVES] = make_buffer(o->leaves, o->header.leaf_count, sizeof *o->leaves);
     s->buffers[SSBO_VDLS] = make_buffer(o->vdls, o->header.vdl_count, sizeof *o->vdls);
@@ -82,7 +75,7 @@ static gb_result octree_create(const gb_indirect_setup *setup, void **state, gb_
     octree_state *s = calloc(1, sizeof *s);
     if (!s)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "octree: out of memory");
-    gb_result result = read_octree(setup, &s->octree, error);
+    gb_result result = borrow_octree(setup, &s->octree, error);
     if (result == GB_OK)
         result = gb_gl_program("octree", gb_gl_fullscreen_vertex_shader, fragment_shader,
                                &s->program, error);
@@ -100,7 +93,7 @@ static void set_uniforms(const octree_state *s, const gb_indirect_frame *frame)
 {
     GLuint p = s->program;
     const gb_view *view = frame->view;
-    const gb_light_octree_header *h = &s->octree.header;
+    const gb_light_octree_header *h = &s->octree->header;
     gb_mat4 view_to_world = gb_view_inverse_matrix(view);
     float tan_y = tanf(0.5f * view->fov_y * 3.14159265358979f / 180.0f);
     float aspect = (float)frame->width / (float)frame->height;

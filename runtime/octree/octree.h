@@ -1,8 +1,9 @@
 /* octree.h — the light octree (Vivianloc 2007, §3.2, §4.2) as a GI method
  * of the runtime (indirect_method.h); runtime/octree/octree.c.
  *
- * create  reads NAME.lot from the bake folder (cluster), uploads its node
- *         pool, leaves and VDLs as shader storage buffers.
+ * create  borrows the light octree (NAME.lot, from cluster) of the bake
+ *         (runtime/bake.h), uploads its node pool, leaves and VDLs as
+ *         shader storage buffers.
  * draw    one full-screen pass over the G-buffer (octree_display.frag.glsl):
  *         per pixel, the world point x, walked from the root to the leaves
  *         of the 8 leaf cells around it (δ node fetches each, Figure 6),

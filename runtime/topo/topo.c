@@ -1,9 +1,10 @@
 /* topo.c — gb_topo_method: VPL indirect light with implicit visibility
  * through visibility clusters and gates (Noël & Biri 2014, §V). Load time:
  * the bake's .seg, whose gates are drawn as they are (segment fitted them
- * to the openings, tools/segment/gate_openings.h), and .grid.vdb, the
- * voxels' surface flags marked in the cluster lookup when the bake has its
- * .vdb (topo_clusters.c), the VPLs (topo_vpls.c) and their clusters.
+ * to the openings, tools/segment/gate_openings.h), and .grid.vdb, both
+ * borrowed from the gb_bake (bake.h), the voxels' surface flags marked in
+ * the cluster lookup when the bake has its .vdb (topo_clusters.c), the VPLs
+ * (topo_vpls.c) and their clusters.
  * Each frame: visibility cluster per fragment (GPU compute), IUGC (GPU
  * compute, topo_geometry_clusters_gpu.c; with GB_TOPO_IUGC=cpu in the
  * environment, gb_topo_geometry_clusters_build on the G-buffer read back),
@@ -23,7 +24,7 @@ enum { DEFAULT_VPLS = 1024 };
 static const uint64_t VPL_SEED = 0x746f706f;   /* "topo" */
 
 typedef struct topo_state {
-    gb_segmentation segmentation;
+    const gb_segmentation *segmentation;  /* borrowed from the bake */
     int32_t *voxel_clusters;
     gb_vpl_set vpls;
     int32_t *vpl_cluster;
@@ -42,7 +43,7 @@ typedef struct topo_state {
     gb_topo_pass_times times;
 } topo_state;
 
-static gb_result need_bake(const gb_bake_files *bake, gb_error *error)
+static gb_result need_bake(const gb_bake *bake, gb_error *error)
 {
     if (!bake)
         return gb_fail(error, GB_ERROR_ARGUMENT,
@@ -50,53 +51,42 @@ static gb_result need_bake(const gb_bake_files *bake, gb_error *error)
                        "and NAME.seg: thin --grid, segment)");
     const gb_bake_kind kinds[] = {GB_BAKE_NEAREST_NODE, GB_BAKE_SEGMENTS};
     for (int i = 0; i < 2; ++i)
-        if (!bake->usable[kinds[i]])
-            return bake->has_problem[kinds[i]]
-                       ? gb_fail(error, GB_ERROR_ARGUMENT, "method topo: %s",
-                                 bake->problems[kinds[i]].message)
-                       : gb_fail(error, GB_ERROR_ARGUMENT,
-                                 "method topo needs %s in the bake folder",
-                                 bake->paths[kinds[i]]);
+        if (gb_bake_problem(bake, kinds[i]))
+            return gb_fail(error, GB_ERROR_ARGUMENT, "method topo: %s",
+                           gb_bake_problem(bake, kinds[i]));
     return GB_OK;
 }
 
 /* The voxels' surface flags marked in the voxels' clusters, when the bake
  * has its voxels: the lookup then takes a surface voxel's cluster only as a
  * last resort (topo_clusters.c). */
-static gb_result mark_surface(topo_state *t, const gb_bake_files *bake, gb_error *error)
+static gb_result mark_surface(topo_state *t, const gb_bake *bake, gb_error *error)
 {
-    if (!bake->usable[GB_BAKE_VOXELS])
+    const gb_voxel_grid *voxels = gb_bake_voxels(bake);
+    if (!voxels)
         return GB_OK;
-    const char *path = bake->paths[GB_BAKE_VOXELS];
-    gb_voxel_grid voxels = {0};
-    gb_result result = gb_voxel_grid_read(path, &voxels, error);
+    gb_result result = gb_segmentation_check_frame(t->segmentation, voxels,
+                                                   gb_bake_path(bake, GB_BAKE_VOXELS), error);
     if (result == GB_OK)
-        result = gb_segmentation_check_frame(&t->segmentation, &voxels, path, error);
-    if (result == GB_OK)
-        gb_topo_voxel_clusters_mark_surface(&t->segmentation, t->voxel_clusters, voxels.surface);
-    gb_voxel_grid_free(&voxels);
+        gb_topo_voxel_clusters_mark_surface(t->segmentation, t->voxel_clusters, voxels->surface);
     return result;
 }
 
-static gb_result load_clusters(topo_state *t, const gb_bake_files *bake, gb_error *error)
+static gb_result load_clusters(topo_state *t, const gb_bake *bake, gb_error *error)
 {
-    const char *grid_path = bake->paths[GB_BAKE_NEAREST_NODE];
-    gb_result result = gb_segmentation_read(bake->paths[GB_BAKE_SEGMENTS], &t->segmentation,
-                                            error);
-    gb_voxel_grid frame = {0};
-    int32_t *nearest = NULL;
-    if (result == GB_OK)
-        result = gb_voxel_grid_read_int32(grid_path, "nearest_node", &frame, &nearest, error);
-    if (result == GB_OK)
-        result = gb_segmentation_check_grid(&t->segmentation, &frame, nearest, grid_path, error);
-    if (result == GB_OK && !(t->voxel_clusters = gb_segmentation_voxel_clusters(&t->segmentation, nearest)))
+    const gb_voxel_grid *frame;
+    const int32_t *nearest = gb_bake_nearest_node(bake, &frame);
+    t->segmentation = gb_bake_segmentation(bake);
+    gb_result result = gb_segmentation_check_grid(t->segmentation, frame, nearest,
+                                                  gb_bake_path(bake, GB_BAKE_NEAREST_NODE),
+                                                  error);
+    if (result == GB_OK &&
+        !(t->voxel_clusters = gb_segmentation_voxel_clusters(t->segmentation, nearest)))
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "topo: out of memory");
     if (result == GB_OK)
         result = mark_surface(t, bake, error);
     if (result == GB_OK)
-        result = gb_topo_gates_build(&t->segmentation, &t->gates, error);
-    free(nearest);
-    gb_voxel_grid_free(&frame);
+        result = gb_topo_gates_build(t->segmentation, &t->gates, error);
     return result;
 }
 
@@ -110,7 +100,7 @@ static gb_result make_vpls(topo_state *t, const gb_indirect_setup *setup, gb_err
     if (result == GB_OK && !(t->vpl_cluster = malloc((t->vpls.count + 1u) * sizeof(int32_t))))
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "topo: out of memory");
     for (uint32_t i = 0; result == GB_OK && i < t->vpls.count; ++i)
-        t->vpl_cluster[i] = gb_topo_surface_cluster(&t->segmentation, t->voxel_clusters,
+        t->vpl_cluster[i] = gb_topo_surface_cluster(t->segmentation, t->voxel_clusters,
                                                     t->vpls.vpls[i].position,
                                                     t->vpls.vpls[i].normal);
     return result;
@@ -128,7 +118,6 @@ static void topo_destroy(void *state)
     gb_topo_assignment_free(&t->assignment);
     gb_geometry_clusters_free(&t->geometry);
     gb_topo_gates_free(&t->gates);
-    gb_segmentation_free(&t->segmentation);
     gb_vpl_free(&t->vpls);
     free(t->vpl_cluster);
     free(t->voxel_clusters);
@@ -155,11 +144,11 @@ static gb_result topo_create(const gb_indirect_setup *setup, void **state, gb_er
     if (result == GB_OK)
         result = make_vpls(t, setup, error);
     if (result == GB_OK)
-        result = gb_topo_cluster_pass_create(&t->segmentation, t->voxel_clusters,
+        result = gb_topo_cluster_pass_create(t->segmentation, t->voxel_clusters,
                                              &t->cluster_pass, error);
     if (result == GB_OK)
-        result = gb_topo_gather_create(&t->vpls, &t->segmentation, &t->gates,
-                                       (float)t->segmentation.voxel_size, &t->gather, error);
+        result = gb_topo_gather_create(&t->vpls, t->segmentation, &t->gates,
+                                       (float)t->segmentation->voxel_size, &t->gather, error);
     if (result == GB_OK)
         result = gb_topo_la_gpu_create(&t->vpls, t->vpl_cluster, &t->gates, &t->la_gpu, error);
     const char *iugc = getenv("GB_TOPO_IUGC");

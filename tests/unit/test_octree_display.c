@@ -25,7 +25,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "../../runtime/bake_files.h"
+#include "../../runtime/bake.h"
 #include "../../runtime/context.h"
 #include "../../runtime/headless.h"
 #include "../../runtime/methods.h"
@@ -94,21 +94,22 @@ static int render_octree_at(const gb_scene *scene, const gb_light_octree *octree
     snprintf(path, sizeof path, "%s/floor.lot", folder);
     snprintf(scene_path, sizeof scene_path, "%s/floor.scene", folder);
     int ok = 0;
-    gb_bake_files files;
+    gb_bake *bake = NULL;
     if (gb_light_octree_write(path, octree, &error) != GB_OK ||
-        gb_bake_files_check(scene, scene_path, folder, &files, &error) != GB_OK) {
+        gb_bake_open(scene, scene_path, folder, &bake, &error) != GB_OK) {
         printf("# %s\n", error.message);
-    } else if (!files.usable[GB_BAKE_LIGHT_OCTREE]) {
-        printf("# %s\n", files.problems[GB_BAKE_LIGHT_OCTREE].message);
+    } else if (gb_bake_problem(bake, GB_BAKE_LIGHT_OCTREE)) {
+        printf("# %s\n", gb_bake_problem(bake, GB_BAKE_LIGHT_OCTREE));
     } else {
         gb_headless_options options = {
             .renderer = {.method = GB_METHOD_OCTREE, .terms = GB_TERMS_INDIRECT,
-                         .width = size, .height = size, .bake = &files},
+                         .width = size, .height = size, .bake = bake},
         };
         ok = gb_render_headless(scene, &options, image, NULL, &error) == GB_OK;
         if (!ok)
             printf("# %s\n", error.message);
     }
+    gb_bake_release(bake);
     unlink(path);
     rmdir(folder);
     return ok;

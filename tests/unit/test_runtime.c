@@ -12,7 +12,7 @@
 #include <unistd.h>
 
 #include "../../runtime/area_lights.h"
-#include "../../runtime/bake_files.h"
+#include "../../runtime/bake.h"
 #include "../../runtime/context.h"
 #include "../../runtime/headless.h"
 #include "../../runtime/mat4.h"
@@ -205,19 +205,29 @@ static void test_bake_files(const gb_scene *scene)
     scratch_create("runtime");
     scratch_write_text(scratch_path("cornell.skel"), "not a skeleton at all");
     scratch_write_text(scratch_path("cornell.seg"), "");
-    gb_bake_files files;
+    gb_bake *bake = NULL;
     gb_error error;
-    gb_result result = gb_bake_files_check(scene, "scenes/cornell/cornell.scene",
-                                           scratch_folder, &files, &error);
-    CHECK(result == GB_OK, "checking a bake folder never fails on its files");
-    CHECK(files.has_problem[GB_BAKE_SKELETON] && !files.usable[GB_BAKE_SKELETON] &&
-              strstr(files.problems[GB_BAKE_SKELETON].message, "cornell.skel"),
-          "a corrupt .skel is reported by path and skipped");
-    CHECK(files.has_problem[GB_BAKE_SEGMENTS] && !files.usable[GB_BAKE_SEGMENTS],
-          "an empty .seg is reported and skipped");
-    CHECK(files.has_problem[GB_BAKE_VOXELS] &&
-              strstr(files.problems[GB_BAKE_VOXELS].message, "cornell.vdb"),
-          "a missing .vdb is reported");
+    CHECK(gb_bake_open(scene, "scenes/cornell/cornell.scene", scratch_folder, &bake,
+                       &error) == GB_OK && bake,
+          "opening a bake folder never fails on its files");
+    if (bake) {
+        const char *skel_problem = gb_bake_problem(bake, GB_BAKE_SKELETON);
+        const char *voxels_problem = gb_bake_problem(bake, GB_BAKE_VOXELS);
+        CHECK(skel_problem && strstr(skel_problem, "cornell.skel") && !gb_bake_skeleton(bake),
+              "a corrupt .skel is reported by path and skipped");
+        CHECK(gb_bake_problem(bake, GB_BAKE_SEGMENTS) && !gb_bake_segmentation(bake),
+              "an empty .seg is reported and skipped");
+        CHECK(voxels_problem && strstr(voxels_problem, "cornell.vdb") && !gb_bake_voxels(bake),
+              "a missing .vdb is reported");
+        const gb_voxel_grid *frame = (const gb_voxel_grid *)1;
+        CHECK(!gb_bake_nearest_node(bake, &frame) && !frame && !gb_bake_light_octree(bake),
+              "a missing .grid.vdb and .lot give no data");
+        CHECK(strcmp(gb_bake_extension(GB_BAKE_NEAREST_NODE), ".grid.vdb") == 0 &&
+                  strstr(gb_bake_path(bake, GB_BAKE_LIGHT_OCTREE), "/cornell.lot"),
+              "each file is found by the scene's name and its kind's extension");
+    }
+    gb_bake_release(bake);
+    gb_bake_release(NULL);
     scratch_remove();
 }
 
