@@ -208,42 +208,7 @@ demo: deps
 	done
 	@if [ -n "$$DISPLAY" ]; then $(BIN)/gbview scenes/cornell/cornell.scene --bake $(BAKE); fi
 
-# Baking: one pattern rule per tool; each later tool adds its own.
-BAKE ?= bake
-SCENE ?= scenes/cornell/cornell.scene
-SCENE_NAME := $(basename $(notdir $(SCENE)))
-vpath %.scene $(dir $(SCENE))
-VOXELIZE_FLAGS ?=
-THIN_FLAGS ?=
-SEGMENT_FLAGS ?=
-bake: $(BAKE)/$(SCENE_NAME).seg $(BAKE)/$(SCENE_NAME).lot
-
-# TIME_BAKE=1: each bake step also writes $(BAKE)/NAME.TOOL.time, GNU time's
-# "wall_s user_s sys_s peak_rss_KiB" (make report reads them); empty otherwise.
-timed = $(if $(TIME_BAKE),/usr/bin/time -f '%e %U %S %M' -o $(BAKE)/$*.$(1).time)
-
-$(BAKE)/%.vdb: %.scene $(BIN)/voxelize
-	@mkdir -p $(@D)
-	$(call timed,voxelize) $(BIN)/voxelize $(VOXELIZE_FLAGS) $< -o $@
-
-# thin writes both the skeleton and the nearest-node grid.
-$(BAKE)/%.skel $(BAKE)/%.grid.vdb: $(BAKE)/%.vdb $(BIN)/thin
-	$(call timed,thin) $(BIN)/thin $(THIN_FLAGS) $< -o $(BAKE)/$*.skel --grid $(BAKE)/$*.grid.vdb
-
-# segment fits the gates to the voxels' openings (--voxels, --grid): the
-# gates the runtime draws.
-$(BAKE)/%.seg: $(BAKE)/%.skel $(BAKE)/%.vdb $(BAKE)/%.grid.vdb $(BIN)/segment
-	$(call timed,segment) $(BIN)/segment $(SEGMENT_FLAGS) $< --voxels $(BAKE)/$*.vdb \
-	  --grid $(BAKE)/$*.grid.vdb -o $@
-
-PHOTONS_FLAGS ?=
-$(BAKE)/%.phot: %.scene $(BIN)/photons
-	@mkdir -p $(@D)
-	$(call timed,photons) $(BIN)/photons $(PHOTONS_FLAGS) $< -o $@
-
-CLUSTER_FLAGS ?=
-$(BAKE)/%.lot: %.scene $(BAKE)/%.phot $(BIN)/cluster
-	$(call timed,cluster) $(BIN)/cluster $(CLUSTER_FLAGS) $< $(BAKE)/$*.phot -o $@
+include bake.mk
 
 # Reference images of SCENE, one per mode: make reference [SCENE=...] [REFERENCE_SPP=256]
 #   -> bake/NAME.{direct,indirect1,indirect1-unshadowed,full}.exr (+ .png)
@@ -255,7 +220,9 @@ REFERENCE_IMAGES := $(REFERENCE_MODES:%=$(BAKE)/$(SCENE_NAME).%.exr)
 reference: $(REFERENCE_IMAGES)
 $(REFERENCE_IMAGES): $(BAKE)/$(SCENE_NAME).%.exr: $(SCENE) $(BIN)/reference
 	@mkdir -p $(@D)
-	$(BIN)/reference --mode $* --spp $(REFERENCE_SPP) $(REFERENCE_FLAGS) --png $(SCENE) -o $@
+	$(BIN)/reference --mode $* --spp $(REFERENCE_SPP) $(REFERENCE_FLAGS) --png $(SCENE) -o $@ \
+	  --depfile $@.d
+-include $(REFERENCE_IMAGES:%=%.d)
 
 # Benchmarks: bench/*.c and bench/*.cpp are helper programs linked against
 # the library into build/bench/; each bench/*.sh prints its table.

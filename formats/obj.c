@@ -616,11 +616,19 @@ gb_result gb_obj_parse(const char *text, size_t size, const char *name,
 
 /* ---- files ------------------------------------------------------------------ */
 
-/* The gb_obj_mtllib_reader of gb_obj_read: user is the OBJ's folder. */
+/* What read_mtllib_file needs: the OBJ's folder, and the scene whose
+ * inputs get each MTL file read. */
+typedef struct mtllib_context {
+    const char *folder;
+    gb_scene *scene;
+} mtllib_context;
+
+/* The gb_obj_mtllib_reader of gb_obj_read: user is a mtllib_context. */
 static gb_result read_mtllib_file(void *user, const char *mtllib, const char *obj_name,
                                   int obj_line, gb_material_list *materials, gb_error *error)
 {
-    char *path = gb_path_join((const char *)user, mtllib);
+    mtllib_context *context = user;
+    char *path = gb_path_join(context->folder, mtllib);
     if (!path)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s:%d: out of memory", obj_name,
                        obj_line);
@@ -634,6 +642,8 @@ static gb_result read_mtllib_file(void *user, const char *mtllib, const char *ob
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     else
         result = parse_mtl_terminated(buffer, size, path, folder, materials, error);
+    if (result == GB_OK)
+        result = gb_scene_add_input(context->scene, path, error);
     free(folder);
     free(buffer);
     free(path);
@@ -651,8 +661,8 @@ gb_result gb_obj_read(const char *path, gb_scene *scene, gb_error *error)
     if (!folder)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     else
-        result = parse_obj_terminated(buffer, size, path, read_mtllib_file, folder, scene,
-                                      error);
+        result = parse_obj_terminated(buffer, size, path, read_mtllib_file,
+                                      &(mtllib_context){folder, scene}, scene, error);
     free(folder);
     free(buffer);
     return result;

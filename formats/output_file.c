@@ -623,3 +623,18 @@ const gb_output_file_functions gb_output_file_table = {
     .commit = gb_output_file_commit,
     .abort = gb_output_file_abort,
 };
+
+gb_result gb_output_file_write_bytes(const char *path, const void *data, size_t size,
+                                     gb_error *error)
+{
+    gb_output_file *out;
+    gb_result result = gb_output_file_open(path, GB_OUTPUT_FILE_STREAM, &out, error);
+    if (result != GB_OK)
+        return result;
+    result = gb_output_file_write(out, data, size, error);
+    if (result != GB_OK) {
+        gb_output_file_abort(out);
+        return result;
+    }
+    return gb_output_file_commit(out, error);
+}

@@ -90,6 +90,11 @@ gb_result gb_output_file_commit(gb_output_file *file, gb_error *error);
  * NULL does nothing. */
 void gb_output_file_abort(gb_output_file *file);
 
+/* open, write, commit (or abort) of the size bytes of data: a whole small
+ * file (a depfile, a hash) in one call. */
+gb_result gb_output_file_write_bytes(const char *path, const void *data, size_t size,
+                                     gb_error *error);
+
 /* The functions above as a table, for the adapters (adapter.h), which link
  * no gibake code and reach the one writer through their host. */
 typedef struct gb_output_file_functions {

@@ -33,7 +33,24 @@ void gb_scene_free(gb_scene *scene)
     free(scene->environment_map);
     free(scene->environment_texture.rgb);
     free(scene->path);
+    for (uint32_t i = 0; i < scene->input_count; ++i)
+        free(scene->inputs[i]);
+    free(scene->inputs);
     memset(scene, 0, sizeof *scene);
+}
+
+gb_result gb_scene_add_input(gb_scene *scene, const char *path, gb_error *error)
+{
+    for (uint32_t i = 0; i < scene->input_count; ++i)
+        if (strcmp(scene->inputs[i], path) == 0)
+            return GB_OK;
+    char **grown = realloc(scene->inputs, (scene->input_count + 1u) * sizeof *grown);
+    if (grown)
+        scene->inputs = grown;
+    if (!grown || !(scene->inputs[scene->input_count] = strdup(path)))
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    scene->input_count++;
+    return GB_OK;
 }
 
 double gb_triangle_area(const gb_scene *scene, uint32_t t)

@@ -92,6 +92,10 @@ typedef struct gb_scene {
     uint32_t duplicate_triangle_count; /* triangles with the corners of an earlier
                                           one, dropped at load (the first kept) */
     char *path;                 /* the file loaded */
+    char **inputs;              /* every file the load read, each once: the
+                                   scene file, the mesh, its MTL files, and
+                                   with load_textures its images (--depfile) */
+    uint32_t input_count;
     uint32_t undefined_material_count; /* OBJ usemtl names that no MTL defines:
                                           each got the default material */
 } gb_scene;
@@ -105,6 +109,9 @@ typedef struct gb_scene_options {
 gb_result gb_scene_load(const char *path, const gb_scene_options *options,
                         gb_scene *scene, gb_error *error);
 void gb_scene_free(gb_scene *scene);
+
+/* Appends path to scene->inputs unless it is there already. */
+gb_result gb_scene_add_input(gb_scene *scene, const char *path, gb_error *error);
 
 /* Sets material to the default of meshes without materials: name, Kd 0.8
  * grey, no gloss (Ks 0, Ns 0), no emission, no texture. */

@@ -119,6 +119,8 @@ static gb_result load_scene_file(const char *path, gb_scene *scene, char **mesh_
     if (result == GB_OK)
         result = find_environment_map(path, folder, &file, &map_path, error);
     if (result == GB_OK)
+        result = gb_scene_add_input(scene, *mesh_path, error);
+    if (result == GB_OK)
         result = load_mesh(*mesh_path, scene, error);
     if (result == GB_OK)
         take_scene_file_parts(&file, map_path, scene);
@@ -148,10 +150,13 @@ static gb_result image_to_texture(const gb_image *image, gb_texture *texture,
     return GB_OK;
 }
 
-static gb_result load_image(const char *path, gb_texture *texture, gb_error *error)
+static gb_result load_image(gb_scene *scene, const char *path, gb_texture *texture,
+                            gb_error *error)
 {
     gb_image image = {0};
-    gb_result result = gb_image_read(path, &image, error);
+    gb_result result = gb_scene_add_input(scene, path, error);
+    if (result == GB_OK)
+        result = gb_image_read(path, &image, error);
     if (result == GB_OK)
         result = image_to_texture(&image, texture, path, error);
     gb_image_free(&image);
@@ -162,7 +167,8 @@ static gb_result load_environment_map(gb_scene *scene, gb_error *error)
 {
     if (!scene->environment_map || scene->environment_texture.rgb)
         return GB_OK;
-    gb_result result = load_image(scene->environment_map, &scene->environment_texture, error);
+    gb_result result = load_image(scene, scene->environment_map, &scene->environment_texture,
+                                  error);
     if (result == GB_OK)
         result = gb_environment_map_check(&scene->environment_texture, scene->environment_map,
                                           error);
@@ -175,7 +181,7 @@ static gb_result load_textures(gb_scene *scene, gb_error *error)
         gb_material *material = &scene->materials[i];
         if (!material->map_Kd || material->texture.rgb)
             continue;
-        gb_result result = load_image(material->map_Kd, &material->texture, error);
+        gb_result result = load_image(scene, material->map_Kd, &material->texture, error);
         if (result != GB_OK)
             return result;
     }
@@ -186,6 +192,9 @@ static gb_result load_textures(gb_scene *scene, gb_error *error)
 static gb_result load_parts(const char *path, gb_scene *scene, char **mesh_path,
                             gb_error *error)
 {
+    gb_result result = gb_scene_add_input(scene, path, error);
+    if (result != GB_OK)
+        return result;
     if (gb_path_has_suffix(path, ".scene"))
         return load_scene_file(path, scene, mesh_path, error);
     if (!(*mesh_path = strdup(path)))

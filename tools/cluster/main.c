@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "depfile.h"
 #include "cluster.h"
 #include "light_octree.h"
 #include "output_file.h"
@@ -33,17 +34,18 @@ static const char usage[] =
     "      --seed N            k-means++ seed (default 0)\n"
     "  -t, --threads N         threads (default: every core)\n"
     "      --stats             print leaves, VDLs and seconds on stdout\n"
+    "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
     "  -q, --quiet             no progress bar, no warnings\n"
     "  -h, --help              this help\n"
     "  -V, --version           the version\n";
 
 typedef struct arguments {
     gb_cluster_options cluster;
-    const char *output, *scene, *photons;
+    const char *output, *scene, *photons, *depfile;
     int quiet, stats;
 } arguments;
 
-enum { OPTION_VDLS = 256, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED, OPTION_STATS };
+enum { OPTION_VDLS = 256, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED, OPTION_STATS, OPTION_DEPFILE };
 
 static const struct option long_options[] = {
     GB_CLI_VALUE("output", 'o'),
@@ -56,6 +58,7 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("seed", OPTION_SEED),
     GB_CLI_VALUE("threads", 't'),
     GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
     GB_CLI_OPTIONS_END,
 };
 
@@ -69,6 +72,7 @@ static int parse_option(int option, const char *text, void *context)
     case 'o': a->output = text; return 0;
     case 'q': a->quiet = 1; return 0;
     case OPTION_STATS: a->stats = 1; return 0;
+    case OPTION_DEPFILE: a->depfile = text; return 0;
     case 'd':
         return gb_cli_uint("cluster", "depth", text, 1, GB_LIGHT_OCTREE_MAX_DEPTH, &o->depth);
     case 'k': return gb_cli_uint("cluster", "knn", text, 1, 100000, &o->knn);
@@ -144,6 +148,8 @@ static gb_result run(void *context, gb_error *error)
 {
     arguments *a = context;
     gb_result result = gb_output_file_check(a->output, error);
+    if (result == GB_OK && a->depfile)
+        result = gb_output_file_check(a->depfile, error);
     if (result != GB_OK)
         return result;
     gb_scene scene;
@@ -158,6 +164,8 @@ static gb_result run(void *context, gb_error *error)
         result = gb_photon_map_check_scene(&map, scene.hash, a->photons, error);
     if (result == GB_OK)
         result = cluster(a, &scene, &map, error);
+    if (result == GB_OK && a->depfile)
+        result = gb_depfile_write_scene(a->depfile, a->output, &scene, a->photons, error);
     gb_photon_map_free(&map);
     gb_scene_free(&scene);
     return result;

@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "cli.h"
+#include "depfile.h"
 #include "output_file.h"
 #include "photon_map.h"
 #include "photons.h"
@@ -35,15 +36,16 @@ static const char usage[] =
     "                          the whole run, byte for byte\n"
     "      --merge             join the shards given as arguments\n"
     "      --stats             print photons, rays and seconds on stdout\n"
+    "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
     "  -q, --quiet             no progress bar, no warnings\n"
     "  -h, --help              this help\n"
     "  -V, --version           the version\n";
 
-enum { OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS };
+enum { OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS, OPTION_DEPFILE };
 
 typedef struct arguments {
     gb_photons_options trace;
-    const char *output;
+    const char *output, *depfile;
     char **inputs;
     int input_count;
     int merge, stats, quiet;
@@ -59,6 +61,7 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("shard", OPTION_SHARD),
     GB_CLI_FLAG("merge", OPTION_MERGE),
     GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
     GB_CLI_OPTIONS_END,
 };
 
@@ -80,6 +83,7 @@ static int parse_option(int option, const char *text, void *context)
     case 'o': a->output = text; return 0;
     case OPTION_MERGE: a->merge = 1; return 0;
     case OPTION_STATS: a->stats = 1; return 0;
+    case OPTION_DEPFILE: a->depfile = text; return 0;
     case 'q': a->quiet = 1; return 0;
     case 'n':
         return gb_cli_unsigned("photons", "count", text, 1, GB_PHOTONS_MAX_COUNT,
@@ -174,6 +178,8 @@ static gb_result run_trace(arguments *a, gb_error *error)
         gb_scene_warn("photons", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     if (result == GB_OK)
         result = trace(a, &scene, error);
+    if (result == GB_OK && a->depfile)
+        result = gb_depfile_write_scene(a->depfile, a->output, &scene, NULL, error);
     gb_scene_free(&scene);
     return result;
 }
@@ -211,6 +217,10 @@ static gb_result run(void *context, gb_error *error)
 {
     arguments *a = context;
     gb_result result = gb_output_file_check(a->output, error);
+    if (result == GB_OK && a->depfile)
+        result = a->merge ? gb_fail(error, GB_ERROR_ARGUMENT, "--depfile is for a trace, "
+                                    "not --merge (whose inputs are its operands)")
+                          : gb_output_file_check(a->depfile, error);
     if (result == GB_OK)
         result = a->merge ? run_merge(a, error) : run_trace(a, error);
     return result;

@@ -8,6 +8,8 @@
 #include <string.h>
 
 #include "cli.h"
+#include "depfile.h"
+#include "output_file.h"
 #include "image.h"
 #include "progress.h"
 #include "reference.h"
@@ -44,17 +46,18 @@ static const char usage[] =
     "      --png               also write OUT.png, sRGB, beside OUT.exr\n"
     "      --stats             print rays, seconds (wall, CPU) and rays per second\n"
     "                          on stdout\n"
+    "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
     "  -q, --quiet             no progress bar, no warnings\n"
     "  -h, --help              this help\n"
     "  -V, --version           the version\n";
 
 typedef struct arguments {
     gb_reference_options render;
-    const char *scene_path, *output, *vpl_path;
+    const char *scene_path, *output, *vpl_path, *depfile;
     int png, stats, quiet, mode_given;
 } arguments;
 
-enum { OPTION_VPL = 256, OPTION_SEED, OPTION_MIN_BOUNCES, OPTION_PNG, OPTION_STATS };
+enum { OPTION_VPL = 256, OPTION_SEED, OPTION_MIN_BOUNCES, OPTION_PNG, OPTION_STATS, OPTION_DEPFILE };
 
 static const struct option long_options[] = {
     GB_CLI_VALUE("output", 'o'),
@@ -69,6 +72,7 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("min-bounces", OPTION_MIN_BOUNCES),
     GB_CLI_FLAG("png", OPTION_PNG),
     GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
     GB_CLI_OPTIONS_END,
 };
 
@@ -105,6 +109,7 @@ static int parse_option(int option, const char *text, void *context)
     case OPTION_VPL: a->vpl_path = text; return 0;
     case OPTION_PNG: a->png = 1; return 0;
     case OPTION_STATS: a->stats = 1; return 0;
+    case OPTION_DEPFILE: a->depfile = text; return 0;
     case 'q': a->quiet = 1; return 0;
     case 'm':
         a->mode_given = 1;
@@ -165,6 +170,8 @@ static gb_result write_images(const arguments *a, const gb_image *image, gb_erro
 static gb_result check_outputs(const arguments *a, gb_error *error)
 {
     gb_result result = gb_image_check_output(a->output, error);
+    if (result == GB_OK && a->depfile)
+        result = gb_output_file_check(a->depfile, error);
     if (result != GB_OK || !a->png)
         return result;
     char *path = png_path(a->output);
@@ -223,6 +230,8 @@ static gb_result run(void *context, gb_error *error)
     }
     if (result == GB_OK)
         result = render(a, &scene, error);
+    if (result == GB_OK && a->depfile)
+        result = gb_depfile_write_scene(a->depfile, a->output, &scene, a->vpl_path, error);
     gb_vpl_free(&vpls);
     gb_scene_free(&scene);
     return result;

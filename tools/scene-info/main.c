@@ -6,49 +6,66 @@
 #include <stdlib.h>
 
 #include "cli.h"
+#include "content_hash.h"
+#include "depfile.h"
+#include "output_file.h"
 #include "scene.h"
 #include "scene_warnings.h"
 
 static const char usage[] =
-    "usage: scene-info [--quiet] [--help] [--version] SCENE\n"
+    "usage: scene-info [--quiet] [--hash FILE [--depfile FILE]] SCENE\n"
     "Loads SCENE (.scene, .obj, .obj.gz, .ply, .off or .stl) as every gibake tool\n"
     "does and prints a summary: triangles, vertices, materials, area lights and\n"
     "their emissive area, other lights, cameras, bounds and the content hash.\n"
     "Warnings (degenerate triangles dropped, undefined materials, no light) go to\n"
     "stderr.\n"
     "\n"
-    "  -q, --quiet     no warnings\n"
-    "  -h, --help      this help\n"
-    "  -V, --version   the version\n";
+    "      --hash FILE     instead, write to FILE the lines 'scene_hash HEX' (the\n"
+    "                      content hash every baked file records) and 'images_hash\n"
+    "                      HEX' (of the bytes of its textures and environment map),\n"
+    "                      which the Makefile's bake rules depend on\n"
+    "      --depfile FILE  with --hash: a make rule, FILE and every file read (-MD)\n"
+    "  -q, --quiet         no warnings\n"
+    "  -h, --help          this help\n"
+    "  -V, --version       the version\n";
+
+enum { OPTION_HASH = 256, OPTION_DEPFILE };
 
 typedef struct arguments {
-    const char *scene;
+    const char *scene, *hash, *depfile;
     int quiet;
 } arguments;
 
 static const struct option long_options[] = {
+    GB_CLI_VALUE("hash", OPTION_HASH),
+    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
     GB_CLI_OPTIONS_END,
 };
 
-/* Its only option, -q. */
-static int set_quiet(int option, const char *value, void *context)
+/* One option into the arguments; 0. */
+static int parse_option(int option, const char *value, void *context)
 {
-    (void)option;
-    (void)value;
-    ((arguments *)context)->quiet = 1;
-    return 0;
+    arguments *a = context;
+    switch (option) {
+    case OPTION_HASH: a->hash = value; return 0;
+    case OPTION_DEPFILE: a->depfile = value; return 0;
+    default: a->quiet = 1; return 0;
+    }
 }
 
 /* One SCENE; GB_CLI_GO_ON, else the exit status. */
 static int check_operands(int count, char **operands, void *context)
 {
+    arguments *a = context;
     if (count != 1)
         return gb_cli_usage_error("scene-info", "expected one SCENE");
-    ((arguments *)context)->scene = operands[0];
+    if (a->depfile && !a->hash)
+        return gb_cli_usage_error("scene-info", "--depfile names the file of --hash: give both");
+    a->scene = operands[0];
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"scene-info", usage, long_options, set_quiet,
+static const gb_cli_command command = {"scene-info", usage, long_options, parse_option,
                                        check_operands};
 
 static double emissive_area(const gb_scene *scene)
@@ -98,18 +115,34 @@ static void print_summary(const gb_scene *scene)
     printf("hash            %016llx\n", (unsigned long long)scene->hash);
 }
 
+/* --hash FILE [--depfile FILE], checked before the scene is read. */
+static gb_result write_hash(const arguments *a, gb_scene *scene, gb_error *error)
+{
+    gb_result result = gb_content_hash_write(a->hash, scene, error);
+    if (result == GB_OK && a->depfile)
+        result = gb_depfile_write_scene(a->depfile, a->hash, scene, NULL, error);
+    return result;
+}
+
 static gb_result run(void *context, gb_error *error)
 {
     const arguments *a = context;
+    gb_result result = a->hash ? gb_output_file_check(a->hash, error) : GB_OK;
+    if (result == GB_OK && a->depfile)
+        result = gb_output_file_check(a->depfile, error);
     gb_scene scene;
-    gb_result result = gb_scene_load(a->scene, NULL, &scene, error);
+    if (result == GB_OK)
+        result = gb_scene_load(a->scene, NULL, &scene, error);
     if (result != GB_OK)
         return result;
-    print_summary(&scene);
-    if (!a->quiet)
+    if (a->hash)
+        result = write_hash(a, &scene, error);
+    else
+        print_summary(&scene);
+    if (result == GB_OK && !a->quiet)
         gb_scene_warn("scene-info", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     gb_scene_free(&scene);
-    return GB_OK;
+    return result;
 }
 
 int main(int argc, char **argv)

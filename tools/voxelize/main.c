@@ -7,6 +7,7 @@
 #include <stdlib.h>
 
 #include "cli.h"
+#include "depfile.h"
 #include "output_file.h"
 #include "progress.h"
 #include "scene.h"
@@ -24,15 +25,16 @@ static const char usage[] =
     "  -r, --resolution N     voxels along the longest side of the scene (default 256,\n"
     "                         at most 2048); voxels are cubes\n"
     "      --pad N            empty voxels around the scene (default 2, at most 64)\n"
+    "      --depfile FILE     a make rule: OUT.vdb and every file read (-MD)\n"
     "  -j, --threads N        threads (default 2)\n"
     "  -q, --quiet            no progress bar, no warnings\n"
     "  -h, --help             this help\n"
     "  -V, --version          the version\n";
 
-enum { OPTION_PAD = 256 };
+enum { OPTION_PAD = 256, OPTION_DEPFILE };
 
 typedef struct arguments {
-    const char *scene, *output;
+    const char *scene, *output, *depfile;
     long resolution, pad, threads;
     int quiet;
 } arguments;
@@ -41,6 +43,7 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("output", 'o'),
     GB_CLI_VALUE("resolution", 'r'),
     GB_CLI_VALUE("pad", OPTION_PAD),
+    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
     GB_CLI_VALUE("threads", 'j'),
     GB_CLI_OPTIONS_END,
 };
@@ -64,6 +67,7 @@ static int parse_option(int option, const char *text, void *context)
     switch (option) {
     case 'q': parsed->quiet = 1; return 0;
     case 'o': parsed->output = text; return 0;
+    case OPTION_DEPFILE: parsed->depfile = text; return 0;
     case 'r':
         return gb_cli_integer("voxelize", "resolution", text, 1, GB_VOXELIZE_MAX_RESOLUTION,
                               &parsed->resolution);
@@ -86,6 +90,8 @@ static gb_result voxelize_file(void *context, gb_error *error)
 {
     const arguments *parsed = context;
     gb_result result = gb_output_file_check(parsed->output, error);
+    if (result == GB_OK && parsed->depfile)
+        result = gb_output_file_check(parsed->depfile, error);
     if (result != GB_OK)
         return result;
     gb_scene scene;
@@ -112,6 +118,8 @@ static gb_result voxelize_file(void *context, gb_error *error)
         gb_fail(error, result, "%s: %s", parsed->scene, reason.message);
     else
         result = gb_voxel_grid_write_and_free(parsed->output, &grid, error);
+    if (result == GB_OK && parsed->depfile)
+        result = gb_depfile_write_scene(parsed->depfile, parsed->output, &scene, NULL, error);
     if (result == GB_OK)
         gb_progress_report(&bar, 1.0);
     gb_progress_end(&bar);

@@ -1,0 +1,100 @@
+# bake.mk — make bake: voxelize → thin → segment and photons → cluster,
+# SCENE (a .scene or a mesh) into $(BAKE)/NAME.*, NAME the scene file's name
+# without its last extension (what gbview --bake looks for). Several at once:
+# make -j bake SCENES="a.scene b.obj".
+#
+# Each step reruns exactly when what it reads changed, and only then:
+#   NAME.content       scene-info --hash of the scene (content_hash.h), remade
+#                      when any file the scene read changed (the .scene, the
+#                      mesh, its .mtl, its images: scene-info --depfile, in
+#                      NAME.content.d, which make includes);
+#   NAME.scene-hash    its scene_hash line, NAME.images-hash its images_hash
+#                      line, each rewritten only when the line changes: every
+#                      step depends on the scene hash (which every baked file
+#                      records), photons also on the images, so an edit of a
+#                      camera reruns nothing and of a texture only photons and
+#                      cluster;
+#   NAME.TOOL-flags    TOOL's flags (VOXELIZE_FLAGS, ...), rewritten only
+#                      when they change: changed flags rerun that step and
+#                      what follows;
+# and each step depends on its tool's binary and the baked files it reads.
+# A bake folder holds one scene of a name: NAME.source records which, and a
+# second scene of the same name is refused (give it another BAKE).
+# TIME_BAKE=1: each step also writes NAME.TOOL.time, GNU time's "wall_s user_s
+# sys_s peak_rss_KiB" (make report reads them). BIN: the tools (the Makefile's
+# BUILD/bin; make -f bake.mk BIN=DIR bakes with tools built elsewhere).
+
+BAKE ?= bake
+BIN ?= build/bin
+SCENE ?= scenes/cornell/cornell.scene
+SCENES ?= $(SCENE)
+SCENE_NAME := $(basename $(notdir $(SCENE)))
+VOXELIZE_FLAGS ?=
+THIN_FLAGS ?=
+SEGMENT_FLAGS ?=
+PHOTONS_FLAGS ?=
+CLUSTER_FLAGS ?=
+BAKE_TOOLS := voxelize thin segment photons cluster
+
+.PHONY: bake bake-force
+bake:
+bake-force:
+
+# timed PREFIX,TOOL: GNU time into PREFIX.TOOL.time, with TIME_BAKE=1.
+timed = $(if $(TIME_BAKE),/usr/bin/time -f '%e %U %S %M' -o $(1).$(2).time)
+
+# copy_if_changed FROM TO: TO gets FROM's bytes, or keeps its time when equal.
+copy_if_changed = cmp -s $(1) $(2) || cp $(1) $(2)
+
+# bake_scene SCENE,PREFIX: the rules of one scene's bake into PREFIX.*.
+define bake_scene
+$(if $(filter $(2),$(BAKE_PREFIXES)),$(error two scenes named $(notdir $(2)) in SCENES: \
+  bake them into different BAKE folders))
+BAKE_PREFIXES += $(2)
+$(if $(wildcard $(2).source),$(if $(filter-out $(abspath $(1)),$(file <$(2).source)),\
+  $(error $(2).*: baked from $(file <$(2).source); $(1) has the same name: give it \
+  another BAKE folder, or remove $(2).*)))
+bake: $(2).seg $(2).lot
+
+$(2).content: $(1) $(BIN)/scene-info
+	@mkdir -p $$(@D)
+	$(BIN)/scene-info --quiet --hash $$@ --depfile $$@.d $(1)
+	@echo $(abspath $(1)) >$(2).source
+-include $(2).content.d
+
+$(2).scene-hash: $(2).content
+	@grep '^scene_hash ' $$< >$$@.new && $$(call copy_if_changed,$$@.new,$$@); rm -f $$@.new
+$(2).images-hash: $(2).content
+	@grep '^images_hash ' $$< >$$@.new && $$(call copy_if_changed,$$@.new,$$@); rm -f $$@.new
+$(foreach tool,$(BAKE_TOOLS),
+$(2).$(tool)-flags: bake-force
+	@mkdir -p $$(@D); printf '%s\n' '$($(call flags_of,$(tool)))' >$$@.new && \
+	  $$(call copy_if_changed,$$@.new,$$@); rm -f $$@.new
+)
+$(2).vdb: $(2).scene-hash $(2).voxelize-flags $(BIN)/voxelize
+	$(call timed,$(2),voxelize) $(BIN)/voxelize $(VOXELIZE_FLAGS) $(1) -o $$@
+
+# thin writes both the skeleton and the nearest-node grid (a grouped target).
+$(2).skel $(2).grid.vdb &: $(2).vdb $(2).thin-flags $(BIN)/thin
+	$(call timed,$(2),thin) $(BIN)/thin $(THIN_FLAGS) $(2).vdb -o $(2).skel \
+	  --grid $(2).grid.vdb
+
+# segment fits the gates to the voxels' openings (--voxels, --grid): the
+# gates the runtime draws.
+$(2).seg: $(2).skel $(2).vdb $(2).grid.vdb $(2).segment-flags $(BIN)/segment
+	$(call timed,$(2),segment) $(BIN)/segment $(SEGMENT_FLAGS) $(2).skel \
+	  --voxels $(2).vdb --grid $(2).grid.vdb -o $$@
+
+$(2).phot: $(2).scene-hash $(2).images-hash $(2).photons-flags $(BIN)/photons
+	$(call timed,$(2),photons) $(BIN)/photons $(PHOTONS_FLAGS) $(1) -o $$@
+
+$(2).lot: $(2).scene-hash $(2).phot $(2).cluster-flags $(BIN)/cluster
+	$(call timed,$(2),cluster) $(BIN)/cluster $(CLUSTER_FLAGS) $(1) $(2).phot -o $$@
+endef
+
+# flags_of TOOL: the name of its flags variable, e.g. VOXELIZE_FLAGS.
+flags_of = $(subst voxelize,VOXELIZE,$(subst thin,THIN,$(subst segment,SEGMENT,$(subst \
+  photons,PHOTONS,$(subst cluster,CLUSTER,$(1))))))_FLAGS
+
+$(foreach scene,$(SCENES),$(eval $(call bake_scene,$(scene),$(BAKE)/$(basename \
+  $(notdir $(scene))))))
