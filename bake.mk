@@ -34,17 +34,33 @@ THIN_FLAGS ?=
 SEGMENT_FLAGS ?=
 PHOTONS_FLAGS ?=
 CLUSTER_FLAGS ?=
+SHARDS ?= 1
+shard_indices = $(shell seq 0 $$(($(SHARDS) - 1)))
+BAKE_MK := $(abspath $(lastword $(MAKEFILE_LIST)))
 BAKE_TOOLS := voxelize thin segment photons cluster
 
-.PHONY: bake bake-force
+.PHONY: bake bake-force slurm-bake
 bake:
 bake-force:
+
+# make slurm-bake SCENE=... SHARDS=N: the same bake submitted to Slurm
+# (tools/slurm_bake.sh), photons as a job array of N shards. The stamps are
+# made here first, so that the jobs only run the tools.
+slurm-bake: $(foreach s,scene-hash images-hash $(BAKE_TOOLS:%=%-flags),$(BAKE)/$(SCENE_NAME).$(s))
+	BAKE_MK=$(BAKE_MK) BIN=$(abspath $(BIN)) BAKE=$(BAKE) SCENE=$(SCENE) SHARDS=$(SHARDS) \
+	  VOXELIZE_FLAGS='$(VOXELIZE_FLAGS)' THIN_FLAGS='$(THIN_FLAGS)' \
+	  SEGMENT_FLAGS='$(SEGMENT_FLAGS)' PHOTONS_FLAGS='$(PHOTONS_FLAGS)' \
+	  CLUSTER_FLAGS='$(CLUSTER_FLAGS)' PREFIX=$(BAKE)/$(SCENE_NAME) \
+	  sh $(dir $(BAKE_MK))tools/slurm_bake.sh
 
 # timed PREFIX,TOOL: GNU time into PREFIX.TOOL.time, with TIME_BAKE=1.
 timed = $(if $(TIME_BAKE),/usr/bin/time -f '%e %U %S %M' -o $(1).$(2).time)
 
-# copy_if_changed FROM TO: TO gets FROM's bytes, or keeps its time when equal.
-copy_if_changed = cmp -s $(1) $(2) || cp $(1) $(2)
+# write_if_changed TEXT,FILE: FILE gets the line TEXT, or keeps its time when
+# it has it already; through a temporary of its own and a rename, so that
+# several makes at once (make -j, Slurm tasks) never see a part.
+write_if_changed = t=$$(mktemp $(2).XXXXXX) && printf '%s\n' '$(1)' >$$t && \
+  { cmp -s $$t $(2) && rm -f $$t || mv $$t $(2); }
 
 # bake_scene SCENE,PREFIX: the rules of one scene's bake into PREFIX.*.
 define bake_scene
@@ -63,13 +79,12 @@ $(2).content: $(1) $(BIN)/scene-info
 -include $(2).content.d
 
 $(2).scene-hash: $(2).content
-	@grep '^scene_hash ' $$< >$$@.new && $$(call copy_if_changed,$$@.new,$$@); rm -f $$@.new
+	@$$(call write_if_changed,$$(shell grep '^scene_hash ' $$<),$$@)
 $(2).images-hash: $(2).content
-	@grep '^images_hash ' $$< >$$@.new && $$(call copy_if_changed,$$@.new,$$@); rm -f $$@.new
+	@$$(call write_if_changed,$$(shell grep '^images_hash ' $$<),$$@)
 $(foreach tool,$(BAKE_TOOLS),
 $(2).$(tool)-flags: bake-force
-	@mkdir -p $$(@D); printf '%s\n' '$($(call flags_of,$(tool)))' >$$@.new && \
-	  $$(call copy_if_changed,$$@.new,$$@); rm -f $$@.new
+	@mkdir -p $$(@D); $$(call write_if_changed,$($(call flags_of,$(tool))),$$@)
 )
 $(2).vdb: $(2).scene-hash $(2).voxelize-flags $(BIN)/voxelize
 	$(call timed,$(2),voxelize) $(BIN)/voxelize $(VOXELIZE_FLAGS) $(1) -o $$@
@@ -85,8 +100,19 @@ $(2).seg: $(2).skel $(2).vdb $(2).grid.vdb $(2).segment-flags $(BIN)/segment
 	$(call timed,$(2),segment) $(BIN)/segment $(SEGMENT_FLAGS) $(2).skel \
 	  --voxels $(2).vdb --grid $(2).grid.vdb -o $$@
 
+ifeq ($(SHARDS),1)
 $(2).phot: $(2).scene-hash $(2).images-hash $(2).photons-flags $(BIN)/photons
 	$(call timed,$(2),photons) $(BIN)/photons $(PHOTONS_FLAGS) $(1) -o $$@
+else
+# SHARDS=N: the photons in N independent parts (photons --shard I/N), merged
+# into the bytes of the whole run (photons --merge).
+$(foreach i,$(shard_indices),
+$(2).phot.$(i)-of-$(SHARDS): $(2).scene-hash $(2).images-hash $(2).photons-flags $(BIN)/photons
+	$(BIN)/photons $(PHOTONS_FLAGS) --shard $(i)/$(SHARDS) $(1) -o $$@
+)
+$(2).phot: $(foreach i,$(shard_indices),$(2).phot.$(i)-of-$(SHARDS)) $(BIN)/photons
+	$(call timed,$(2),photons) $(BIN)/photons --merge $$(filter %-of-$(SHARDS),$$^) -o $$@
+endif
 
 $(2).lot: $(2).scene-hash $(2).phot $(2).cluster-flags $(BIN)/cluster
 	$(call timed,$(2),cluster) $(BIN)/cluster $(CLUSTER_FLAGS) $(1) $(2).phot -o $$@

@@ -1,0 +1,63 @@
+#!/bin/sh
+# shards.sh — what splitting photons costs (make slurm-bake, SHARDS=N): one
+# run of photons -n COUNT against the same photons as N shards run one after
+# another (photons --shard I/N) plus photons --merge, same scene, same run;
+# CPU seconds (user + sys, GNU time) and wall, the merged map checked
+# byte-identical to the single run. Then, on paper, from the measured rates:
+# a 10^9-photon bake of the scene.
+#
+#   sh bench/shards.sh [SCENE]      SHARDS_COUNT (default 2000000), SHARDS_N (4)
+#
+# GB_BIN: the tools (default build/bin).
+
+root=$(cd "$(dirname "$0")/.." && pwd)
+GB_BIN=${GB_BIN:-$root/build/bin}
+scene=${1:-$root/scenes/shared/sponza.scene}
+count=${SHARDS_COUNT:-2000000}
+n=${SHARDS_N:-4}
+dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-shards.XXXXXX") || exit 1
+trap 'rm -rf "$dir"' EXIT INT TERM
+
+# timed NAME COMMAND...: runs it; appends "NAME cpu_s wall_s" to $dir/times.
+timed() {
+    name=$1
+    shift
+    /usr/bin/time -f "$name %U %S %e" -a -o "$dir/times" "$@" >/dev/null || exit 1
+}
+
+timed single "$GB_BIN/photons" -q -n "$count" "$scene" -o "$dir/single.phot"
+shards=
+for i in $(seq 0 $((n - 1))); do
+    timed shard "$GB_BIN/photons" -q -n "$count" --shard "$i/$n" "$scene" -o "$dir/$i.phot"
+    shards="$shards $dir/$i.phot"
+done
+timed merge "$GB_BIN/photons" --merge $shards -o "$dir/merged.phot"
+cmp -s "$dir/single.phot" "$dir/merged.phot" && same=yes || same=NO
+bytes=$(stat -c %s "$dir/merged.phot")
+
+echo "photons in $n shards; $(basename "$scene"), $count photons; $(nproc) cores, load" \
+    "$(cut -d' ' -f1-3 /proc/loadavg); $(date -u +%Y-%m-%d)"
+echo
+awk -v n="$n" -v bytes="$bytes" -v same="$same" -v count="$count" '
+    { cpu[$1] += $2 + $3; wall[$1] += $4 }
+    END {
+        printf "| step | CPU s | wall s |\n|---|---:|---:|\n"
+        printf "| one run | %.2f | %.2f |\n", cpu["single"], wall["single"]
+        printf "| %d shards, one after another | %.2f | %.2f |\n", n, cpu["shard"], wall["shard"]
+        printf "| merge | %.2f | %.2f |\n", cpu["merge"], wall["merge"]
+        printf "\nShards and merge against one run: %.2fx the CPU; the merged map (%d bytes)" \
+            " byte-identical to the one run: %s.\n", (cpu["shard"] + cpu["merge"]) / cpu["single"],
+            bytes, same
+        # a run = a fixed start (scene load, BVH) + tracing: two equations
+        fixed = (cpu["shard"] - cpu["single"]) / (n - 1)
+        trace = count / (cpu["single"] - fixed)
+        rate = bytes / (wall["merge"] > 0.01 ? wall["merge"] : 0.01)
+        total = 1e9 / count * bytes
+        printf "A run costs a fixed %.2f CPU s (load, BVH) and traces %.0f photons per CPU s.\n",
+            fixed, trace
+        printf "10^9 photons of this scene, on paper: %.1f GB of photon map (as many stored" \
+            " per photon traced as here); %.2f CPU h of tracing, plus %.2f CPU s a shard; on" \
+            " 64 shards of one core, %.1f min each; the merge, at the %.0f MB/s measured" \
+            " here, %.0f s.\n", total / 1e9, 1e9 / trace / 3600, fixed,
+            (1e9 / trace / 64 + fixed) / 60, rate / 1e6, total / rate
+    }' "$dir/times"
