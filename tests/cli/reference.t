@@ -49,6 +49,26 @@ expect_failure "a VPL file that is not one" 1 "^reference: .*direct.png" \
 expect_failure "a bad resolution" 2 "^reference: --resolution: '0x5' is not WxH with each side in 1\.\.16384$" \
     --resolution 0x5 "$scene" -o "$dir/x.exr"
 
+# --tile I/N and --merge: three parts of a 100x70 render (7x5 tiles, so the
+# last row and column are part tiles) joined byte for byte into the whole one.
+"$tool" -q --spp 2 -r 100x70 --seed 5 "$scene" -o "$dir/whole.exr"
+parts=
+for i in 0 1 2; do
+    "$tool" -q --spp 2 -r 100x70 --seed 5 --tile $i/3 "$scene" -o "$dir/part$i.exr"
+    parts="$parts $dir/part$i.exr"
+done
+"$tool" --merge $parts -o "$dir/merged.exr"
+ok "$([ $? = 0 ] && cmp -s "$dir/whole.exr" "$dir/merged.exr"; echo $?)" \
+    "--merge of --tile 0/3, 1/3, 2/3: the bytes of the whole render"
+"$imgdiff" "$dir/part1.exr" "$dir/whole.exr" >"$dir/out"
+ok "$(below 0.01 "$(value relative_mse "$dir/out")"; echo $?)" \
+    "and a part alone is not the whole (relative MSE $(value relative_mse "$dir/out"))"
+expect_failure "--merge of two of the three parts" 1 "not part 0 of 2" \
+    --merge "$dir/part0.exr" "$dir/part1.exr" -o "$dir/x.exr"
+expect_failure "--merge of the parts out of order" 1 "part1.exr: .*not part 0 of 3" \
+    --merge "$dir/part1.exr" "$dir/part0.exr" "$dir/part2.exr" -o "$dir/x.exr"
+expect_failure "--tile 3/3" 2 "'3/3' is not I/N" --tile 3/3 "$scene" -o "$dir/x.exr"
+
 "$tool" --help >"$dir/out"
 ok "$([ $? = 0 ] && grep -q "^usage: reference" "$dir/out"; echo $?)" "--help on stdout, status 0"
 "$tool" --version >"$dir/out"

@@ -19,6 +19,7 @@
 
 static const char usage[] =
     "usage: reference [options] SCENE -o OUT.exr\n"
+    "       reference --merge TILE0.exr TILE1.exr ... -o OUT.exr\n"
     "Renders a camera of SCENE with Embree into a linear EXR: ground truth for the\n"
     "real-time methods. The image depends on the seed, never on --threads.\n"
     "\n"
@@ -43,6 +44,10 @@ static const char usage[] =
     "                          Russian roulette after 3)\n"
     "      --min-bounces N     full: fewest reflections (default 0; 3 gives what\n"
     "                          direct and indirect1 leave out)\n"
+    "      --tile I/N          render only part I of N of the image (its 16x16\n"
+    "                          tiles t with t mod N = I; the rest black): a shard\n"
+    "      --merge             join the N parts given, in order 0/N .. N-1/N, into\n"
+    "                          the image of the whole render, byte for byte\n"
     "      --png               also write OUT.png, sRGB, beside OUT.exr\n"
     "      --stats             print rays, seconds (wall, CPU) and rays per second\n"
     "                          on stdout\n"
@@ -54,10 +59,13 @@ static const char usage[] =
 typedef struct arguments {
     gb_reference_options render;
     const char *scene_path, *output, *vpl_path, *depfile;
-    int png, stats, quiet, mode_given;
+    char **tiles;               /* --merge: the parts */
+    int tile_count;
+    int png, stats, quiet, mode_given, merge;
 } arguments;
 
-enum { OPTION_VPL = 256, OPTION_SEED, OPTION_MIN_BOUNCES, OPTION_PNG, OPTION_STATS, OPTION_DEPFILE };
+enum { OPTION_VPL = 256, OPTION_SEED, OPTION_MIN_BOUNCES, OPTION_PNG, OPTION_STATS, OPTION_DEPFILE,
+       OPTION_TILE, OPTION_MERGE };
 
 static const struct option long_options[] = {
     GB_CLI_VALUE("output", 'o'),
@@ -73,6 +81,8 @@ static const struct option long_options[] = {
     GB_CLI_FLAG("png", OPTION_PNG),
     GB_CLI_FLAG("stats", OPTION_STATS),
     GB_CLI_VALUE("depfile", OPTION_DEPFILE),
+    GB_CLI_VALUE("tile", OPTION_TILE),
+    GB_CLI_FLAG("merge", OPTION_MERGE),
     GB_CLI_OPTIONS_END,
 };
 
@@ -89,6 +99,8 @@ static int parse_number(int option, const char *text, arguments *a)
     case OPTION_MIN_BOUNCES:
         return gb_cli_int("reference", "min-bounces", text, 0, 1 << 20, &r->min_bounces);
     case OPTION_SEED: return gb_cli_unsigned("reference", "seed", text, 0, UINT64_MAX, &r->seed);
+    case OPTION_TILE:
+        return gb_cli_fraction("reference", "tile", text, &r->tile, &r->tile_count);
     case 'r':
         return gb_cli_size("reference", "resolution", text, GB_CLI_MAX_IMAGE_SIDE, &r->width,
                            &r->height);
@@ -110,6 +122,7 @@ static int parse_option(int option, const char *text, void *context)
     case OPTION_PNG: a->png = 1; return 0;
     case OPTION_STATS: a->stats = 1; return 0;
     case OPTION_DEPFILE: a->depfile = text; return 0;
+    case OPTION_MERGE: a->merge = 1; return 0;
     case 'q': a->quiet = 1; return 0;
     case 'm':
         a->mode_given = 1;
@@ -125,6 +138,17 @@ static int parse_option(int option, const char *text, void *context)
 static int check_operands(int count, char **operands, void *context)
 {
     arguments *a = context;
+    if (a->merge) {
+        if (count < 2 || !a->output)
+            return gb_cli_usage_error("reference", "--merge: expected the parts TILE0 "
+                                                   "TILE1 ... and -o OUT");
+        if (a->depfile || a->render.tile_count)
+            return gb_cli_usage_error("reference", "--merge takes neither --depfile "
+                                                   "nor --tile");
+        a->tiles = operands;
+        a->tile_count = count;
+        return GB_CLI_GO_ON;
+    }
     if (count != 1 || !a->output)
         return gb_cli_usage_error("reference", "expected one SCENE and -o OUT");
     a->scene_path = operands[0];
@@ -208,12 +232,34 @@ static gb_result render(arguments *a, const gb_scene *scene, gb_error *error)
     return result;
 }
 
+/* --merge: the parts read, joined and written. */
+static gb_result merge_tiles(const arguments *a, gb_error *error)
+{
+    gb_image *tiles = calloc((size_t)a->tile_count, sizeof *tiles);
+    if (!tiles)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory");
+    gb_result result = GB_OK;
+    for (int i = 0; i < a->tile_count && result == GB_OK; ++i)
+        result = gb_image_read(a->tiles[i], &tiles[i], error);
+    gb_image merged = {0};
+    if (result == GB_OK)
+        result = gb_reference_merge_tiles(tiles, (const char *const *)a->tiles,
+                                          (uint32_t)a->tile_count, &merged, error);
+    if (result == GB_OK)
+        result = write_images(a, &merged, error);
+    gb_image_free(&merged);
+    for (int i = 0; i < a->tile_count; ++i)
+        gb_image_free(&tiles[i]);
+    free(tiles);
+    return result;
+}
+
 static gb_result run(void *context, gb_error *error)
 {
     arguments *a = context;
     gb_result result = check_outputs(a, error);
-    if (result != GB_OK)
-        return result;
+    if (result != GB_OK || a->merge)
+        return result == GB_OK ? merge_tiles(a, error) : result;
     gb_scene scene;
     gb_scene_options scene_options = {.load_textures = 1};
     result = gb_scene_load(a->scene_path, &scene_options, &scene, error);

@@ -64,6 +64,10 @@ typedef struct gb_reference_options {
     int bounces;                /* full: most reflections; 0: 64 */
     int min_bounces;            /* full: fewest reflections; 0 */
     const gb_vpl_set *vpls;     /* vpl: the set, made from this scene */
+    uint32_t tile, tile_count;  /* --tile I/N: only the tiles t of the image with
+                                   t % N == I (tiles of GB_REFERENCE_TILE_SIZE
+                                   pixels, in rows) are rendered, the rest black;
+                                   tile_count 0 or 1: the whole image */
     gb_progress_callback progress; /* called from the calling thread; may be NULL */
     void *progress_user;
 } gb_reference_options;
@@ -81,6 +85,17 @@ typedef struct gb_reference_stats {
  * linear; the caller frees it). stats may be NULL. */
 gb_result gb_reference_render(const gb_scene *scene, const gb_reference_options *options,
                               gb_image *image, gb_reference_stats *stats, gb_error *error);
+
+/* The side of the square tiles the image is rendered in (and split in by
+ * --tile). */
+enum { GB_REFERENCE_TILE_SIZE = 16 };
+
+/* The image made from count renders of --tile 0/count .. count-1/count
+ * (tiles[i] the one of I = i, all of one size): each pixel taken from the
+ * render its tile belongs to, so the bytes are those of the whole render.
+ * merged is allocated here; names[i] names tiles[i] in messages. */
+gb_result gb_reference_merge_tiles(const gb_image *tiles, const char *const *names,
+                                   uint32_t count, gb_image *merged, gb_error *error);
 
 /* "full", "direct", "indirect1", "indirect1-unshadowed", "vpl". */
 const char *gb_reference_mode_name(gb_reference_mode mode);

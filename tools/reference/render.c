@@ -12,7 +12,7 @@
 #include "surface.h"
 #include "work_queue.h"
 
-enum { TILE_SIZE = 16, MAX_RESOLUTION = 32768 };
+enum { TILE_SIZE = GB_REFERENCE_TILE_SIZE, MAX_RESOLUTION = 32768 };
 
 typedef struct render_job {
     const gb_integrator *integrator;
@@ -21,6 +21,7 @@ typedef struct render_job {
     int spp;
     uint64_t seed;
     int tiles_x, tile_count;
+    uint32_t split, split_count;        /* --tile I/N: I, N */
     atomic_uint_fast64_t rays;
     atomic_uint_fast64_t nonfinite;
 } render_job;
@@ -81,6 +82,8 @@ static int render_tile(void *context, uint64_t item)
 {
     render_job *job = context;
     int tile = (int)item;
+    if (job->split_count > 1 && (uint32_t)tile % job->split_count != job->split)
+        return 0;   /* another --tile's */
     int x0 = (tile % job->tiles_x) * TILE_SIZE, y0 = (tile / job->tiles_x) * TILE_SIZE;
     int x1 = x0 + TILE_SIZE < job->frame->width ? x0 + TILE_SIZE : job->frame->width;
     int y1 = y0 + TILE_SIZE < job->frame->height ? y0 + TILE_SIZE : job->frame->height;
@@ -129,6 +132,9 @@ static gb_result resolve_options(const gb_scene *scene, const gb_reference_optio
 {
     if ((unsigned)options->mode >= MODE_COUNT)
         return gb_fail(error, GB_ERROR_ARGUMENT, "reference: unknown mode %d", options->mode);
+    if (options->tile_count > 1 && options->tile >= options->tile_count)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "reference: tile %u of %u", options->tile,
+                       options->tile_count);
     if (options->camera >= scene->camera_count)
         return gb_fail(error, GB_ERROR_ARGUMENT, "reference: no camera %u (the scene has %u)",
                        (unsigned)options->camera, (unsigned)scene->camera_count);
@@ -204,6 +210,8 @@ static gb_result render_image(renderer *r, const gb_reference_options *options,
         .spp = settings->spp,
         .seed = options->seed,
         .tiles_x = (settings->width + TILE_SIZE - 1) / TILE_SIZE,
+        .split = options->tile,
+        .split_count = options->tile_count,
     };
     job.tile_count = job.tiles_x * ((settings->height + TILE_SIZE - 1) / TILE_SIZE);
     double start = gb_seconds(), cpu_start = gb_cpu_seconds();
