@@ -158,7 +158,8 @@ SANITIZER_ENVIRONMENT = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:intercept_t
 FUZZ_CHECK_SECONDS ?= 10
 # prove runs JOBS tests at a time, in this order: the slowest first, so that
 # no long test starts last and runs alone.
-SLOW_TESTS = tests/cli/hard_cases.t tests/cli/report.t tests/cli/output.t
+SLOW_TESTS = tests/cli/hard_cases.t tests/cli/report.t tests/cli/output.t tests/cli/slurm.t \
+  tests/cli/make.t
 CLI_TESTS = $(SLOW_TESTS) $(filter-out $(SLOW_TESTS),$(wildcard tests/cli/*.t))
 SUITE = $(CLI_TESTS) $(UNIT_TESTS)
 # The sanitized stage leaves out report.t: it runs the same tools as the rest
