@@ -1,12 +1,15 @@
 #!/bin/sh
-# shards.sh — what splitting photons costs (make slurm-bake, SHARDS=N): one
+# shards.sh — what splitting photons and reference costs (make slurm-bake,
+# SHARDS=N; reference --tile I/N): for photons, one
 # run of photons -n COUNT against the same photons as N shards run one after
 # another (photons --shard I/N) plus photons --merge, same scene, same run;
 # CPU seconds (user + sys, GNU time) and wall, the merged map checked
-# byte-identical to the single run. Then, on paper, from the measured rates:
+# byte-identical to the single run; the same for one reference render
+# against N parts and --merge. Then, on paper, from the measured rates:
 # a 10^9-photon bake of the scene.
 #
-#   sh bench/shards.sh [SCENE]      SHARDS_COUNT (default 2000000), SHARDS_N (4)
+#   sh bench/shards.sh [SCENE]      SHARDS_COUNT (default 2000000), SHARDS_N (4),
+#                                   SHARDS_SPP (16), SHARDS_SIZE (256x144)
 #
 # GB_BIN: the tools (default build/bin).
 
@@ -35,19 +38,41 @@ timed merge "$GB_BIN/photons" --merge $shards -o "$dir/merged.phot"
 cmp -s "$dir/single.phot" "$dir/merged.phot" && same=yes || same=NO
 bytes=$(stat -c %s "$dir/merged.phot")
 
+# reference: one render against N parts (--tile I/N) and --merge, same scene.
+spp=${SHARDS_SPP:-16}
+size=${SHARDS_SIZE:-256x144}
+timed reference "$GB_BIN/reference" -q --spp "$spp" -r "$size" "$scene" -o "$dir/whole.exr"
+parts=
+for i in $(seq 0 $((n - 1))); do
+    timed part "$GB_BIN/reference" -q --spp "$spp" -r "$size" --tile "$i/$n" "$scene" \
+        -o "$dir/part$i.exr"
+    parts="$parts $dir/part$i.exr"
+done
+timed image-merge "$GB_BIN/reference" --merge $parts -o "$dir/merged.exr"
+cmp -s "$dir/whole.exr" "$dir/merged.exr" && image_same=yes || image_same=NO
+
 echo "photons in $n shards; $(basename "$scene"), $count photons; $(nproc) cores, load" \
     "$(cut -d' ' -f1-3 /proc/loadavg); $(date -u +%Y-%m-%d)"
 echo
-awk -v n="$n" -v bytes="$bytes" -v same="$same" -v count="$count" '
+awk -v n="$n" -v bytes="$bytes" -v same="$same" -v count="$count" -v spp="$spp" \
+    -v size="$size" -v image_same="$image_same" '
     { cpu[$1] += $2 + $3; wall[$1] += $4 }
     END {
         printf "| step | CPU s | wall s |\n|---|---:|---:|\n"
         printf "| one run | %.2f | %.2f |\n", cpu["single"], wall["single"]
         printf "| %d shards, one after another | %.2f | %.2f |\n", n, cpu["shard"], wall["shard"]
         printf "| merge | %.2f | %.2f |\n", cpu["merge"], wall["merge"]
-        printf "\nShards and merge against one run: %.2fx the CPU; the merged map (%d bytes)" \
-            " byte-identical to the one run: %s.\n", (cpu["shard"] + cpu["merge"]) / cpu["single"],
-            bytes, same
+        printf "| reference %s, %d spp, one run | %.2f | %.2f |\n", size, spp,
+            cpu["reference"], wall["reference"]
+        printf "| reference, %d parts (--tile), one after another | %.2f | %.2f |\n", n,
+            cpu["part"], wall["part"]
+        printf "| reference --merge | %.2f | %.2f |\n", cpu["image-merge"], wall["image-merge"]
+        printf "\nphotons: shards and merge against one run: %.2fx the CPU; the merged map" \
+            " (%d bytes) byte-identical to the one run: %s.\n",
+            (cpu["shard"] + cpu["merge"]) / cpu["single"], bytes, same
+        printf "reference: parts and merge against one run: %.2fx the CPU; the merged image" \
+            " byte-identical: %s.\n", (cpu["part"] + cpu["image-merge"]) / cpu["reference"],
+            image_same
         # a run = a fixed start (scene load, BVH) + tracing: two equations
         fixed = (cpu["shard"] - cpu["single"]) / (n - 1)
         trace = count / (cpu["single"] - fixed)
