@@ -44,7 +44,7 @@ bake:
 bake-force:
 
 # make slurm-bake SCENE=... SHARDS=N: the same bake submitted to Slurm
-# (tools/slurm_bake.sh), photons as a job array of N shards. The stamps are
+# (tools/slurm_bake.sh), photons and cluster as job arrays of N shards. The stamps are
 # made here first, so that the jobs only run the tools.
 slurm-bake: $(foreach s,scene-hash images-hash $(BAKE_TOOLS:%=%-flags),$(BAKE)/$(SCENE_NAME).$(s))
 	BAKE_MK=$(BAKE_MK) BIN=$(abspath $(BIN)) BAKE=$(BAKE) SCENE=$(SCENE) SHARDS=$(SHARDS) \
@@ -114,8 +114,19 @@ $(2).phot: $(foreach i,$(shard_indices),$(2).phot.$(i)-of-$(SHARDS)) $(BIN)/phot
 	$(call timed,$(2),photons) $(BIN)/photons --merge $$(filter %-of-$(SHARDS),$$^) -o $$@
 endif
 
+ifeq ($(SHARDS),1)
 $(2).lot: $(2).scene-hash $(2).phot $(2).cluster-flags $(BIN)/cluster
 	$(call timed,$(2),cluster) $(BIN)/cluster $(CLUSTER_FLAGS) $(1) $(2).phot -o $$@
+else
+# SHARDS=N: the octree's leaves in N ranges (cluster --shard I/N, each reading
+# the whole photon map), merged into the bytes of the whole run.
+$(foreach i,$(shard_indices),
+$(2).lot.$(i)-of-$(SHARDS): $(2).scene-hash $(2).phot $(2).cluster-flags $(BIN)/cluster
+	$(BIN)/cluster $(CLUSTER_FLAGS) --shard $(i)/$(SHARDS) $(1) $(2).phot -o $$@
+)
+$(2).lot: $(foreach i,$(shard_indices),$(2).lot.$(i)-of-$(SHARDS)) $(BIN)/cluster
+	$(call timed,$(2),cluster) $(BIN)/cluster --merge $$(filter %-of-$(SHARDS),$$^) -o $$@
+endif
 endef
 
 # flags_of TOOL: the name of its flags variable, e.g. VOXELIZE_FLAGS.

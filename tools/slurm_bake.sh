@@ -2,8 +2,8 @@
 # slurm_bake.sh — make slurm-bake (bake.mk): one scene's bake as Slurm jobs,
 # each running the same bake.mk rule that make bake runs here:
 #   voxelize → thin → segment          three jobs, each afterok the one before
-#   photons                            a job array of SHARDS tasks (--shard I/N)
-#   merge → cluster                    afterok the array, then the merge
+#   photons, then cluster              each a job array of SHARDS tasks (--shard
+#                                      I/N) and a merge job afterok the array
 # then waits (sbatch --wait) for a last job that needs all of them. A job
 # that fails cancels what depends on it (--kill-on-invalid-dep), and this
 # script then fails naming the logs: PREFIX.slurm-STEP.*.log.
@@ -35,18 +35,24 @@ segment=$(submit segment -d "afterok:$thin" --wrap "$(rule "$PREFIX.seg")") || e
 if [ "$SHARDS" -gt 1 ]; then
     shards=$(submit photons --array "0-$((SHARDS - 1))" \
         --wrap "$(rule "$PREFIX.phot.\$SLURM_ARRAY_TASK_ID-of-$SHARDS")") || exit 1
-    photons=$(submit merge -d "afterok:$shards" --wrap "$(rule "$PREFIX.phot")") || exit 1
+    photons=$(submit photons-merge -d "afterok:$shards" --wrap "$(rule "$PREFIX.phot")") || exit 1
 else
     photons=$(submit photons --wrap "$(rule "$PREFIX.phot")") || exit 1
 fi
-cluster=$(submit cluster -d "afterok:$photons" --wrap "$(rule "$PREFIX.lot")") || exit 1
+if [ "$SHARDS" -gt 1 ]; then
+    parts=$(submit cluster -d "afterok:$photons" --array "0-$((SHARDS - 1))" \
+        --wrap "$(rule "$PREFIX.lot.\$SLURM_ARRAY_TASK_ID-of-$SHARDS")") || exit 1
+    cluster=$(submit cluster-merge -d "afterok:$parts" --wrap "$(rule "$PREFIX.lot")") || exit 1
+else
+    cluster=$(submit cluster -d "afterok:$photons" --wrap "$(rule "$PREFIX.lot")") || exit 1
+fi
 echo "slurm-bake: jobs $voxelize $thin $segment ${shards:+$shards (array of $SHARDS) }$photons" \
-    "$cluster; waiting"
+    "${parts:+$parts (array of $SHARDS) }$cluster; waiting"
 sbatch --wait --kill-on-invalid-dep=yes -J gibake-done -o /dev/null ${SBATCH_FLAGS:-} \
     -d "afterok:$segment:$cluster" --wrap true >/dev/null
 # A job cancelled for a failed dependency never ran, and --wait does not say
 # so: every job (every task of the array) must have completed.
-for job in $voxelize $thin $segment ${shards:-} $photons $cluster; do
+for job in $voxelize $thin $segment ${shards:-} $photons ${parts:-} $cluster; do
     states=$(scontrol -o show job "$job" | grep -o 'JobState=[A-Z_]*' | sort -u)
     if [ "$states" != JobState=COMPLETED ]; then
         echo "slurm-bake: a job failed: job $job:" $states "; see $PREFIX.slurm-*.log" >&2

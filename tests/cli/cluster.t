@@ -77,4 +77,23 @@ status=$?
 [ $status = 1 ] && grep -q 'another scene' "$dir/err" && [ ! -e "$dir/bad.lot" ]
 ok $? "photons of another scene: exit 1, stale, nothing written"
 
+# --shard I/N and --merge: three parts of the leaves joined into the bytes of
+# the whole run; a part left out, or the parts out of order, refused.
+parts=
+for i in 0 1 2; do
+    "$tool" $small --shard $i/3 "$scene" "$dir/in.phot" -o "$dir/part$i.lot" 2>"$dir/err"
+    parts="$parts $dir/part$i.lot"
+done
+"$tool" --merge $parts -o "$dir/merged.lot" 2>"$dir/err"
+ok "$([ $? = 0 ] && cmp -s "$dir/one.lot" "$dir/merged.lot"; echo $?)" \
+    "--merge of --shard 0/3, 1/3, 2/3: the bytes of the whole run"
+ok "$(cmp -s "$dir/one.lot" "$dir/part1.lot"; [ $? = 1 ]; echo $?)" "and a part alone is not it"
+expect_failure "--merge of two of the three parts" 1 "not part 0 of 2\|not part 1 of 2" \
+    --merge "$dir/part0.lot" "$dir/part1.lot" -o "$dir/x.lot"
+expect_failure "--merge of the parts out of order" 1 "part1.lot: .*not part 0 of 3" \
+    --merge "$dir/part1.lot" "$dir/part0.lot" "$dir/part2.lot" -o "$dir/x.lot"
+"$tool" --depth 4 --shard 0/2 "$scene" "$dir/in.phot" -o "$dir/other.lot" 2>"$dir/err"
+expect_failure "--merge of parts of two octrees" 1 "not a part of the octree" \
+    --merge "$dir/part0.lot" "$dir/other.lot" -o "$dir/x.lot"
+
 tap_done

@@ -2,7 +2,7 @@
 # slurm.t — make slurm-bake on a real Slurm: a single-node cluster started
 # here (munged with a key made here and its own socket, slurmctld and slurmd
 # from a slurm.conf made here on ports of their own), the Cornell box baked
-# with photons in 4 shards (a job array) and every step a job afterok the
+# with photons and cluster in 4 shards (job arrays) and every step a job afterok the
 # one before, and every baked file byte-identical to make bake on this
 # machine. The daemons are stopped at the end. Needs root (slurmd does).
 # Prints TAP.
@@ -101,8 +101,10 @@ ok $? "make bake on this machine"
 flags BAKE="$dir/slurm" SHARDS=4 slurm-bake >"$dir/slurm.out" 2>&1
 ok $? "make slurm-bake SHARDS=4"
 sed 's/^/#   /' "$dir/slurm.out"
-ok "$(ls "$dir"/slurm/cornell.slurm-photons.*_[0-3].log 2>/dev/null | wc -l | grep -qx 4
-      echo $?)" "photons ran as 4 array tasks"
+for step in photons cluster; do
+    ok "$(ls "$dir"/slurm/cornell.slurm-$step.*_[0-3].log 2>/dev/null | wc -l | grep -qx 4
+          echo $?)" "$step ran as 4 array tasks"
+done
 same=0
 for f in vdb skel grid.vdb seg phot lot; do
     cmp -s "$dir/here/cornell.$f" "$dir/slurm/cornell.$f" || { same=1; echo "# cornell.$f differs"; }

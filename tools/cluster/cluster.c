@@ -32,9 +32,10 @@ static gb_result resolve_options(const gb_cluster_options *in, gb_cluster_option
     }
     if (o->depth > GB_LIGHT_OCTREE_MAX_DEPTH || o->vdls_max > GB_LIGHT_OCTREE_MAX_VDLS ||
         o->knn > 100000 || !(o->radius >= 0.0f) || !(o->max_spread <= 180.0f) ||
-        o->threads > 256 || o->restarts > 64)
+        o->threads > 256 || o->restarts > 64 || (o->part_count > 1 && o->part >= o->part_count))
         return gb_fail(error, GB_ERROR_ARGUMENT, "cluster: bad options (depth 1..%d, K "
-                       "1..100000, K_max 1..%d, R >= 0, spread <= 180, restarts <= 64)",
+                       "1..100000, K_max 1..%d, R >= 0, spread <= 180, restarts <= 64, "
+                       "part < parts)",
                        GB_LIGHT_OCTREE_MAX_DEPTH, GB_LIGHT_OCTREE_MAX_VDLS);
     return GB_OK;
 }
@@ -107,6 +108,18 @@ static gb_result run_chunk(chunk_job *job, int threads, gb_error *error)
 
 /* ---- every leaf ---- */
 
+void gb_cluster_part_leaves(uint32_t leaf_count, uint32_t part, uint32_t part_count,
+                            uint32_t *first, uint32_t *end)
+{
+    if (part_count <= 1 || part >= part_count) {
+        *first = 0;
+        *end = leaf_count;
+        return;
+    }
+    *first = (uint32_t)((uint64_t)leaf_count * part / part_count);
+    *end = (uint32_t)((uint64_t)leaf_count * (part + 1) / part_count);
+}
+
 typedef struct leaf_results {
     gb_light_octree_vdl *slots;
     uint32_t *vdl_counts;
@@ -177,12 +190,14 @@ static gb_result cluster_leaves(const gb_octree_leaves *leaves, const gb_gatheri
                      .distances2 = b.distances2, .slots = r->slots,
                      .vdl_counts = r->vdl_counts, .spreads = r->spreads,
                      .gathered = r->gathered};
-    for (uint32_t first = 0; first < leaves->count && result == GB_OK; first += CHUNK_LEAVES) {
+    uint32_t begin, end;
+    gb_cluster_part_leaves(leaves->count, o->part, o->part_count, &begin, &end);
+    for (uint32_t first = begin; first < end && result == GB_OK; first += CHUNK_LEAVES) {
         job.first = first;
-        job.count = leaves->count - first < CHUNK_LEAVES ? leaves->count - first : CHUNK_LEAVES;
+        job.count = end - first < CHUNK_LEAVES ? end - first : CHUNK_LEAVES;
         result = cluster_chunk(&job, &b, stats, error);
         if (result == GB_OK && o->progress &&
-            o->progress(o->progress_user, (double)(first + job.count) / leaves->count))
+            o->progress(o->progress_user, (double)(first + job.count - begin) / (end - begin)))
             result = gb_fail(error, GB_ERROR_INTERRUPTED, "cluster: interrupted");
     }
     free(b.centres);

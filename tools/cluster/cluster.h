@@ -54,6 +54,9 @@ typedef struct gb_cluster_options {
                                    (kmeans.h); 0: 1 */
     uint64_t seed;
     int threads;                /* 0: every core */
+    uint32_t part, part_count;  /* --shard I/N: only the leaves of part I of N
+                                   (gb_cluster_part_leaves) are clustered, the
+                                   others get no VDL; part_count 0 or 1: all */
     gb_progress_callback progress; /* fraction done, from the calling thread; may be NULL */
     void *progress_user;
 } gb_cluster_options;
@@ -74,5 +77,19 @@ typedef struct gb_cluster_stats {
 gb_result gb_cluster_build(const gb_scene *scene, const gb_photon_map *map,
                            const gb_cluster_options *options, gb_light_octree *octree,
                            gb_cluster_stats *stats, gb_error *error);
+
+/* The leaves of part of part_count: [*first, *end), a contiguous range of the
+ * leaf order, the same for every run of the same leaf_count. */
+void gb_cluster_part_leaves(uint32_t leaf_count, uint32_t part, uint32_t part_count,
+                            uint32_t *first, uint32_t *end);
+
+/* The light octree made from the count octrees of --shard 0/count ..
+ * count-1/count (parts[i] the one of I = i): each leaf's VDLs taken from the
+ * part it belongs to, so that the bytes are those of the whole run. A part
+ * of another octree (header, nodes, leaves), or with VDLs outside its own
+ * leaves (a part of another split, or the parts out of order), is refused,
+ * naming it by names[i]. merged owns its storage (gb_light_octree_free). */
+gb_result gb_cluster_merge(const gb_light_octree *parts, const char *const *names,
+                           uint32_t count, gb_light_octree *merged, gb_error *error);
 
 #endif

@@ -17,6 +17,7 @@
 
 static const char usage[] =
     "usage: cluster [options] SCENE IN.phot -o OUT.lot\n"
+    "       cluster --merge PART0.lot PART1.lot ... -o OUT.lot\n"
     "Clusters the photon map IN.phot of SCENE into a light octree of virtual\n"
     "directional lights (vivianloc-2007; formats/FORMATS.md, \"Light octree\"). The\n"
     "file depends on the seed, never on --threads.\n"
@@ -33,6 +34,10 @@ static const char usage[] =
     "                          (default 1)\n"
     "      --seed N            k-means++ seed (default 0)\n"
     "  -t, --threads N         threads (default: every core)\n"
+    "      --shard I/N         cluster only part I of N of the leaves (a range of\n"
+    "                          the leaf order; the others get no VDL)\n"
+    "      --merge             join the N parts given, in order 0/N .. N-1/N, into\n"
+    "                          the octree of the whole run, byte for byte\n"
     "      --stats             print leaves, VDLs and seconds on stdout\n"
     "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
     "  -q, --quiet             no progress bar, no warnings\n"
@@ -42,10 +47,13 @@ static const char usage[] =
 typedef struct arguments {
     gb_cluster_options cluster;
     const char *output, *scene, *photons, *depfile;
-    int quiet, stats;
+    char **parts;               /* --merge: the parts */
+    int part_count;
+    int quiet, stats, merge;
 } arguments;
 
-enum { OPTION_VDLS = 256, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED, OPTION_STATS, OPTION_DEPFILE };
+enum { OPTION_VDLS = 256, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED, OPTION_STATS,
+       OPTION_DEPFILE, OPTION_SHARD, OPTION_MERGE };
 
 static const struct option long_options[] = {
     GB_CLI_VALUE("output", 'o'),
@@ -59,6 +67,8 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("threads", 't'),
     GB_CLI_FLAG("stats", OPTION_STATS),
     GB_CLI_VALUE("depfile", OPTION_DEPFILE),
+    GB_CLI_VALUE("shard", OPTION_SHARD),
+    GB_CLI_FLAG("merge", OPTION_MERGE),
     GB_CLI_OPTIONS_END,
 };
 
@@ -73,6 +83,9 @@ static int parse_option(int option, const char *text, void *context)
     case 'q': a->quiet = 1; return 0;
     case OPTION_STATS: a->stats = 1; return 0;
     case OPTION_DEPFILE: a->depfile = text; return 0;
+    case OPTION_MERGE: a->merge = 1; return 0;
+    case OPTION_SHARD:
+        return gb_cli_fraction("cluster", "shard", text, &o->part, &o->part_count);
     case 'd':
         return gb_cli_uint("cluster", "depth", text, 1, GB_LIGHT_OCTREE_MAX_DEPTH, &o->depth);
     case 'k': return gb_cli_uint("cluster", "knn", text, 1, 100000, &o->knn);
@@ -95,6 +108,17 @@ static int parse_option(int option, const char *text, void *context)
 static int check_operands(int count, char **operands, void *context)
 {
     arguments *a = context;
+    if (a->merge) {
+        if (count < 2 || !a->output)
+            return gb_cli_usage_error("cluster", "--merge: expected the parts PART0.lot "
+                                                 "PART1.lot ... and -o OUT.lot");
+        if (a->depfile || a->cluster.part_count || a->stats)
+            return gb_cli_usage_error("cluster", "--merge takes neither --depfile, --shard "
+                                                 "nor --stats");
+        a->parts = operands;
+        a->part_count = count;
+        return GB_CLI_GO_ON;
+    }
     if (!a->output || count != 2)
         return gb_cli_usage_error("cluster", "expected SCENE IN.phot and -o OUT.lot");
     a->scene = operands[0];
@@ -144,9 +168,35 @@ static gb_result cluster(arguments *a, const gb_scene *scene, const gb_photon_ma
     return result;
 }
 
+/* --merge: the parts read, joined and written. */
+static gb_result merge_parts(const arguments *a, gb_error *error)
+{
+    gb_light_octree *parts = calloc((size_t)a->part_count, sizeof *parts);
+    if (!parts)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cluster: out of memory");
+    gb_result result = GB_OK;
+    for (int i = 0; i < a->part_count && result == GB_OK; ++i)
+        result = gb_light_octree_read(a->parts[i], &parts[i], error);
+    gb_light_octree merged = {0};
+    if (result == GB_OK)
+        result = gb_cluster_merge(parts, (const char *const *)a->parts,
+                                  (uint32_t)a->part_count, &merged, error);
+    if (result == GB_OK)
+        result = gb_light_octree_write(a->output, &merged, error);
+    gb_light_octree_free(&merged);
+    for (int i = 0; i < a->part_count; ++i)
+        gb_light_octree_free(&parts[i]);
+    free(parts);
+    return result;
+}
+
 static gb_result run(void *context, gb_error *error)
 {
     arguments *a = context;
+    if (a->merge) {
+        gb_result checked = gb_output_file_check(a->output, error);
+        return checked == GB_OK ? merge_parts(a, error) : checked;
+    }
     gb_result result = gb_output_file_check(a->output, error);
     if (result == GB_OK && a->depfile)
         result = gb_output_file_check(a->depfile, error);
