@@ -258,8 +258,10 @@ static gb_result run(void *context, gb_error *error)
 {
     arguments *a = context;
     gb_result result = check_outputs(a, error);
-    if (result != GB_OK || a->merge)
-        return result == GB_OK ? merge_tiles(a, error) : result;
+    if (result == GB_OK && a->merge)
+        return merge_tiles(a, error);
+    if (result != GB_OK)
+        return result;
     gb_scene scene;
     gb_scene_options scene_options = {.load_textures = 1};
     result = gb_scene_load(a->scene_path, &scene_options, &scene, error);
