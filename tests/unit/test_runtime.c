@@ -200,7 +200,7 @@ static void test_gl_errors(void)
     gb_context_destroy(&context);
 }
 
-static void test_bake_files(const gb_scene *scene)
+static void test_bake_open(const gb_scene *scene)
 {
     scratch_create("runtime");
     scratch_write_text(scratch_path("cornell.skel"), "not a skeleton at all");
@@ -352,7 +352,7 @@ int main(void)
         return tap_done();
     }
     test_area_light_samples(&scene);
-    test_bake_files(&scene);
+    test_bake_open(&scene);
     test_renders(&scene);
     gb_scene_free(&scene);
     return tap_done();
