@@ -35,7 +35,7 @@ stop_cluster() {
     sleep 1
     [ -n "$GB_KEEP" ] || rm -rf "$dir"
 }
-trap stop_cluster EXIT INT TERM
+trap stop_cluster EXIT
 
 munged --key-file="$cl/munge/munge.key" --socket="$cl/munge/socket" \
     --pid-file="$cl/munge/pid" --log-file="$cl/munge/log" --seed-file="$cl/munge/seed" \

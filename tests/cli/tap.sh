@@ -20,7 +20,10 @@
 GB_ROOT=$(cd "${GB_ROOT:-.}" && pwd) || exit 1
 GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
 dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-$(basename "$0" .t).XXXXXX") || exit 1
-[ -n "$GB_KEEP" ] || trap 'rm -rf "$dir"' EXIT INT TERM
+[ -n "$GB_KEEP" ] || trap 'rm -rf "$dir"' EXIT
+# Interrupted, a test stops (and the EXIT trap cleans up), rather than going on.
+trap 'exit 130' INT
+trap 'exit 143' TERM
 
 count=0
 failed=0
