@@ -75,7 +75,7 @@ export SLURM_CONF=$cl/slurm.conf
 slurmctld -f "$SLURM_CONF" && slurmd -f "$SLURM_CONF"
 ok $? "slurmctld and slurmd start"
 state=
-for i in $(seq 60); do
+for i in $(seq 180); do
     state=$(sinfo -h -o %T 2>/dev/null)
     [ "$state" = idle ] && break
     sleep 1

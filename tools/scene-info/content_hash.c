@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "little_endian.h"
 #include "mapped_file.h"
 #include "output_file.h"
 
@@ -21,8 +22,9 @@ static gb_result hash_file(gb_scene *scene, const char *path, uint64_t *hash, gb
     gb_result result = gb_mapped_file_open(path, &file, error);
     if (result != GB_OK)
         return result;
-    uint64_t size = file.size;
-    *hash = fnv1a(*hash, &size, sizeof size);
+    unsigned char size[8];
+    gb_put_u64(size, file.size);
+    *hash = fnv1a(*hash, size, sizeof size);
     *hash = fnv1a(*hash, file.bytes, file.size);
     gb_mapped_file_close(&file);
     return gb_scene_add_input(scene, path, error);
