@@ -118,8 +118,9 @@ ifeq ($(SHARDS),1)
 $(2).lot: $(2).scene-hash $(2).phot $(2).cluster-flags $(BIN)/cluster
 	$(call timed,$(2),cluster) $(BIN)/cluster $(CLUSTER_FLAGS) $(1) $(2).phot -o $$@
 else
-# SHARDS=N: the octree's leaves in N ranges (cluster --shard I/N, each reading
-# the whole photon map), merged into the bytes of the whole run.
+# SHARDS=N: the octree's leaves in N ranges (cluster --shard I/N, each
+# indexing the photons its leaves can reach), merged into the bytes of the
+# whole run.
 $(foreach i,$(shard_indices),
 $(2).lot.$(i)-of-$(SHARDS): $(2).scene-hash $(2).phot $(2).cluster-flags $(BIN)/cluster
 	$(BIN)/cluster $(CLUSTER_FLAGS) --shard $(i)/$(SHARDS) $(1) $(2).phot -o $$@

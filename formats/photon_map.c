@@ -6,6 +6,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 
 #include "container_kind.h"
 
@@ -73,6 +74,12 @@ gb_result gb_photon_map_allocate(gb_photon_map *map, uint64_t count, gb_photon_a
     map->directions = arrays->directions;
     map->normals = arrays->normals;
     return GB_OK;
+}
+
+void gb_photon_map_release_pages(const gb_photon_map *map)
+{
+    if (map->container.mapping)
+        madvise(map->container.mapping, map->container.mapping_size, MADV_DONTNEED);
 }
 
 void gb_photon_map_free(gb_photon_map *map)

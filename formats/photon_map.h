@@ -117,6 +117,11 @@ gb_result gb_photon_map_check_scene(const gb_photon_map *map, uint64_t scene_has
 
 void gb_photon_map_free(gb_photon_map *map);
 
+/* Gives a read map's pages back to the kernel (madvise): the process's
+ * resident set shrinks by the file's size, and a later read of the photons
+ * maps them in again. Does nothing to an allocated map. */
+void gb_photon_map_release_pages(const gb_photon_map *map);
+
 /* The photon indices [*first, *end) of shard `index` of `count` for a run of
  * emitted photons: contiguous, disjoint, covering the run in order, sizes
  * differing by at most one. */

@@ -88,6 +88,25 @@ done
 ok "$([ $? = 0 ] && cmp -s "$dir/one.lot" "$dir/merged.lot"; echo $?)" \
     "--merge of --shard 0/3, 1/3, 2/3: the bytes of the whole run"
 ok "$(cmp -s "$dir/one.lot" "$dir/part1.lot"; [ $? = 1 ]; echo $?)" "and a part alone is not it"
+# eight parts of a deeper octree: each indexes only the photons its leaves
+# can reach (its halo), fewer than the map's, and they still join into the
+# whole run's bytes
+"$tool" --depth 5 --knn 400 --quiet --stats "$scene" "$dir/in.phot" -o "$dir/deep.lot" \
+    >"$dir/deep.stats" 2>"$dir/err"
+whole=$(sed -n 's/^indexed_photons //p' "$dir/deep.stats")
+parts=
+fewer=0
+for i in 0 1 2 3 4 5 6 7; do
+    "$tool" --depth 5 --knn 400 --quiet --stats --shard $i/8 "$scene" "$dir/in.phot" \
+        -o "$dir/deep$i.lot" >"$dir/deep$i.stats" 2>"$dir/err"
+    indexed=$(sed -n 's/^indexed_photons //p' "$dir/deep$i.stats")
+    [ "${indexed:-0}" -gt 0 ] && [ "$indexed" -lt "${whole:-0}" ] && fewer=$((fewer + 1))
+    parts="$parts $dir/deep$i.lot"
+done
+"$tool" --merge $parts -o "$dir/deep-merged.lot" 2>"$dir/err"
+ok "$([ $? = 0 ] && cmp -s "$dir/deep.lot" "$dir/deep-merged.lot"; echo $?)" \
+    "--merge of 8 parts of a depth-5 octree: the bytes of the whole run"
+ok "$([ $fewer = 8 ]; echo $?)" "each of the 8 parts indexes fewer than the $whole photons"
 expect_failure "--merge of two of the three parts" 1 "not part 0 of 2\|not part 1 of 2" \
     --merge "$dir/part0.lot" "$dir/part1.lot" -o "$dir/x.lot"
 expect_failure "--merge of the parts out of order" 1 "part1.lot: .*not part 0 of 3" \

@@ -5,7 +5,9 @@
  * hemisphere against their analytic values, known clusters recovered,
  * k-means restarts never worse; photons of one and two suns on a plane
  * clustered into VDLs of the analytic direction and irradiance; bytes the
- * same whatever the threads; bad inputs and corrupt files refused. */
+ * same whatever the threads; a part's halo holds every photon within R of
+ * its points (brute force) and gathers what the whole map gathers; bad
+ * inputs and corrupt files refused. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +15,8 @@
 #include <unistd.h>
 
 #include "../../tools/cluster/cluster.h"
+#include "../../tools/cluster/gathering.h"
+#include "../../tools/cluster/halo.h"
 #include "../../tools/cluster/kmeans.h"
 #include "../../tools/cluster/octree.h"
 #include "../../tools/cluster/vdl.h"
@@ -741,6 +745,125 @@ static void test_bad_inputs(void)
     gb_scene_free(&scene);
 }
 
+
+/* count photons at random in the unit cube, in one cluster of a tenth of
+ * them near the corner (so that a halo can hold fewer than K). */
+static gb_photon_map random_photons(uint64_t count)
+{
+    gb_photon_map map;
+    gb_photon_arrays a;
+    gb_error error;
+    if (gb_photon_map_allocate(&map, count, &a, &error) != GB_OK) {
+        printf("Bail out! %s\n", error.message);
+        exit(1);
+    }
+    gb_random rng = gb_random_make(11, 0);
+    for (uint64_t i = 0; i < count; ++i) {
+        float scale = i % 10 == 0 ? 0.05f : 1.0f;
+        for (int k = 0; k < 3; ++k) {
+            a.positions[3 * i + k] = scale * gb_random_float(&rng);
+            a.powers[3 * i + k] = 1.0f;
+        }
+        a.directions[i] = a.normals[i] = (uint32_t)i;
+    }
+    return map;
+}
+
+static double distance2(const float *a, const float *b)
+{
+    double d0 = a[0] - b[0], d1 = a[1] - b[1], d2 = a[2] - b[2];
+    return d0 * d0 + d1 * d1 + d2 * d2;
+}
+
+/* Brute force: every photon within R of one of the points is in the halo,
+ * and the halo keeps the map's order (the directions hold the index). */
+static int halo_is_superset(const gb_photon_map *map, const gb_photon_map *halo,
+                            const float *points, uint32_t first, uint32_t end, float R)
+{
+    uint64_t at = 0;
+    for (uint64_t i = 0; i < map->count; ++i) {
+        int near = 0;
+        for (uint32_t j = first; j < end && !near; ++j)
+            near = distance2(&map->positions[3 * i], &points[3 * (size_t)j]) <= (double)R * R;
+        while (at < halo->count && halo->directions[at] < i)
+            ++at;
+        if (near && (at == halo->count || halo->directions[at] != i))
+            return 0;
+    }
+    for (uint64_t k = 1; k < halo->count; ++k)
+        if (halo->directions[k] <= halo->directions[k - 1])
+            return 0;
+    return 1;
+}
+
+/* One point's gathering: the photons kept (as map indices, from the
+ * directions) and the radius. */
+static uint32_t gather_one(const gb_gathering *g, const float point[3], float R, int *indices,
+                           float *distances2, uint32_t *kept, float *radius)
+{
+    gb_error error;
+    const float normal[3] = {0.0f, 1.0f, 0.0f};
+    if (gb_gathering_knn(g, point, 1, indices, distances2, &error) != GB_OK)
+        return UINT32_MAX;
+    uint32_t n = gb_gather_ellipsoid(g, point, normal, indices, distances2, R, 1e-6f, 2.0f,
+                                     kept, radius);
+    for (uint32_t i = 0; i < n; ++i)
+        kept[i] = g->map->directions[kept[i]];
+    return n;
+}
+
+static void test_halo(void)
+{
+    gb_photon_map map = random_photons(4000);
+    enum { POINTS = 64, K = 60 };
+    float points[3 * POINTS];
+    gb_random rng = gb_random_make(12, 0);
+    for (int group = 0; group < POINTS / 8; ++group) {  /* 8 points within 0.03 */
+        float centre[3];
+        for (int k = 0; k < 3; ++k)
+            centre[k] = group == 0 ? 0.02f : 0.1f + 0.8f * gb_random_float(&rng);
+        for (int i = 8 * group; i < 8 * group + 8; ++i)
+            for (int k = 0; k < 3; ++k)
+                points[3 * i + k] = centre[k] + 0.03f * gb_random_float(&rng);
+    }
+    const float R = 0.08f;
+    gb_error error;
+    gb_gathering whole, part;
+    int built = gb_gathering_build(&map, K, 1, &whole, &error) == GB_OK;
+    int superset = 1, same = built, short_halo = 0;
+    for (uint32_t first = 0; first < POINTS; first += 8) {
+        gb_photon_map halo;
+        if (gb_cluster_halo(&map, points, first, first + 8, R, &halo, &error) != GB_OK ||
+            gb_gathering_build(&halo, K, 1, &part, &error) != GB_OK) {
+            same = 0;
+            break;
+        }
+        superset &= halo_is_superset(&map, &halo, points, first, first + 8, R);
+        short_halo |= halo.count < K;
+        for (uint32_t j = first; j < first + 8; ++j) {
+            int i1[K], i2[K];
+            float d1[K], d2[K], r1, r2;
+            uint32_t k1[K], k2[K];
+            uint32_t n1 = gather_one(&whole, &points[3 * j], R, i1, d1, k1, &r1);
+            uint32_t n2 = gather_one(&part, &points[3 * j], R, i2, d2, k2, &r2);
+            same &= n1 == n2 && n1 != UINT32_MAX && r1 == r2 &&
+                    memcmp(k1, k2, n1 * sizeof *k1) == 0;
+        }
+        gb_gathering_free(&part);
+        gb_photon_map_free(&halo);
+    }
+    CHECK(superset, "each halo holds every photon within R of its points, in the map's order");
+    CHECK(same, "... and gathers the photons and radius of the whole map at each point");
+    CHECK(short_halo, "... a halo of fewer photons than K among them");
+    gb_photon_map none;
+    CHECK(gb_cluster_halo(&map, points, 5, 5, R, &none, &error) == GB_OK && none.count == 0,
+          "no leaves: an empty halo");
+    gb_photon_map_free(&none);
+    if (built)
+        gb_gathering_free(&whole);
+    gb_photon_map_free(&map);
+}
+
 int main(void)
 {
     test_octree_single_triangle();
@@ -756,5 +879,6 @@ int main(void)
     test_two_suns_and_determinism();
     test_bad_inputs();
     test_cornell_box();
+    test_halo();
     return tap_done();
 }

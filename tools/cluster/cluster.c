@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "gathering.h"
+#include "halo.h"
 #include "threads.h"
 #include "octree.h"
 #include "vdl.h"
@@ -120,6 +121,13 @@ void gb_cluster_part_leaves(uint32_t leaf_count, uint32_t part, uint32_t part_co
     *end = (uint32_t)((uint64_t)leaf_count * (part + 1) / part_count);
 }
 
+/* R: the option, or by default a multiple of the leaf edge. */
+static float gathering_radius(const gb_octree_leaves *leaves, const gb_cluster_options *o)
+{
+    return o->radius > 0.0f ? o->radius
+                            : GB_CLUSTER_DEFAULT_RADIUS_LEAVES * gb_octree_leaf_edge(leaves);
+}
+
 typedef struct leaf_results {
     gb_light_octree_vdl *slots;
     uint32_t *vdl_counts;
@@ -184,10 +192,8 @@ static gb_result cluster_leaves(const gb_octree_leaves *leaves, const gb_gatheri
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cluster: out of memory");
     float edge = gb_octree_leaf_edge(leaves);
     chunk_job job = {.leaves = leaves, .gathering = gathering, .options = o,
-                     .max_radius = o->radius > 0.0f ? o->radius
-                                                    : GB_CLUSTER_DEFAULT_RADIUS_LEAVES * edge,
-                     .min_radius = 1e-4f * edge, .centres = b.centres, .indices = b.indices,
-                     .distances2 = b.distances2, .slots = r->slots,
+                     .max_radius = gathering_radius(leaves, o), .min_radius = 1e-4f * edge,
+                     .centres = b.centres, .indices = b.indices, .distances2 = b.distances2, .slots = r->slots,
                      .vdl_counts = r->vdl_counts, .spreads = r->spreads,
                      .gathered = r->gathered};
     uint32_t begin, end;
@@ -221,8 +227,7 @@ static void fill_header(const gb_scene *scene, const gb_photon_map *map,
     h->emitted_count = map->header.emitted_count;
     h->seed = o->seed;
     h->knn = o->knn;
-    h->radius = o->radius > 0.0f ? o->radius
-                                 : GB_CLUSTER_DEFAULT_RADIUS_LEAVES * gb_octree_leaf_edge(leaves);
+    h->radius = gathering_radius(leaves, o);
     h->vdls_max = o->vdls_max;
     h->max_spread = o->max_spread < 0.0f ? 0.0f : o->max_spread;
     h->flattening = GB_CLUSTER_FLATTENING;
@@ -288,6 +293,20 @@ static gb_result check_inputs(const gb_scene *scene, const gb_photon_map *map,
     return result;
 }
 
+/* The photons the part's leaves can gather (halo.h); the whole map's pages
+ * are given back, as the part reads only the halo from then on. */
+static gb_result part_halo(const gb_photon_map *map, const gb_octree_leaves *leaves,
+                           const gb_cluster_options *o, gb_photon_map *halo, gb_error *error)
+{
+    uint32_t first, end;
+    gb_cluster_part_leaves(leaves->count, o->part, o->part_count, &first, &end);
+    gb_result result = gb_cluster_halo(map, leaves->points, first, end,
+                                       gathering_radius(leaves, o), halo, error);
+    if (result == GB_OK)
+        gb_photon_map_release_pages(map);
+    return result;
+}
+
 static gb_result build_octree(const gb_scene *scene, const gb_photon_map *map,
                               const gb_cluster_options *o, const gb_octree_leaves *leaves,
                               gb_light_octree *octree, gb_cluster_stats *stats,
@@ -298,10 +317,18 @@ static gb_result build_octree(const gb_scene *scene, const gb_photon_map *map,
     octree->header.leaf_count = leaves->count;
     gb_result result = gb_octree_nodes(leaves, &nodes, &octree->header.node_count, error);
     double start = gb_seconds();
+    gb_photon_map halo = {0};
+    const gb_photon_map *gathered = map;
+    if (result == GB_OK && o->part_count > 1) {
+        result = part_halo(map, leaves, o, &halo, error);
+        gathered = &halo;
+    }
     gb_gathering gathering = {0};
+    uint32_t K = map->count < o->knn ? (uint32_t)map->count : o->knn;
     if (result == GB_OK)
-        result = gb_gathering_build(map, o->knn, o->threads, &gathering, error);
+        result = gb_gathering_build(gathered, K, o->threads, &gathering, error);
     stats->index_seconds = gb_seconds() - start;
+    stats->indexed = gathered->count;
     leaf_results r = {0};
     if (result == GB_OK)
         result = allocate_results(leaves->count, o->vdls_max, &r, error);
@@ -312,6 +339,7 @@ static gb_result build_octree(const gb_scene *scene, const gb_photon_map *map,
     if (result == GB_OK)
         summarize(&r, leaves->count, stats);
     gb_gathering_free(&gathering);
+    gb_photon_map_free(&halo);
     free_results(&r);
     free(nodes);
     return result;

@@ -56,7 +56,9 @@ typedef struct gb_cluster_options {
     int threads;                /* 0: every core */
     uint32_t part, part_count;  /* --shard I/N: only the leaves of part I of N
                                    (gb_cluster_part_leaves) are clustered, the
-                                   others get no VDL; part_count 0 or 1: all */
+                                   others get no VDL, and only the photons they
+                                   can gather are indexed (halo.h); part_count
+                                   0 or 1: all */
     gb_progress_callback progress; /* fraction done, from the calling thread; may be NULL */
     void *progress_user;
 } gb_cluster_options;
@@ -66,6 +68,7 @@ typedef struct gb_cluster_stats {
     uint32_t vdl_histogram[GB_LIGHT_OCTREE_MAX_VDLS + 1]; /* leaves per VDL count */
     double octree_seconds, index_seconds, query_seconds, kmeans_seconds, seconds;
     uint64_t queries;
+    uint64_t indexed;           /* photons in the kd-tree: the map's, or a part's halo */
     double mean_gathered;       /* photons per leaf after the ellipsoid */
     double mean_spread;         /* degrees, over leaves with VDLs */
     int threads;

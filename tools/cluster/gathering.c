@@ -25,7 +25,8 @@ gb_result gb_gathering_build(const gb_photon_map *map, uint32_t knn, int threads
     memset(gathering, 0, sizeof *gathering);
     gathering->map = map;
     gathering->threads = threads;
-    gathering->knn = map->count < knn ? (uint32_t)map->count : knn;
+    gathering->knn = knn;
+    gathering->searched = map->count < knn ? (uint32_t)map->count : knn;
     if (map->count == 0)
         return GB_OK;
     if (map->count > INT32_MAX)
@@ -42,16 +43,33 @@ gb_result gb_gathering_build(const gb_photon_map *map, uint32_t knn, int threads
     return GB_OK;
 }
 
+/* Spreads count rows of `searched` neighbours to rows of K, last row first
+ * (in place), the missing ones as index -1 at infinite distance. */
+static void pad_rows(const gb_gathering *gathering, uint32_t count, int *indices,
+                     float *distances2)
+{
+    uint32_t K = gathering->knn, searched = gathering->searched;
+    for (uint32_t row = count; row-- > 0;)
+        for (uint32_t i = K; i-- > 0;) {
+            size_t to = (size_t)row * K + i, from = (size_t)row * searched + i;
+            indices[to] = i < searched ? indices[from] : -1;
+            distances2[to] = i < searched ? distances2[from] : INFINITY;
+        }
+}
+
 gb_result gb_gathering_knn(const gb_gathering *gathering, const float *centres,
                            uint32_t count, int *indices, float *distances2, gb_error *error)
 {
-    if (!gathering->index || count == 0)
+    if (count == 0 || gathering->knn == 0)
         return GB_OK;
     struct FLANNParameters p = single_tree_parameters(gathering->threads);
-    if (flann_find_nearest_neighbors_index_float(gathering->index, (float *)centres,
+    if (gathering->index &&
+        flann_find_nearest_neighbors_index_float(gathering->index, (float *)centres,
                                                  (int)count, indices, distances2,
-                                                 (int)gathering->knn, &p) != 0)
+                                                 (int)gathering->searched, &p) != 0)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "gathering: FLANN search failed");
+    if (gathering->searched < gathering->knn)
+        pad_rows(gathering, count, indices, distances2);
     return GB_OK;
 }
 

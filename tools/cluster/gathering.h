@@ -28,10 +28,14 @@ typedef struct gb_gathering {
     const gb_photon_map *map;
     void *index;                /* flann_index_t, NULL when the map is empty */
     int threads;
-    uint32_t knn;               /* K, at most the photon count */
+    uint32_t knn;               /* K, at most the whole run's photon count */
+    uint32_t searched;          /* K, at most map's photon count */
 } gb_gathering;
 
-/* Builds the kd-tree over map's positions (the map must outlive it). */
+/* Builds the kd-tree over map's positions (the map must outlive it). knn is
+ * K, at most the photon count of the whole run, which map may be only a part
+ * of (a halo, halo.h): the neighbours it lacks come back as index -1 at
+ * infinite distance, as if they lay beyond any radius. */
 gb_result gb_gathering_build(const gb_photon_map *map, uint32_t knn, int threads,
                              gb_gathering *gathering, gb_error *error);
 

@@ -35,10 +35,11 @@ static const char usage[] =
     "      --seed N            k-means++ seed (default 0)\n"
     "  -t, --threads N         threads (default: every core)\n"
     "      --shard I/N         cluster only part I of N of the leaves (a range of\n"
-    "                          the leaf order; the others get no VDL)\n"
+    "                          the leaf order; the others get no VDL), indexing\n"
+    "                          only the photons they can gather\n"
     "      --merge             join the N parts given, in order 0/N .. N-1/N, into\n"
     "                          the octree of the whole run, byte for byte\n"
-    "      --stats             print leaves, VDLs and seconds on stdout\n"
+    "      --stats             print leaves, VDLs, photons indexed and seconds\n"
     "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
     "  -q, --quiet             no progress bar, no warnings\n"
     "  -h, --help              this help\n"
@@ -131,8 +132,9 @@ static const gb_cli_command command = {"cluster", usage, long_options, parse_opt
 
 static void print_stats(const gb_cluster_stats *s, const char *output)
 {
-    printf("leaves %u\nvdls %u\nthreads %d\nmean_gathered %.1f\nmean_spread_degrees %.2f\n",
-           s->leaves, s->vdls, s->threads, s->mean_gathered, s->mean_spread);
+    printf("leaves %u\nvdls %u\nthreads %d\nindexed_photons %llu\nmean_gathered %.1f\n"
+           "mean_spread_degrees %.2f\n", s->leaves, s->vdls, s->threads,
+           (unsigned long long)s->indexed, s->mean_gathered, s->mean_spread);
     printf("octree_seconds %.3f\nindex_seconds %.3f\nquery_seconds %.3f\n"
            "queries_per_second %.0f\nkmeans_seconds %.3f\nseconds %.3f\n", s->octree_seconds,
            s->index_seconds, s->query_seconds,
