@@ -7,9 +7,13 @@
 #include <string.h>
 #include <sys/stat.h>
 
+/* Where each file stands: not asked for yet, decoded, or refused. */
+typedef enum file_state { UNREAD, USABLE, REFUSED } file_state;
+
 struct gb_bake {
     char paths[GB_BAKE_KIND_COUNT][1024];
-    int has_problem[GB_BAKE_KIND_COUNT];
+    uint64_t scene_hash;
+    file_state state[GB_BAKE_KIND_COUNT];
     gb_error problems[GB_BAKE_KIND_COUNT];  /* "path: what is wrong" */
     gb_voxel_grid voxels;
     gb_skeleton skeleton;
@@ -91,7 +95,7 @@ static void forget(gb_bake *b, gb_bake_kind kind)
 
 /* The one check of every file: it exists, its reader accepts it, it was
  * made from this scene. Keeps the decoded file when it passes. */
-static gb_result load(gb_bake *b, gb_bake_kind kind, const gb_scene *scene, gb_error *error)
+static gb_result load(gb_bake *b, gb_bake_kind kind, gb_error *error)
 {
     const char *path = b->paths[kind];
     struct stat status;
@@ -99,14 +103,25 @@ static gb_result load(gb_bake *b, gb_bake_kind kind, const gb_scene *scene, gb_e
         return gb_fail(error, GB_ERROR_IO, "%s: %s", path, strerror(errno));
     uint64_t hash = 0;
     gb_result result = decode(b, kind, &hash, error);
-    if (result == GB_OK && hash != scene->hash)
+    if (result == GB_OK && hash != b->scene_hash)
         result = gb_fail(error, GB_ERROR_STALE,
                          "%s: stale: made from another scene (hash %016" PRIx64
                          ", the scene's %016" PRIx64 "); bake it again",
-                         path, hash, scene->hash);
+                         path, hash, b->scene_hash);
     if (result != GB_OK)
         forget(b, kind);
     return result;
+}
+
+/* The file of kind, decoded the first time it is asked for; whether it is
+ * usable. The handle is const to its borrowers: this is the one place that
+ * changes it. */
+static int usable(const gb_bake *bake, gb_bake_kind kind)
+{
+    gb_bake *b = (gb_bake *)bake;
+    if (b->state[kind] == UNREAD)
+        b->state[kind] = load(b, kind, &b->problems[kind]) == GB_OK ? USABLE : REFUSED;
+    return b->state[kind] == USABLE;
 }
 
 gb_result gb_bake_open(const gb_scene *scene, const char *scene_path, const char *folder,
@@ -125,8 +140,8 @@ gb_result gb_bake_open(const gb_scene *scene, const char *scene_path, const char
             gb_bake_release(b);
             return gb_fail(error, GB_ERROR_ARGUMENT, "%s: bake folder path too long", folder);
         }
-        b->has_problem[kind] = load(b, (gb_bake_kind)kind, scene, &b->problems[kind]) != GB_OK;
     }
+    b->scene_hash = scene->hash;
     *bake = b;
     return GB_OK;
 }
@@ -149,32 +164,32 @@ const char *gb_bake_problem(const gb_bake *bake, gb_bake_kind kind)
 {
     if (kind < 0 || kind >= GB_BAKE_KIND_COUNT)
         return "unknown kind of baked file";
-    return bake->has_problem[kind] ? bake->problems[kind].message : NULL;
+    return usable(bake, kind) ? NULL : bake->problems[kind].message;
 }
 
 const gb_voxel_grid *gb_bake_voxels(const gb_bake *bake)
 {
-    return bake->has_problem[GB_BAKE_VOXELS] ? NULL : &bake->voxels;
+    return usable(bake, GB_BAKE_VOXELS) ? &bake->voxels : NULL;
 }
 
 const gb_skeleton *gb_bake_skeleton(const gb_bake *bake)
 {
-    return bake->has_problem[GB_BAKE_SKELETON] ? NULL : &bake->skeleton;
+    return usable(bake, GB_BAKE_SKELETON) ? &bake->skeleton : NULL;
 }
 
 const gb_segmentation *gb_bake_segmentation(const gb_bake *bake)
 {
-    return bake->has_problem[GB_BAKE_SEGMENTS] ? NULL : &bake->segmentation;
+    return usable(bake, GB_BAKE_SEGMENTS) ? &bake->segmentation : NULL;
 }
 
 const gb_light_octree *gb_bake_light_octree(const gb_bake *bake)
 {
-    return bake->has_problem[GB_BAKE_LIGHT_OCTREE] ? NULL : &bake->light_octree;
+    return usable(bake, GB_BAKE_LIGHT_OCTREE) ? &bake->light_octree : NULL;
 }
 
 const int32_t *gb_bake_nearest_node(const gb_bake *bake, const gb_voxel_grid **frame)
 {
-    int usable = !bake->has_problem[GB_BAKE_NEAREST_NODE];
-    *frame = usable ? &bake->nearest_frame : NULL;
-    return usable ? bake->nearest : NULL;
+    int ok = usable(bake, GB_BAKE_NEAREST_NODE);
+    *frame = ok ? &bake->nearest_frame : NULL;
+    return ok ? bake->nearest : NULL;
 }

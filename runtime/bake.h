@@ -13,18 +13,21 @@
  *   const gb_segmentation *s = gb_bake_segmentation(bake);   // borrowed, or NULL
  *   gb_bake_release(bake);                       // frees every decoded file
  *
- * gb_bake_open reads each file once with its reader, which checks its kind,
- * version and every field, and compares the scene hash with the scene's. A
- * file that is missing, corrupt or stale gets one problem ("path: what is
- * wrong") and is left out; the others stay decoded in the handle, since
- * every reader checks the hash only after decoding the whole file: no file
- * is read twice. Opening never fails on a file: the runtime goes on with the
- * methods it can still run.
+ * gb_bake_open only names the files. The first call that asks for one (its
+ * problem or its data) reads it once with its reader, which checks its
+ * kind, version and every field, and compares the scene hash with the
+ * scene's; the decoded file then stays in the handle, since every reader
+ * checks the hash only after decoding the whole file: no file is read
+ * twice, and a method reads only the files it uses (octree the .lot alone).
+ * A file that is missing, corrupt or stale gets one problem ("path: what is
+ * wrong") and no data. Opening never fails on a file: the runtime goes on
+ * with the methods it can still run.
  *
  * Ownership: the handle owns the decoded files; the getters return borrowed,
  * read-only data that lives until gb_bake_release. The scene is only read
- * during gb_bake_open. The handle is not changed after gb_bake_open, so a
- * const handle may be shared (the renderer and every method borrow it).
+ * during gb_bake_open. Borrowers share a const handle (the renderer and
+ * every method), but a first read fills it in: use it from one thread, the
+ * runtime's.
  */
 #ifndef GB_BAKE_H
 #define GB_BAKE_H

@@ -236,24 +236,15 @@ static int check_operands(int count, char **operands, void *context)
 static const gb_cli_command command = {"gbview", usage, long_options, parse_option,
                                        check_operands};
 
-/* The bake of a->bake (*bake NULL without --bake): one warning per missing
- * or bad file, which is skipped; an error only when the files cannot be
- * looked for at all. */
+/* The bake of a->bake (*bake NULL without --bake): its files are read when
+ * a method asks for them, and a method that needs a missing or bad one
+ * fails naming it; an error here only when the files cannot be looked for
+ * at all. */
 static gb_result open_bake(const gb_scene *scene, const arguments *a, gb_bake **bake,
                            gb_error *error)
 {
     *bake = NULL;
-    if (!a->bake)
-        return GB_OK;
-    gb_result result = gb_bake_open(scene, a->scene_path, a->bake, bake, error);
-    if (result != GB_OK)
-        return result;
-    for (int kind = 0; kind < GB_BAKE_KIND_COUNT; ++kind) {
-        const char *problem = gb_bake_problem(*bake, (gb_bake_kind)kind);
-        if (problem)
-            fprintf(stderr, "gbview: warning: skipped: %s\n", problem);
-    }
-    return GB_OK;
+    return a->bake ? gb_bake_open(scene, a->scene_path, a->bake, bake, error) : GB_OK;
 }
 
 static void report(void *user, const char *message)
