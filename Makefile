@@ -163,8 +163,10 @@ SLOW_TESTS = tests/cli/hard_cases.t tests/cli/report.t tests/cli/output.t tests/
 CLI_TESTS = $(SLOW_TESTS) $(filter-out $(SLOW_TESTS),$(wildcard tests/cli/*.t))
 SUITE = $(CLI_TESTS) $(UNIT_TESTS)
 # The sanitized stage leaves out report.t: it runs the same tools as the rest
-# of the suite, on 200 CPU s of renders under ASan, and asserts only the CSV.
-SANITIZED_SUITE = $(filter-out tests/cli/report.t,$(SUITE))
+# of the suite, on 200 CPU s of renders under ASan, and asserts only the CSV;
+# and slurm.t: its jobs run bake.mk's rules, which make.t runs sanitized,
+# and the rest is Slurm's scheduling.
+SANITIZED_SUITE = $(filter-out tests/cli/report.t tests/cli/slurm.t,$(SUITE))
 
 JOBS ?= $(shell nproc)
 test: deps
