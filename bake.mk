@@ -58,8 +58,10 @@ timed = $(if $(TIME_BAKE),/usr/bin/time -f '%e %U %S %M' -o $(1).$(2).time)
 
 # write_if_changed TEXT,FILE: FILE gets the line TEXT, or keeps its time when
 # it has it already; through a temporary of its own and a rename, so that
-# several makes at once (make -j, Slurm tasks) never see a part.
-write_if_changed = t=$$(mktemp $(2).XXXXXX) && printf '%s\n' '$(1)' >$$t && \
+# several makes at once (make -j, Slurm tasks) never see a part. mktemp
+# makes the temporary 0600; chmod =rw gives it 0666 less the umask, as the
+# tools' own outputs have.
+write_if_changed = t=$$(mktemp $(2).XXXXXX) && chmod =rw $$t && printf '%s\n' '$(1)' >$$t && \
   { cmp -s $$t $(2) && rm -f $$t || mv $$t $(2); }
 
 # bake_scene SCENE,PREFIX: the rules of one scene's bake into PREFIX.*.

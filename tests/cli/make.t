@@ -49,6 +49,10 @@ sed -i "0,/^newmtl $first\$/s//newmtl $first\nmap_Kd wall.png/" "$dir/scene/box.
 ok "$(grep -q '^map_Kd wall.png' "$dir/scene/box.mtl"; echo $?)" "the box's $first has a texture"
 
 bake; expect "the first bake" voxelize thin segment photons cluster
+mode=$(printf '%o' $((0666 & ~$(umask))))
+modes=$(stat -c '%a %n' "$dir"/bake/* | grep -v "^$mode " | sed "s|$dir/bake/||")
+ok "$([ -z "$modes" ]; echo $?)" \
+    "every file of the bake, stamps too, is mode $mode (0666 less the umask)${modes:+; not: $modes}"
 for f in vdb skel grid.vdb seg lot; do cp "$dir/bake/box.$f" "$dir/box.$f.first"; done
 "$GB_BIN/gbview" --headless -q --method topo -r 8x8 --bake "$dir/bake" "$dir/scene/box.scene" \
     -o "$dir/topo.png" 2>"$dir/err"
