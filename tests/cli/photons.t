@@ -91,4 +91,32 @@ ok "$([ $? = 0 ] && grep -q "^usage: photons" "$dir/out"; echo $?)" "--help on s
 "$tool" --version >"$dir/out"
 ok "$([ $? = 0 ] && grep -q "photons (gibake)" "$dir/out"; echo $?)" "--version"
 
+# -n auto: the count doubles until the map's power in a grid of cells
+# settles. Monte Carlo noise falls as 1/sqrt(N), so half the tolerance takes
+# about four times the photons; the map is the fixed-count run's, at any
+# thread count.
+chosen() {
+    sed -n 's/^photons //p' "$1"
+}
+"$tool" -q -n auto --tolerance 0.1 --stats -t 1 "$scene" -o "$dir/auto1.phot" >"$dir/auto1"
+ok $? "-n auto --tolerance 0.1: exit status 0"
+"$tool" -q -n auto --tolerance 0.1 -t 2 "$scene" -o "$dir/auto2.phot"
+ok "$(cmp -s "$dir/auto1.phot" "$dir/auto2.phot"; echo $?)" "... the same bytes on 1 and 2 threads"
+"$tool" -q -n "$(chosen "$dir/auto1")" "$scene" -o "$dir/fixed.phot"
+ok "$(cmp -s "$dir/auto1.phot" "$dir/fixed.phot"; echo $?)" \
+    "... the bytes of -n $(chosen "$dir/auto1"), the count it chose"
+"$tool" -q -n auto --tolerance 0.05 --stats "$scene" -o "$dir/auto3.phot" >"$dir/auto3"
+ratio=$(awk -v a="$(chosen "$dir/auto1")" -v b="$(chosen "$dir/auto3")" \
+    'BEGIN { print (a > 0 ? b / a : 0) }')
+ok "$(awk -v r="$ratio" 'BEGIN { exit !(r >= 2 && r <= 8) }'; echo $?)" \
+    "--tolerance 0.05 takes about 4x the photons of 0.1: $(chosen "$dir/auto3") / $(chosen "$dir/auto1") = $ratio"
+"$tool" -n auto "$scene" -o "$dir/auto4.phot" 2>"$dir/err" >/dev/null
+ok "$(grep -q '^photons: -n auto: [0-9]* photons' "$dir/err"; echo $?)" \
+    "-n auto says the count it chose on stderr"
+expect_failure "--tolerance without -n auto" 2 "is for -n auto" \
+    -n 1000 --tolerance 0.1 "$scene" -o "$dir/x.phot"
+expect_failure "-n auto with --shard" 1 "cannot be sharded" \
+    -n auto --shard 0/2 "$scene" -o "$dir/x.phot"
+expect_failure "-n autom" 2 "count" -n autom "$scene" -o "$dir/x.phot"
+
 tap_done

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../../tools/photons/flux_probes.h"
 #include "../../tools/photons/photons.h"
 #include "container.h"
 #include "photon_map.h"
@@ -534,6 +535,48 @@ static int stop_at_once(void *user, double fraction)
     return 1;
 }
 
+
+/* Two photons in the first cell, one in the last, one on the upper bound
+ * (clamped into the last cell): the sums and the change counted by hand. */
+static void test_flux_probes(void)
+{
+    gb_photon_map map;
+    gb_photon_arrays a;
+    gb_error error;
+    if (gb_photon_map_allocate(&map, 4, &a, &error) != GB_OK) {
+        printf("Bail out! %s\n", error.message);
+        exit(1);
+    }
+    for (int k = 0; k < 3; ++k) {
+        map.header.bounds_min[k] = -1.0f;
+        map.header.bounds_max[k] = 1.0f;
+    }
+    const float positions[4][3] = {{-0.99f, -0.99f, -0.99f}, {-0.95f, -0.9f, -0.99f},
+                                   {0.99f, 0.99f, 0.99f}, {1.0f, 1.0f, 1.0f}};
+    const float powers[4] = {1.0f, 2.0f, 3.0f, 4.0f};     /* R; G and B half of it */
+    for (int i = 0; i < 4; ++i)
+        for (int k = 0; k < 3; ++k) {
+            a.positions[3 * i + k] = positions[i][k];
+            a.powers[3 * i + k] = k == 0 ? powers[i] : 0.5f * powers[i];
+        }
+    gb_flux_probes p, q;
+    int measured = gb_flux_probes_measure(&map, &p, &error) == GB_OK;
+    enum { LAST = GB_FLUX_PROBES_CELLS * GB_FLUX_PROBES_CELLS * GB_FLUX_PROBES_CELLS - 1 };
+    double total = 0.0;
+    for (int c = 0; measured && c <= LAST; ++c)
+        total += p.flux[c];
+    CHECK(measured && p.flux[0] == 2.0 * 3.0 && p.flux[LAST] == 2.0 * 7.0 && total == 2.0 * 10.0,
+          "flux probes: R + G + B of the photons in each cell, the bound in the last cell");
+    a.powers[0] = 3.0f;        /* the first cell from 6 to 8 */
+    measured &= gb_flux_probes_measure(&map, &q, &error) == GB_OK;
+    CHECK(measured && fabs(gb_flux_probes_change(&p, &q) - 2.0 / sqrt(64.0 + 196.0)) < 1e-12,
+          "... their change: |difference| / |later|");
+    CHECK(measured && gb_flux_probes_change(&q, &q) == 0.0, "... none between equal probes");
+    gb_flux_probes_free(&p);
+    gb_flux_probes_free(&q);
+    gb_photon_map_free(&map);
+}
+
 static void test_bad_options(void)
 {
     gb_scene scene;
@@ -765,6 +808,7 @@ int main(void)
     test_no_light();
     test_determinism();
     test_shards_and_merge();
+    test_flux_probes();
     test_bad_options();
     test_round_trip();
     test_corrupt_files();

@@ -24,7 +24,12 @@ static const char usage[] =
     "on --threads.\n"
     "\n"
     "  -o, --output FILE       the photon map to write\n"
-    "  -n, --count N           photons emitted (default 1000000)\n"
+    "  -n, --count N|auto      photons emitted (default 1000000); auto: 2^16,\n"
+    "                          2^17, ... until the map's power in 16^3 cells of the\n"
+    "                          bounds changes by less than --tolerance (at most\n"
+    "                          2^30; about twice the cost of the run it keeps)\n"
+    "      --tolerance T       for -n auto: relative change, 1e-6..0.999 (default\n"
+    "                          0.05)\n"
     "  -b, --bounces N         most reflections of a path, 1..255 (default 16;\n"
     "                          Russian roulette after 2)\n"
     "      --store WHAT        indirect (default): photons that were reflected at\n"
@@ -41,14 +46,18 @@ static const char usage[] =
     "  -h, --help              this help\n"
     "  -V, --version           the version\n";
 
-enum { OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS, OPTION_DEPFILE };
+enum {
+    OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS, OPTION_DEPFILE,
+    OPTION_TOLERANCE,
+};
 
 typedef struct arguments {
     gb_photons_options trace;
     const char *output, *depfile;
     char **inputs;
     int input_count;
-    int merge, stats, quiet;
+    int merge, stats, quiet, automatic;
+    double tolerance;
 } arguments;
 
 static const struct option long_options[] = {
@@ -62,6 +71,7 @@ static const struct option long_options[] = {
     GB_CLI_FLAG("merge", OPTION_MERGE),
     GB_CLI_FLAG("stats", OPTION_STATS),
     GB_CLI_VALUE("depfile", OPTION_DEPFILE),
+    GB_CLI_VALUE("tolerance", OPTION_TOLERANCE),
     GB_CLI_OPTIONS_END,
 };
 
@@ -86,8 +96,11 @@ static int parse_option(int option, const char *text, void *context)
     case OPTION_DEPFILE: a->depfile = text; return 0;
     case 'q': a->quiet = 1; return 0;
     case 'n':
-        return gb_cli_unsigned("photons", "count", text, 1, GB_PHOTONS_MAX_COUNT,
-                               &a->trace.count);
+        a->automatic = strcmp(text, "auto") == 0;
+        return a->automatic ? 0 : gb_cli_unsigned("photons", "count", text, 1,
+                                                   GB_PHOTONS_MAX_COUNT, &a->trace.count);
+    case OPTION_TOLERANCE:
+        return gb_cli_number("photons", "tolerance", text, 1e-6, 0.999, &a->tolerance);
     case 'b':
         return gb_cli_uint("photons", "bounces", text, 1, GB_PHOTON_MAX_BOUNCES,
                            &a->trace.bounces);
@@ -111,6 +124,10 @@ static int check_operands(int count, char **operands, void *context)
     if (!a->output || a->input_count < 1 || (!a->merge && a->input_count != 1))
         return gb_cli_usage_error("photons", "expected %s and -o OUT",
                                   a->merge ? "the shards to merge" : "one SCENE");
+    if (a->tolerance > 0.0 && !a->automatic)
+        return gb_cli_usage_error("photons", "--tolerance is for -n auto");
+    if (a->automatic)
+        a->trace.tolerance = a->tolerance > 0.0 ? a->tolerance : GB_PHOTONS_DEFAULT_TOLERANCE;
     return GB_CLI_GO_ON;
 }
 
@@ -130,7 +147,7 @@ static int report_rate(void *user, double fraction)
 {
     rate_progress *p = user;
     double elapsed = gb_seconds() - p->bar.start_seconds;
-    if (elapsed > 0.0)
+    if (elapsed > 0.0 && p->photons)   /* -n auto: runs of several counts, no one rate */
         snprintf(p->label, sizeof p->label, "photons %.2f M/s",
                  1e-6 * fraction * (double)p->photons / elapsed);
     return gb_progress_report(&p->bar, fraction);
@@ -138,6 +155,8 @@ static int report_rate(void *user, double fraction)
 
 static void print_stats(const gb_photons_stats *s, const gb_photon_map *map)
 {
+    if (s->passes > 1)
+        printf("passes %u\nchange %.4f\n", s->passes, s->change);
     double seconds = s->seconds > 0.0 ? s->seconds : 1e-9;
     printf("photons %" PRIu64 "\nstored %" PRIu64 "\nrays %" PRIu64 "\nescaped %" PRIu64
            "\nnonfinite %" PRIu64 "\nthreads %d\n", s->paths, map->count, s->rays, s->escaped,
@@ -150,8 +169,9 @@ static void print_stats(const gb_photons_stats *s, const gb_photon_map *map)
 
 static gb_result trace(arguments *a, const gb_scene *scene, gb_error *error)
 {
-    rate_progress progress = {.photons = a->trace.count ? a->trace.count
-                                                        : GB_PHOTONS_DEFAULT_COUNT};
+    rate_progress progress = {.photons = a->automatic      ? 0
+                                         : a->trace.count ? a->trace.count
+                                                          : GB_PHOTONS_DEFAULT_COUNT};
     snprintf(progress.label, sizeof progress.label, "photons");
     gb_progress_begin(&progress.bar, progress.label, a->quiet);
     a->trace.progress = report_rate;
@@ -161,6 +181,10 @@ static gb_result trace(arguments *a, const gb_scene *scene, gb_error *error)
     gb_result result = gb_photons_trace(scene, &a->trace, &map, &stats, error);
     snprintf(progress.label, sizeof progress.label, "photons");
     gb_progress_end(&progress.bar);
+    if (result == GB_OK && a->automatic && !a->quiet)
+        fprintf(stderr, "photons: -n auto: %" PRIu64 " photons (the map's power changed by "
+                "%.3f from half as many, %s the tolerance %g)\n", stats.paths, stats.change,
+                stats.change < a->trace.tolerance ? "below" : "still above", a->trace.tolerance);
     if (result == GB_OK)
         result = gb_photon_map_write(a->output, &map, error);
     if (result == GB_OK && a->stats)

@@ -7,6 +7,7 @@
 #include <time.h>
 
 #include "emission.h"
+#include "flux_probes.h"
 #include "photons.h"
 #include "trace.h"
 #include "work_queue.h"
@@ -138,6 +139,12 @@ static gb_result check_options(const gb_photons_options *o, gb_error *error)
     if (o->shard_index >= shards)
         return gb_fail(error, GB_ERROR_ARGUMENT, "photons: shard %u of %u does not exist "
                        "(shards count from 0)", (unsigned)o->shard_index, (unsigned)shards);
+    if (o->tolerance > 0.0 && shards > 1)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "photons: -n auto cannot be sharded: the "
+                       "shards need the count");
+    if (!(o->tolerance >= 0.0 && o->tolerance < 1.0))
+        return gb_fail(error, GB_ERROR_ARGUMENT, "photons: tolerance %g is not in [0, 1)",
+                       o->tolerance);
     return GB_OK;
 }
 
@@ -215,6 +222,53 @@ static gb_result trace_job(run_job *job, const gb_photons_options *options, int 
     return result;
 }
 
+/* One run of emitted_count photons (this shard's part of it) into *map. */
+static gb_result trace_run(const gb_scene *scene, const gb_photons_options *options,
+                           const gb_photons_tracer *tracer, const run_tables *tables,
+                           uint64_t emitted_count, gb_photon_map *map, run_job *job,
+                           int *threads, gb_error *error)
+{
+    *job = (run_job){.tracer = tracer, .emission = &tables->emission, .seed = options->seed,
+                     .emitted_count = emitted_count};
+    gb_photon_shard_range(emitted_count, options->shard_index,
+                          options->shard_count ? options->shard_count : 1, &job->first,
+                          &job->end);
+    gb_result result = trace_job(job, options, threads, map, error);
+    if (result == GB_OK)
+        fill_header(scene, options, tracer, job, &map->header);
+    return result;
+}
+
+/* -n auto: runs of doubling counts until the flux probes settle; the last
+ * run's map and job are kept. */
+static gb_result trace_until_converged(const gb_scene *scene, const gb_photons_options *options,
+                                       const gb_photons_tracer *tracer,
+                                       const run_tables *tables, gb_photon_map *map,
+                                       run_job *job, int *threads, uint32_t *passes,
+                                       double *change, gb_error *error)
+{
+    gb_flux_probes earlier = {0}, later = {0};
+    gb_result result = GB_OK;
+    *change = 1.0;
+    *passes = 0;
+    for (uint64_t count = GB_PHOTONS_AUTO_FIRST_COUNT;
+         result == GB_OK && count <= GB_PHOTONS_AUTO_LAST_COUNT && *change >= options->tolerance;
+         count *= 2) {
+        gb_photon_map_free(map);
+        result = trace_run(scene, options, tracer, tables, count, map, job, threads, error);
+        gb_flux_probes_free(&earlier);
+        earlier = later;
+        later = (gb_flux_probes){0};
+        if (result == GB_OK)
+            result = gb_flux_probes_measure(map, &later, error);
+        if (result == GB_OK && ++*passes > 1)
+            *change = gb_flux_probes_change(&earlier, &later);
+    }
+    gb_flux_probes_free(&earlier);
+    gb_flux_probes_free(&later);
+    return result;
+}
+
 gb_result gb_photons_trace(const gb_scene *scene, const gb_photons_options *options,
                            gb_photon_map *map, gb_photons_stats *stats, gb_error *error)
 {
@@ -229,18 +283,26 @@ gb_result gb_photons_trace(const gb_scene *scene, const gb_photons_options *opti
         return result;
     gb_photons_tracer tracer = {.rays = tables.rays, .surfaces = &tables.surfaces};
     make_tracer(options, &tracer);
-    run_job job = {.tracer = &tracer, .emission = &tables.emission, .seed = options->seed};
-    job.emitted_count = options->count ? options->count : GB_PHOTONS_DEFAULT_COUNT;
-    gb_photon_shard_range(job.emitted_count, options->shard_index,
-                          options->shard_count ? options->shard_count : 1, &job.first,
-                          &job.end);
     double traced = gb_seconds(), cpu = gb_cpu_seconds();
     int threads = 1;
-    result = trace_job(&job, options, &threads, map, error);
+    uint32_t passes = 1;
+    double change = 0.0;
+    run_job job = {0};
+    if (options->tolerance > 0.0)
+        result = trace_until_converged(scene, options, &tracer, &tables, map, &job, &threads,
+                                       &passes, &change, error);
+    else
+        result = trace_run(scene, options, &tracer, &tables,
+                           options->count ? options->count : GB_PHOTONS_DEFAULT_COUNT, map,
+                           &job, &threads, error);
     run_times times = {gb_seconds() - traced, gb_cpu_seconds() - cpu, traced - start};
     fill_stats(&job, &times, threads, stats);
-    if (result == GB_OK)
-        fill_header(scene, options, &tracer, &job, &map->header);
+    if (stats) {
+        stats->passes = passes;
+        stats->change = change;
+    }
+    if (result != GB_OK)
+        gb_photon_map_free(map);
     free_tables(&tables);
     return result;
 }

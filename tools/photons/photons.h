@@ -15,6 +15,14 @@
  * (gb_photon_shard_range), and gb_photons_merge of the N shards gives exactly
  * the map of the whole run.
  *
+ * -n auto (tolerance > 0): runs of 2^16, 2^17, ... photons are traced, one
+ * after another with one BVH, until the flux probes (flux_probes.h) of a run
+ * differ from the previous run's by less than the tolerance, or 2^30
+ * photons; the last run is the map, byte for byte the map of `-n` its
+ * count. It costs about twice that run. The chosen count depends on the
+ * seed and the scene, never on the threads. Not with shards: they need the
+ * count.
+ *
  * Options: a zeroed gb_photons_options means the defaults. The caller owns
  * the map it gets (gb_photon_map_free).
  */
@@ -34,6 +42,10 @@ enum {
 
 #define GB_PHOTONS_DEFAULT_COUNT 1000000ull
 #define GB_PHOTONS_MAX_COUNT (1ull << 40)
+/* -n auto: the first count tried, the last, and the tolerance by default */
+#define GB_PHOTONS_AUTO_FIRST_COUNT (1ull << 16)
+#define GB_PHOTONS_AUTO_LAST_COUNT (1ull << 30)
+#define GB_PHOTONS_DEFAULT_TOLERANCE 0.05
 
 typedef struct gb_photons_options {
     uint64_t count;             /* photons emitted by the whole run; 0: 1 000 000 */
@@ -43,6 +55,7 @@ typedef struct gb_photons_options {
     int threads;                /* 0: every core */
     uint32_t shard_index;       /* trace shard shard_index of shard_count; */
     uint32_t shard_count;       /*   0: the whole run (0 of 1) */
+    double tolerance;           /* > 0: -n auto, count is chosen (below) */
     gb_progress_callback progress; /* fraction done, from the calling thread; may be NULL */
     void *progress_user;
 } gb_photons_options;
@@ -57,6 +70,8 @@ typedef struct gb_photons_stats {
     double cpu_seconds;         /* CPU time of the process while tracing */
     double build_seconds;       /* Embree BVH, light and surface tables */
     int threads;
+    uint32_t passes;            /* -n auto: runs traced (the last is the map) */
+    double change;              /* -n auto: the flux probes' change at the end */
 } gb_photons_stats;
 
 /* Traces the photons of options' shard into *map (allocated here). stats may
