@@ -193,8 +193,8 @@ static gb_result cluster_leaves(const gb_octree_leaves *leaves, const gb_gatheri
     float edge = gb_octree_leaf_edge(leaves);
     chunk_job job = {.leaves = leaves, .gathering = gathering, .options = o,
                      .max_radius = gathering_radius(leaves, o), .min_radius = 1e-4f * edge,
-                     .centres = b.centres, .indices = b.indices, .distances2 = b.distances2, .slots = r->slots,
-                     .vdl_counts = r->vdl_counts, .spreads = r->spreads,
+                     .centres = b.centres, .indices = b.indices, .distances2 = b.distances2,
+                     .slots = r->slots, .vdl_counts = r->vdl_counts, .spreads = r->spreads,
                      .gathered = r->gathered};
     uint32_t begin, end;
     gb_cluster_part_leaves(leaves->count, o->part, o->part_count, &begin, &end);
