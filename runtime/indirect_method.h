@@ -2,8 +2,9 @@
  * light, added onto the frame's direct light.
  *
  * Each method lives in its own folder under runtime/ (topo/, octree/, flc/,
- * implicit/), reaches the core only through this header and the core's, never
- * another method's files, and exports one const gb_indirect_method, listed in
+ * implicit/, flc_iv/), reaches the core only through this header and the
+ * core's, never another method's files (but flc_iv/, which is flc/ and
+ * implicit/ combined, and uses their headers), and exports one const gb_indirect_method, listed in
  * methods.c. The renderer calls create when the method is first used (with a
  * current GL context), draw once a frame with the output framebuffer bound,
  * additive blending on (glBlendFunc(GL_ONE, GL_ONE)) and depth test off, and
@@ -32,7 +33,8 @@ typedef struct gb_method_parameters {
     int vpls;                   /* topo: number of VPLs (--vpls) */
     const char *write_vpls;     /* topo: write the VPL set here (--write-vpls) */
     int topo_visibility;        /* topo: gb_topo_visibility, full (0), clusters, none */
-    int bins;                   /* implicit: cube-map bins per face edge (--bins) */
+    int bins;                   /* implicit, flc-iv: cube-map bins per face edge (--bins) */
+    int visibility_filter;      /* flc-iv: GB_FLC_IV_BILINEAR (0) or _NEAREST (--bin-filter) */
     int bounces;                /* implicit: 1 or 2 (--bounces) */
     float flc_mu;               /* flc: mu > 1 of S_k = S0 mu^k, Eq. 17 (--mu; 2) */
     float flc_n_avg;            /* flc: N_avg of Eq. 1 (--navg; 256) */

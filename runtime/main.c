@@ -26,8 +26,9 @@ static const char usage[] =
     "\n"
     "      --headless          render without a window; write the last frame to -o\n"
     "  -c, --camera N          the scene's camera N, from 0 (default 0)\n"
-    "  -m, --method M          direct (default); topo, octree, flc, implicit when\n"
-    "                          this build has them\n"
+    "  -m, --method M          direct (default); topo, octree, flc, implicit,\n"
+    "                          flc-iv (FLC shadowed by implicit visibility's bins)\n"
+    "                          when this build has them\n"
     "  -f, --frames K          frames to render (headless: default 1); in a window,\n"
     "                          quit after K frames\n"
     "  -o, --output FILE       the image: .exr linear (compares with `reference`),\n"
@@ -60,8 +61,11 @@ static const char usage[] =
     "      --tiling T          flc: splat into 4^T interleaved tiles (default 0)\n"
     "      --no-decimation     flc: every triangle a VPL (the estimator without\n"
     "                          light cuts, for comparison)\n"
-    "      --bins N            implicit: 6 x N x N cube-map bins (8, 12 default, 16;\n"
-    "                          12: the paper's compromise of speed and quality)\n"
+    "      --bins N            implicit, flc-iv: 6 x N x N cube-map bins (8, 12\n"
+    "                          default, 16; 12: the paper's compromise of speed\n"
+    "                          and quality)\n"
+    "      --bin-filter F      flc-iv: bilinear (default: the four nearest bins'\n"
+    "                          tests weighed) or nearest (one bin)\n"
     "      --bounces N         implicit: bounces of indirect light (1 default, 2)\n"
     "  -q, --quiet             no warnings\n"
     "  -h, --help              this help\n"
@@ -99,6 +103,7 @@ enum {
     OPTION_TOPO_VISIBILITY,
     OPTION_BINS,
     OPTION_BOUNCES,
+    OPTION_BIN_FILTER,
 };
 
 static const struct option long_options[] = {
@@ -126,6 +131,7 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("topo-visibility", OPTION_TOPO_VISIBILITY),
     GB_CLI_VALUE("bins", OPTION_BINS),
     GB_CLI_VALUE("bounces", OPTION_BOUNCES),
+    GB_CLI_VALUE("bin-filter", OPTION_BIN_FILTER),
     GB_CLI_OPTIONS_END,
 };
 
@@ -160,6 +166,7 @@ static int parse_terms(const char *value, gb_terms *terms)
 static int parse_renderer_option(int option, const char *value, arguments *a)
 {
     static const char *const visibilities[] = {"full", "clusters", "none"};
+    static const char *const bin_filters[] = {"bilinear", "nearest"};
     gb_method_parameters *p = &a->renderer.parameters;
     int status;
     switch (option) {
@@ -178,6 +185,9 @@ static int parse_renderer_option(int option, const char *value, arguments *a)
     case OPTION_TERMS: return parse_terms(value, &a->renderer.terms);
     case OPTION_BINS: return gb_cli_int("gbview", "bins", value, 1, 64, &p->bins);
     case OPTION_BOUNCES: return gb_cli_int("gbview", "bounces", value, 1, 8, &p->bounces);
+    case OPTION_BIN_FILTER:
+        return gb_cli_choice("gbview", "bin-filter", value, bin_filters, 2,
+                             &p->visibility_filter);
     default:
         return gb_cli_choice("gbview", "topo-visibility", value, visibilities, 3,
                              &p->topo_visibility);

@@ -1,5 +1,6 @@
 #include "methods.h"
 #include "flc/flc.h"
+#include "flc_iv/flc_iv.h"
 #include "implicit/implicit.h"
 #include "octree/octree.h"
 #include "topo/topo.h"
@@ -7,7 +8,7 @@
 #include <string.h>
 
 static const char *const method_names[GB_METHOD_COUNT] = {
-    "direct", "topo", "octree", "flc", "implicit",
+    "direct", "topo", "octree", "flc", "implicit", "flc-iv",
 };
 
 const char *gb_method_name(gb_method method)
@@ -23,7 +24,7 @@ gb_result gb_method_parse(const char *name, gb_method *method, gb_error *error)
             return GB_OK;
         }
     return gb_fail(error, GB_ERROR_ARGUMENT,
-                   "unknown method '%s' (methods: direct, topo, octree, flc, implicit)", name);
+                   "unknown method '%s' (methods: direct, topo, octree, flc, implicit, flc-iv)", name);
 }
 
 /* One entry a method: its indirect light, NULL until it lands. */
@@ -33,6 +34,7 @@ static const gb_indirect_method *const indirect_methods[GB_METHOD_COUNT] = {
     [GB_METHOD_OCTREE] = &gb_octree_method,
     [GB_METHOD_FLC] = &gb_flc_method,
     [GB_METHOD_IMPLICIT] = &gb_implicit_method,
+    [GB_METHOD_FLC_IV] = &gb_flc_iv_method,
 };
 
 const gb_indirect_method *gb_method_indirect(gb_method method)

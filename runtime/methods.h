@@ -7,6 +7,7 @@
  *   octree    the light octree of virtual directional lights (2007)
  *   flc       Forward Light Cuts (Laurent 2016)
  *   implicit  implicit visibility (Dong 2007)
+ *   flc-iv    FLC shadowed by implicit visibility's bins (no seed paper)
  * Each GI method lands in its own folder under runtime/ (runtime/topo/ ...)
  * and lists its gb_indirect_method (indirect_method.h) in methods.c.
  */
@@ -22,6 +23,7 @@ typedef enum gb_method {
     GB_METHOD_OCTREE,
     GB_METHOD_FLC,
     GB_METHOD_IMPLICIT,
+    GB_METHOD_FLC_IV,
     GB_METHOD_COUNT,
 } gb_method;
 

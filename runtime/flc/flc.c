@@ -53,6 +53,11 @@ static const char splat_fragment_shader[] =
 #include "runtime/flc/flc_splat.frag.glsl.inc"
     ;
 
+/* Plain FLC's visibility term: every VPL sees every receiver (unshadowed). */
+static const char unshadowed_shader[] =
+#include "runtime/flc/flc_unshadowed.frag.glsl.inc"
+    ;
+
 /* Passes 3 and 4: untile and blur into the accumulation; its mean onto the
  * output. */
 static const char resolve_shader[] =
@@ -76,6 +81,7 @@ typedef struct flc_state {
     GLuint splat_texture, splat_framebuffer, accumulated_texture, accumulated_framebuffer;
     uint32_t accumulated;           /* frames in the accumulation */
     gb_mat4 last_view, last_projection;
+    gb_flc_visibility visibility;   /* the splatting's visibility term */
     int measuring;
     gb_flc_pass_times times;
 } flc_state;
@@ -115,7 +121,8 @@ static gb_result build_programs(flc_state *s, gb_error *error)
     const char *generate[] = {pre, generate_shader, NULL};
     const char *splat_vertex[] = {splat_vertex_shader, NULL};
     const char *splat_geometry[] = {splat_geometry_shader, NULL};
-    const char *splat_fragment[] = {splat_fragment_shader, NULL};
+    const char *splat_fragment[] = {"#version 450 core\n", s->visibility.glsl,
+                                    splat_fragment_shader, NULL};
     const char *tess_vertex[] = {tess_vertex_shader, NULL};
     const char *tess_control[] = {tess_control_shader, NULL};
     const char *tess_evaluation[] = {pre, tess_evaluation_shader, NULL};
@@ -253,7 +260,7 @@ static void prepare_targets(flc_state *s, int width, int height)
     s->accumulated = 0;
 }
 
-static void flc_destroy(void *state)
+void gb_flc_destroy(void *state)
 {
     flc_state *s = state;
     if (!s)
@@ -279,7 +286,8 @@ static float default_epsilon(const gb_flc_levels *levels)
     return GB_FLC_EPSILON_FRACTION / GB_FLC_D_NEAR_FRACTION * levels->D_near;
 }
 
-static gb_result flc_create(const gb_indirect_setup *setup, void **state, gb_error *error)
+gb_result gb_flc_create(const gb_indirect_setup *setup, const gb_flc_visibility *visibility,
+                        void **state, gb_error *error)
 {
     const gb_method_parameters *parameters = setup->parameters;
     if (parameters->flc_tiling < 0 || parameters->flc_tiling > GB_FLC_MAX_TILING)
@@ -293,6 +301,9 @@ static gb_result flc_create(const gb_indirect_setup *setup, void **state, gb_err
     if (!s)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "flc: out of memory");
     s->scene = setup->scene;
+    s->visibility.glsl = unshadowed_shader;
+    if (visibility)
+        s->visibility = *visibility;
     s->tiling = parameters->flc_tiling;
     gb_flc_scene_levels(setup->scene, parameters, &s->levels);
     s->epsilon = parameters->flc_epsilon > 0.0f ? parameters->flc_epsilon
@@ -301,7 +312,7 @@ static gb_result flc_create(const gb_indirect_setup *setup, void **state, gb_err
     if (result == GB_OK)
         result = make_buffers(s, FLC_SEED, error);
     if (result != GB_OK) {
-        flc_destroy(s);
+        gb_flc_destroy(s);
         return result;
     }
     prepare_targets(s, setup->width, setup->height);
@@ -409,6 +420,8 @@ static void prepare_splatting(flc_state *s, const gb_indirect_frame *frame)
     glViewport(0, 0, s->tile_width << s->tiling, s->tile_height << s->tiling);
     glUseProgram(s->splat_program);
     set_splat_uniforms(s, frame);
+    if (s->visibility.bind)
+        s->visibility.bind(s->visibility.context, s->splat_program, frame);
     gb_gbuffer_bind(frame->gbuffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_VPLS, s->vpl_buffer);
     glBindVertexArray(s->empty_vertex_array);
@@ -514,7 +527,7 @@ static void restart_if_moved(flc_state *s, const gb_indirect_frame *frame)
     s->last_projection = *frame->projection;
 }
 
-static void flc_draw(void *state, const gb_indirect_frame *frame)
+void gb_flc_draw(void *state, const gb_indirect_frame *frame)
 {
     flc_state *s = state;
     GLint target = 0;
@@ -565,8 +578,13 @@ void gb_flc_times(const void *state, gb_flc_pass_times *times)
         *times = s->times;
 }
 
+static gb_result flc_create(const gb_indirect_setup *setup, void **state, gb_error *error)
+{
+    return gb_flc_create(setup, NULL, state, error);
+}
+
 const gb_indirect_method gb_flc_method = {
     .create = flc_create,
-    .draw = flc_draw,
-    .destroy = flc_destroy,
+    .draw = gb_flc_draw,
+    .destroy = gb_flc_destroy,
 };

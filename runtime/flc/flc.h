@@ -63,6 +63,26 @@ enum {
 
 extern const gb_indirect_method gb_flc_method;
 
+/* A visibility term for the splatting, for methods built on FLC
+ * (runtime/flc_iv/): glsl defines
+ *   float flc_visibility(ivec2 pixel, vec3 x, vec3 y)
+ * the fraction of the VPL at y that the receiver x of the full-frame pixel
+ * sees, and may declare the buffers and textures it reads; bind, when not
+ * NULL, binds them and sets its uniforms, called each frame with the splat
+ * program in use. Both are borrowed: they outlive the FLC state. */
+typedef struct gb_flc_visibility {
+    const char *glsl;
+    void (*bind)(void *context, GLuint splat_program, const gb_indirect_frame *frame);
+    void *context;
+} gb_flc_visibility;
+
+/* gb_flc_method's create with a visibility term (NULL: unshadowed, as
+ * gb_flc_method); draw and destroy are gb_flc_method's. */
+gb_result gb_flc_create(const gb_indirect_setup *setup, const gb_flc_visibility *visibility,
+                        void **state, gb_error *error);
+void gb_flc_draw(void *state, const gb_indirect_frame *frame);
+void gb_flc_destroy(void *state);
+
 /* The levels of scene for parameters (zero fields: defaults), R_scene half
  * the diagonal of its bounds; flc_levels GB_FLC_NO_DECIMATION: the default
  * count of levels with keep_all set. */

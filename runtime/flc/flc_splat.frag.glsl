@@ -1,7 +1,7 @@
 // FLC pass 2b: at the receiver x of the pixel, H(t_i, x, n_x) S_k
 // f^k(d(t_i, x)) (Eqs. 5, 10, 14, 16) without rho_x / pi, times the number
-// of tiles.
-#version 450 core
+// of tiles, times flc_visibility (flc.h; flc_unshadowed.frag.glsl: 1). The
+// "#version" and flc_visibility come first, from flc.c.
 #include "runtime/gbuffer_textures.glsl"
 uniform ivec2 full_size;
 uniform ivec2 tile_size;
@@ -42,7 +42,10 @@ void main() {
     float cos_x = dot(n, wi);
     if (f_k <= 0.0 || cos_x <= 0.0 || dot(ng, wi) <= 0.0)
         discard;
+    float visible = flc_visibility(pixel, x, g_position);
+    if (visible <= 0.0)
+        discard;
     float cos_y = along / r;
     float transfer = cos_x * cos_y / max(r2, epsilon * epsilon); // d_i = max(eps, |xy|)
-    splat = vec4(g_radiosity * (transfer * S[g_level] * f_k * tile_weight / PI), 0.0);
+    splat = vec4(g_radiosity * (transfer * S[g_level] * f_k * tile_weight / PI) * visible, 0.0);
 }

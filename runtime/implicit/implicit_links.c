@@ -67,6 +67,7 @@ typedef struct linker {
     uint64_t created;
     const gb_scene *lights;     /* for implicit shadows, or NULL */
     const float *environment;   /* bins->count * 3 radiance, or NULL */
+    int depths;                 /* keep each element's depth map */
     float spiral[SPREAD_MAX][2];/* cos, sin of the golden angle times i */
 } linker;
 
@@ -370,6 +371,55 @@ static void light_visibility(const linker *l, const gb_scene *scene, uint32_t e,
     }
 }
 
+/* The element's depth map: (bin, distance) of each bin that holds a link
+ * toward a node it faces (the bins element_links counts), appended to
+ * links->depth_bin and depth from *used on. */
+static gb_result append_depths(const linker *l, uint32_t e, gb_implicit_links *links,
+                               size_t *capacity, size_t *used, gb_error *error)
+{
+    const gb_implicit_node *node = &l->model->nodes[e];
+    size_t row = (size_t)e * l->bins->count;
+    for (uint32_t b = 0; b < l->bins->count; ++b) {
+        uint32_t target = l->target[row + b];
+        if (target == GB_IMPLICIT_NO_NODE || !faces(node, &l->model->nodes[target]))
+            continue;
+        if (*used == *capacity) {
+            size_t grown = 2 * *capacity + 1024;
+            uint32_t *bin = realloc(links->depth_bin, grown * sizeof *bin);
+            if (bin)
+                links->depth_bin = bin;
+            float *depth = realloc(links->depth, grown * sizeof *depth);
+            if (depth)
+                links->depth = depth;
+            if (!bin || !depth)
+                return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+            *capacity = grown;
+        }
+        links->depth_bin[*used] = b;
+        links->depth[*used] = l->distance[row + b];
+        ++*used;
+    }
+    return GB_OK;
+}
+
+static gb_result compact_depths(const linker *l, gb_implicit_links *links, gb_error *error)
+{
+    uint32_t elements = l->model->element_count;
+    links->depth_first = malloc(((size_t)elements + 1) * sizeof *links->depth_first);
+    if (!links->depth_first)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    size_t used = 0, capacity = 0;
+    gb_result result = GB_OK;
+    for (uint32_t e = 0; result == GB_OK && e < elements; ++e) {
+        links->depth_first[e] = (uint32_t)used;
+        result = append_depths(l, e, links, &capacity, &used, error);
+        if (used > UINT32_MAX / 2)
+            result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: too many depths");
+    }
+    links->depth_first[elements] = (uint32_t)used;
+    return result;
+}
+
 static gb_result compact(const linker *l, gb_implicit_links *links, gb_error *error)
 {
     uint32_t elements = l->model->element_count;
@@ -431,7 +481,8 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
                        "use fewer --bins", model->node_count, bins->count);
     linker l = {.model = model, .bins = bins, .epsilon = smallest_extent(model),
                 .lights = options ? options->lights : NULL,
-                .environment = options ? options->environment : NULL};
+                .environment = options ? options->environment : NULL,
+                .depths = options && options->depths};
     for (int i = 0; i < SPREAD_MAX; ++i) {
         double angle = 2.39996322972865332 * i;     /* the golden angle */
         l.spiral[i][0] = (float)cos(angle);
@@ -459,6 +510,8 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
     if (result == GB_OK) {
         double wall = gb_seconds(), cpu = gb_cpu_seconds();
         result = compact(&l, links, error);
+        if (result == GB_OK && l.depths)
+            result = compact_depths(&l, links, error);
         links->wall.compact = gb_seconds() - wall;
         links->cpu.compact = gb_cpu_seconds() - cpu;
     }
@@ -481,5 +534,8 @@ void gb_implicit_links_free(gb_implicit_links *links)
     free(links->environment_weight);
     free(links->environment_irradiance);
     free(links->light_visible);
+    free(links->depth_first);
+    free(links->depth_bin);
+    free(links->depth);
     memset(links, 0, sizeof *links);
 }

@@ -32,6 +32,13 @@ typedef struct gb_implicit_links {
     uint8_t *light_visible;     /* element_count * light_count, or NULL: 1 when
                                    the bin toward the light holds no nearer link */
     uint32_t light_count;
+    uint32_t *depth_first;      /* element_count + 1, when made with options->depths,
+                                   else NULL: each element's depth map, its */
+    uint32_t *depth_bin;        /* depth_first[element_count] filled bins in
+                                   increasing order */
+    float *depth;               /* and the distance of each bin's link: the
+                                   nearest surface the element sees that way
+                                   (the "omni-directional shadow map" of 3) */
     uint64_t created;           /* links stored while creating (statistics) */
     gb_implicit_link_seconds wall, cpu;  /* statistics: time of each step */
 } gb_implicit_links;
@@ -43,6 +50,7 @@ typedef struct gb_implicit_link_options {
     const float *environment;   /* bins->count * 3: the environment's radiance
                                    a bin (gb_implicit_environment_bins), or
                                    NULL: the scene's constant colour */
+    int depths;                 /* 1: keep the depth maps (links->depth_first) */
 } gb_implicit_link_options;
 
 /* Steps 5-7 for a static scene. bin_targets, when not NULL, receives the

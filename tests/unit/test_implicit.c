@@ -881,6 +881,87 @@ static void test_cornell(const char *root)
     gb_scene_free(&built);
 }
 
+/* The depth maps (links->depth_first, for flc-iv) on the three squares,
+ * against the geometry: A's elements see B, 1 above them: a bin's depth lies between B's plane along the bin's nearest
+ * and farthest directions; the bin straight up holds a depth in
+ * [1, 1 / cos(its widest angle)]; bins come in increasing order. The
+ * brute force sees C in no bin, the hierarchy in under 1 % of them. */
+static void test_depth_maps(int hierarchical)
+{
+    gb_scene scene;
+    uint32_t b_segment, c_segment;
+    build_three_squares(&scene, &b_segment, &c_segment);
+    gb_implicit_model m;
+    gb_implicit_bins bins;
+    gb_implicit_links links;
+    gb_error error;
+    gb_implicit_link_options options = {.hierarchical = hierarchical, .depths = 1};
+    const char *kind = hierarchical ? "hierarchical" : "brute force";
+    char what[160];
+    int ok = gb_implicit_model_create(&scene, 0.1f, RUNTIME_CELL, &m, &error) == GB_OK &&
+             gb_implicit_bins_create(8, &bins, &error) == GB_OK &&
+             gb_implicit_create_links(&m, &bins, &options, &links, NULL, &error) == GB_OK;
+    snprintf(what, sizeof what, "depth maps, %s: made", kind);
+    if (!CHECK(ok && links.depth_first, what)) {
+        gb_scene_free(&scene);
+        return;
+    }
+    const float up[3] = {0.0f, 0.0f, 1.0f};
+    int up_bin = gb_implicit_bin(bins.n, up);
+    /* The up bin spans t in [0, 2 / n] on both axes of the +z face. */
+    double widest = 1.0 / sqrt(1.0 + 2.0 * (2.0 / bins.n) * (2.0 / bins.n));
+    uint32_t interior = 0, up_found = 0, ordered = 1, beyond_b = 0, outside_up = 0, of_a = 0;
+    for (uint32_t e = 0; e < m.element_count; ++e) {
+        const gb_implicit_node *a = &m.nodes[e];
+        if (a->segment != 0)
+            continue;
+        for (uint32_t i = links.depth_first[e]; i < links.depth_first[e + 1]; ++i) {
+            if (i > links.depth_first[e] && links.depth_bin[i] <= links.depth_bin[i - 1])
+                ordered = 0;
+            /* B's plane along the bin's directions: 1 / cos, at most that
+             * of the face's corner direction next to the bin (loose bound:
+             * the bin's centre tilted by a whole bin). */
+            const float *d = &bins.directions[3 * links.depth_bin[i]];
+            double cos_centre = d[2], slack = 2.0 * M_PI / (4.0 * bins.n);
+            double farthest = cos_centre > cos(slack) ? 1.0 / cos(acos(cos_centre) + slack) : 1e30;
+            beyond_b += links.depth[i] > farthest * (1.0 + 1e-4) + 1e-4;
+            ++of_a;
+            if ((int)links.depth_bin[i] == up_bin && a->position[0] > 0.2f &&
+                a->position[0] < 0.8f && a->position[1] > 0.2f && a->position[1] < 0.8f) {
+                ++up_found;
+                outside_up += links.depth[i] < 1.0f - 1e-4f ||
+                              links.depth[i] > 1.0 / widest + 1e-4;
+            }
+        }
+        interior += a->position[0] > 0.2f && a->position[0] < 0.8f && a->position[1] > 0.2f &&
+                    a->position[1] < 0.8f;
+    }
+    printf("# depth maps, %s: %u depths, %u of A, %u beyond B; %u interior elements of A, "
+           "up bin in %u\n", kind, links.depth_first[m.element_count], of_a, beyond_b, interior,
+           up_found);
+    snprintf(what, sizeof what, "depth maps, %s: bins in increasing order", kind);
+    CHECK(ordered, what);
+    snprintf(what, sizeof what, "depth maps, %s: every interior element of A sees B straight up",
+             kind);
+    CHECK(interior > 0 && up_found == interior, what);
+    snprintf(what, sizeof what, "depth maps, %s: straight up, B at [1, 1 / cos %.1f deg]", kind,
+             acos(widest) * 180.0 / M_PI);
+    CHECK_EQ_INT(outside_up, 0, what);
+    /* Brute force keeps each bin's shortest link: C never; the hierarchy's
+     * holes let a few bins see C (test_shortest_link's 1 % of the weight). */
+    if (hierarchical) {
+        snprintf(what, sizeof what, "depth maps, %s: under 1 %% of A's depths beyond B", kind);
+        CHECK(of_a > 0 && beyond_b < HIDDEN_WEIGHT_MAX * of_a, what);
+    } else {
+        snprintf(what, sizeof what, "depth maps, %s: no depth of A beyond B (C hidden)", kind);
+        CHECK_EQ_INT(beyond_b, 0, what);
+    }
+    gb_implicit_links_free(&links);
+    gb_implicit_bins_free(&bins);
+    gb_implicit_model_free(&m);
+    gb_scene_free(&scene);
+}
+
 int main(void)
 {
     const char *root = getenv("GB_ROOT");
@@ -904,6 +985,8 @@ int main(void)
     gb_scene_free(&squares);
     test_shortest_link(1);
     test_shortest_link(0);
+    test_depth_maps(1);
+    test_depth_maps(0);
     test_furnace(8);
     test_furnace(12);
     test_point_light();

@@ -1,0 +1,242 @@
+/* flc_iv.c — Forward Light Cuts with implicit visibility as a GI method of
+ * the runtime (flc_iv.h says what it computes). */
+#include "flc_iv.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "flc/flc.h"
+#include "gl_util.h"
+#include "implicit/implicit.h"
+
+enum {
+    SSBO_DEPTH_FIRST = 10,
+    SSBO_DEPTHS = 11,
+    SSBO_CENTRES = 12,
+    UNIT_ELEMENT_IDS = 12,
+    DEFAULT_BINS = 12,
+    NO_ELEMENT = 0xffffffffu,
+};
+
+static const char elements_vertex_shader[] =
+#include "runtime/flc_iv/flc_iv_elements.vert.glsl.inc"
+    ;
+
+static const char elements_fragment_shader[] =
+#include "runtime/flc_iv/flc_iv_elements.frag.glsl.inc"
+    ;
+
+static const char visibility_shader[] =
+#include "runtime/flc_iv/flc_iv_visibility.frag.glsl.inc"
+    ;
+
+typedef struct flc_iv_state {
+    void *flc;
+    gb_implicit_model model;
+    gb_implicit_bins bins;
+    gb_implicit_links links;
+    int bin_filter;
+    GLuint depth_first_buffer, depths_buffer, centres_buffer;
+    GLuint position_buffer, element_buffer, index_buffer, vertex_array, elements_program;
+    GLuint framebuffer, element_texture, depth_texture;
+    int width, height;
+} flc_iv_state;
+
+static void flc_iv_destroy(void *state)
+{
+    flc_iv_state *s = state;
+    if (!s)
+        return;
+    gb_flc_destroy(s->flc);
+    GLuint buffers[] = {s->depth_first_buffer, s->depths_buffer, s->centres_buffer,
+                        s->position_buffer, s->element_buffer, s->index_buffer};
+    glDeleteBuffers(6, buffers);
+    glDeleteVertexArrays(1, &s->vertex_array);
+    if (s->elements_program)
+        glDeleteProgram(s->elements_program);
+    if (s->framebuffer)
+        glDeleteFramebuffers(1, &s->framebuffer);
+    GLuint textures[] = {s->element_texture, s->depth_texture};
+    glDeleteTextures(2, textures);
+    gb_implicit_links_free(&s->links);
+    gb_implicit_bins_free(&s->bins);
+    gb_implicit_model_free(&s->model);
+    free(s);
+}
+
+/* Steps 1-7 of implicit visibility, with the depth maps, no light. */
+static gb_result build_depth_maps(flc_iv_state *s, const gb_scene *scene, int bins,
+                                  gb_error *error)
+{
+    gb_result result =
+        gb_implicit_model_create(scene, 0.0f, GB_IMPLICIT_ELEMENT_CELL, &s->model, error);
+    if (result == GB_OK)
+        result = gb_implicit_bins_create(bins, &s->bins, error);
+    gb_implicit_link_options options = {.hierarchical = 1, .depths = 1};
+    if (result == GB_OK)
+        result = gb_implicit_create_links(&s->model, &s->bins, &options, &s->links, NULL, error);
+    return result;
+}
+
+/* The depth maps as (bin, depth bits) pairs, and the elements' centres. */
+static gb_result upload_depth_maps(flc_iv_state *s, gb_error *error)
+{
+    uint32_t elements = s->model.element_count;
+    size_t count = s->links.depth_first[elements];
+    uint32_t *pairs = malloc(2 * count * sizeof *pairs + 1);
+    float *centres = malloc(4 * (size_t)elements * sizeof *centres + 1);
+    if (!pairs || !centres) {
+        free(pairs);
+        free(centres);
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "flc-iv: out of memory");
+    }
+    for (size_t i = 0; i < count; ++i) {
+        pairs[2 * i] = s->links.depth_bin[i];
+        memcpy(&pairs[2 * i + 1], &s->links.depth[i], sizeof(float));
+    }
+    for (uint32_t e = 0; e < elements; ++e) {
+        memcpy(&centres[4 * (size_t)e], s->model.nodes[e].position, 3 * sizeof(float));
+        centres[4 * (size_t)e + 3] = 0.0f;
+    }
+    s->depth_first_buffer = gb_gl_buffer(s->links.depth_first,
+                                         ((GLsizeiptr)elements + 1) * sizeof(uint32_t));
+    s->depths_buffer = gb_gl_buffer(pairs, (GLsizeiptr)(2 * count * sizeof *pairs));
+    s->centres_buffer = gb_gl_buffer(centres, 4 * (GLsizeiptr)elements * sizeof *centres);
+    free(pairs);
+    free(centres);
+    return GB_OK;
+}
+
+/* The finer mesh with each vertex's element, for the element-id pass. */
+static void upload_mesh(flc_iv_state *s)
+{
+    const gb_implicit_model *m = &s->model;
+    glCreateBuffers(1, &s->position_buffer);
+    glNamedBufferStorage(s->position_buffer, 3 * (GLsizeiptr)m->vertex_count * sizeof(float),
+                         m->vertices, 0);
+    glCreateBuffers(1, &s->element_buffer);
+    glNamedBufferStorage(s->element_buffer, (GLsizeiptr)m->vertex_count * sizeof(uint32_t),
+                         m->vertex_element, 0);
+    glCreateBuffers(1, &s->index_buffer);
+    glNamedBufferStorage(s->index_buffer, 3 * (GLsizeiptr)m->triangle_count * sizeof(uint32_t),
+                         m->triangles, 0);
+    glCreateVertexArrays(1, &s->vertex_array);
+    glVertexArrayVertexBuffer(s->vertex_array, 0, s->position_buffer, 0, 3 * sizeof(float));
+    glEnableVertexArrayAttrib(s->vertex_array, 0);
+    glVertexArrayAttribFormat(s->vertex_array, 0, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(s->vertex_array, 0, 0);
+    glVertexArrayVertexBuffer(s->vertex_array, 1, s->element_buffer, 0, sizeof(uint32_t));
+    glEnableVertexArrayAttrib(s->vertex_array, 1);
+    glVertexArrayAttribIFormat(s->vertex_array, 1, 1, GL_UNSIGNED_INT, 0);
+    glVertexArrayAttribBinding(s->vertex_array, 1, 1);
+    glVertexArrayElementBuffer(s->vertex_array, s->index_buffer);
+}
+
+static void make_target(flc_iv_state *s, int width, int height)
+{
+    if (s->framebuffer && s->width == width && s->height == height)
+        return;
+    if (s->framebuffer) {
+        glDeleteFramebuffers(1, &s->framebuffer);
+        glDeleteTextures(1, &s->element_texture);
+        glDeleteTextures(1, &s->depth_texture);
+    }
+    s->width = width;
+    s->height = height;
+    s->element_texture = gb_gl_texture_2d(GL_R32UI, width, height);
+    s->depth_texture = gb_gl_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
+    glCreateFramebuffers(1, &s->framebuffer);
+    glNamedFramebufferTexture(s->framebuffer, GL_COLOR_ATTACHMENT0, s->element_texture, 0);
+    glNamedFramebufferTexture(s->framebuffer, GL_DEPTH_ATTACHMENT, s->depth_texture, 0);
+}
+
+/* FLC's visibility hook (flc.h): the depth maps and the element ids. */
+static void bind_visibility(void *context, GLuint program, const gb_indirect_frame *frame)
+{
+    (void)frame;
+    const flc_iv_state *s = context;
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_DEPTH_FIRST, s->depth_first_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_DEPTHS, s->depths_buffer);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_CENTRES, s->centres_buffer);
+    glBindTextureUnit(UNIT_ELEMENT_IDS, s->element_texture);
+    glProgramUniform1i(program, glGetUniformLocation(program, "bins_n"), s->bins.n);
+    glProgramUniform1i(program, glGetUniformLocation(program, "bin_filter"), s->bin_filter);
+    glProgramUniform1f(program, glGetUniformLocation(program, "bias_bin"),
+                       GB_FLC_IV_BIAS_BIN / (float)s->bins.n);
+    glProgramUniform1f(program, glGetUniformLocation(program, "bias_element"),
+                       GB_FLC_IV_BIAS_ELEMENT * s->model.element_size);
+}
+
+static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_error *error)
+{
+    *state = NULL;
+    const gb_method_parameters *p = setup->parameters;
+    int bins = p->bins ? p->bins : DEFAULT_BINS;
+    if (bins < 1 || bins > 64)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "flc-iv: bins %d is not in 1..64", bins);
+    flc_iv_state *s = calloc(1, sizeof *s);
+    if (!s)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "flc-iv: out of memory");
+    s->bin_filter = p->visibility_filter;
+    gb_result result = build_depth_maps(s, setup->scene, bins, error);
+    if (result == GB_OK)
+        result = upload_depth_maps(s, error);
+    if (result == GB_OK)
+        result = gb_gl_program("flc-iv element ids", elements_vertex_shader,
+                               elements_fragment_shader, &s->elements_program, error);
+    gb_flc_visibility visibility = {visibility_shader, bind_visibility, s};
+    if (result == GB_OK)
+        result = gb_flc_create(setup, &visibility, &s->flc, error);
+    if (result != GB_OK) {
+        flc_iv_destroy(s);
+        return result;
+    }
+    upload_mesh(s);
+    make_target(s, setup->width, setup->height);
+    *state = s;
+    return GB_OK;
+}
+
+/* The element seen at each pixel, NO_ELEMENT where none is. */
+static void draw_element_ids(flc_iv_state *s, const gb_indirect_frame *frame)
+{
+    make_target(s, frame->width, frame->height);
+    const GLuint none[4] = {NO_ELEMENT, 0, 0, 0};
+    const float far = 0.0f;     /* reversed depth: 0 is far */
+    glClearNamedFramebufferuiv(s->framebuffer, GL_COLOR, 0, none);
+    glClearNamedFramebufferfv(s->framebuffer, GL_DEPTH, 0, &far);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->framebuffer);
+    glViewport(0, 0, frame->width, frame->height);
+    glDisable(GL_BLEND);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
+    GLuint program = s->elements_program;
+    glUseProgram(program);
+    glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "view"), 1, GL_FALSE,
+                              frame->view_matrix->m);
+    glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "projection"), 1, GL_FALSE,
+                              frame->projection->m);
+    glBindVertexArray(s->vertex_array);
+    glDrawElements(GL_TRIANGLES, (GLsizei)(3 * s->model.triangle_count), GL_UNSIGNED_INT, NULL);
+    glDisable(GL_DEPTH_TEST);
+}
+
+static void flc_iv_draw(void *state, const gb_indirect_frame *frame)
+{
+    flc_iv_state *s = state;
+    GLint output = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
+    draw_element_ids(s, frame);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
+    glViewport(0, 0, frame->width, frame->height);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    gb_flc_draw(s->flc, frame);
+}
+
+const gb_indirect_method gb_flc_iv_method = {
+    .create = flc_iv_create,
+    .draw = flc_iv_draw,
+    .destroy = flc_iv_destroy,
+};

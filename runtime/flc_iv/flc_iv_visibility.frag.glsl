@@ -1,0 +1,58 @@
+// Forward Light Cuts with implicit visibility (flc_iv.h): FLC's visibility
+// term (flc.h) from the pixel's element's depth map, its bins those of
+// implicit_bins.h (Dong 2007, 4.2.2): face 2 axis + (d[axis] < 0), u and v
+// the next two axes over |d[axis]|.
+layout(std430, binding = 10) readonly buffer DepthFirst { uint depth_first[]; };
+layout(std430, binding = 11) readonly buffer Depths { uvec2 depths[]; };  // bin, depth bits
+layout(std430, binding = 12) readonly buffer Centres { vec4 element_centres[]; };
+layout(binding = 12) uniform usampler2D element_ids;
+uniform int bins_n;
+uniform int bin_filter;          // 0 bilinear, 1 nearest
+uniform float bias_bin;          // GB_FLC_IV_BIAS_BIN / N
+uniform float bias_element;      // GB_FLC_IV_BIAS_ELEMENT x element size
+
+// The depth of bin in element e's map (binary search), or infinity.
+float bin_depth(uint e, uint bin) {
+    uint lo = depth_first[e], hi = depth_first[e + 1u];
+    while (lo < hi) {
+        uint mid = (lo + hi) / 2u;
+        if (depths[mid].x < bin)
+            lo = mid + 1u;
+        else
+            hi = mid;
+    }
+    return lo < depth_first[e + 1u] && depths[lo].x == bin ? uintBitsToFloat(depths[lo].y)
+                                                            : 1.0 / 0.0;
+}
+
+float seen(uint e, int face, ivec2 cell, float r) {
+    cell = clamp(cell, ivec2(0), ivec2(bins_n - 1));
+    uint bin = uint((face * bins_n + cell.y) * bins_n + cell.x);
+    return r <= bin_depth(e, bin) * (1.0 + bias_bin) + bias_element ? 1.0 : 0.0;
+}
+
+float flc_visibility(ivec2 pixel, vec3 x, vec3 y) {
+    uint e = texelFetch(element_ids, pixel, 0).r;
+    if (e == 0xffffffffu)
+        return 1.0;
+    vec3 d = y - element_centres[e].xyz;
+    float r = length(d);
+    int axis = 0;
+    for (int a = 1; a < 3; ++a)
+        if (abs(d[a]) > abs(d[axis]))
+            axis = a;
+    float major = abs(d[axis]);
+    if (!(major > 0.0))
+        return 1.0;
+    int face = 2 * axis + (d[axis] < 0.0 ? 1 : 0);
+    vec2 t = vec2(d[(axis + 1) % 3], d[(axis + 2) % 3]) / major;    // in [-1, 1]
+    vec2 s = 0.5 * (t + 1.0) * float(bins_n);                       // bins along u, v
+    if (bin_filter == 1)
+        return seen(e, face, ivec2(floor(s)), r);
+    vec2 c = s - 0.5;
+    ivec2 i = ivec2(floor(c));
+    vec2 f = c - vec2(i);
+    return mix(mix(seen(e, face, i, r), seen(e, face, i + ivec2(1, 0), r), f.x),
+               mix(seen(e, face, i + ivec2(0, 1), r), seen(e, face, i + ivec2(1, 1), r), f.x),
+               f.y);
+}
