@@ -39,6 +39,7 @@ header="scene,scene_hash,method,point,resolution,frames,spp,vplspp,navg,tiling,b
 # settings of a row (awk function shared below)
 settings='function settings(m,   s) {
     if (m == "flc") s = "navg=" $9 " frames=" $6 ($10 + 0 ? " tiling=" $10 : "")
+    else if (m == "flc-iv") s = "navg=" $9 " frames=" $6 ($10 + 0 ? " tiling=" $10 : "") " bins=" $11
     else if (m == "implicit") s = "bins=" $11 " bounces=" $12
     else if (m == "topo") s = "vpls=" $13 " visibility=" $14 " voxels=" $15
     else if (m == "octree") s = "photons=" $16 " depth=" $17 " vdls=" $18
@@ -85,7 +86,7 @@ mkdir -p plots
 plots_ok=1
 if command -v gnuplot >/dev/null; then
     for s in $scenes; do
-        for m in direct topo octree flc implicit; do
+        for m in direct topo octree flc implicit flc-iv; do
             awk -F, -v s="$s" -v m="$m" 'NR > 1 && $59 == "ok" && $1 == s && $3 == m { print $58, $43, ($20 == "" ? 0 : $20) }' results.csv \
                 >"plots/$s-$m.dat"
         done
@@ -99,7 +100,7 @@ if command -v gnuplot >/dev/null; then
         if [ $term = png ]; then t="set terminal png size 800,560"; else t="set terminal svg size 800,560"; fi
         for s in $scenes; do
             plot= plot2=
-            for m in direct topo octree flc implicit; do
+            for m in direct topo octree flc implicit flc-iv; do
                 [ -s "plots/$s-$m.dat" ] || continue
                 plot="$plot${plot:+, }'plots/$s-$m.dat' using 1:2 with points pointsize 1.5 title '$m'"
                 plot2="$plot2${plot2:+, }'plots/$s-$m.dat' using (\$3 > 0 ? \$3 : 0.01):2 with points pointsize 1.5 title '$m'"
@@ -109,7 +110,7 @@ $t
 set output 'plots/$s-error-frame.$term'
 set title "$s: error against reference --mode full, for the frame time"
 set logscale xy
-set xlabel 'ms to the image (wall; flc: frames x frame ms)'
+set xlabel 'ms to the image (wall; flc, flc-iv: frames x frame ms)'
 set ylabel 'relative MSE'
 set key outside right
 plot $plot, 'plots/$s-pareto.dat' using 1:2 with steps linewidth 2 linecolor rgb 'black' title 'Pareto front'
@@ -162,7 +163,7 @@ awk -F, -v sweep="$sweep" -v date="$date" -v load="$load" '
     file == 1 && FNR > 1 { rows[++n] = $0 }
     END {
         printf "`make report SWEEP=%s` (bench/report_finish.sh from results.csv), %s, load average %s at the end. ", sweep, date, load
-        print "Each scene'"'"'s Pareto front: the points no faster point beats on relative MSE against `reference --mode full`; ms to the image, wall, on llvmpipe (flc: its frames times the frame ms).\n"
+        print "Each scene'"'"'s Pareto front: the points no faster point beats on relative MSE against `reference --mode full`; ms to the image, wall, on llvmpipe (flc and flc-iv: their frames times the frame ms).\n"
         print "| scene | method | settings | ms to the image | rel. MSE vs full | rel. MSE vs own reference | bake s |"
         print "|---|---|---|---:|---:|---:|---:|"
         for (i = 1; i <= n; i++) { split(rows[i], f, ",")
@@ -194,10 +195,10 @@ img.px{image-rendering:pixelated;width:160px}.void{color:#b00;font-weight:bold}<
 <h1>gibake: speed against error</h1>
 <p>Sweep <code>$(echo "$sweep" | esc)</code>, $(date -u '+%Y-%m-%d %H:%M UTC'), load average $load.
 Error: relative MSE of the frame (<code>--terms both</code>) against <code>reference --mode full</code>,
-and of the method's own term against its own reference (direct: <code>--mode direct</code>; flc: <code>indirect1-unshadowed</code>;
+and of the method's own term against its own reference (direct: <code>--mode direct</code>; flc: <code>indirect1-unshadowed</code>; flc-iv: <code>indirect1</code>;
 implicit: <code>indirect1</code>; octree: <code>full --min-bounces 2</code>; topo: <code>reference --vpl</code> of the same VPLs).
 Frame ms: the mean <code>frame (wall)</code> of <code>gbview --timings</code> on llvmpipe (frames after the first; with one frame, the first, one-time passes included);
-ms to the image: the frame ms, times the frames for flc, which accumulates them. Plots, Pareto fronts and budgets use ms to the image.
+ms to the image: the frame ms, times the frames for flc and flc-iv, which accumulate them. Plots, Pareto fronts and budgets use ms to the image.
 Timings were taken while other jobs may have shared the cores; the assertions of tests/cli/report.t never read them.
 Data: <a href="results.csv">results.csv</a>, <a href="references.csv">references.csv</a>, <a href="pareto.csv">pareto.csv</a>.
 Rows whose status is not ok (a failed or timed-out render) have no errors and are left out of the plots and fronts.</p>

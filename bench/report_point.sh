@@ -103,10 +103,10 @@ own_cols=$(errors "$img/$id.own.diff" "$report/ref/$ownref.floor" "$ownref")
 # The parameters as points.tsv has them (columns 5..18).
 params=$(awk -F '\t' -v id="$id" '$1 == id { s = $5; for (i = 6; i <= 18; i++) s = s "," $i; print s; exit }' \
     "$report/points.tsv")
-# The time to the compared image: FLC accumulates its frames, the others
-# show the same image each frame.
+# The time to the compared image: FLC (and flc-iv) accumulates its frames,
+# the others show the same image each frame.
 time_ms=$frame_ms
-[ "$method" = flc ] && time_ms=$(awk -v f="$frame_ms" -v k="$frames" 'BEGIN { printf "%.3f", f * k }')
+[ "$method" = flc ] || [ "$method" = flc-iv ] && time_ms=$(awk -v f="$frame_ms" -v k="$frames" 'BEGIN { printf "%.3f", f * k }')
 echo "$name,$hash,$method,$id,$params,$bake,$bake_wall,$bake_cpu$bake_cols,$bytes,$gbview_rss,$frame_ms,$frame_first_ms,\"$passes\",$full_cols,$own_cols,$time_ms,$status" \
     >"$report/points/$id.csv.tmp"
 mv "$report/points/$id.csv.tmp" "$report/points/$id.csv"

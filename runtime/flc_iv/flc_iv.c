@@ -2,6 +2,7 @@
  * the runtime (flc_iv.h says what it computes). */
 #include "flc_iv.h"
 
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -10,7 +11,6 @@
 #include "implicit/implicit.h"
 
 enum {
-    SSBO_DEPTH_FIRST = 10,
     SSBO_DEPTHS = 11,
     SSBO_CENTRES = 12,
     UNIT_ELEMENT_IDS = 12,
@@ -36,10 +36,13 @@ typedef struct flc_iv_state {
     gb_implicit_bins bins;
     gb_implicit_links links;
     int bin_filter;
-    GLuint depth_first_buffer, depths_buffer, centres_buffer;
+    float depth_unit;           /* metres (scene units) of one step of depth */
+    GLuint depths_buffer, centres_buffer;
     GLuint position_buffer, element_buffer, index_buffer, vertex_array, elements_program;
     GLuint framebuffer, element_texture, depth_texture;
     int width, height;
+    int drawn;                  /* the element ids are those of last_view */
+    gb_mat4 last_view, last_projection;
 } flc_iv_state;
 
 static void flc_iv_destroy(void *state)
@@ -48,9 +51,9 @@ static void flc_iv_destroy(void *state)
     if (!s)
         return;
     gb_flc_destroy(s->flc);
-    GLuint buffers[] = {s->depth_first_buffer, s->depths_buffer, s->centres_buffer,
-                        s->position_buffer, s->element_buffer, s->index_buffer};
-    glDeleteBuffers(6, buffers);
+    GLuint buffers[] = {s->depths_buffer, s->centres_buffer, s->position_buffer,
+                        s->element_buffer, s->index_buffer};
+    glDeleteBuffers(5, buffers);
     glDeleteVertexArrays(1, &s->vertex_array);
     if (s->elements_program)
         glDeleteProgram(s->elements_program);
@@ -78,31 +81,45 @@ static gb_result build_depth_maps(flc_iv_state *s, const gb_scene *scene, int bi
     return result;
 }
 
-/* The depth maps as (bin, depth bits) pairs, and the elements' centres. */
-static gb_result upload_depth_maps(flc_iv_state *s, gb_error *error)
+static float scene_diagonal(const gb_scene *scene)
 {
-    uint32_t elements = s->model.element_count;
-    size_t count = s->links.depth_first[elements];
-    uint32_t *pairs = malloc(2 * count * sizeof *pairs + 1);
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        double side = (double)scene->bounds_max[k] - scene->bounds_min[k];
+        sum += side * side;
+    }
+    return (float)sqrt(sum);
+}
+
+/* The depth maps, dense, 16 bits a bin and element (flc_iv.h), two a word,
+ * and the elements' centres. */
+static gb_result upload_depth_maps(flc_iv_state *s, const gb_scene *scene, gb_error *error)
+{
+    uint32_t elements = s->model.element_count, bins = s->bins.count;
+    size_t count = (size_t)elements * bins;
+    uint16_t *depths = malloc((count + 1) * sizeof *depths);
     float *centres = malloc(4 * (size_t)elements * sizeof *centres + 1);
-    if (!pairs || !centres) {
-        free(pairs);
+    if (!depths || !centres) {
+        free(depths);
         free(centres);
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "flc-iv: out of memory");
     }
-    for (size_t i = 0; i < count; ++i) {
-        pairs[2 * i] = s->links.depth_bin[i];
-        memcpy(&pairs[2 * i + 1], &s->links.depth[i], sizeof(float));
-    }
+    float diagonal = scene_diagonal(scene);
+    s->depth_unit = (diagonal > 0.0f ? diagonal : 1.0f) / GB_FLC_IV_DEPTH_FAR;
+    memset(depths, 0xff, (count + 1) * sizeof *depths);
     for (uint32_t e = 0; e < elements; ++e) {
+        for (uint32_t i = s->links.depth_first[e]; i < s->links.depth_first[e + 1]; ++i) {
+            /* Rounded up: a depth never comes nearer than the link. */
+            float steps = ceilf(s->links.depth[i] / s->depth_unit);
+            depths[(size_t)e * bins + s->links.depth_bin[i]] =
+                (uint16_t)(steps < GB_FLC_IV_DEPTH_FAR ? steps : GB_FLC_IV_DEPTH_FAR);
+        }
         memcpy(&centres[4 * (size_t)e], s->model.nodes[e].position, 3 * sizeof(float));
         centres[4 * (size_t)e + 3] = 0.0f;
     }
-    s->depth_first_buffer = gb_gl_buffer(s->links.depth_first,
-                                         ((GLsizeiptr)elements + 1) * sizeof(uint32_t));
-    s->depths_buffer = gb_gl_buffer(pairs, (GLsizeiptr)(2 * count * sizeof *pairs));
+    s->depths_buffer = gb_gl_buffer(depths, (GLsizeiptr)((count + 1) / 2 * 2 * sizeof *depths));
     s->centres_buffer = gb_gl_buffer(centres, 4 * (GLsizeiptr)elements * sizeof *centres);
-    free(pairs);
+    free(depths);
     free(centres);
     return GB_OK;
 }
@@ -143,6 +160,7 @@ static void make_target(flc_iv_state *s, int width, int height)
     }
     s->width = width;
     s->height = height;
+    s->drawn = 0;
     s->element_texture = gb_gl_texture_2d(GL_R32UI, width, height);
     s->depth_texture = gb_gl_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
     glCreateFramebuffers(1, &s->framebuffer);
@@ -155,7 +173,6 @@ static void bind_visibility(void *context, GLuint program, const gb_indirect_fra
 {
     (void)frame;
     const flc_iv_state *s = context;
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_DEPTH_FIRST, s->depth_first_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_DEPTHS, s->depths_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_CENTRES, s->centres_buffer);
     glBindTextureUnit(UNIT_ELEMENT_IDS, s->element_texture);
@@ -165,6 +182,7 @@ static void bind_visibility(void *context, GLuint program, const gb_indirect_fra
                        GB_FLC_IV_BIAS_BIN / (float)s->bins.n);
     glProgramUniform1f(program, glGetUniformLocation(program, "bias_element"),
                        GB_FLC_IV_BIAS_ELEMENT * s->model.element_size);
+    glProgramUniform1f(program, glGetUniformLocation(program, "depth_unit"), s->depth_unit);
 }
 
 static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_error *error)
@@ -180,7 +198,7 @@ static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_
     s->bin_filter = p->visibility_filter;
     gb_result result = build_depth_maps(s, setup->scene, bins, error);
     if (result == GB_OK)
-        result = upload_depth_maps(s, error);
+        result = upload_depth_maps(s, setup->scene, error);
     if (result == GB_OK)
         result = gb_gl_program("flc-iv element ids", elements_vertex_shader,
                                elements_fragment_shader, &s->elements_program, error);
@@ -197,10 +215,17 @@ static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_
     return GB_OK;
 }
 
-/* The element seen at each pixel, NO_ELEMENT where none is. */
+/* The element seen at each pixel, NO_ELEMENT where none is; drawn again
+ * only when the view or the size changed (the scene is static). */
 static void draw_element_ids(flc_iv_state *s, const gb_indirect_frame *frame)
 {
     make_target(s, frame->width, frame->height);
+    if (s->drawn && !memcmp(&s->last_view, frame->view_matrix, sizeof s->last_view) &&
+        !memcmp(&s->last_projection, frame->projection, sizeof s->last_projection))
+        return;
+    s->drawn = 1;
+    s->last_view = *frame->view_matrix;
+    s->last_projection = *frame->projection;
     const GLuint none[4] = {NO_ELEMENT, 0, 0, 0};
     const float far = 0.0f;     /* reversed depth: 0 is far */
     glClearNamedFramebufferuiv(s->framebuffer, GL_COLOR, 0, none);

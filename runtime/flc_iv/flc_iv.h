@@ -9,11 +9,16 @@
  * links (Algorithm 1, steps 1-7) with each element's depth map kept (for
  * each filled bin of its 6 x N x N cube map, the distance of the bin's
  * shortest link: the nearest surface seen that way, "a variant of
- * omni-directional shadow mapping", section 3). It goes to the GPU as
- * three storage buffers.
+ * omni-directional shadow mapping", section 3). It goes to the GPU dense,
+ * one 16-bit depth a bin and element in steps of the scene's diagonal /
+ * GB_FLC_IV_DEPTH_FAR, rounded up (GB_FLC_IV_DEPTH_FAR + 1: an empty bin),
+ * with the elements' centres. Dense rather than the links' sparse lists:
+ * a binary search in them made the frame 1.5x slower (Cornell, 96x96,
+ * N_avg 64: 30.8 against 20.0 ms; FLC alone 14.7).
  *
  * Each frame: the finer mesh is drawn with each triangle's element id into
- * the method's own target (with its own depth test), then FLC draws as
+ * the method's own target (with its own depth test) when the view changed,
+ * then FLC draws as
  * ever, its splatting multiplied by flc_iv_visibility.frag.glsl: for the
  * pixel's element e and the VPL at y, with d = y - centre(e), r = |d|,
  * the bin of d holds the depth D; the VPL is seen when
@@ -31,6 +36,7 @@
 
 #define GB_FLC_IV_BIAS_BIN 2.0f
 #define GB_FLC_IV_BIAS_ELEMENT 1.0f
+#define GB_FLC_IV_DEPTH_FAR 65534.0f
 
 /* gb_method_parameters.visibility_filter */
 enum { GB_FLC_IV_BILINEAR = 0, GB_FLC_IV_NEAREST = 1 };

@@ -2,27 +2,20 @@
 // term (flc.h) from the pixel's element's depth map, its bins those of
 // implicit_bins.h (Dong 2007, 4.2.2): face 2 axis + (d[axis] < 0), u and v
 // the next two axes over |d[axis]|.
-layout(std430, binding = 10) readonly buffer DepthFirst { uint depth_first[]; };
-layout(std430, binding = 11) readonly buffer Depths { uvec2 depths[]; };  // bin, depth bits
+layout(std430, binding = 11) readonly buffer Depths { uint depths[]; };  // two a word
 layout(std430, binding = 12) readonly buffer Centres { vec4 element_centres[]; };
 layout(binding = 12) uniform usampler2D element_ids;
 uniform int bins_n;
 uniform int bin_filter;          // 0 bilinear, 1 nearest
 uniform float bias_bin;          // GB_FLC_IV_BIAS_BIN / N
 uniform float bias_element;      // GB_FLC_IV_BIAS_ELEMENT x element size
+uniform float depth_unit;        // the scene's diagonal / GB_FLC_IV_DEPTH_FAR
 
-// The depth of bin in element e's map (binary search), or infinity.
+// The depth of bin in element e's map, or infinity for an empty bin.
 float bin_depth(uint e, uint bin) {
-    uint lo = depth_first[e], hi = depth_first[e + 1u];
-    while (lo < hi) {
-        uint mid = (lo + hi) / 2u;
-        if (depths[mid].x < bin)
-            lo = mid + 1u;
-        else
-            hi = mid;
-    }
-    return lo < depth_first[e + 1u] && depths[lo].x == bin ? uintBitsToFloat(depths[lo].y)
-                                                            : 1.0 / 0.0;
+    uint k = e * uint(6 * bins_n * bins_n) + bin;
+    uint depth = (depths[k >> 1u] >> (16u * (k & 1u))) & 0xffffu;
+    return depth == 0xffffu ? 1.0 / 0.0 : float(depth) * depth_unit;
 }
 
 float seen(uint e, int face, ivec2 cell, float r) {

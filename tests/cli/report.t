@@ -4,8 +4,8 @@
 # its results.csv that hold whatever the machine's speed (no timing is
 # asserted): a row for every method on the Cornell box; every error finite;
 # on the two rooms (a wall between the light's room and the camera's) topo
-# with full visibility at most as wrong as without; FLC after 16 frames
-# better than after 1; octree and implicit better than direct light alone
+# with full visibility at most as wrong as without, and flc-iv nearer the
+# full reference than FLC; FLC after 16 frames better than after 1; octree and implicit better than direct light alone
 # against the full reference; every reference's noise floor below the
 # smallest error compared with it, or the report says the comparison is
 # void; segment --evaluate of each topo bake, better than chance on the two
@@ -47,7 +47,7 @@ err() {
         'NR > 1 && $1 == s && $3 == m && $4 ~ p { print $c; exit }' "$csv"
 }
 
-for m in direct topo octree flc implicit; do
+for m in direct topo octree flc implicit flc-iv; do
     n=$(awk -F, -v m="$m" 'NR > 1 && $1 == "cornell" && $3 == m' "$csv" | wc -l)
     ok "$([ "$n" -ge 1 ]; echo $?)" "a row for $m on the Cornell box ($n)"
 done
@@ -77,6 +77,12 @@ e16=$(err cornell flc -f16- own_rel_mse)
 echo "# Cornell flc vs indirect1-unshadowed: 1 frame $e1, 16 frames $e16"
 below "$e16" "$e1"
 ok $? "flc: 16 frames below 1 frame"
+
+flc=$(err two-rooms flc . full_rel_mse)
+iv=$(err two-rooms flc-iv . full_rel_mse)
+echo "# two rooms vs reference --mode full: flc $flc, flc-iv $iv"
+below "$iv" "$flc"
+ok $? "two rooms: flc-iv below FLC against the full reference (the wall shadows)"
 
 direct=$(err cornell direct . full_rel_mse)
 octree=$(err cornell octree . full_rel_mse)
