@@ -199,7 +199,7 @@ test-repeat: all unit-tests
 
 # The demo: summarise the Cornell box, bake it, render it headless to demo/
 # with each method, and open the window when there is a display.
-DEMO_METHODS ?= direct flc implicit topo octree
+DEMO_METHODS ?= direct flc implicit topo octree flc-iv
 demo: deps
 	$(MAKE) all
 	$(BIN)/scene-info scenes/cornell/cornell.scene

@@ -169,6 +169,30 @@ GLuint gb_gl_texture_2d(GLenum internal_format, int width, int height)
     return texture;
 }
 
+int gb_gl_target_resize(gb_gl_target *target, GLenum color_format, int width, int height)
+{
+    if (target->framebuffer && target->width == width && target->height == height)
+        return 0;
+    gb_gl_target_release(target);
+    target->width = width;
+    target->height = height;
+    target->color = gb_gl_texture_2d(color_format, width, height);
+    target->depth = gb_gl_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
+    glCreateFramebuffers(1, &target->framebuffer);
+    glNamedFramebufferTexture(target->framebuffer, GL_COLOR_ATTACHMENT0, target->color, 0);
+    glNamedFramebufferTexture(target->framebuffer, GL_DEPTH_ATTACHMENT, target->depth, 0);
+    return 1;
+}
+
+void gb_gl_target_release(gb_gl_target *target)
+{
+    if (target->framebuffer)
+        glDeleteFramebuffers(1, &target->framebuffer);
+    GLuint textures[2] = {target->color, target->depth};
+    glDeleteTextures(2, textures);
+    memset(target, 0, sizeof *target);
+}
+
 const char gb_gl_fullscreen_vertex_shader[] =
 #include "runtime/fullscreen.vert.glsl.inc"
     ;

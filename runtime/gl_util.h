@@ -68,6 +68,20 @@ GLuint gb_gl_buffer(const void *data, GLsizeiptr size);
 /* A 2-D texture of internal format, one level, nearest filtering, clamped. */
 GLuint gb_gl_texture_2d(GLenum internal_format, int width, int height);
 
+/* A pass's own render target: a framebuffer with one colour texture and a
+ * 32-bit float depth texture of its own, width x height. Zeroed: none yet.
+ * The caller owns it, and releases it with gb_gl_target_release. */
+typedef struct gb_gl_target {
+    GLuint framebuffer, color, depth;
+    int width, height;
+} gb_gl_target;
+
+/* Makes target width x height with a colour texture of color_format,
+ * unless it is that size already; returns 1 when it made it (its contents
+ * are then undefined), 0 when it kept it. */
+int gb_gl_target_resize(gb_gl_target *target, GLenum color_format, int width, int height);
+void gb_gl_target_release(gb_gl_target *target);
+
 /* The full-screen triangle (fullscreen.vert.glsl): a vertex shader that needs
  * no attribute; draw with gb_gl_draw_fullscreen and an empty vertex array. */
 extern const char gb_gl_fullscreen_vertex_shader[];

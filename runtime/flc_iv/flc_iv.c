@@ -39,8 +39,7 @@ typedef struct flc_iv_state {
     float depth_unit;           /* metres (scene units) of one step of depth */
     GLuint depths_buffer, centres_buffer;
     GLuint position_buffer, element_buffer, index_buffer, vertex_array, elements_program;
-    GLuint framebuffer, element_texture, depth_texture;
-    int width, height;
+    gb_gl_target element_ids;   /* R32UI, with its depth */
     int drawn;                  /* the element ids are those of last_view */
     gb_mat4 last_view, last_projection;
 } flc_iv_state;
@@ -57,10 +56,7 @@ static void flc_iv_destroy(void *state)
     glDeleteVertexArrays(1, &s->vertex_array);
     if (s->elements_program)
         glDeleteProgram(s->elements_program);
-    if (s->framebuffer)
-        glDeleteFramebuffers(1, &s->framebuffer);
-    GLuint textures[] = {s->element_texture, s->depth_texture};
-    glDeleteTextures(2, textures);
+    gb_gl_target_release(&s->element_ids);
     gb_implicit_links_free(&s->links);
     gb_implicit_bins_free(&s->bins);
     gb_implicit_model_free(&s->model);
@@ -149,25 +145,6 @@ static void upload_mesh(flc_iv_state *s)
     glVertexArrayElementBuffer(s->vertex_array, s->index_buffer);
 }
 
-static void make_target(flc_iv_state *s, int width, int height)
-{
-    if (s->framebuffer && s->width == width && s->height == height)
-        return;
-    if (s->framebuffer) {
-        glDeleteFramebuffers(1, &s->framebuffer);
-        glDeleteTextures(1, &s->element_texture);
-        glDeleteTextures(1, &s->depth_texture);
-    }
-    s->width = width;
-    s->height = height;
-    s->drawn = 0;
-    s->element_texture = gb_gl_texture_2d(GL_R32UI, width, height);
-    s->depth_texture = gb_gl_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
-    glCreateFramebuffers(1, &s->framebuffer);
-    glNamedFramebufferTexture(s->framebuffer, GL_COLOR_ATTACHMENT0, s->element_texture, 0);
-    glNamedFramebufferTexture(s->framebuffer, GL_DEPTH_ATTACHMENT, s->depth_texture, 0);
-}
-
 /* FLC's visibility hook (flc.h): the depth maps and the element ids. */
 static void bind_visibility(void *context, GLuint program, const gb_indirect_frame *frame)
 {
@@ -175,7 +152,7 @@ static void bind_visibility(void *context, GLuint program, const gb_indirect_fra
     const flc_iv_state *s = context;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_DEPTHS, s->depths_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_CENTRES, s->centres_buffer);
-    glBindTextureUnit(UNIT_ELEMENT_IDS, s->element_texture);
+    glBindTextureUnit(UNIT_ELEMENT_IDS, s->element_ids.color);
     glProgramUniform1i(program, glGetUniformLocation(program, "bins_n"), s->bins.n);
     glProgramUniform1i(program, glGetUniformLocation(program, "bin_filter"), s->bin_filter);
     glProgramUniform1f(program, glGetUniformLocation(program, "bias_bin"),
@@ -210,7 +187,6 @@ static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_
         return result;
     }
     upload_mesh(s);
-    make_target(s, setup->width, setup->height);
     *state = s;
     return GB_OK;
 }
@@ -219,7 +195,8 @@ static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_
  * only when the view or the size changed (the scene is static). */
 static void draw_element_ids(flc_iv_state *s, const gb_indirect_frame *frame)
 {
-    make_target(s, frame->width, frame->height);
+    if (gb_gl_target_resize(&s->element_ids, GL_R32UI, frame->width, frame->height))
+        s->drawn = 0;
     if (s->drawn && !memcmp(&s->last_view, frame->view_matrix, sizeof s->last_view) &&
         !memcmp(&s->last_projection, frame->projection, sizeof s->last_projection))
         return;
@@ -228,9 +205,9 @@ static void draw_element_ids(flc_iv_state *s, const gb_indirect_frame *frame)
     s->last_projection = *frame->projection;
     const GLuint none[4] = {NO_ELEMENT, 0, 0, 0};
     const float far = 0.0f;     /* reversed depth: 0 is far */
-    glClearNamedFramebufferuiv(s->framebuffer, GL_COLOR, 0, none);
-    glClearNamedFramebufferfv(s->framebuffer, GL_DEPTH, 0, &far);
-    glBindFramebuffer(GL_FRAMEBUFFER, s->framebuffer);
+    glClearNamedFramebufferuiv(s->element_ids.framebuffer, GL_COLOR, 0, none);
+    glClearNamedFramebufferfv(s->element_ids.framebuffer, GL_DEPTH, 0, &far);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->element_ids.framebuffer);
     glViewport(0, 0, frame->width, frame->height);
     glDisable(GL_BLEND);
     glEnable(GL_DEPTH_TEST);

@@ -38,8 +38,7 @@ typedef struct implicit_state {
     gb_implicit_step_times times;
     GLuint position_buffer, incident_buffer, index_buffer, vertex_array;
     GLuint mesh_program, compose_program, empty_vertex_array;
-    GLuint framebuffer, incident_texture, depth_texture;
-    int width, height;
+    gb_gl_target incident;      /* RGBA32F incident radiance, with its depth */
 } implicit_state;
 
 static const char mesh_vertex_shader[] =
@@ -53,24 +52,6 @@ static const char mesh_fragment_shader[] =
 static const char compose_fragment_shader[] =
 #include "runtime/implicit/implicit_compose.frag.glsl.inc"
     ;
-
-static void make_target(implicit_state *s, int width, int height)
-{
-    if (s->framebuffer && s->width == width && s->height == height)
-        return;
-    if (s->framebuffer) {
-        glDeleteFramebuffers(1, &s->framebuffer);
-        glDeleteTextures(1, &s->incident_texture);
-        glDeleteTextures(1, &s->depth_texture);
-    }
-    s->width = width;
-    s->height = height;
-    s->incident_texture = gb_gl_texture_2d(GL_RGBA32F, width, height);
-    s->depth_texture = gb_gl_texture_2d(GL_DEPTH_COMPONENT32F, width, height);
-    glCreateFramebuffers(1, &s->framebuffer);
-    glNamedFramebufferTexture(s->framebuffer, GL_COLOR_ATTACHMENT0, s->incident_texture, 0);
-    glNamedFramebufferTexture(s->framebuffer, GL_DEPTH_ATTACHMENT, s->depth_texture, 0);
-}
 
 static void make_mesh(implicit_state *s)
 {
@@ -108,10 +89,7 @@ static void implicit_destroy(void *state)
         glDeleteProgram(s->mesh_program);
     if (s->compose_program)
         glDeleteProgram(s->compose_program);
-    if (s->framebuffer)
-        glDeleteFramebuffers(1, &s->framebuffer);
-    GLuint textures[2] = {s->incident_texture, s->depth_texture};
-    glDeleteTextures(2, textures);
+    gb_gl_target_release(&s->incident);
     gb_implicit_solution_free(&s->solution);
     free(s->vertex_incident);
     gb_implicit_links_free(&s->links);
@@ -221,7 +199,7 @@ static gb_result implicit_create(const gb_indirect_setup *setup, void **state, g
     }
     make_mesh(s);
     glCreateVertexArrays(1, &s->empty_vertex_array);
-    make_target(s, setup->width, setup->height);
+    gb_gl_target_resize(&s->incident, GL_RGBA32F, setup->width, setup->height);
     *state = s;
     return GB_OK;
 }
@@ -229,11 +207,11 @@ static gb_result implicit_create(const gb_indirect_setup *setup, void **state, g
 /* The finer mesh, its incident radiance interpolated, into the own target. */
 static void draw_incident(implicit_state *s, const gb_indirect_frame *frame)
 {
-    make_target(s, frame->width, frame->height);
+    gb_gl_target_resize(&s->incident, GL_RGBA32F, frame->width, frame->height);
     const float zero[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(s->framebuffer, GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(s->framebuffer, GL_DEPTH, 0, zero);  /* reversed: 0 is far */
-    glBindFramebuffer(GL_FRAMEBUFFER, s->framebuffer);
+    glClearNamedFramebufferfv(s->incident.framebuffer, GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(s->incident.framebuffer, GL_DEPTH, 0, zero);  /* reversed: 0 is far */
+    glBindFramebuffer(GL_FRAMEBUFFER, s->incident.framebuffer);
     glViewport(0, 0, frame->width, frame->height);
     glDisable(GL_BLEND);
     glEnable(GL_DEPTH_TEST);
@@ -276,7 +254,7 @@ static void implicit_draw(void *state, const gb_indirect_frame *frame)
     glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(s->compose_program);
     gb_gbuffer_bind(frame->gbuffer);
-    glBindTextureUnit(UNIT_INCIDENT, s->incident_texture);
+    glBindTextureUnit(UNIT_INCIDENT, s->incident.color);
     gb_gl_draw_fullscreen(s->empty_vertex_array);
 }
 
