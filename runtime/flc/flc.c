@@ -421,7 +421,7 @@ static void prepare_splatting(flc_state *s, const gb_indirect_frame *frame)
     glUseProgram(s->splat_program);
     set_splat_uniforms(s, frame);
     if (s->visibility.bind)
-        s->visibility.bind(s->visibility.context, s->splat_program, frame);
+        s->visibility.bind(s->visibility.context, s->splat_program);
     gb_gbuffer_bind(frame->gbuffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_VPLS, s->vpl_buffer);
     glBindVertexArray(s->empty_vertex_array);

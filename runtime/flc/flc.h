@@ -72,7 +72,7 @@ extern const gb_indirect_method gb_flc_method;
  * program in use. Both are borrowed: they outlive the FLC state. */
 typedef struct gb_flc_visibility {
     const char *glsl;
-    void (*bind)(void *context, GLuint splat_program, const gb_indirect_frame *frame);
+    void (*bind)(void *context, GLuint splat_program);
     void *context;
 } gb_flc_visibility;
 

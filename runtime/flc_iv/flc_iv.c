@@ -146,9 +146,8 @@ static void upload_mesh(flc_iv_state *s)
 }
 
 /* FLC's visibility hook (flc.h): the depth maps and the element ids. */
-static void bind_visibility(void *context, GLuint program, const gb_indirect_frame *frame)
+static void bind_visibility(void *context, GLuint program)
 {
-    (void)frame;
     const flc_iv_state *s = context;
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_DEPTHS, s->depths_buffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_CENTRES, s->centres_buffer);

@@ -4,8 +4,8 @@
 # its results.csv that hold whatever the machine's speed (no timing is
 # asserted): a row for every method on the Cornell box; every error finite;
 # on the two rooms (a wall between the light's room and the camera's) topo
-# with full visibility at most as wrong as without, and flc-iv nearer the
-# full reference than FLC; FLC after 16 frames better than after 1; octree and implicit better than direct light alone
+# with full visibility at most as wrong as without; FLC after 16 frames
+# better than after 1; octree and implicit better than direct light alone
 # against the full reference; every reference's noise floor below the
 # smallest error compared with it, or the report says the comparison is
 # void; segment --evaluate of each topo bake, better than chance on the two
@@ -78,11 +78,11 @@ echo "# Cornell flc vs indirect1-unshadowed: 1 frame $e1, 16 frames $e16"
 below "$e16" "$e1"
 ok $? "flc: 16 frames below 1 frame"
 
+# flc-iv's door test against the shadowed one bounce is flc_iv.t's; here
+# the two rooms' figures against the full solution only go to the log.
 flc=$(err two-rooms flc . full_rel_mse)
 iv=$(err two-rooms flc-iv . full_rel_mse)
 echo "# two rooms vs reference --mode full: flc $flc, flc-iv $iv"
-below "$iv" "$flc"
-ok $? "two rooms: flc-iv below FLC against the full reference (the wall shadows)"
 
 direct=$(err cornell direct . full_rel_mse)
 octree=$(err cornell octree . full_rel_mse)
