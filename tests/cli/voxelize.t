@@ -1,7 +1,9 @@
 #!/bin/sh
 # voxelize.t — voxelize as a user types it: a box room written here as an
 # OBJ, the OpenVDB file it gives (read back with vdb_print when installed),
-# options, errors, atomic output, byte-identical output on 1 and 2 threads.
+# options, errors, atomic output, byte-identical output on 1 and 2 threads;
+# -r auto on the two rooms keeps the door open (thin's skeleton: the outside
+# and the joined rooms, where -r 8 closes the door and parts them).
 # Prints TAP.
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
@@ -116,5 +118,38 @@ done
 ok "$([ $? = 2 ] && grep -q "no output file" "$dir/err"; echo $?)" "no -o: exit 2"
 "$tool" -o "$dir/x.vdb" 2>"$dir/err"
 ok "$([ $? = 2 ] && grep -q "expected one SCENE" "$dir/err"; echo $?)" "no SCENE: exit 2"
+
+# -r auto (tools/voxelize/auto_resolution.h) on the two rooms, 4 m long with
+# a door 0.6 m wide: the skeleton's graph is a forest here, so nodes - edges
+# counts its parts: 2 with the door open (the outside, the two rooms
+# joined), 3 with it closed (-r 8: 0.5 m voxels, both door jambs marked).
+rooms=$GB_ROOT/scenes/two-rooms/two-rooms.scene
+if [ -x "$GB_BIN/thin" ]; then
+    parts() {
+        "$GB_BIN/thin" -q -s "$1" -o "$1.skel" | awk '$1 == "nodes" { n = $2 } $1 == "edges" { e = $2 } END { print n - e }'
+    }
+    "$tool" -r auto "$rooms" -o "$dir/auto.vdb" 2>"$dir/auto.err"
+    ok "$([ $? = 0 ] && [ -s "$dir/auto.vdb" ]; echo $?)" "-r auto: exit 0, an output"
+    chosen=$(sed -n 's/^voxelize: -r auto: \([0-9]*\) (the same at three resolutions.*/\1/p' "$dir/auto.err")
+    echo "# -r auto chose ${chosen:-nothing}: $(cat "$dir/auto.err")"
+    ok "$([ -n "$chosen" ] && [ "$chosen" -ge 16 ] && [ "$chosen" -le 512 ]; echo $?)" \
+        "-r auto: says the resolution it chose, settled, in 16..512"
+    "$tool" -q -r "${chosen:-1}" "$rooms" -o "$dir/chosen.vdb"
+    ok "$(cmp -s "$dir/auto.vdb" "$dir/chosen.vdb"; echo $?)" "-r auto: the bytes of -r $chosen"
+    "$tool" -q -j 1 -r auto "$rooms" -o "$dir/auto1.vdb"
+    ok "$(cmp -s "$dir/auto.vdb" "$dir/auto1.vdb"; echo $?)" "-r auto: the same bytes on 1 thread"
+    "$tool" -q -r 8 "$rooms" -o "$dir/coarse.vdb"
+    open=$(parts "$dir/auto.vdb")
+    closed=$(parts "$dir/coarse.vdb")
+    echo "# skeleton parts (nodes - edges): -r auto $open, -r 8 $closed"
+    ok "$([ "$open" = 2 ]; echo $?)" "-r auto: the door open (2 parts: outside, the rooms joined)"
+    ok "$([ "$closed" = 3 ]; echo $?)" "-r 8: the door closed (3 parts)"
+    "$tool" -q -r auto "$rooms" -o "$dir/quiet.vdb" 2>"$dir/quiet.err"
+    ok "$([ ! -s "$dir/quiet.err" ]; echo $?)" "-r auto -q: nothing on stderr"
+else
+    missing "$GB_BIN/thin not built"
+fi
+"$tool" -r automatic "$rooms" -o "$dir/x.vdb" 2>"$dir/err"
+ok "$([ $? = 2 ] && grep -q "resolution" "$dir/err"; echo $?)" "-r automatic: exit 2, names --resolution"
 
 tap_done

@@ -50,6 +50,8 @@ typedef struct gb_voxelize_options {
                                      stops the work, which then fails with
                                      GB_ERROR_INTERRUPTED */
     void *progress_user;
+    int surface_only;             /* 1: the surface alone; distance stays NULL
+                                     (auto_resolution.c's checks) */
 } gb_voxelize_options;
 
 /* Triangles as positions (vertex_count * 3 floats) and indices

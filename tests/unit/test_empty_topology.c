@@ -1,0 +1,113 @@
+/* test_empty_topology.c — the empty space's components and Euler
+ * characteristic (tools/voxelize/empty_topology.h) on hand-made grids whose
+ * topology is known: a block (a ball: 1, 1), a hollow box (inside and the
+ * shell around it: 2, 1 + 2) and the same with a door, a ring (1, 0), two
+ * voxels touching at a corner (2, 2); and voxelize's
+ * surface_only giving voxelize's own surface. */
+#include "tap.h"
+#include "../../tools/voxelize/empty_topology.h"
+#include "../../tools/voxelize/voxelize.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+static int make_grid(gb_voxel_grid *grid, int n, uint8_t fill)
+{
+    memset(grid, 0, sizeof *grid);
+    grid->size[0] = grid->size[1] = grid->size[2] = n;
+    grid->voxel_size = 1.0;
+    grid->surface = malloc((size_t)n * n * n);
+    if (grid->surface)
+        memset(grid->surface, fill, (size_t)n * n * n);
+    return grid->surface != NULL;
+}
+
+static void set(gb_voxel_grid *grid, int i, int j, int k, uint8_t value)
+{
+    grid->surface[gb_voxel_index(grid, i, j, k)] = value;
+}
+
+static void expect(const gb_voxel_grid *grid, uint64_t components, int64_t euler,
+                   const char *name)
+{
+    gb_empty_topology t;
+    gb_error error;
+    char what[160];
+    snprintf(what, sizeof what, "%s: counted", name);
+    if (!CHECK(gb_empty_topology_count(grid, &t, &error) == GB_OK, what))
+        return;
+    snprintf(what, sizeof what, "%s: %llu components", name, (unsigned long long)components);
+    CHECK_EQ_INT(t.components, components, what);
+    snprintf(what, sizeof what, "%s: Euler characteristic %lld", name, (long long)euler);
+    CHECK_EQ_INT(t.euler, euler, what);
+}
+
+static void test_shapes(void)
+{
+    gb_voxel_grid g;
+    if (!make_grid(&g, 6, 0))
+        return;
+    expect(&g, 1, 1, "all empty");
+    free(g.surface);
+
+    /* The shell of [2, 6]^3 in a 9^3 grid: a 3^3 ball inside, and outside
+     * the grid's border region around it (a thick sphere: 2). */
+    if (!make_grid(&g, 9, 0))
+        return;
+    for (int k = 2; k <= 6; ++k)
+        for (int j = 2; j <= 6; ++j)
+            for (int i = 2; i <= 6; ++i)
+                if (i == 2 || i == 6 || j == 2 || j == 6 || k == 2 || k == 6)
+                    set(&g, i, j, k, 1);
+    expect(&g, 2, 3, "hollow box");
+    /* A one-voxel hole through a face joins inside and outside by an arc
+     * (one vertex, two edges, no square): one component, 1 + 2 - 1. */
+    set(&g, 6, 4, 4, 0);
+    expect(&g, 1, 2, "hollow box with a door");
+    free(g.surface);
+
+    /* A square ring of empty voxels in solid surface: a circle. */
+    if (!make_grid(&g, 6, 1))
+        return;
+    for (int j = 1; j <= 4; ++j)
+        for (int i = 1; i <= 4; ++i)
+            if (i == 1 || i == 4 || j == 1 || j == 4)
+                set(&g, i, j, 2, 0);
+    expect(&g, 1, 0, "ring");
+    free(g.surface);
+
+    /* Two voxels touching only at a corner: 6-connectivity keeps them apart. */
+    if (!make_grid(&g, 4, 1))
+        return;
+    set(&g, 1, 1, 1, 0);
+    set(&g, 2, 2, 2, 0);
+    expect(&g, 2, 2, "two voxels at a corner");
+    free(g.surface);
+}
+
+/* surface_only marks the same surface voxelize does, with no distance. */
+static void test_surface_only(void)
+{
+    const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const uint32_t indices[] = {0, 1, 2, 0, 1, 3, 0, 2, 3, 1, 2, 3};
+    gb_voxelize_options full = {.resolution = 24}, only = {.resolution = 24, .surface_only = 1};
+    gb_voxel_grid a, b;
+    gb_error error;
+    int ok = gb_voxelize_triangles(positions, 4, indices, 4, &full, &a, &error) == GB_OK;
+    ok = ok && gb_voxelize_triangles(positions, 4, indices, 4, &only, &b, &error) == GB_OK;
+    if (!CHECK(ok, "surface_only: voxelized"))
+        return;
+    size_t count = (size_t)a.size[0] * a.size[1] * a.size[2];
+    CHECK(memcmp(a.size, b.size, sizeof a.size) == 0 && !memcmp(a.surface, b.surface, count),
+          "surface_only: the same frame and surface as voxelize");
+    CHECK(b.distance == NULL, "surface_only: no distance");
+    gb_voxel_grid_free(&a);
+    gb_voxel_grid_free(&b);
+}
+
+int main(void)
+{
+    test_shapes();
+    test_surface_only();
+    return tap_done();
+}
