@@ -11,12 +11,12 @@
 #include <string.h>
 
 #include "cell_list.h"
+#include "index_queue.h"
 
 typedef struct flood {
     const gb_cubical_complex *complex;
     uint8_t *flooded;           /* a bit per cell */
-    uint32_t *ring;             /* the breadth-first queue, circular */
-    size_t capacity, head, count;
+    gb_index_queue queue;       /* the breadth-first front */
 } flood;
 
 static int is_flooded(const flood *f, size_t cell)
@@ -26,20 +26,9 @@ static int is_flooded(const flood *f, size_t cell)
 
 static gb_result enqueue(flood *f, size_t cell, gb_error *error)
 {
-    if (f->count == f->capacity) {
-        size_t capacity = f->capacity ? 2 * f->capacity : 4096;
-        uint32_t *ring = malloc(capacity * sizeof *ring);
-        if (!ring)
-            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cavities: out of memory");
-        for (size_t n = 0; n < f->count; ++n)
-            ring[n] = f->ring[(f->head + n) % f->capacity];
-        free(f->ring);
-        f->ring = ring;
-        f->capacity = capacity;
-        f->head = 0;
-    }
+    if (!gb_index_queue_push(&f->queue, cell))
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cavities: out of memory");
     f->flooded[cell >> 3] |= (uint8_t)(1u << (cell & 7));
-    f->ring[(f->head + f->count++) % f->capacity] = (uint32_t)cell;
     return GB_OK;
 }
 
@@ -54,10 +43,8 @@ static gb_result flood_region(flood *f, size_t start, gb_error *error)
     if (is_flooded(f, start) || (faces[start] & GB_FACE_CUBE))
         return GB_OK;
     gb_result result = enqueue(f, start, error);
-    while (!result && f->count) {
-        size_t cell = f->ring[f->head];
-        f->head = (f->head + 1) % f->capacity;
-        --f->count;
+    while (!result && f->queue.count) {
+        size_t cell = gb_index_queue_pop(&f->queue);
         for (int axis = 0; axis < 3 && !result; ++axis) {
             uint8_t square = gb_square_bit(axis);
             /* the square between cell and cell - step is the one at cell */
@@ -158,7 +145,7 @@ gb_result gb_open_cavities(gb_cubical_complex *complex, gb_collapse *collapse,
         result = open_separating_squares(&f, collapse, &cells, opened, error);
     }
     free(f.flooded);
-    free(f.ring);
+    gb_index_queue_free(&f.queue);
     gb_cell_list_free(&cells);
     return result;
 }

@@ -3,50 +3,19 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* A FIFO of voxel indices that grows: a breadth-first search holds its
- * front, a few slices of the grid, not the component. */
-typedef struct index_queue {
-    size_t *items;
-    size_t capacity, head, count;
-} index_queue;
-
-static int push(index_queue *q, size_t index)
-{
-    if (q->count == q->capacity) {
-        size_t grown = q->capacity ? 2 * q->capacity : 4096;
-        size_t *items = malloc(grown * sizeof *items);
-        if (!items)
-            return 0;
-        for (size_t i = 0; i < q->count; ++i)
-            items[i] = q->items[(q->head + i) % q->capacity];
-        free(q->items);
-        q->items = items;
-        q->capacity = grown;
-        q->head = 0;
-    }
-    q->items[(q->head + q->count++) % q->capacity] = index;
-    return 1;
-}
-
-static size_t pop(index_queue *q)
-{
-    size_t index = q->items[q->head];
-    q->head = (q->head + 1) % q->capacity;
-    --q->count;
-    return index;
-}
+#include "index_queue.h"
 
 /* Visits the component of start, marking its voxels in seen. */
-static gb_result flood(const gb_voxel_grid *grid, uint8_t *seen, size_t start, index_queue *q,
+static gb_result flood(const gb_voxel_grid *grid, uint8_t *seen, size_t start, gb_index_queue *q,
                        gb_error *error)
 {
     const int32_t *n = grid->size;
     const size_t step[3] = {1, (size_t)n[0], (size_t)n[0] * (size_t)n[1]};
     seen[start] = 1;
-    if (!push(q, start))
+    if (!gb_index_queue_push(q, start))
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "empty space: out of memory");
     while (q->count) {
-        size_t v = pop(q);
+        size_t v = gb_index_queue_pop(q);
         size_t cell[3] = {v % step[1], v / step[1] % (size_t)n[1], v / step[2]};
         for (int axis = 0; axis < 3; ++axis)
             for (int side = 0; side < 2; ++side) {
@@ -56,7 +25,7 @@ static gb_result flood(const gb_voxel_grid *grid, uint8_t *seen, size_t start, i
                 if (grid->surface[w] || seen[w])
                     continue;
                 seen[w] = 1;
-                if (!push(q, w))
+                if (!gb_index_queue_push(q, w))
                     return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "empty space: out of memory");
             }
     }
@@ -70,7 +39,7 @@ static gb_result count_components(const gb_voxel_grid *grid, uint64_t *component
     uint8_t *seen = calloc(count, 1);
     if (!seen)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "empty space: out of memory");
-    index_queue q = {0};
+    gb_index_queue q = {0};
     gb_result result = GB_OK;
     *components = 0;
     for (size_t v = 0; v < count && result == GB_OK; ++v)
@@ -78,7 +47,7 @@ static gb_result count_components(const gb_voxel_grid *grid, uint64_t *component
             ++*components;
             result = flood(grid, seen, v, &q, error);
         }
-    free(q.items);
+    gb_index_queue_free(&q);
     free(seen);
     return result;
 }
