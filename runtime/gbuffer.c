@@ -93,11 +93,7 @@ void gb_gbuffer_draw(gb_gbuffer *gbuffer, const gb_gpu_scene *scene, const gb_ma
     glDisable(GL_CULL_FACE);    /* surfaces reflect on both sides */
     glDisable(GL_BLEND);
     glUseProgram(gbuffer->program);
-    glProgramUniformMatrix4fv(gbuffer->program, glGetUniformLocation(gbuffer->program, "view"),
-                              1, GL_FALSE, view->m);
-    glProgramUniformMatrix4fv(gbuffer->program,
-                              glGetUniformLocation(gbuffer->program, "projection"), 1, GL_FALSE,
-                              projection->m);
+    gb_gl_set_view_projection(gbuffer->program, view->m, projection->m);
     gb_gpu_scene_draw(scene, 1);
     glDisable(GL_DEPTH_TEST);
 }

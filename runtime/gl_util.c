@@ -193,6 +193,25 @@ void gb_gl_target_release(gb_gl_target *target)
     memset(target, 0, sizeof *target);
 }
 
+void gb_gl_target_begin_geometry(const gb_gl_target *target)
+{
+    const float far = 0.0f;
+    glClearNamedFramebufferfv(target->framebuffer, GL_DEPTH, 0, &far);
+    glBindFramebuffer(GL_FRAMEBUFFER, target->framebuffer);
+    glViewport(0, 0, target->width, target->height);
+    glDisable(GL_BLEND);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_GREATER);
+    glDepthMask(GL_TRUE);
+}
+
+void gb_gl_set_view_projection(GLuint program, const float view[16], const float projection[16])
+{
+    glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "view"), 1, GL_FALSE, view);
+    glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "projection"), 1, GL_FALSE,
+                              projection);
+}
+
 const char gb_gl_fullscreen_vertex_shader[] =
 #include "runtime/fullscreen.vert.glsl.inc"
     ;

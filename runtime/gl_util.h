@@ -82,6 +82,15 @@ typedef struct gb_gl_target {
 int gb_gl_target_resize(gb_gl_target *target, GLenum color_format, int width, int height);
 void gb_gl_target_release(gb_gl_target *target);
 
+/* Binds target for a pass that draws geometry into it: its depth cleared to
+ * far (0: the runtime's depth is reversed), the viewport its size, blending
+ * off, the depth test GL_GREATER and written. The caller clears the colour
+ * and turns the depth test off after. */
+void gb_gl_target_begin_geometry(const gb_gl_target *target);
+
+/* The uniforms "view" and "projection" of program. */
+void gb_gl_set_view_projection(GLuint program, const float view[16], const float projection[16]);
+
 /* The full-screen triangle (fullscreen.vert.glsl): a vertex shader that needs
  * no attribute; draw with gb_gl_draw_fullscreen and an empty vertex array. */
 extern const char gb_gl_fullscreen_vertex_shader[];

@@ -203,21 +203,10 @@ static void draw_element_ids(flc_iv_state *s, const gb_indirect_frame *frame)
     s->last_view = *frame->view_matrix;
     s->last_projection = *frame->projection;
     const GLuint none[4] = {NO_ELEMENT, 0, 0, 0};
-    const float far = 0.0f;     /* reversed depth: 0 is far */
     glClearNamedFramebufferuiv(s->element_ids.framebuffer, GL_COLOR, 0, none);
-    glClearNamedFramebufferfv(s->element_ids.framebuffer, GL_DEPTH, 0, &far);
-    glBindFramebuffer(GL_FRAMEBUFFER, s->element_ids.framebuffer);
-    glViewport(0, 0, frame->width, frame->height);
-    glDisable(GL_BLEND);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_TRUE);
-    GLuint program = s->elements_program;
-    glUseProgram(program);
-    glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "view"), 1, GL_FALSE,
-                              frame->view_matrix->m);
-    glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "projection"), 1, GL_FALSE,
-                              frame->projection->m);
+    gb_gl_target_begin_geometry(&s->element_ids);
+    glUseProgram(s->elements_program);
+    gb_gl_set_view_projection(s->elements_program, frame->view_matrix->m, frame->projection->m);
     glBindVertexArray(s->vertex_array);
     glDrawElements(GL_TRIANGLES, (GLsizei)(3 * s->model.triangle_count), GL_UNSIGNED_INT, NULL);
     glDisable(GL_DEPTH_TEST);

@@ -210,18 +210,9 @@ static void draw_incident(implicit_state *s, const gb_indirect_frame *frame)
     gb_gl_target_resize(&s->incident, GL_RGBA32F, frame->width, frame->height);
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(s->incident.framebuffer, GL_COLOR, 0, zero);
-    glClearNamedFramebufferfv(s->incident.framebuffer, GL_DEPTH, 0, zero);  /* reversed: 0 is far */
-    glBindFramebuffer(GL_FRAMEBUFFER, s->incident.framebuffer);
-    glViewport(0, 0, frame->width, frame->height);
-    glDisable(GL_BLEND);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_GREATER);
-    glDepthMask(GL_TRUE);
+    gb_gl_target_begin_geometry(&s->incident);
     glUseProgram(s->mesh_program);
-    glProgramUniformMatrix4fv(s->mesh_program, glGetUniformLocation(s->mesh_program, "view"), 1,
-                              GL_FALSE, frame->view_matrix->m);
-    glProgramUniformMatrix4fv(s->mesh_program, glGetUniformLocation(s->mesh_program, "projection"),
-                              1, GL_FALSE, frame->projection->m);
+    gb_gl_set_view_projection(s->mesh_program, frame->view_matrix->m, frame->projection->m);
     glBindVertexArray(s->vertex_array);
     glDrawElements(GL_TRIANGLES, (GLsizei)(3 * s->model.triangle_count), GL_UNSIGNED_INT, NULL);
     glDisable(GL_DEPTH_TEST);

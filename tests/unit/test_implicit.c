@@ -209,11 +209,23 @@ static void build_three_squares(gb_scene *scene, uint32_t *b_segment, uint32_t *
     *c_segment = 2;
 }
 
+/* The three squares (B's and C's segments into b_c), their model (element
+ * size 0.1), 6 x 8 x 8 bins and links made with options; 1 when all were
+ * made (the caller frees them). */
+static int three_squares_links(const gb_implicit_link_options *options, gb_scene *scene,
+                               uint32_t b_c[2], gb_implicit_model *m, gb_implicit_bins *bins,
+                               gb_implicit_links *links, uint32_t **targets, gb_error *error)
+{
+    build_three_squares(scene, &b_c[0], &b_c[1]);
+    return gb_implicit_model_create(scene, 0.1f, RUNTIME_CELL, m, error) == GB_OK &&
+           gb_implicit_bins_create(8, bins, error) == GB_OK &&
+           gb_implicit_create_links(m, bins, options, links, targets, error) == GB_OK;
+}
+
 static void test_shortest_link(int hierarchical)
 {
+    uint32_t b_c[2];
     gb_scene scene;
-    uint32_t b_segment, c_segment;
-    build_three_squares(&scene, &b_segment, &c_segment);
     gb_implicit_model m;
     gb_implicit_bins bins;
     gb_implicit_links links;
@@ -222,9 +234,8 @@ static void test_shortest_link(int hierarchical)
     gb_implicit_link_options options = {.hierarchical = hierarchical};
     const char *kind = hierarchical ? "hierarchical" : "brute force";
     char what[160];
-    int ok = gb_implicit_model_create(&scene, 0.1f, RUNTIME_CELL, &m, &error) == GB_OK &&
-             gb_implicit_bins_create(8, &bins, &error) == GB_OK &&
-             gb_implicit_create_links(&m, &bins, &options, &links, &targets, &error) == GB_OK;
+    int ok = three_squares_links(&options, &scene, b_c, &m, &bins, &links, &targets, &error);
+    const uint32_t b_segment = b_c[0], c_segment = b_c[1];
     snprintf(what, sizeof what, "three squares, %s: links created", kind);
     if (!CHECK(ok, what)) {
         printf("# %s\n", error.message);
@@ -882,15 +893,13 @@ static void test_cornell(const char *root)
 }
 
 /* The depth maps (links->depth_first, for flc-iv) on the three squares,
- * against the geometry: A's elements see B, 1 above them: a bin's depth lies between B's plane along the bin's nearest
- * and farthest directions; the bin straight up holds a depth in
+ * against the geometry: A's elements see B, 1 above them: a bin's depth
+ * lies between B's plane along the bin's nearest and farthest directions; the bin straight up holds a depth in
  * [1, 1 / cos(its widest angle)]; bins come in increasing order. The
  * brute force sees C in no bin, the hierarchy in under 1 % of them. */
 static void test_depth_maps(int hierarchical)
 {
     gb_scene scene;
-    uint32_t b_segment, c_segment;
-    build_three_squares(&scene, &b_segment, &c_segment);
     gb_implicit_model m;
     gb_implicit_bins bins;
     gb_implicit_links links;
@@ -898,9 +907,8 @@ static void test_depth_maps(int hierarchical)
     gb_implicit_link_options options = {.hierarchical = hierarchical, .depths = 1};
     const char *kind = hierarchical ? "hierarchical" : "brute force";
     char what[160];
-    int ok = gb_implicit_model_create(&scene, 0.1f, RUNTIME_CELL, &m, &error) == GB_OK &&
-             gb_implicit_bins_create(8, &bins, &error) == GB_OK &&
-             gb_implicit_create_links(&m, &bins, &options, &links, NULL, &error) == GB_OK;
+    uint32_t b_c[2];
+    int ok = three_squares_links(&options, &scene, b_c, &m, &bins, &links, NULL, &error);
     snprintf(what, sizeof what, "depth maps, %s: made", kind);
     if (!CHECK(ok && links.depth_first, what)) {
         gb_scene_free(&scene);
