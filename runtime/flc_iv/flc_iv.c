@@ -175,6 +175,7 @@ static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_
     gb_result result = build_depth_maps(s, setup->scene, bins, error);
     if (result == GB_OK)
         result = upload_depth_maps(s, setup->scene, error);
+    gb_implicit_links_free(&s->links);  /* on the GPU now */
     if (result == GB_OK)
         result = gb_gl_program("flc-iv element ids", elements_vertex_shader,
                                elements_fragment_shader, &s->elements_program, error);
