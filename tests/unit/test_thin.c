@@ -456,13 +456,9 @@ static int brute_distance(const gb_voxel_grid *g, int i, int j, int k)
                         return r;
 }
 
-static void test_maps(void)
+/* Both maps of g against brute force, every voxel. */
+static void check_maps(gb_voxel_grid g, const char *what)
 {
-    gb_voxel_grid g = volume_solid(17, 13, 9);
-    volume_box(&g, 1, 1, 1, 15, 11, 7, 0);
-    volume_box(&g, 5, 4, 1, 6, 5, 7, 1);
-    volume_box(&g, 11, 1, 3, 15, 3, 4, 1);
-    volume_box(&g, 0, 6, 3, 0, 8, 5, 0); /* an opening onto the grid border */
     gb_cubical_complex complex;
     gb_persistence maps;
     gb_error error;
@@ -494,12 +490,41 @@ static void test_maps(void)
                         }
                 opening_wrong += gb_persistence_opening(&maps, cell) != opening;
             }
-    CHECK_EQ_INT(distance_wrong, 0, "maps: chessboard distance as defined, every voxel");
-    CHECK_EQ_INT(opening_wrong, 0, "maps: opening as defined, every voxel");
+    char label[96];
+    snprintf(label, sizeof label, "maps (%s): chessboard distance as defined, every voxel", what);
+    CHECK_EQ_INT(distance_wrong, 0, label);
+    snprintf(label, sizeof label, "maps (%s): opening as defined, every voxel", what);
+    CHECK_EQ_INT(opening_wrong, 0, label);
     free(d);
     gb_persistence_free(&maps);
     gb_cubical_complex_free(&complex);
     gb_voxel_grid_free(&g);
+}
+
+static void test_maps(void)
+{
+    gb_voxel_grid g = volume_solid(17, 13, 9);
+    volume_box(&g, 1, 1, 1, 15, 11, 7, 0);
+    volume_box(&g, 5, 4, 1, 6, 5, 7, 1);
+    volume_box(&g, 11, 1, 3, 15, 3, 4, 1);
+    volume_box(&g, 0, 6, 3, 0, 8, 5, 0); /* an opening onto the grid border */
+    check_maps(g, "boxes");
+    /* rooms of every size: random solid boxes and single voxels in an empty
+     * volume (a fixed linear congruential sequence) */
+    gb_voxel_grid r = volume_solid(23, 19, 14);
+    volume_box(&r, 1, 1, 1, 21, 17, 12, 0);
+    uint32_t state = 12345;
+    for (int n = 0; n < 40; ++n) {
+        int c[6];
+        for (int k = 0; k < 6; ++k) {
+            state = state * 1664525u + 1013904223u;
+            c[k] = (int)((state >> 8) % (uint32_t)r.size[k % 3]);
+        }
+        int big = n % 4 == 0; /* a box; else a voxel */
+        volume_box(&r, c[0], c[1], c[2], big ? c[0] + c[3] % 5 : c[0],
+                   big ? c[1] + c[4] % 5 : c[1], big ? c[2] + c[5] % 4 : c[2], 1);
+    }
+    check_maps(r, "random");
 }
 
 /* The sweeps and Dijkstra (on 1 to 5 slabs) give the same grid, also on a

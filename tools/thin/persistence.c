@@ -5,7 +5,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "cell_list.h"
 
 enum { FAR = UINT16_MAX };
 
@@ -74,125 +73,113 @@ static void chessboard_distance(const gb_cubical_complex *complex, uint32_t *map
                          min_plus_one(maps, cell, offsets + 13, distance_at(maps, cell)));
 }
 
-/* A cell next to one of distance + 1 lies in that cell's larger ball: only
- * the others (the ridge of the distance map) can start a ball of their own. */
-static int on_ridge(const uint32_t *maps, size_t cell, const ptrdiff_t offsets[26])
-{
-    uint16_t above = (uint16_t)(distance_at(maps, cell) + 1);
-    for (int n = 0; n < 26; ++n)
-        if (distance_at(maps, (size_t)((ptrdiff_t)cell + offsets[n])) == above)
-            return 0;
-    return 1;
-}
+/* Chessboard balls are cubes, so opening(x) = max { distance(y) : |x - y|
+ * < distance(y) along each axis } is separable: the max over x's line of
+ * the line maxima over its plane. Each pass takes, along one axis,
+ * out(i) = max { in(j) : in(j) > |i - j| } of the previous pass's values
+ * (the distances first): a value that passes carries its source's own
+ * distance, and a larger value passes wherever a smaller one does, so the
+ * maximum of each pass is all the next one needs. */
 
-/* The ridge cells, by decreasing distance (counting sort). */
-static gb_result ridge_by_distance(const gb_cubical_complex *complex, const uint32_t *maps,
-                                   uint16_t largest, gb_cell_list *sorted, gb_error *error)
-{
-    ptrdiff_t offsets[26];
-    neighbour_offsets(complex, offsets);
-    gb_cell_list ridge = {0};
-    gb_result result = GB_OK;
-    for (size_t cell = 0; cell < complex->cell_count && !result; ++cell)
-        if (distance_at(maps, cell) && on_ridge(maps, cell, offsets))
-            result = gb_cell_list_push(&ridge, cell, error);
-    size_t *start = calloc((size_t)largest + 2, sizeof *start);
-    if (!result && !start)
-        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "opening: out of memory");
-    while (!result && sorted->capacity < ridge.count)
-        result = gb_cell_list_grow(sorted, error);
-    if (!result) {
-        for (size_t n = 0; n < ridge.count; ++n)
-            ++start[largest - distance_at(maps, ridge.items[n]) + 1];
-        for (size_t level = 1; level <= (size_t)largest + 1; ++level)
-            start[level] += start[level - 1];
-        for (size_t n = 0; n < ridge.count; ++n)
-            sorted->items[start[largest - distance_at(maps, ridge.items[n])]++] = ridge.items[n];
-        sorted->count = ridge.count;
-    }
-    free(start);
-    gb_cell_list_free(&ridge);
-    return result;
-}
+/* Lines of the y and z passes are taken BUNDLE at a time, adjacent in x,
+ * so that each read of the maps uses whole cache lines. */
+enum { BUNDLE = 16 };
 
-typedef struct opening_front {
-    uint32_t *maps;
-    uint16_t *reach;            /* 1 + largest ball reach that went through the cell */
-    ptrdiff_t offsets[26];
-    gb_cell_list now, next;
-} opening_front;
+/* Work space of one line of length n: the line read, the line written and
+ * the candidates of one sweep. */
+typedef struct opening_line {
+    uint16_t *in, *out;     /* BUNDLE * n each, line b at b * n */
+    uint16_t *value;        /* candidates: their values, decreasing, */
+    int32_t *end;           /* the last index each reaches, increasing */
+} opening_line;
 
-/* Breadth-first spread of the balls of radius level from the cells in
- * front->now: a cell is passed on while its remaining reach beats the best
- * reach that went through it before (from a larger or equal ball). */
-static gb_result spread_balls(opening_front *front, uint16_t level, gb_error *error)
+/* out[i] = max(out[i], max { in[j] : j before i, in[j] > |i - j| }) where
+ * "before" is in the order of step (+1 or -1). Sources join the queue of
+ * candidates at its tail; one of a value no larger than an older one's
+ * ends no sooner than it, so it takes the older one's place; the head is
+ * the largest still reaching i. */
+static void sweep(const uint16_t *in, uint16_t *out, int n, int step, opening_line *space)
 {
-    while (front->now.count) {
-        front->next.count = 0;
-        for (size_t n = 0; n < front->now.count; ++n) {
-            size_t cell = front->now.items[n];
-            uint16_t reach = (uint16_t)(front->reach[cell] - 1);
-            if (!reach)
-                continue;
-            for (int k = 0; k < 26; ++k) {
-                size_t neighbour = (size_t)((ptrdiff_t)cell + front->offsets[k]);
-                if (front->reach[neighbour] >= reach || !distance_at(front->maps, neighbour))
-                    continue;
-                front->reach[neighbour] = reach;
-                if (!opening_at(front->maps, neighbour))
-                    set_opening(front->maps, neighbour, level);
-                if (gb_cell_list_push(&front->next, neighbour, error))
-                    return GB_ERROR_OUT_OF_MEMORY;
+    int head = 0, tail = 0;
+    for (int t = 0; t < n; ++t) {
+        int i = step > 0 ? t : n - 1 - t;
+        if (in[i]) {
+            while (tail > head && space->value[tail - 1] <= in[i])
+                --tail;
+            int32_t end = t + in[i] - 1;
+            if (tail == head || space->end[tail - 1] < end) {
+                space->value[tail] = in[i];
+                space->end[tail++] = end;
             }
         }
-        gb_cell_list swap = front->now;
-        front->now = front->next;
-        front->next = swap;
+        while (head < tail && space->end[head] < t)
+            ++head;
+        if (head < tail && space->value[head] > out[i])
+            out[i] = space->value[head];
     }
-    return GB_OK;
 }
 
-/* opening(x) = max { distance(y) : chessboard |x - y| < distance(y) }: balls
- * are spread from their centres by decreasing radius, so the first ball to
- * reach a cell is its largest; a ball is spread only where it reaches
- * farther than the larger ones before it. */
-static gb_result chessboard_opening(const gb_cubical_complex *complex, uint32_t *maps,
-                                    uint16_t largest, gb_progress_callback progress,
-                                    void *progress_user, gb_error *error)
+/* The opening pass along axis: reads the distances (first pass) or the
+ * openings so far, writes the openings. */
+static void opening_pass(const gb_cubical_complex *complex, uint32_t *maps, int axis,
+                         opening_line *space)
 {
-    gb_cell_list sorted = {0};
-    gb_result result = ridge_by_distance(complex, maps, largest, &sorted, error);
-    opening_front front = {.maps = maps};
-    neighbour_offsets(complex, front.offsets);
-    front.reach = result ? NULL : calloc(complex->cell_count, sizeof *front.reach);
-    if (!result && !front.reach)
-        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "opening: out of memory");
-    size_t n = 0;
-    while (n < sorted.count && !result) {
-        uint16_t level = distance_at(maps, sorted.items[n]);
-        front.now.count = 0;
-        for (; n < sorted.count && distance_at(maps, sorted.items[n]) == level && !result; ++n) {
-            uint32_t cell = sorted.items[n];
-            if (front.reach[cell] >= level)
-                continue;
-            front.reach[cell] = level;
-            if (!opening_at(maps, cell))
-                set_opening(maps, cell, level);
-            result = gb_cell_list_push(&front.now, cell, error);
+    int n = complex->size[axis];
+    int width_axis = axis == 0 ? 1 : 0, other_axis = axis == 2 ? 1 : 2;
+    int bundle = axis == 0 ? 1 : BUNDLE;
+    size_t stride = complex->step[axis];
+    for (int32_t other = 0; other < complex->size[other_axis]; ++other)
+        for (int32_t first = 0; first < complex->size[width_axis]; first += bundle) {
+            int width = complex->size[width_axis] - first < bundle
+                            ? complex->size[width_axis] - first : bundle;
+            size_t base = complex->step[other_axis] * (size_t)other +
+                          complex->step[width_axis] * (size_t)first;
+            for (int p = 0; p < n; ++p)
+                for (int b = 0; b < width; ++b) {
+                    size_t cell = base + p * stride + b * complex->step[width_axis];
+                    space->in[b * n + p] = axis == 0 ? distance_at(maps, cell)
+                                                     : opening_at(maps, cell);
+                }
+            memset(space->out, 0, (size_t)width * n * sizeof *space->out);
+            for (int b = 0; b < width; ++b) {
+                sweep(space->in + b * n, space->out + b * n, n, +1, space);
+                sweep(space->in + b * n, space->out + b * n, n, -1, space);
+            }
+            for (int p = 0; p < n; ++p)
+                for (int b = 0; b < width; ++b)
+                    set_opening(maps, base + p * stride + b * complex->step[width_axis],
+                                space->out[b * n + p]);
         }
-        if (!result)
-            result = spread_balls(&front, level, error);
-        if (!result && progress &&
-            progress(progress_user, 0.5 + 0.5 * (double)n / (double)sorted.count))
+}
+
+/* Three passes, x then y then z, after the distance map. */
+static gb_result chessboard_opening(const gb_cubical_complex *complex, uint32_t *maps,
+                                    gb_progress_callback progress, void *progress_user,
+                                    gb_error *error)
+{
+    int longest = complex->size[0];
+    for (int axis = 1; axis < 3; ++axis)
+        longest = complex->size[axis] > longest ? complex->size[axis] : longest;
+    opening_line space = {
+        malloc((size_t)BUNDLE * longest * sizeof *space.in),
+        malloc((size_t)BUNDLE * longest * sizeof *space.out),
+        malloc((size_t)longest * sizeof *space.value),
+        malloc((size_t)longest * sizeof *space.end),
+    };
+    gb_result result = GB_OK;
+    if (!space.in || !space.out || !space.value || !space.end)
+        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "opening: out of memory");
+    for (int axis = 0; axis < 3 && !result; ++axis) {
+        opening_pass(complex, maps, axis, &space);
+        if (progress && progress(progress_user, 0.5 + (axis + 1) / 6.0))
             result = gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
     }
-    gb_cell_list_free(&front.now);
-    gb_cell_list_free(&front.next);
-    gb_cell_list_free(&sorted);
-    free(front.reach);
+    free(space.in);
+    free(space.out);
+    free(space.value);
+    free(space.end);
     return result;
 }
-
 static uint16_t largest_distance(const uint32_t *maps, size_t count)
 {
     uint16_t largest = 0;
@@ -223,8 +210,8 @@ gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_comp
             result = gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
     }
     if (!result)
-        result = chessboard_opening(complex, persistence->maps, persistence->largest_distance,
-                                    progress, progress_user, error);
+        result = chessboard_opening(complex, persistence->maps, progress, progress_user,
+                                    error);
     if (result)
         gb_persistence_free(persistence);
     return result;
