@@ -60,6 +60,18 @@ echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 percent_table "$out"
 
 echo
+echo "CreateHierarchicalLinks on 1 and 2 threads (IMPLICIT_LINK_THREADS), same model, same run:" \
+    "wall ms a frame (the links are the same bytes: test_implicit)"
+echo
+echo "| bins | 1 thread | 2 threads | 2 / 1 |"
+echo "|---|---:|---:|---:|"
+IMPLICIT_LINK_THREADS=2 "$helper" table "$IMPLICIT_VERTICES" "$IMPLICIT_FRAMES" 1 8 12 16 \
+    >"$out.2" 2>"$err" || { cat "$err" >&2; exit 1; }
+paste "$out" "$out.2" | awk 'NR > 1 { n = NF / 2
+    printf "| 6x%sx%s | %.1f | %.1f | %.2f |\n", $1, $1, $n, $NF, $NF / $n }'
+rm -f "$out.2"
+
+echo
 echo "Scaling at 6x8x8, 1 bounce, CPU ms a frame (wall: the frame)"
 echo
 echo "| vertices | elements | update | create links | refine & push | illumination | total | wall | once: steps 1-2 |"

@@ -23,9 +23,11 @@
  *       a scene file's model at the runtime's element size and cell (the
  *       others keep one element a vertex), the same columns
  *
- * The gathering runs on 2 threads (implicit_bounce.c), the rest on one: on
- * a loaded machine the CPU times are the steadier figures; on an idle
- * 2-core one the gathering's wall time is about half its CPU time.
+ * The gathering runs on 2 threads (implicit_bounce.c), the rest on one
+ * (CreateHierarchicalLinks on IMPLICIT_LINK_THREADS, default 1: the
+ * paper's one CPU): on a loaded machine the CPU times are the steadier
+ * figures; on an idle 2-core one the gathering's wall time is about half
+ * its CPU time. The last column is CreateHierarchicalLinks' wall ms.
  * The seconds of the whole run go to stderr.
  */
 #include <math.h>
@@ -193,8 +195,14 @@ static void deform(gb_implicit_model *m, const float *rest, int frame)
 
 /* CPU seconds of each step and of the frame, and the frame's wall seconds. */
 typedef struct step_times {
-    double update, create, refine, illuminate, total, wall;
+    double update, create, refine, illuminate, total, wall, create_wall;
 } step_times;
+
+static int link_threads(void)
+{
+    const char *text = getenv("IMPLICIT_LINK_THREADS");
+    return text && atoi(text) > 0 ? atoi(text) : 1;
+}
 
 static gb_result run(const gb_scene *scene, float element_size, float element_cell, int bins_n,
                      int frames, int bounces, int deforming, gb_error *error)
@@ -216,7 +224,8 @@ static gb_result run(const gb_scene *scene, float element_size, float element_ce
     else if (result == GB_OK)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit_steps: out of memory");
     step_times sum = {0};
-    gb_implicit_link_options options = {.hierarchical = 1, .lights = scene};
+    gb_implicit_link_options options = {.hierarchical = 1, .lights = scene,
+                                        .thread_count = link_threads()};
     for (int f = 0; f < frames && result == GB_OK; ++f) {
         if (deforming)
             deform(&m, rest, f);
@@ -234,6 +243,7 @@ static gb_result run(const gb_scene *scene, float element_size, float element_ce
         sum.wall += gb_seconds() - wall;
         sum.update += t1 - t0;
         sum.create += links.cpu.create;
+        sum.create_wall += links.wall.create;
         sum.refine += links.cpu.refine + links.cpu.compact;
         sum.illuminate += t3 - t2;
         sum.total += t3 - t0;
@@ -241,10 +251,10 @@ static gb_result run(const gb_scene *scene, float element_size, float element_ce
     }
     if (result == GB_OK) {
         double k = 1e3 / frames;
-        printf("%3d %8u %8u %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f\n", bins_n,
+        printf("%3d %8u %8u %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f %9.1f\n", bins_n,
                scene->vertex_count, m.element_count, k * sum.update, k * sum.create,
                k * sum.refine, k * sum.illuminate, k * sum.total, k * sum.wall,
-               1e3 * prepare);
+               1e3 * prepare, k * sum.create_wall);
         fflush(stdout);
     }
     free(rest);
@@ -257,7 +267,7 @@ static gb_result run(const gb_scene *scene, float element_size, float element_ce
 static void header(void)
 {
     printf("bins vertices elements update_ms create_ms refine_ms illum_ms total_ms wall_ms "
-           "prepare_ms\n");
+           "prepare_ms create_wall_ms\n");
 }
 
 static int usage(void)

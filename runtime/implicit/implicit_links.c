@@ -36,15 +36,17 @@
  * compacted into per-element lists, one link a source node (the bins that
  * hold the same node add their weights).
  *
- * Single-threaded and in a fixed order: the links are deterministic. (Two
- * threads splitting the nodes' bins by parity, each walking every pair,
- * gave the same links but cost 1.6 times the CPU and more wall time on
- * this shared 2-core machine.)
+ * Threads: the recursion's first levels are unfolded into independent
+ * pairs (tasks), which the threads take in any order. A bin keeps the
+ * smallest of the words its links pack (distance, then node: pack_link),
+ * written by compare-and-swap, so the links do not depend on the order of
+ * the stores or on the thread count.
  */
 #include "implicit_links.h"
 
 #include "brdf.h"
 #include "progress.h"
+#include "work_queue.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -53,18 +55,43 @@
 
 enum { SPREAD_MAX = 256 };
 
+/* On several threads, unfolding stops at this many tasks: enough for two
+ * threads to end together (the pairs differ in cost by orders of
+ * magnitude). One thread runs the recursion as it is, a single task. */
+enum { TASKS_WANTED = 4096 };
+
 /* Rule 1's threshold: B is subdivided when it covers more than this
  * fraction of a bin (see the top). */
 #define GB_IMPLICIT_SPLIT 0.1
 
 
+/* A bin's link in one word: the distance's bits above the node's index. A
+ * distance is a positive float, whose bits order as its value, so the
+ * smaller word is the shorter link (of two as short, the smaller node). */
+#define EMPTY_SLOT UINT64_MAX   /* node GB_IMPLICIT_NO_NODE */
+
+static uint64_t pack_link(uint32_t node, float distance)
+{
+    uint32_t bits;
+    memcpy(&bits, &distance, sizeof bits);
+    return (uint64_t)bits << 32 | node;
+}
+
+static uint32_t slot_node(uint64_t slot) { return (uint32_t)slot; }
+
+static float slot_distance(uint64_t slot)
+{
+    uint32_t bits = (uint32_t)(slot >> 32);
+    float distance;
+    memcpy(&distance, &bits, sizeof distance);
+    return distance;
+}
+
 typedef struct linker {
     const gb_implicit_model *model;
     const gb_implicit_bins *bins;
-    uint32_t *target;           /* node_count * bins: the node linked, or NO_NODE */
-    float *distance;            /* its distance */
+    uint64_t *slot;             /* node_count * bins: pack_link, or EMPTY_SLOT */
     float epsilon;              /* a length far below the element size */
-    uint64_t created;
     const gb_scene *lights;     /* for implicit shadows, or NULL */
     const float *environment;   /* bins->count * 3 radiance, or NULL */
     int depths;                 /* keep each element's depth map */
@@ -108,16 +135,16 @@ static int may_see(const linker *l, const gb_implicit_node *a, const gb_implicit
            box_extreme(a, a->normal, 0) + l->epsilon;
 }
 
-/* Rule 2: x keeps the link to y in bin when no shorter one is there. */
+/* Rule 2: x keeps the link to y in bin when no shorter one is there (an
+ * atomic minimum: other threads store into the same bins). */
 static void store(linker *l, uint32_t x, int bin, uint32_t y, float distance)
 {
     if (bin < 0)
         return;
-    size_t slot = (size_t)x * l->bins->count + (uint32_t)bin;
-    if (l->target[slot] == GB_IMPLICIT_NO_NODE || distance < l->distance[slot]) {
-        l->target[slot] = y;
-        l->distance[slot] = distance;
-        ++l->created;
+    uint64_t *slot = &l->slot[(size_t)x * l->bins->count + (uint32_t)bin];
+    uint64_t link = pack_link(y, distance), held = __atomic_load_n(slot, __ATOMIC_RELAXED);
+    while (link < held && !__atomic_compare_exchange_n(slot, &held, link, 1, __ATOMIC_RELAXED,
+                                                       __ATOMIC_RELAXED)) {
     }
 }
 
@@ -176,6 +203,59 @@ static void link_within(linker *l, uint32_t a)
                        l->model->children[n->first_child + j]);
 }
 
+/* What link_nodes does with two different nodes: nothing (they cannot see
+ * each other), subdivide one of them (rule 1), or link them. */
+typedef enum { PAIR_UNSEEN, PAIR_SPLIT_A, PAIR_SPLIT_B, PAIR_LINKED } pair_step;
+
+typedef struct pair_geometry {
+    float d[3], back[3], r2;    /* a to b, b to a, squared distance */
+    int bin_a, bin_b;           /* the bins of d at a and of back at b */
+    float omega_a, omega_b;     /* their solid angles */
+} pair_geometry;
+
+static pair_step pair_step_of(const linker *l, uint32_t a, uint32_t b, pair_geometry *g)
+{
+    const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
+    /* A node of no area (degenerate triangles only) neither sends nor hides. */
+    if (!(na->area > 0.0f) || !(nb->area > 0.0f) || !may_see(l, na, nb) || !may_see(l, nb, na))
+        return PAIR_UNSEEN;
+    g->r2 = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+        g->d[k] = nb->position[k] - na->position[k];
+        g->back[k] = -g->d[k];
+        g->r2 += g->d[k] * g->d[k];
+    }
+    g->bin_a = gb_implicit_bin(l->bins->n, g->d);
+    g->bin_b = gb_implicit_bin(l->bins->n, g->back);
+    g->omega_a = g->bin_a < 0 ? 0.0f : l->bins->solid_angles[g->bin_a];
+    g->omega_b = g->bin_b < 0 ? 0.0f : l->bins->solid_angles[g->bin_b];
+    int split_b = !is_leaf(nb) && nb->area > GB_IMPLICIT_SPLIT * g->omega_a * g->r2;
+    int split_a = !is_leaf(na) && na->area > GB_IMPLICIT_SPLIT * g->omega_b * g->r2;
+    if (split_a && (!split_b || na->area >= nb->area))
+        return PAIR_SPLIT_A;
+    return split_b ? PAIR_SPLIT_B : PAIR_LINKED;
+}
+
+/* The link between a and b, both ways, in the bins their discs cover. */
+static void link_pair(linker *l, uint32_t a, uint32_t b, const pair_geometry *g)
+{
+    const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
+    float r = sqrtf(g->r2);
+    float height_b = has_side(na) ? g->d[0] * na->normal[0] + g->d[1] * na->normal[1] +
+                                        g->d[2] * na->normal[2] : r;
+    float height_a = has_side(nb) ? g->back[0] * nb->normal[0] + g->back[1] * nb->normal[1] +
+                                        g->back[2] * nb->normal[2] : r;
+    if (g->bin_a < 0 || height_b + disc_reach(nb, na->normal) <= 0.0f ||
+        height_a + disc_reach(na, nb->normal) <= 0.0f)
+        return;
+    if (height_b > 0.0f)
+        store(l, a, g->bin_a, b, r);
+    if (height_a > 0.0f)
+        store(l, b, g->bin_b, a, r);
+    spread_disc(l, a, b, nb->area / (g->omega_a * g->r2));
+    spread_disc(l, b, a, na->area / (g->omega_b * g->r2));
+}
+
 /* The link between a and b, or between their children (rule 1). */
 static void link_nodes(linker *l, uint32_t a, uint32_t b)
 {
@@ -183,57 +263,134 @@ static void link_nodes(linker *l, uint32_t a, uint32_t b)
         link_within(l, a);
         return;
     }
-    const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
-    /* A node of no area (degenerate triangles only) neither sends nor hides. */
-    if (!(na->area > 0.0f) || !(nb->area > 0.0f) || !may_see(l, na, nb) || !may_see(l, nb, na))
-        return;
-    float d[3], back[3], r2 = 0.0f;
-    for (int k = 0; k < 3; ++k) {
-        d[k] = nb->position[k] - na->position[k];
-        back[k] = -d[k];
-        r2 += d[k] * d[k];
-    }
-    int bin_a = gb_implicit_bin(l->bins->n, d), bin_b = gb_implicit_bin(l->bins->n, back);
-    float omega_a = bin_a < 0 ? 0.0f : l->bins->solid_angles[bin_a];
-    float omega_b = bin_b < 0 ? 0.0f : l->bins->solid_angles[bin_b];
-    int split_b = !is_leaf(nb) && nb->area > GB_IMPLICIT_SPLIT * omega_a * r2;
-    int split_a = !is_leaf(na) && na->area > GB_IMPLICIT_SPLIT * omega_b * r2;
-    if (split_a && (!split_b || na->area >= nb->area)) {
+    pair_geometry g;
+    switch (pair_step_of(l, a, b, &g)) {
+    case PAIR_SPLIT_A:
         link_children(l, a, b);
-        return;
-    }
-    if (split_b) {
+        break;
+    case PAIR_SPLIT_B:
         link_children(l, b, a);
-        return;
+        break;
+    case PAIR_LINKED:
+        link_pair(l, a, b, &g);
+        break;
+    case PAIR_UNSEEN:
+        break;
     }
-    float r = sqrtf(r2);
-    float height_b = has_side(na) ? d[0] * na->normal[0] + d[1] * na->normal[1] +
-                                        d[2] * na->normal[2] : r;
-    float height_a = has_side(nb) ? back[0] * nb->normal[0] + back[1] * nb->normal[1] +
-                                        back[2] * nb->normal[2] : r;
-    if (bin_a < 0 || height_b + disc_reach(nb, na->normal) <= 0.0f ||
-        height_a + disc_reach(na, nb->normal) <= 0.0f)
-        return;
-    if (height_b > 0.0f)
-        store(l, a, bin_a, b, r);
-    if (height_a > 0.0f)
-        store(l, b, bin_b, a, r);
-    spread_disc(l, a, b, nb->area / (omega_a * r2));
-    spread_disc(l, b, a, na->area / (omega_b * r2));
 }
 
-/* CreateHierarchicalLinks: the root of all with itself (or every pair of
- * elements). */
-static void create_hierarchical_links(linker *l, int hierarchical)
+/* ---- the recursion's first levels as tasks for the threads ---- */
+
+typedef struct link_task {
+    uint32_t a, b;              /* link_nodes(a, b) */
+} link_task;
+
+typedef struct task_list {
+    link_task *items;
+    size_t count, capacity;
+} task_list;
+
+static int push_task(task_list *list, uint32_t a, uint32_t b)
+{
+    if (list->count == list->capacity) {
+        size_t capacity = 2 * list->capacity + 64;
+        link_task *items = realloc(list->items, capacity * sizeof *items);
+        if (!items)
+            return 0;
+        list->items = items;
+        list->capacity = capacity;
+    }
+    list->items[list->count++] = (link_task){a, b};
+    return 1;
+}
+
+/* The calls link_nodes(t.a, t.b) makes one level down, in its order,
+ * appended to next (a pair to be linked stays as it is); *grew is set when
+ * it made any. Returns 0 when out of memory. */
+static int unfold_task(const linker *l, link_task t, task_list *next, int *grew)
+{
+    const gb_implicit_node *nodes = l->model->nodes;
+    const uint32_t *children = l->model->children;
+    if (t.a == t.b) {
+        const gb_implicit_node *n = &nodes[t.a];
+        for (uint32_t i = 0; i < n->child_count; ++i)
+            for (uint32_t j = i; j < n->child_count; ++j)
+                if (!push_task(next, children[n->first_child + i], children[n->first_child + j]))
+                    return 0;
+        *grew = 1;
+        return 1;
+    }
+    pair_geometry g;
+    pair_step step = pair_step_of(l, t.a, t.b, &g);
+    if (step == PAIR_LINKED)
+        return push_task(next, t.a, t.b);
+    if (step == PAIR_UNSEEN)
+        return 1;
+    uint32_t split = step == PAIR_SPLIT_A ? t.a : t.b, other = step == PAIR_SPLIT_A ? t.b : t.a;
+    const gb_implicit_node *p = &nodes[split];
+    for (uint32_t c = 0; c < p->child_count; ++c)
+        if (!push_task(next, children[p->first_child + c], other))
+            return 0;
+    *grew = 1;
+    return 1;
+}
+
+/* link_nodes(top, top) unfolded into about wanted tasks. */
+static gb_result unfold_tasks(const linker *l, size_t wanted, task_list *tasks, gb_error *error)
+{
+    task_list next = {0};
+    int grew = push_task(tasks, l->model->top, l->model->top);
+    while (grew && tasks->count < wanted) {
+        grew = 0;
+        next.count = 0;
+        for (size_t i = 0; i < tasks->count; ++i)
+            if (!unfold_task(l, tasks->items[i], &next, &grew)) {
+                free(next.items);
+                return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+            }
+        task_list swap = *tasks;
+        *tasks = next;
+        next = swap;
+    }
+    free(next.items);
+    return tasks->items || !grew ? GB_OK
+                                 : gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
+                                           "implicit: out of memory");
+}
+
+typedef struct task_run {
+    linker *linker;
+    const link_task *tasks;
+} task_run;
+
+static int run_task(void *context, uint64_t item)
+{
+    task_run *run = context;
+    link_nodes(run->linker, run->tasks[item].a, run->tasks[item].b);
+    return 0;
+}
+
+/* CreateHierarchicalLinks: the root of all with itself, on threads (or
+ * every pair of elements, on one). */
+static gb_result create_hierarchical_links(linker *l, int hierarchical, int threads,
+                                           gb_error *error)
 {
     const gb_implicit_model *m = l->model;
-    if (hierarchical) {
-        link_nodes(l, m->top, m->top);
-        return;
+    if (!hierarchical) {
+        for (uint32_t i = 0; i < m->element_count; ++i)
+            for (uint32_t j = i + 1; j < m->element_count; ++j)
+                link_nodes(l, i, j);
+        return GB_OK;
     }
-    for (uint32_t i = 0; i < m->element_count; ++i)
-        for (uint32_t j = i + 1; j < m->element_count; ++j)
-            link_nodes(l, i, j);
+    task_list tasks = {0};
+    gb_result result = unfold_tasks(l, threads > 1 ? TASKS_WANTED : 1, &tasks, error);
+    if (result == GB_OK) {
+        task_run run = {l, tasks.items};
+        gb_work_queue queue = {.item_count = tasks.count, .threads = threads};
+        gb_work_queue_run(&queue, run_task, &run, NULL);
+    }
+    free(tasks.items);
+    return result;
 }
 
 /* RefineHierarchicalLinks + PushdownLinks, breadth first from the top. */
@@ -247,19 +404,16 @@ static gb_result refine_and_push_down(linker *l, gb_error *error)
     uint32_t count = l->bins->count;
     while (head < tail) {
         const gb_implicit_node *parent = &m->nodes[queue[head]];
-        const uint32_t *parent_target = &l->target[(size_t)queue[head] * count];
-        const float *parent_distance = &l->distance[(size_t)queue[head] * count];
+        const uint64_t *parent_slot = &l->slot[(size_t)queue[head] * count];
         ++head;
         for (uint32_t c = 0; c < parent->child_count; ++c) {
             uint32_t child = m->children[parent->first_child + c];
-            uint32_t *target = &l->target[(size_t)child * count];
-            float *distance = &l->distance[(size_t)child * count];
+            uint64_t *slot = &l->slot[(size_t)child * count];
+            /* a strictly shorter link (an empty slot's distance bits are all
+             * ones: the longest) */
             for (uint32_t b = 0; b < count; ++b)
-                if (parent_target[b] != GB_IMPLICIT_NO_NODE &&
-                    (target[b] == GB_IMPLICIT_NO_NODE || parent_distance[b] < distance[b])) {
-                    target[b] = parent_target[b];
-                    distance[b] = parent_distance[b];
-                }
+                if ((parent_slot[b] >> 32) < (slot[b] >> 32))
+                    slot[b] = parent_slot[b];
             queue[tail++] = child;
         }
     }
@@ -294,7 +448,7 @@ static uint32_t element_links(const linker *l, uint32_t e, bin_link *scratch,
                               float *environment_weight, float *environment_irradiance)
 {
     const gb_implicit_node *node = &l->model->nodes[e];
-    const uint32_t *target = &l->target[(size_t)e * l->bins->count];
+    const uint64_t *slot = &l->slot[(size_t)e * l->bins->count];
     double total = 0.0, environment = 0.0, irradiance[3] = {0, 0, 0};
     uint32_t count = 0;
     for (uint32_t b = 0; b < l->bins->count; ++b) {
@@ -304,12 +458,13 @@ static uint32_t element_links(const linker *l, uint32_t e, bin_link *scratch,
             continue;
         float w = cosine * l->bins->solid_angles[b];
         total += w;
-        if (target[b] == GB_IMPLICIT_NO_NODE || !faces(node, &l->model->nodes[target[b]])) {
+        uint32_t target = slot_node(slot[b]);
+        if (target == GB_IMPLICIT_NO_NODE || !faces(node, &l->model->nodes[target])) {
             environment += w;
             for (int k = 0; l->environment && k < 3; ++k)
                 irradiance[k] += w * l->environment[3 * (size_t)b + k];
         } else
-            scratch[count++] = (bin_link){target[b], b, w};
+            scratch[count++] = (bin_link){target, b, w};
     }
     float scale = total > 0.0 ? (float)(GB_PI / total) : 0.0f;
     *environment_weight = (float)environment * scale;
@@ -365,9 +520,9 @@ static void light_visibility(const linker *l, const gb_scene *scene, uint32_t e,
         if (light->type != GB_LIGHT_DIRECTIONAL)
             distance = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
         int bin = gb_implicit_bin(l->bins->n, d);
-        size_t slot = (size_t)e * l->bins->count + (uint32_t)(bin < 0 ? 0 : bin);
-        visible[i] = bin < 0 || l->target[slot] == GB_IMPLICIT_NO_NODE ||
-                     l->distance[slot] >= distance;
+        uint64_t slot = l->slot[(size_t)e * l->bins->count + (uint32_t)(bin < 0 ? 0 : bin)];
+        visible[i] = bin < 0 || slot_node(slot) == GB_IMPLICIT_NO_NODE ||
+                     slot_distance(slot) >= distance;
     }
 }
 
@@ -380,7 +535,7 @@ static gb_result append_depths(const linker *l, uint32_t e, gb_implicit_links *l
     const gb_implicit_node *node = &l->model->nodes[e];
     size_t row = (size_t)e * l->bins->count;
     for (uint32_t b = 0; b < l->bins->count; ++b) {
-        uint32_t target = l->target[row + b];
+        uint32_t target = slot_node(l->slot[row + b]);
         if (target == GB_IMPLICIT_NO_NODE || !faces(node, &l->model->nodes[target]))
             continue;
         if (*used == *capacity) {
@@ -396,7 +551,7 @@ static gb_result append_depths(const linker *l, uint32_t e, gb_implicit_links *l
             *capacity = grown;
         }
         links->depth_bin[*used] = b;
-        links->depth[*used] = l->distance[row + b];
+        links->depth[*used] = slot_distance(l->slot[row + b]);
         ++*used;
     }
     return GB_OK;
@@ -457,6 +612,26 @@ static gb_result compact(const linker *l, gb_implicit_links *links, gb_error *er
     return result;
 }
 
+static uint64_t filled_slots(const uint64_t *slot, size_t count)
+{
+    uint64_t filled = 0;
+    for (size_t i = 0; i < count; ++i)
+        filled += slot[i] != EMPTY_SLOT;
+    return filled;
+}
+
+/* The node of every slot, in a new array. */
+static gb_result slot_nodes(const uint64_t *slot, size_t count, uint32_t **nodes,
+                            gb_error *error)
+{
+    *nodes = malloc(count * sizeof **nodes + 1);
+    if (!*nodes)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    for (size_t i = 0; i < count; ++i)
+        (*nodes)[i] = slot_node(slot[i]);
+    return GB_OK;
+}
+
 static float smallest_extent(const gb_implicit_model *m)
 {
     float size = 0.0f;
@@ -488,20 +663,23 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
         l.spiral[i][0] = (float)cos(angle);
         l.spiral[i][1] = (float)sin(angle);
     }
-    l.target = malloc(slots * sizeof *l.target + 1);
-    l.distance = malloc(slots * sizeof *l.distance + 1);
+    l.slot = malloc(slots * sizeof *l.slot + 1);
     gb_result result = GB_OK;
-    if (!l.target || !l.distance)
+    if (!l.slot)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    int hierarchical = !options || options->hierarchical;
+    int threads = options && options->thread_count > 0 ? options->thread_count
+                                                       : GB_IMPLICIT_LINK_THREADS;
+    double wall = gb_seconds(), cpu = gb_cpu_seconds();
     if (result == GB_OK) {
-        double wall = gb_seconds(), cpu = gb_cpu_seconds();
-        memset(l.target, 0xff, slots * sizeof *l.target);
-        int hierarchical = !options || options->hierarchical;
-        create_hierarchical_links(&l, hierarchical);
-        links->created = l.created;
+        memset(l.slot, 0xff, slots * sizeof *l.slot);
+        result = create_hierarchical_links(&l, hierarchical, threads, error);
+    }
+    if (result == GB_OK) {
+        links->wall.create = gb_seconds() - wall;
+        links->cpu.create = gb_cpu_seconds() - cpu;
+        links->created = filled_slots(l.slot, slots);
         double created_wall = gb_seconds(), created_cpu = gb_cpu_seconds();
-        links->wall.create = created_wall - wall;
-        links->cpu.create = created_cpu - cpu;
         if (hierarchical)
             result = refine_and_push_down(&l, error);
         links->wall.refine = gb_seconds() - created_wall;
@@ -515,12 +693,9 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
         links->wall.compact = gb_seconds() - wall;
         links->cpu.compact = gb_cpu_seconds() - cpu;
     }
-    if (result == GB_OK && bin_targets) {
-        *bin_targets = l.target;
-        l.target = NULL;
-    }
-    free(l.target);
-    free(l.distance);
+    if (result == GB_OK && bin_targets)
+        result = slot_nodes(l.slot, slots, bin_targets, error);
+    free(l.slot);
     if (result != GB_OK)
         gb_implicit_links_free(links);
     return result;

@@ -39,7 +39,7 @@ typedef struct gb_implicit_links {
     float *depth;               /* and the distance of each bin's link: the
                                    nearest surface the element sees that way
                                    (the "omni-directional shadow map" of 3) */
-    uint64_t created;           /* links stored while creating (statistics) */
+    uint64_t created;           /* bins filled by CreateHierarchicalLinks (statistics) */
     gb_implicit_link_seconds wall, cpu;  /* statistics: time of each step */
 } gb_implicit_links;
 
@@ -51,7 +51,11 @@ typedef struct gb_implicit_link_options {
                                    a bin (gb_implicit_environment_bins), or
                                    NULL: the scene's constant colour */
     int depths;                 /* 1: keep the depth maps (links->depth_first) */
+    int thread_count;           /* for CreateHierarchicalLinks; 0: GB_IMPLICIT_LINK_THREADS.
+                                   The links do not depend on it. */
 } gb_implicit_link_options;
+
+enum { GB_IMPLICIT_LINK_THREADS = 2 };
 
 /* Steps 5-7 for a static scene. bin_targets, when not NULL, receives the
  * node_count * bins->count bins before compaction (tests), the caller frees. */

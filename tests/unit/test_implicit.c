@@ -279,6 +279,68 @@ static void test_shortest_link(int hierarchical)
     gb_scene_free(&scene);
 }
 
+/* Links of a closed box made on 1 thread (the recursion as one task) and
+ * on several (its first levels unfolded into tasks taken in any order):
+ * the same bins, the same links and depths, byte for byte. */
+static int same_links(const gb_implicit_links *a, const gb_implicit_links *b, uint32_t elements)
+{
+    uint32_t count = a->first[elements], depths = a->depth_first[elements];
+    return count == b->first[elements] && depths == b->depth_first[elements] &&
+           !memcmp(a->first, b->first, (elements + 1) * sizeof *a->first) &&
+           !memcmp(a->source, b->source, count * sizeof *a->source) &&
+           !memcmp(a->weight, b->weight, count * sizeof *a->weight) &&
+           !memcmp(a->environment_weight, b->environment_weight, elements * sizeof(float)) &&
+           !memcmp(a->depth_bin, b->depth_bin, depths * sizeof *a->depth_bin) &&
+           !memcmp(a->depth, b->depth, depths * sizeof *a->depth);
+}
+
+static void test_threads_give_same_links(void)
+{
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    add_box(&scene, lo, hi, 1, add_grey(&scene, (float)RHO, 1.0f));
+    scene_done(&scene);
+    gb_implicit_model m;
+    gb_implicit_bins bins;
+    gb_error error;
+    int ok = gb_implicit_model_create(&scene, 0.05f, RUNTIME_CELL, &m, &error) == GB_OK &&
+             gb_implicit_bins_create(8, &bins, &error) == GB_OK;
+    gb_implicit_links links[3];
+    uint32_t *targets[3] = {NULL, NULL, NULL};
+    const int threads[3] = {1, 2, 3};
+    for (int t = 0; t < 3 && ok; ++t) {
+        gb_implicit_link_options options = {.hierarchical = 1, .depths = 1,
+                                            .thread_count = threads[t]};
+        ok = gb_implicit_create_links(&m, &bins, &options, &links[t], &targets[t], &error) ==
+             GB_OK;
+        if (!ok)
+            break;
+    }
+    if (!CHECK(ok, "threads: links made on 1, 2 and 3 threads")) {
+        printf("# %s\n", error.message);
+        gb_scene_free(&scene);
+        return;
+    }
+    printf("# threads: %u elements, %llu bins filled\n", m.element_count,
+           (unsigned long long)links[0].created);
+    size_t slots = (size_t)m.node_count * bins.count;
+    for (int t = 1; t < 3; ++t) {
+        char what[96];
+        snprintf(what, sizeof what, "threads: %d threads fill the bins as 1 does", threads[t]);
+        CHECK(!memcmp(targets[0], targets[t], slots * sizeof *targets[0]), what);
+        snprintf(what, sizeof what, "threads: %d threads give 1's links and depths", threads[t]);
+        CHECK(same_links(&links[0], &links[t], m.element_count), what);
+    }
+    for (int t = 0; t < 3; ++t) {
+        free(targets[t]);
+        gb_implicit_links_free(&links[t]);
+    }
+    gb_implicit_bins_free(&bins);
+    gb_implicit_model_free(&m);
+    gb_scene_free(&scene);
+}
+
 static void test_furnace(int bins_n)
 {
     gb_scene scene;
@@ -997,6 +1059,7 @@ int main(void)
     test_depth_maps(0);
     test_furnace(8);
     test_furnace(12);
+    test_threads_give_same_links();
     test_point_light();
     test_implicit_shadow();
     test_sky();
