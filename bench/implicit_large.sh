@@ -3,8 +3,9 @@
 # scenes of 66 000 triangles and more, at the runtime's defaults (6x12x12
 # bins, 1 bounce, element size and cell):
 #   the model (vertices of the finer mesh, elements), the CPU seconds of
-#   CreateHierarchicalLinks and of Refine + Push (bench/implicit_steps.c,
-#   one frame), and the peak memory of gbview --method implicit;
+#   CreateHierarchicalLinks on one thread, its wall seconds on 2 (the
+#   runtime's default), and of Refine + Push (bench/implicit_steps.c, one
+#   frame), and the peak memory of gbview --method implicit;
 #   the error (imgdiff relative_mse) of gbview --method implicit and of
 #   gbview --method direct (direct light only) against reference --mode
 #   full (IMPLICIT_SPP samples a pixel, default 256) at IMPLICIT_SIZE
@@ -35,12 +36,15 @@ relative_mse() {
 echo "implicit visibility on large scenes; $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg);" \
     "$(date -u +%Y-%m-%d)"
 echo
-echo "| scene | vertices | elements | create links (s) | refine & push (s) | gbview peak memory (MiB) |" \
+echo "| scene | vertices | elements | create links (s) | on 2 threads (wall s) | refine & push (s) | gbview peak memory (MiB) |" \
     "implicit: relative MSE | direct only: relative MSE |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
 for scene in $IMPLICIT_SCENES; do
     name=$(basename "$scene" .scene)
     "$helper" scene "$scene" 1 1 12 >"$dir/steps" 2>"$dir/err" || { cat "$dir/err" >&2; exit 1; }
+    IMPLICIT_LINK_THREADS=2 "$helper" scene "$scene" 1 1 12 >"$dir/steps2" 2>"$dir/err" ||
+        { cat "$dir/err" >&2; exit 1; }
+    threaded=$(awk 'NR == 2 { print $NF / 1000 }' "$dir/steps2")
     /usr/bin/time -f "%M" -o "$dir/memory" "$GB_BIN/gbview" --headless --quiet -m implicit \
         -r "$IMPLICIT_SIZE" -o "$dir/implicit.exr" "$scene" || exit 1
     "$GB_BIN/gbview" --headless --quiet -m direct -r "$IMPLICIT_SIZE" -o "$dir/direct.exr" \
@@ -50,8 +54,8 @@ for scene in $IMPLICIT_SCENES; do
     implicit=$(relative_mse "$dir/implicit.exr" "$dir/reference.exr")
     direct=$(relative_mse "$dir/direct.exr" "$dir/reference.exr")
     awk -v name="$name" -v memory="$(cat "$dir/memory")" -v implicit="$implicit" \
-        -v direct="$direct" 'NR == 2 {
-        printf "| %s | %s | %s | %.1f | %.1f | %.0f | %.3f | %.3f |\n",
-            name, $2, $3, $5 / 1000, $6 / 1000, memory / 1024, implicit, direct
+        -v direct="$direct" -v threaded="$threaded" 'NR == 2 {
+        printf "| %s | %s | %s | %.1f | %.1f | %.1f | %.0f | %.3f | %.3f |\n",
+            name, $2, $3, $5 / 1000, threaded, $6 / 1000, memory / 1024, implicit, direct
     }' "$dir/steps"
 done
