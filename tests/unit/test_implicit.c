@@ -279,6 +279,15 @@ static void test_shortest_link(int hierarchical)
     gb_scene_free(&scene);
 }
 
+/* A unit box of grey (RHO) walls facing inward. */
+static void closed_box(gb_scene *scene)
+{
+    memset(scene, 0, sizeof *scene);
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    add_box(scene, lo, hi, 1, add_grey(scene, (float)RHO, 1.0f));
+    scene_done(scene);
+}
+
 /* Links of a closed box made on 1 thread (the recursion as one task) and
  * on several (its first levels unfolded into tasks taken in any order):
  * the same bins, the same links and depths, byte for byte. */
@@ -297,10 +306,7 @@ static int same_links(const gb_implicit_links *a, const gb_implicit_links *b, ui
 static void test_threads_give_same_links(void)
 {
     gb_scene scene;
-    memset(&scene, 0, sizeof scene);
-    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
-    add_box(&scene, lo, hi, 1, add_grey(&scene, (float)RHO, 1.0f));
-    scene_done(&scene);
+    closed_box(&scene);
     gb_implicit_model m;
     gb_implicit_bins bins;
     gb_error error;
@@ -344,10 +350,7 @@ static void test_threads_give_same_links(void)
 static void test_furnace(int bins_n)
 {
     gb_scene scene;
-    memset(&scene, 0, sizeof scene);
-    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
-    add_box(&scene, lo, hi, 1, add_grey(&scene, (float)RHO, 1.0f));
-    scene_done(&scene);
+    closed_box(&scene);
     gb_implicit_model m;
     gb_implicit_bins bins;
     gb_implicit_links links;
