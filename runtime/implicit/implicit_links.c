@@ -32,19 +32,21 @@
  * RefineHierarchicalLinks and PushdownLinks run as one breadth-first pass
  * (4.2.4: "can be combined"): each node, parents first, hands every bin's
  * link to its children that hold no shorter one; a child's longer link is
- * replaced. The leaves end with every link that reaches them, which are
- * compacted into per-element lists, one link a source node (the bins that
- * hold the same node add their weights).
+ * replaced. The leaves end with every link that reaches them, which
+ * implicit_link_lists.c compacts into per-element lists, one link a source
+ * node (the bins that hold the same node add their weights).
  *
  * Threads: the recursion's first levels are unfolded into independent
  * pairs (tasks), which the threads take in any order. A bin keeps the
- * smallest of the words its links pack (distance, then node: pack_link),
+ * smallest of the words its links pack (distance, then node:
+ * gb_implicit_pack_link),
  * written by compare-and-swap, so the links do not depend on the order of
  * the stores or on the thread count.
  */
 #include "implicit_links.h"
 
 #include "brdf.h"
+#include "implicit_link_lists.h"
 #include "progress.h"
 #include "work_queue.h"
 
@@ -65,36 +67,12 @@ enum { TASKS_WANTED = 4096 };
 #define GB_IMPLICIT_SPLIT 0.1
 
 
-/* A bin's link in one word: the distance's bits above the node's index. A
- * distance is a positive float, whose bits order as its value, so the
- * smaller word is the shorter link (of two as short, the smaller node). */
-#define EMPTY_SLOT UINT64_MAX   /* node GB_IMPLICIT_NO_NODE */
-
-static uint64_t pack_link(uint32_t node, float distance)
-{
-    uint32_t bits;
-    memcpy(&bits, &distance, sizeof bits);
-    return (uint64_t)bits << 32 | node;
-}
-
-static uint32_t slot_node(uint64_t slot) { return (uint32_t)slot; }
-
-static float slot_distance(uint64_t slot)
-{
-    uint32_t bits = (uint32_t)(slot >> 32);
-    float distance;
-    memcpy(&distance, &bits, sizeof distance);
-    return distance;
-}
-
 typedef struct linker {
     const gb_implicit_model *model;
     const gb_implicit_bins *bins;
-    uint64_t *slot;             /* node_count * bins: pack_link, or EMPTY_SLOT */
+    uint64_t *slot;             /* node_count * bins: gb_implicit_pack_link, or
+                                   GB_IMPLICIT_GB_IMPLICIT_EMPTY_SLOT */
     float epsilon;              /* a length far below the element size */
-    const gb_scene *lights;     /* for implicit shadows, or NULL */
-    const float *environment;   /* bins->count * 3 radiance, or NULL */
-    int depths;                 /* keep each element's depth map */
     float spiral[SPREAD_MAX][2];/* cos, sin of the golden angle times i */
 } linker;
 
@@ -142,7 +120,8 @@ static void store(linker *l, uint32_t x, int bin, uint32_t y, float distance)
     if (bin < 0)
         return;
     uint64_t *slot = &l->slot[(size_t)x * l->bins->count + (uint32_t)bin];
-    uint64_t link = pack_link(y, distance), held = __atomic_load_n(slot, __ATOMIC_RELAXED);
+    uint64_t link = gb_implicit_pack_link(y, distance);
+    uint64_t held = __atomic_load_n(slot, __ATOMIC_RELAXED);
     while (link < held && !__atomic_compare_exchange_n(slot, &held, link, 1, __ATOMIC_RELAXED,
                                                        __ATOMIC_RELAXED)) {
     }
@@ -421,202 +400,11 @@ static gb_result refine_and_push_down(linker *l, gb_error *error)
     return GB_OK;
 }
 
-static int faces(const gb_implicit_node *receiver, const gb_implicit_node *source)
-{
-    float d = 0.0f;
-    for (int k = 0; k < 3; ++k)
-        d += (source->position[k] - receiver->position[k]) * receiver->normal[k];
-    return d > 0.0f;
-}
-
-typedef struct bin_link {
-    uint32_t source, bin;
-    float weight;
-} bin_link;
-
-static int compare_bin_links(const void *x, const void *y)
-{
-    const bin_link *p = x, *q = y;
-    if (p->source != q->source)
-        return p->source < q->source ? -1 : 1;
-    return p->bin < q->bin ? -1 : p->bin > q->bin;
-}
-
-/* One element's filled bins into scratch (weights normalised), sorted by
- * source and merged: one link a source. Returns the links. */
-static uint32_t element_links(const linker *l, uint32_t e, bin_link *scratch,
-                              float *environment_weight, float *environment_irradiance)
-{
-    const gb_implicit_node *node = &l->model->nodes[e];
-    const uint64_t *slot = &l->slot[(size_t)e * l->bins->count];
-    double total = 0.0, environment = 0.0, irradiance[3] = {0, 0, 0};
-    uint32_t count = 0;
-    for (uint32_t b = 0; b < l->bins->count; ++b) {
-        const float *d = &l->bins->directions[3 * b];
-        float cosine = d[0] * node->normal[0] + d[1] * node->normal[1] + d[2] * node->normal[2];
-        if (cosine <= 0.0f)
-            continue;
-        float w = cosine * l->bins->solid_angles[b];
-        total += w;
-        uint32_t target = slot_node(slot[b]);
-        if (target == GB_IMPLICIT_NO_NODE || !faces(node, &l->model->nodes[target])) {
-            environment += w;
-            for (int k = 0; l->environment && k < 3; ++k)
-                irradiance[k] += w * l->environment[3 * (size_t)b + k];
-        } else
-            scratch[count++] = (bin_link){target, b, w};
-    }
-    float scale = total > 0.0 ? (float)(GB_PI / total) : 0.0f;
-    *environment_weight = (float)environment * scale;
-    for (int k = 0; environment_irradiance && k < 3; ++k)
-        environment_irradiance[k] = (float)irradiance[k] * scale;
-    qsort(scratch, count, sizeof *scratch, compare_bin_links);
-    uint32_t merged = 0;
-    for (uint32_t i = 0; i < count; ++i) {
-        if (merged && scratch[merged - 1].source == scratch[i].source)
-            scratch[merged - 1].weight += scratch[i].weight * scale;
-        else
-            scratch[merged++] = (bin_link){scratch[i].source, scratch[i].bin,
-                                           scratch[i].weight * scale};
-    }
-    return merged;
-}
-
-static gb_result append_links(gb_implicit_links *links, size_t *capacity, size_t used,
-                              const bin_link *scratch, uint32_t count, gb_error *error)
-{
-    if (used + count > *capacity) {
-        size_t grown = 2 * (used + count);
-        uint32_t *source = realloc(links->source, grown * sizeof *source);
-        if (source)
-            links->source = source;
-        float *weight = realloc(links->weight, grown * sizeof *weight);
-        if (weight)
-            links->weight = weight;
-        if (!source || !weight)
-            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
-        *capacity = grown;
-    }
-    for (uint32_t i = 0; i < count; ++i) {
-        links->source[used + i] = scratch[i].source;
-        links->weight[used + i] = scratch[i].weight;
-    }
-    return GB_OK;
-}
-
-/* Implicit shadows of the scene's lights (section 4.4's idea applied to
- * them): an element sees a light when the bin toward it is empty or holds
- * a link longer than the light's distance. */
-static void light_visibility(const linker *l, const gb_scene *scene, uint32_t e,
-                             uint8_t *visible)
-{
-    const gb_implicit_node *node = &l->model->nodes[e];
-    for (uint32_t i = 0; i < scene->light_count; ++i) {
-        const gb_light *light = &scene->lights[i];
-        float d[3], distance = INFINITY;
-        for (int k = 0; k < 3; ++k)
-            d[k] = light->type == GB_LIGHT_DIRECTIONAL ? -light->direction[k]
-                                                       : light->position[k] - node->position[k];
-        if (light->type != GB_LIGHT_DIRECTIONAL)
-            distance = sqrtf(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
-        int bin = gb_implicit_bin(l->bins->n, d);
-        uint64_t slot = l->slot[(size_t)e * l->bins->count + (uint32_t)(bin < 0 ? 0 : bin)];
-        visible[i] = bin < 0 || slot_node(slot) == GB_IMPLICIT_NO_NODE ||
-                     slot_distance(slot) >= distance;
-    }
-}
-
-/* The element's depth map: (bin, distance) of each bin that holds a link
- * toward a node it faces (the bins element_links counts), appended to
- * links->depth_bin and depth from *used on. */
-static gb_result append_depths(const linker *l, uint32_t e, gb_implicit_links *links,
-                               size_t *capacity, size_t *used, gb_error *error)
-{
-    const gb_implicit_node *node = &l->model->nodes[e];
-    size_t row = (size_t)e * l->bins->count;
-    for (uint32_t b = 0; b < l->bins->count; ++b) {
-        uint32_t target = slot_node(l->slot[row + b]);
-        if (target == GB_IMPLICIT_NO_NODE || !faces(node, &l->model->nodes[target]))
-            continue;
-        if (*used == *capacity) {
-            size_t grown = 2 * *capacity + 1024;
-            uint32_t *bin = realloc(links->depth_bin, grown * sizeof *bin);
-            if (bin)
-                links->depth_bin = bin;
-            float *depth = realloc(links->depth, grown * sizeof *depth);
-            if (depth)
-                links->depth = depth;
-            if (!bin || !depth)
-                return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
-            *capacity = grown;
-        }
-        links->depth_bin[*used] = b;
-        links->depth[*used] = slot_distance(l->slot[row + b]);
-        ++*used;
-    }
-    return GB_OK;
-}
-
-static gb_result compact_depths(const linker *l, gb_implicit_links *links, gb_error *error)
-{
-    uint32_t elements = l->model->element_count;
-    links->depth_first = malloc(((size_t)elements + 1) * sizeof *links->depth_first);
-    if (!links->depth_first)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
-    size_t used = 0, capacity = 0;
-    gb_result result = GB_OK;
-    for (uint32_t e = 0; result == GB_OK && e < elements; ++e) {
-        links->depth_first[e] = (uint32_t)used;
-        result = append_depths(l, e, links, &capacity, &used, error);
-        if (used > UINT32_MAX / 2)
-            result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: too many depths");
-    }
-    links->depth_first[elements] = (uint32_t)used;
-    return result;
-}
-
-static gb_result compact(const linker *l, gb_implicit_links *links, gb_error *error)
-{
-    uint32_t elements = l->model->element_count;
-    links->first = malloc(((size_t)elements + 1) * sizeof *links->first);
-    links->environment_weight = malloc(((size_t)elements + 1) * sizeof(float));
-    if (l->environment)
-        links->environment_irradiance = malloc(3 * ((size_t)elements + 1) * sizeof(float));
-    bin_link *scratch = malloc(l->bins->count * sizeof *scratch);
-    const gb_scene *scene = l->lights;
-    links->light_count = scene ? scene->light_count : 0;
-    if (links->light_count)
-        links->light_visible = malloc((size_t)elements * links->light_count);
-    gb_result result = GB_OK;
-    if (!links->first || !links->environment_weight || !scratch ||
-        (l->environment && !links->environment_irradiance) ||
-        (links->light_count && !links->light_visible))
-        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
-    size_t used = 0, capacity = 0;
-    for (uint32_t e = 0; result == GB_OK && e < elements; ++e) {
-        links->first[e] = (uint32_t)used;
-        uint32_t count = element_links(l, e, scratch, &links->environment_weight[e],
-                                       links->environment_irradiance
-                                           ? &links->environment_irradiance[3 * (size_t)e]
-                                           : NULL);
-        if (links->light_count)
-            light_visibility(l, scene, e, &links->light_visible[(size_t)e * links->light_count]);
-        result = append_links(links, &capacity, used, scratch, count, error);
-        used += count;
-        if (used > UINT32_MAX / 2)
-            result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: too many links");
-    }
-    if (result == GB_OK)
-        links->first[elements] = (uint32_t)used;
-    free(scratch);
-    return result;
-}
-
 static uint64_t filled_slots(const uint64_t *slot, size_t count)
 {
     uint64_t filled = 0;
     for (size_t i = 0; i < count; ++i)
-        filled += slot[i] != EMPTY_SLOT;
+        filled += slot[i] != GB_IMPLICIT_EMPTY_SLOT;
     return filled;
 }
 
@@ -628,7 +416,7 @@ static gb_result slot_nodes(const uint64_t *slot, size_t count, uint32_t **nodes
     if (!*nodes)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
     for (size_t i = 0; i < count; ++i)
-        (*nodes)[i] = slot_node(slot[i]);
+        (*nodes)[i] = gb_implicit_slot_node(slot[i]);
     return GB_OK;
 }
 
@@ -654,10 +442,7 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
                        "implicit: %u nodes x %u bins is too many (at most 2^27): "
                        "use fewer --bins", model->node_count, bins->count);
-    linker l = {.model = model, .bins = bins, .epsilon = smallest_extent(model),
-                .lights = options ? options->lights : NULL,
-                .environment = options ? options->environment : NULL,
-                .depths = options && options->depths};
+    linker l = {.model = model, .bins = bins, .epsilon = smallest_extent(model)};
     for (int i = 0; i < SPREAD_MAX; ++i) {
         double angle = 2.39996322972865332 * i;     /* the golden angle */
         l.spiral[i][0] = (float)cos(angle);
@@ -687,9 +472,9 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
     }
     if (result == GB_OK) {
         double wall = gb_seconds(), cpu = gb_cpu_seconds();
-        result = compact(&l, links, error);
-        if (result == GB_OK && l.depths)
-            result = compact_depths(&l, links, error);
+        gb_implicit_slots filled = {model, bins, l.slot, options ? options->lights : NULL,
+                                    options ? options->environment : NULL};
+        result = gb_implicit_link_lists(&filled, options && options->depths, links, error);
         links->wall.compact = gb_seconds() - wall;
         links->cpu.compact = gb_cpu_seconds() - cpu;
     }
