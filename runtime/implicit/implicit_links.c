@@ -66,14 +66,21 @@ enum { TASKS_WANTED = 4096 };
  * fraction of a bin (see the top). */
 #define GB_IMPLICIT_SPLIT 0.1
 
+/* A node's disc: its radius (sqrt(area / pi)) and two unit tangents, which
+ * every link to the node would compute again. */
+typedef struct disc_frame {
+    float radius;
+    float tangent[2][3];
+} disc_frame;
 
 typedef struct linker {
     const gb_implicit_model *model;
     const gb_implicit_bins *bins;
     uint64_t *slot;             /* node_count * bins: gb_implicit_pack_link, or
-                                   GB_IMPLICIT_GB_IMPLICIT_EMPTY_SLOT */
+                                   GB_IMPLICIT_EMPTY_SLOT */
     float epsilon;              /* a length far below the element size */
     float spiral[SPREAD_MAX][2];/* cos, sin of the golden angle times i */
+    disc_frame *discs;          /* node_count, made once (disc_frames) */
 } linker;
 
 static int is_leaf(const gb_implicit_node *node)
@@ -92,11 +99,12 @@ static float box_extreme(const gb_implicit_node *node, const float n[3], int hig
     return sum;
 }
 
-/* How far b's disc (its area, its normal) reaches along the unit n. */
-static float disc_reach(const gb_implicit_node *b, const float n[3])
+/* How far node b's disc (its radius, its normal) reaches along the unit n. */
+static float disc_reach(const linker *l, uint32_t b, const float n[3])
 {
-    float c = b->normal[0] * n[0] + b->normal[1] * n[1] + b->normal[2] * n[2];
-    return sqrtf(b->area / GB_PI) * sqrtf(fmaxf(0.0f, 1.0f - c * c));
+    const float *normal = l->model->nodes[b].normal;
+    float c = normal[0] * n[0] + normal[1] * n[1] + normal[2] * n[2];
+    return l->discs[b].radius * sqrtf(fmaxf(0.0f, 1.0f - c * c));
 }
 
 static int has_side(const gb_implicit_node *node)
@@ -104,13 +112,15 @@ static int has_side(const gb_implicit_node *node)
     return node->segment != GB_IMPLICIT_SEVERAL_SEGMENTS;
 }
 
-/* Whether some of b (its box, widened by its disc) may lie in front of a. */
-static int may_see(const linker *l, const gb_implicit_node *a, const gb_implicit_node *b)
+/* Whether some of node b (its box, widened by its disc) may lie in front
+ * of node a. */
+static int may_see(const linker *l, uint32_t a, uint32_t b)
 {
-    if (!has_side(a) || !has_side(b))
+    const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
+    if (!has_side(na) || !has_side(nb))
         return 1;
-    return box_extreme(b, a->normal, 1) + disc_reach(b, a->normal) >
-           box_extreme(a, a->normal, 0) + l->epsilon;
+    return box_extreme(nb, na->normal, 1) + disc_reach(l, b, na->normal) >
+           box_extreme(na, na->normal, 0) + l->epsilon;
 }
 
 /* Rule 2: x keeps the link to y in bin when no shorter one is there (an
@@ -142,16 +152,26 @@ static void tangents(const float n[3], float t[2][3])
     t[1][2] = n[0] * t[0][1] - n[1] * t[0][0];
 }
 
+static disc_frame *disc_frames(const gb_implicit_model *model)
+{
+    disc_frame *discs = malloc((size_t)model->node_count * sizeof *discs + 1);
+    for (uint32_t n = 0; discs && n < model->node_count; ++n) {
+        discs[n].radius = sqrtf(model->nodes[n].area / GB_PI);
+        tangents(model->nodes[n].normal, discs[n].tangent);
+    }
+    return discs;
+}
+
 /* b stored in the bins its disc covers as seen from a. */
 static void spread_disc(linker *l, uint32_t a, uint32_t b, float covered_bins)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
     int count = covered_bins > 80.0f ? SPREAD_MAX
                 : covered_bins < 1.0f ? 3 : (int)ceilf(3.0f * covered_bins + 1.0f);
-    float t[2][3], radius = sqrtf(nb->area / GB_PI);
-    tangents(nb->normal, t);
+    const disc_frame *disc = &l->discs[b];
+    const float(*t)[3] = disc->tangent;
     for (int i = 0; i < count; ++i) {
-        float r = radius * sqrtf(((float)i + 0.5f) / (float)count);
+        float r = disc->radius * sqrtf(((float)i + 0.5f) / (float)count);
         float d[3];
         for (int k = 0; k < 3; ++k)
             d[k] = nb->position[k] + r * (l->spiral[i][0] * t[0][k] + l->spiral[i][1] * t[1][k]) -
@@ -196,7 +216,7 @@ static pair_step pair_step_of(const linker *l, uint32_t a, uint32_t b, pair_geom
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
     /* A node of no area (degenerate triangles only) neither sends nor hides. */
-    if (!(na->area > 0.0f) || !(nb->area > 0.0f) || !may_see(l, na, nb) || !may_see(l, nb, na))
+    if (!(na->area > 0.0f) || !(nb->area > 0.0f) || !may_see(l, a, b) || !may_see(l, b, a))
         return PAIR_UNSEEN;
     g->r2 = 0.0f;
     for (int k = 0; k < 3; ++k) {
@@ -224,8 +244,8 @@ static void link_pair(linker *l, uint32_t a, uint32_t b, const pair_geometry *g)
                                         g->d[2] * na->normal[2] : r;
     float height_a = has_side(nb) ? g->back[0] * nb->normal[0] + g->back[1] * nb->normal[1] +
                                         g->back[2] * nb->normal[2] : r;
-    if (g->bin_a < 0 || height_b + disc_reach(nb, na->normal) <= 0.0f ||
-        height_a + disc_reach(na, nb->normal) <= 0.0f)
+    if (g->bin_a < 0 || height_b + disc_reach(l, b, na->normal) <= 0.0f ||
+        height_a + disc_reach(l, a, nb->normal) <= 0.0f)
         return;
     if (height_b > 0.0f)
         store(l, a, g->bin_a, b, r);
@@ -449,8 +469,9 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
         l.spiral[i][1] = (float)sin(angle);
     }
     l.slot = malloc(slots * sizeof *l.slot + 1);
+    l.discs = disc_frames(model);
     gb_result result = GB_OK;
-    if (!l.slot)
+    if (!l.slot || !l.discs)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
     int hierarchical = !options || options->hierarchical;
     int threads = options && options->thread_count > 0 ? options->thread_count
@@ -481,6 +502,7 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
     if (result == GB_OK && bin_targets)
         result = slot_nodes(l.slot, slots, bin_targets, error);
     free(l.slot);
+    free(l.discs);
     if (result != GB_OK)
         gb_implicit_links_free(links);
     return result;
