@@ -95,9 +95,11 @@ typedef struct opening_line {
 
 /* out[i] = max(out[i], max { in[j] : j before i, in[j] > |i - j| }) where
  * "before" is in the order of step (+1 or -1). Sources join the queue of
- * candidates at its tail; one of a value no larger than an older one's
- * ends no sooner than it, so it takes the older one's place; the head is
- * the largest still reaching i. */
+ * candidates at its tail. A new source reaches farther than every older
+ * one of a value no larger than its own, which it replaces; it is not
+ * queued when the larger one before it reaches as far. So the values
+ * decrease and the reaches grow along the queue, and its head is the
+ * largest value still reaching i. */
 static void sweep(const uint16_t *in, uint16_t *out, int n, int step, opening_line *space)
 {
     int head = 0, tail = 0;
@@ -180,15 +182,6 @@ static gb_result chessboard_opening(const gb_cubical_complex *complex, uint32_t 
     free(space.end);
     return result;
 }
-static uint16_t largest_distance(const uint32_t *maps, size_t count)
-{
-    uint16_t largest = 0;
-    for (size_t n = 0; n < count; ++n)
-        if (distance_at(maps, n) > largest)
-            largest = distance_at(maps, n);
-    return largest;
-}
-
 gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_complex *complex,
                               double scale, double min_lifespan,
                               gb_progress_callback progress, void *progress_user,
@@ -205,7 +198,6 @@ gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_comp
                          "persistence: out of memory for %zu cells", cells);
     if (!result) {
         chessboard_distance(complex, persistence->maps);
-        persistence->largest_distance = largest_distance(persistence->maps, cells);
         if (progress && progress(progress_user, 0.5))
             result = gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
     }

@@ -41,7 +41,6 @@ typedef struct gb_persistence {
     size_t birth_capacity, birth_count;
     double persistence;     /* the scale of opening - distance */
     double min_lifespan;    /* iterations */
-    uint16_t largest_distance;
 } gb_persistence;
 
 /* Computes the distance and opening maps of the empty cubes of complex (a
