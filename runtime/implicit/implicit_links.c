@@ -337,8 +337,10 @@ static int unfold_task(const linker *l, link_task t, task_list *next, int *grew)
 /* link_nodes(top, top) unfolded into about wanted tasks. */
 static gb_result unfold_tasks(const linker *l, size_t wanted, task_list *tasks, gb_error *error)
 {
+    if (!push_task(tasks, l->model->top, l->model->top))
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
     task_list next = {0};
-    int grew = push_task(tasks, l->model->top, l->model->top);
+    int grew = 1;
     while (grew && tasks->count < wanted) {
         grew = 0;
         next.count = 0;
@@ -352,9 +354,7 @@ static gb_result unfold_tasks(const linker *l, size_t wanted, task_list *tasks, 
         next = swap;
     }
     free(next.items);
-    return tasks->items || !grew ? GB_OK
-                                 : gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
-                                           "implicit: out of memory");
+    return GB_OK;
 }
 
 typedef struct task_run {
@@ -420,14 +420,6 @@ static gb_result refine_and_push_down(linker *l, gb_error *error)
     return GB_OK;
 }
 
-static uint64_t filled_slots(const uint64_t *slot, size_t count)
-{
-    uint64_t filled = 0;
-    for (size_t i = 0; i < count; ++i)
-        filled += slot[i] != GB_IMPLICIT_EMPTY_SLOT;
-    return filled;
-}
-
 /* The node of every slot, in a new array. */
 static gb_result slot_nodes(const uint64_t *slot, size_t count, uint32_t **nodes,
                             gb_error *error)
@@ -484,7 +476,6 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
     if (result == GB_OK) {
         links->wall.create = gb_seconds() - wall;
         links->cpu.create = gb_cpu_seconds() - cpu;
-        links->created = filled_slots(l.slot, slots);
         double created_wall = gb_seconds(), created_cpu = gb_cpu_seconds();
         if (hierarchical)
             result = refine_and_push_down(&l, error);

@@ -39,7 +39,6 @@ typedef struct gb_implicit_links {
     float *depth;               /* and the distance of each bin's link: the
                                    nearest surface the element sees that way
                                    (the "omni-directional shadow map" of 3) */
-    uint64_t created;           /* bins filled by CreateHierarchicalLinks (statistics) */
     gb_implicit_link_seconds wall, cpu;  /* statistics: time of each step */
 } gb_implicit_links;
 
