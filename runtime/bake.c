@@ -21,12 +21,13 @@ struct gb_bake {
     int32_t *nearest;
     gb_segmentation segmentation;
     gb_light_octree light_octree;
+    gb_atlas atlas;
 };
 
 const char *gb_bake_extension(gb_bake_kind kind)
 {
     static const char *const extensions[GB_BAKE_KIND_COUNT] = {
-        ".vdb", ".skel", ".grid.vdb", ".seg", ".lot",
+        ".vdb", ".skel", ".grid.vdb", ".seg", ".lot", ".atlas",
     };
     return kind >= 0 && kind < GB_BAKE_KIND_COUNT ? extensions[kind] : "";
 }
@@ -70,6 +71,10 @@ static gb_result decode(gb_bake *b, gb_bake_kind kind, uint64_t *hash, gb_error 
         result = gb_light_octree_read(path, &b->light_octree, error);
         *hash = b->light_octree.header.scene_hash;
         break;
+    case GB_BAKE_ATLAS:
+        result = gb_atlas_read(path, &b->atlas, error);
+        *hash = b->atlas.header.scene_hash;
+        break;
     case GB_BAKE_KIND_COUNT:
         break;
     }
@@ -89,6 +94,7 @@ static void forget(gb_bake *b, gb_bake_kind kind)
         break;
     case GB_BAKE_SEGMENTS: gb_segmentation_free(&b->segmentation); break;
     case GB_BAKE_LIGHT_OCTREE: gb_light_octree_free(&b->light_octree); break;
+    case GB_BAKE_ATLAS: gb_atlas_free(&b->atlas); break;
     case GB_BAKE_KIND_COUNT: break;
     }
 }
@@ -185,6 +191,11 @@ const gb_segmentation *gb_bake_segmentation(const gb_bake *bake)
 const gb_light_octree *gb_bake_light_octree(const gb_bake *bake)
 {
     return usable(bake, GB_BAKE_LIGHT_OCTREE) ? &bake->light_octree : NULL;
+}
+
+const gb_atlas *gb_bake_atlas(const gb_bake *bake)
+{
+    return usable(bake, GB_BAKE_ATLAS) ? &bake->atlas : NULL;
 }
 
 const int32_t *gb_bake_nearest_node(const gb_bake *bake, const gb_voxel_grid **frame)

@@ -4,7 +4,7 @@
  * name, as `make bake` names them:
  *   NAME.vdb       voxels (voxelize)            NAME.skel  skeleton (thin)
  *   NAME.grid.vdb  nearest skeleton node (thin) NAME.seg   clusters, gates (segment)
- *   NAME.lot       light octree (cluster)
+ *   NAME.lot       light octree (cluster)     NAME.atlas lightmap atlas (atlas)
  * NAME is the scene file's name without its folder and extension.
  *
  *   gb_bake *bake;
@@ -34,6 +34,7 @@
 
 #include <stdint.h>
 
+#include "atlas.h"
 #include "light_octree.h"
 #include "result.h"
 #include "scene.h"
@@ -47,6 +48,7 @@ typedef enum gb_bake_kind {
     GB_BAKE_NEAREST_NODE,
     GB_BAKE_SEGMENTS,
     GB_BAKE_LIGHT_OCTREE,
+    GB_BAKE_ATLAS,
     GB_BAKE_KIND_COUNT,
 } gb_bake_kind;
 
@@ -72,6 +74,7 @@ const gb_voxel_grid *gb_bake_voxels(const gb_bake *bake);
 const gb_skeleton *gb_bake_skeleton(const gb_bake *bake);
 const gb_segmentation *gb_bake_segmentation(const gb_bake *bake);
 const gb_light_octree *gb_bake_light_octree(const gb_bake *bake);
+const gb_atlas *gb_bake_atlas(const gb_bake *bake);
 /* thin's "nearest_node" grid: one value per voxel of *frame (which has no
  * surface or distance arrays), -1 for none. */
 const int32_t *gb_bake_nearest_node(const gb_bake *bake, const gb_voxel_grid **frame);

@@ -42,6 +42,9 @@ typedef struct gb_method_parameters {
                                    (--epsilon; 0.01 x the scene's radius) */
     int flc_tiling;             /* flc: 4^tiling interleaved tiles (--tiling; 0) */
     int flc_levels;             /* flc: N + 1, the number of levels (--levels; 6) */
+    const char *atlas;          /* octree: show it through this atlas file (--atlas);
+                                   "none": the walk; NULL: the bake's NAME.atlas
+                                   when it has one, else the walk */
 } gb_method_parameters;
 
 typedef struct gb_indirect_setup {

@@ -67,6 +67,10 @@ static const char usage[] =
     "      --bin-filter F      flc-iv: bilinear (default: the four nearest bins'\n"
     "                          tests weighed) or nearest (one bin)\n"
     "      --bounces N         implicit: bounces of indirect light (1 default, 2)\n"
+    "      --atlas FILE        octree: render it into this atlas (from `atlas`) once\n"
+    "                          and show it through it, one fetch a pixel (default:\n"
+    "                          the bake's NAME.atlas if there is one; none: the\n"
+    "                          octree walk at every pixel)\n"
     "  -q, --quiet             no warnings\n"
     "  -h, --help              this help\n"
     "  -V, --version           the version\n"
@@ -104,6 +108,7 @@ enum {
     OPTION_BINS,
     OPTION_BOUNCES,
     OPTION_BIN_FILTER,
+    OPTION_ATLAS,
 };
 
 static const struct option long_options[] = {
@@ -132,6 +137,7 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("bins", OPTION_BINS),
     GB_CLI_VALUE("bounces", OPTION_BOUNCES),
     GB_CLI_VALUE("bin-filter", OPTION_BIN_FILTER),
+    GB_CLI_VALUE("atlas", OPTION_ATLAS),
     GB_CLI_OPTIONS_END,
 };
 
@@ -207,6 +213,7 @@ static int parse_option(int option, const char *value, void *context)
     case OPTION_BAKE: a->bake = value; return 0;
     case OPTION_NO_SHADOWS: a->renderer.no_shadows = 1; return 0;
     case OPTION_WRITE_VPLS: a->renderer.parameters.write_vpls = value; return 0;
+    case OPTION_ATLAS: a->renderer.parameters.atlas = value; return 0;
     case 'o': a->output = value; return 0;
     case 'q': a->quiet = 1; return 0;
     case OPTION_SUPERSAMPLE:

@@ -3,10 +3,13 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 #include "gl_util.h"
 #include "indirect_method.h"
 #include "light_octree.h"
+#include "octree_atlas.h"
 
 enum { SSBO_NODES = 0, SSBO_LEAVES = 1, SSBO_VDLS = 2 };
 
@@ -14,6 +17,7 @@ typedef struct octree_state {
     const gb_light_octree *octree;  /* borrowed from the bake */
     GLuint buffers[3];          /* nodes, leaves, VDLs */
     GLuint program, empty_vertex_array;
+    gb_octree_atlas *atlas;     /* the display through the atlas, or NULL: the walk */
 } octree_state;
 
 static const char fragment_shader[] =
@@ -25,6 +29,7 @@ static void octree_destroy(void *state)
     octree_state *s = state;
     if (!s)
         return;
+    gb_octree_atlas_destroy(s->atlas);
     glDeleteBuffers(3, s->buffers);
     if (s->empty_vertex_array)
         glDeleteVertexArrays(1, &s->empty_vertex_array);
@@ -69,6 +74,52 @@ static void upload(octree_state *s)
     s->buffers[SSBO_VDLS] = make_buffer(o->vdls, o->header.vdl_count, sizeof *o->vdls);
 }
 
+static void bind_buffers(const octree_state *s)
+{
+    for (GLuint i = 0; i < 3; ++i)
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, s->buffers[i]);
+}
+
+/* The atlas named by --atlas (read into *own), or the bake's when it has
+ * one, or *atlas NULL: none given, or "none". */
+static gb_result find_atlas(const gb_indirect_setup *setup, gb_atlas *own,
+                            const gb_atlas **atlas, gb_error *error)
+{
+    const char *path = setup->parameters->atlas;
+    *atlas = NULL;
+    if (path && strcmp(path, "none") == 0)
+        return GB_OK;
+    if (path) {
+        gb_result result = gb_atlas_read(path, own, error);
+        if (result == GB_OK)
+            result = gb_atlas_check_scene(own, setup->scene->hash,
+                                          setup->scene->triangle_count, path, error);
+        *atlas = result == GB_OK ? own : NULL;
+        return result;
+    }
+    if (!setup->bake || access(gb_bake_path(setup->bake, GB_BAKE_ATLAS), F_OK) != 0)
+        return GB_OK;
+    if (!(*atlas = gb_bake_atlas(setup->bake)))
+        return gb_fail(error, GB_ERROR_IO, "octree: %s (bake it again, or give --atlas none)",
+                       gb_bake_problem(setup->bake, GB_BAKE_ATLAS));
+    return GB_OK;
+}
+
+static gb_result create_atlas_display(octree_state *s, const gb_indirect_setup *setup,
+                                      gb_error *error)
+{
+    gb_atlas own = {0};
+    const gb_atlas *atlas;
+    gb_result result = find_atlas(setup, &own, &atlas, error);
+    if (result == GB_OK && atlas) {
+        bind_buffers(s);
+        result = gb_octree_atlas_create(setup->scene, atlas, &s->octree->header, &s->atlas,
+                                        error);
+    }
+    gb_atlas_free(&own);
+    return result;
+}
+
 static gb_result octree_create(const gb_indirect_setup *setup, void **state, gb_error *error)
 {
     *state = NULL;
@@ -79,12 +130,15 @@ static gb_result octree_create(const gb_indirect_setup *setup, void **state, gb_
     if (result == GB_OK)
         result = gb_gl_program("octree", gb_gl_fullscreen_vertex_shader, fragment_shader,
                                &s->program, error);
+    if (result == GB_OK) {
+        upload(s);
+        glCreateVertexArrays(1, &s->empty_vertex_array);
+        result = create_atlas_display(s, setup, error);
+    }
     if (result != GB_OK) {
         octree_destroy(s);
         return result;
     }
-    upload(s);
-    glCreateVertexArrays(1, &s->empty_vertex_array);
     *state = s;
     return GB_OK;
 }
@@ -111,9 +165,12 @@ static void set_uniforms(const octree_state *s, const gb_indirect_frame *frame)
 static void octree_draw(void *state, const gb_indirect_frame *frame)
 {
     octree_state *s = state;
+    if (s->atlas) {
+        gb_octree_atlas_draw(s->atlas, frame);
+        return;
+    }
     set_uniforms(s, frame);
-    for (GLuint i = 0; i < 3; ++i)
-        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, i, s->buffers[i]);
+    bind_buffers(s);
     glUseProgram(s->program);
     gb_gbuffer_bind(frame->gbuffer);
     gb_gl_draw_fullscreen(s->empty_vertex_array);

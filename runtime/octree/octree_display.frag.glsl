@@ -3,76 +3,11 @@
 // Figure 6), trilinear between the leaf centres over those with VDLs (the
 // holes of Fig. 16c), times Kd / π (octree.h).
 #version 450 core
-layout(std430, binding = 0) readonly buffer Nodes { uint nodes[]; };
-layout(std430, binding = 1) readonly buffer Leaves { uint leaves[]; };
-layout(std430, binding = 2) readonly buffer Vdls { uint vdls[]; };
 #include "runtime/gbuffer_textures.glsl"
 uniform ivec2 full_size;
-uniform vec3 origin;
-uniform float cell_size;
-uniform int depth;
 out vec4 radiance;
-const uint NONE = 0xffffffffu;
-const float PI = 3.14159265358979;
-const float MIN_COS = 0.25;
-const float MIN_WEIGHT = 1e-6;
-#include "runtime/gbuffer_octahedral.glsl"
 #include "runtime/gbuffer_world_position.glsl"
-// gb_light_octree_find_leaf: depth node fetches from the root.
-uint find_leaf(ivec3 cell) {
-    if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, ivec3(1 << depth))))
-        return NONE;
-    uint node = 0u;
-    for (int level = 0; level < depth; ++level) {
-        ivec3 bit = (cell >> (depth - 1 - level)) & 1;
-        node = nodes[8u * node + uint(bit.x | bit.y << 1 | bit.z << 2)];
-        if (node == NONE)
-            return NONE;
-    }
-    return node;
-}
-#include "runtime/octree/octree_vdl_direction.glsl"
-// Sum of the leaf's VDLs, E max(0, n.w) / max(|nl.w|, MIN_COS) (octree.h);
-// false for no leaf or no VDL.
-bool leaf_light(uint leaf, vec3 n, vec3 ng, out vec3 sum) {
-    sum = vec3(0.0);
-    if (leaf == NONE || leaves[8u * leaf + 4u] == 0u)
-        return false;
-    uint first = leaves[8u * leaf + 3u], end = first + leaves[8u * leaf + 4u];
-    vec3 nl = uintBitsToFloat(uvec3(leaves[8u * leaf], leaves[8u * leaf + 1u],
-                                    leaves[8u * leaf + 2u]));
-    for (uint i = first; i < end; ++i) {
-        vec3 w = vdl_direction(vdls[4u * i + 3u]);
-        float c = dot(n, w) / max(abs(dot(nl, w)), MIN_COS);
-        if (c > 0.0 && dot(ng, w) > 0.0)
-            sum += uintBitsToFloat(uvec3(vdls[4u * i], vdls[4u * i + 1u],
-                                         vdls[4u * i + 2u])) * c;
-    }
-    return true;
-}
-// Trilinear between the 8 leaf centres around x, renormalised over the
-// neighbours that have VDLs. Each weight is at least MIN_WEIGHT: at a
-// leaf centre the weights of the other 7 vanish, and when that leaf has
-// no VDLs the pixel would be black (tests/unit/test_octree_display.c);
-// there the floor makes it the mean of the others, and elsewhere it
-// changes the result by under 10^-5.
-vec3 interpolate(vec3 x, vec3 n, vec3 ng) {
-    vec3 g = (x - origin) / cell_size - 0.5;
-    vec3 base = floor(g), f = g - base;
-    vec3 total = vec3(0.0);
-    float weight = 0.0;
-    for (int c = 0; c < 8; ++c) {
-        ivec3 o = ivec3(c & 1, (c >> 1) & 1, c >> 2);
-        vec3 t = mix(1.0 - f, f, vec3(o));
-        float w = max(t.x * t.y * t.z, MIN_WEIGHT);
-        vec3 sum;
-        if (leaf_light(find_leaf(ivec3(base) + o), n, ng, sum)) {
-            total += w * sum;
-            weight += w;
-        }
-    }
-    return weight > 0.0 ? total / weight : vec3(0.0);
-}
+#include "runtime/octree/octree_irradiance.glsl"
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
     float d = texelFetch(gbuffer_depth, pixel, 0).r;

@@ -1,0 +1,298 @@
+/* octree_atlas.c — the light octree rendered into the atlas once and shown
+ * through it (octree_atlas.h). */
+#include "octree_atlas.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "gl_util.h"
+
+enum { UNIT_ATLAS = 7, UNIT_SEEN_UV = 8 };
+
+/* A triangle corner as the two passes read it: atlas UV, world position,
+ * shading normal, face normal. */
+enum { CORNER_FLOATS = 11 };
+
+struct gb_octree_atlas {
+    GLuint texture;             /* RGBA32F: irradiance, alpha 1 where filled */
+    GLuint corner_buffer, corner_array;
+    GLsizei corner_count;
+    GLuint uv_program, display_program, empty_vertex_array;
+    gb_gl_target seen_uv;       /* RG32F: the atlas UV at each pixel, -1 for none */
+    int drawn;
+    gb_mat4 last_view, last_projection;
+};
+
+static const char render_vertex_shader[] =
+#include "runtime/octree/octree_atlas_render.vert.glsl.inc"
+    ;
+static const char render_fragment_shader[] =
+#include "runtime/octree/octree_atlas_render.frag.glsl.inc"
+    ;
+static const char gutter_fragment_shader[] =
+#include "runtime/octree/octree_atlas_gutter.frag.glsl.inc"
+    ;
+static const char uv_vertex_shader[] =
+#include "runtime/octree/octree_atlas_uv.vert.glsl.inc"
+    ;
+static const char uv_fragment_shader[] =
+#include "runtime/octree/octree_atlas_uv.frag.glsl.inc"
+    ;
+static const char display_fragment_shader[] =
+#include "runtime/octree/octree_atlas_display.frag.glsl.inc"
+    ;
+
+/* ---- the corners ---- */
+
+static void face_normal(const gb_scene *scene, uint32_t t, float out[3])
+{
+    const float *p[3];
+    for (int c = 0; c < 3; ++c)
+        p[c] = scene->positions + 3 * (size_t)scene->indices[3 * (size_t)t + c];
+    float e1[3], e2[3];
+    for (int k = 0; k < 3; ++k)
+        e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
+    out[0] = e1[1] * e2[2] - e1[2] * e2[1];
+    out[1] = e1[2] * e2[0] - e1[0] * e2[2];
+    out[2] = e1[0] * e2[1] - e1[1] * e2[0];
+    float length = sqrtf(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
+    for (int k = 0; k < 3; ++k)
+        out[k] = length > 0.0f ? out[k] / length : (k == 2);
+}
+
+/* Every triangle corner of the scene, CORNER_FLOATS each; NULL when out of
+ * memory. */
+static float *make_corners(const gb_scene *scene, const gb_atlas *atlas)
+{
+    float *corners = malloc((size_t)scene->triangle_count * 3 * CORNER_FLOATS * sizeof *corners);
+    if (!corners)
+        return NULL;
+    for (uint32_t t = 0; t < scene->triangle_count; ++t) {
+        float face[3];
+        face_normal(scene, t, face);
+        for (int c = 0; c < 3; ++c) {
+            float *out = corners + ((size_t)t * 3 + c) * CORNER_FLOATS;
+            const float *position = scene->positions + 3 * (size_t)scene->indices[3 * t + c];
+            const float *normal = scene->corner_normals
+                                      ? scene->corner_normals + 9 * (size_t)t + 3 * c
+                                      : face;
+            memcpy(out, atlas->uvs + 6 * (size_t)t + 2 * c, 2 * sizeof *out);
+            memcpy(out + 2, position, 3 * sizeof *out);
+            memcpy(out + 5, normal, 3 * sizeof *out);
+            memcpy(out + 8, face, 3 * sizeof *out);
+        }
+    }
+    return corners;
+}
+
+static void attribute(GLuint array, GLuint location, GLint size, GLuint offset)
+{
+    glEnableVertexArrayAttrib(array, location);
+    glVertexArrayAttribFormat(array, location, size, GL_FLOAT, GL_FALSE,
+                              offset * sizeof(float));
+    glVertexArrayAttribBinding(array, location, 0);
+}
+
+static gb_result upload_corners(gb_octree_atlas *s, const gb_scene *scene,
+                                const gb_atlas *atlas, gb_error *error)
+{
+    float *corners = make_corners(scene, atlas);
+    if (!corners)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "octree atlas: out of memory");
+    s->corner_count = (GLsizei)(3 * scene->triangle_count);
+    glCreateBuffers(1, &s->corner_buffer);
+    glNamedBufferStorage(s->corner_buffer,
+                         (GLsizeiptr)s->corner_count * CORNER_FLOATS * sizeof *corners,
+                         corners, 0);
+    free(corners);
+    glCreateVertexArrays(1, &s->corner_array);
+    glVertexArrayVertexBuffer(s->corner_array, 0, s->corner_buffer, 0,
+                              CORNER_FLOATS * sizeof(float));
+    attribute(s->corner_array, 0, 2, 0);
+    attribute(s->corner_array, 1, 3, 2);
+    attribute(s->corner_array, 2, 3, 5);
+    attribute(s->corner_array, 3, 3, 8);
+    return GB_OK;
+}
+
+/* ---- the render into the atlas ---- */
+
+static GLuint make_atlas_texture(const gb_atlas_header *h)
+{
+    GLuint texture = gb_gl_texture_2d(GL_RGBA32F, (int)h->width, (int)h->height);
+    glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    return texture;
+}
+
+static GLuint framebuffer_of(GLuint texture)
+{
+    GLuint framebuffer;
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+    return framebuffer;
+}
+
+static void set_octree_uniforms(GLuint program, const gb_light_octree_header *h)
+{
+    glProgramUniform3fv(program, glGetUniformLocation(program, "origin"), 1, h->origin);
+    glProgramUniform1f(program, glGetUniformLocation(program, "cell_size"),
+                       h->size / (float)(1u << h->depth));
+    glProgramUniform1i(program, glGetUniformLocation(program, "depth"), (GLint)h->depth);
+}
+
+static gb_result render_triangles(gb_octree_atlas *s, const gb_light_octree_header *octree,
+                                  GLuint framebuffer, gb_error *error)
+{
+    GLuint program;
+    gb_result result = gb_gl_program("octree atlas render", render_vertex_shader,
+                                     render_fragment_shader, &program, error);
+    if (result != GB_OK)
+        return result;
+    set_octree_uniforms(program, octree);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glUseProgram(program);
+    glBindVertexArray(s->corner_array);
+    glDrawArrays(GL_TRIANGLES, 0, s->corner_count);
+    glDeleteProgram(program);
+    return GB_OK;
+}
+
+/* padding rounds of the gutter, ping-pong between the atlas texture and
+ * another; the atlas texture ends holding the last round. */
+static gb_result fill_gutter(gb_octree_atlas *s, const gb_atlas_header *h, gb_error *error)
+{
+    GLuint program;
+    gb_result result = gb_gl_program("octree atlas gutter", gb_gl_fullscreen_vertex_shader,
+                                     gutter_fragment_shader, &program, error);
+    if (result != GB_OK)
+        return result;
+    GLuint other = make_atlas_texture(h), other_framebuffer = framebuffer_of(other);
+    GLuint atlas_framebuffer = framebuffer_of(s->texture);
+    glUseProgram(program);
+    for (uint32_t round = 0; round < h->padding; ++round) {
+        glBindFramebuffer(GL_FRAMEBUFFER, other_framebuffer);
+        glBindTextureUnit(0, s->texture);
+        gb_gl_draw_fullscreen(s->empty_vertex_array);
+        glBindFramebuffer(GL_FRAMEBUFFER, atlas_framebuffer);
+        glBindTextureUnit(0, other);
+        gb_gl_draw_fullscreen(s->empty_vertex_array);
+    }
+    glDeleteFramebuffers(1, &other_framebuffer);
+    glDeleteFramebuffers(1, &atlas_framebuffer);
+    glDeleteTextures(1, &other);
+    glDeleteProgram(program);
+    return GB_OK;
+}
+
+static gb_result render_atlas(gb_octree_atlas *s, const gb_atlas_header *h,
+                              const gb_light_octree_header *octree, gb_error *error)
+{
+    GLint output = 0, viewport[4];
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
+    glGetIntegerv(GL_VIEWPORT, viewport);
+    s->texture = make_atlas_texture(h);
+    GLuint framebuffer = framebuffer_of(s->texture);
+    static const float nothing_filled[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, nothing_filled);
+    glViewport(0, 0, (GLsizei)h->width, (GLsizei)h->height);
+    glDisable(GL_DEPTH_TEST);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+    gb_result result = render_triangles(s, octree, framebuffer, error);
+    glDeleteFramebuffers(1, &framebuffer);
+    if (result == GB_OK)
+        result = fill_gutter(s, h, error);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
+    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
+    return result;
+}
+
+/* ---- create, draw, destroy ---- */
+
+gb_result gb_octree_atlas_create(const gb_scene *scene, const gb_atlas *atlas,
+                                 const gb_light_octree_header *octree,
+                                 gb_octree_atlas **state, gb_error *error)
+{
+    *state = NULL;
+    gb_octree_atlas *s = calloc(1, sizeof *s);
+    if (!s)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "octree atlas: out of memory");
+    glCreateVertexArrays(1, &s->empty_vertex_array);
+    gb_result result = upload_corners(s, scene, atlas, error);
+    if (result == GB_OK)
+        result = gb_gl_program("octree atlas uv", uv_vertex_shader, uv_fragment_shader,
+                               &s->uv_program, error);
+    if (result == GB_OK)
+        result = gb_gl_program("octree atlas display", gb_gl_fullscreen_vertex_shader,
+                               display_fragment_shader, &s->display_program, error);
+    if (result == GB_OK)
+        result = render_atlas(s, &atlas->header, octree, error);
+    if (result != GB_OK) {
+        gb_octree_atlas_destroy(s);
+        return result;
+    }
+    *state = s;
+    return GB_OK;
+}
+
+/* The atlas UV seen at each pixel; drawn again only when the view or the
+ * size changed (the scene is static). */
+static void draw_seen_uv(gb_octree_atlas *s, const gb_indirect_frame *frame)
+{
+    if (gb_gl_target_resize(&s->seen_uv, GL_RG32F, frame->width, frame->height))
+        s->drawn = 0;
+    if (s->drawn && !memcmp(&s->last_view, frame->view_matrix, sizeof s->last_view) &&
+        !memcmp(&s->last_projection, frame->projection, sizeof s->last_projection))
+        return;
+    s->drawn = 1;
+    s->last_view = *frame->view_matrix;
+    s->last_projection = *frame->projection;
+    static const float none[4] = {-1, -1, 0, 0};
+    glClearNamedFramebufferfv(s->seen_uv.framebuffer, GL_COLOR, 0, none);
+    gb_gl_target_begin_geometry(&s->seen_uv);
+    glDisable(GL_CULL_FACE);
+    glUseProgram(s->uv_program);
+    gb_gl_set_view_projection(s->uv_program, frame->view_matrix->m, frame->projection->m);
+    glBindVertexArray(s->corner_array);
+    glDrawArrays(GL_TRIANGLES, 0, s->corner_count);
+    glDisable(GL_DEPTH_TEST);
+}
+
+void gb_octree_atlas_draw(gb_octree_atlas *s, const gb_indirect_frame *frame)
+{
+    GLint output = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
+    draw_seen_uv(s, frame);
+    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
+    glViewport(0, 0, frame->width, frame->height);
+    glEnable(GL_BLEND);
+    glBlendFunc(GL_ONE, GL_ONE);
+    glUseProgram(s->display_program);
+    gb_gbuffer_bind(frame->gbuffer);
+    glBindTextureUnit(UNIT_ATLAS, s->texture);
+    glBindTextureUnit(UNIT_SEEN_UV, s->seen_uv.color);
+    gb_gl_draw_fullscreen(s->empty_vertex_array);
+}
+
+GLuint gb_octree_atlas_texture(const gb_octree_atlas *s)
+{
+    return s->texture;
+}
+
+void gb_octree_atlas_destroy(gb_octree_atlas *s)
+{
+    if (!s)
+        return;
+    glDeleteTextures(1, &s->texture);
+    glDeleteBuffers(1, &s->corner_buffer);
+    GLuint arrays[2] = {s->corner_array, s->empty_vertex_array};
+    glDeleteVertexArrays(2, arrays);
+    if (s->uv_program)
+        glDeleteProgram(s->uv_program);
+    if (s->display_program)
+        glDeleteProgram(s->display_program);
+    gb_gl_target_release(&s->seen_uv);
+    free(s);
+}

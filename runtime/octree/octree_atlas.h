@@ -1,0 +1,47 @@
+/* octree_atlas.h — the light octree shown through the lightmap atlas
+ * (vivianloc-2007 §4.2.3 and Figure 1, "Atlas LSCM parametrisation and
+ * render-to-texture stages"): rendered into the atlas once, then the scene
+ * drawn with one texture fetch per pixel instead of the octree walk's 8
+ * walks of δ node fetches. runtime/octree/octree_atlas.c; the octree method
+ * (octree.h) uses it when it has an atlas (NAME.atlas from `atlas`).
+ *
+ * create  renders the octree's irradiance (octree_irradiance.glsl, the
+ *         display's own) into an RGBA32F texture of the atlas's size: each
+ *         triangle drawn at its atlas UVs and evaluated at its world point,
+ *         with its face normal (the side its winding faces) as the geometric
+ *         normal and its corner normal turned to that side. Then the gutter
+ *         (FORMATS.md, "Atlas"): in `padding` rounds, every texel whose
+ *         centre no triangle covers takes the mean of its 8 neighbours filled
+ *         before the round, so that bilinear reads at a chart's border never
+ *         reach black. The caller binds the octree's node, leaf and VDL
+ *         buffers (octree.c's SSBO bindings 0, 1, 2) before the call.
+ * draw    the atlas UV seen at each pixel (a geometry pass into a target of
+ *         its own, redrawn only when the view or the size changes), then one
+ *         full-screen pass: Kd / π · texture(atlas, uv), bilinear.
+ *
+ * The caller owns the state: create → draw each frame → destroy (also NULL).
+ * The scene and the atlas are only read during create. Needs a current
+ * context.
+ */
+#ifndef GB_OCTREE_ATLAS_H
+#define GB_OCTREE_ATLAS_H
+
+#include <epoxy/gl.h>
+
+#include "atlas.h"
+#include "indirect_method.h"
+#include "light_octree.h"
+#include "result.h"
+#include "scene.h"
+
+typedef struct gb_octree_atlas gb_octree_atlas;
+
+gb_result gb_octree_atlas_create(const gb_scene *scene, const gb_atlas *atlas,
+                                 const gb_light_octree_header *octree,
+                                 gb_octree_atlas **state, gb_error *error);
+void gb_octree_atlas_draw(gb_octree_atlas *state, const gb_indirect_frame *frame);
+/* The atlas texture (RGBA32F irradiance, alpha 1 where filled), for tests. */
+GLuint gb_octree_atlas_texture(const gb_octree_atlas *state);
+void gb_octree_atlas_destroy(gb_octree_atlas *state);
+
+#endif
