@@ -1,0 +1,71 @@
+/* fuzz_atlas.c — libFuzzer target for the `.atlas` reader (formats/atlas.c):
+ * any input gives either an atlas that passes gb_atlas_check, or an error
+ * "fuzz: ...", never a crash or a read out of bounds (run under ASan/UBSan
+ * by `make fuzz`). The input is copied into a 16-byte aligned buffer, as a
+ * mapped file is; every UV of a parsed atlas is turned into the texel the
+ * runtime would fetch and checked to lie in its chart's rect, grown by the
+ * padding.
+ *
+ * Every payload is CRC-checked by the container, so each input is parsed as
+ * it is, then again with its checksums recomputed (fix_checksums.h), which
+ * lets the mutations reach the atlas's own checks.
+ */
+#include "atlas.h"
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fix_checksums.h"
+
+static volatile float sink;
+
+/* Traps when a corner's texel leaves its chart's padded rect. */
+static float fetch_every_corner(const gb_atlas *atlas)
+{
+    const gb_atlas_header *h = &atlas->header;
+    float sum = 0.0f;
+    for (uint32_t t = 0; t < h->triangle_count; ++t) {
+        const gb_atlas_chart *chart = &atlas->chart_records[atlas->charts[t]];
+        for (int c = 0; c < 3; ++c) {
+            double x = atlas->uvs[6 * (size_t)t + 2 * c] * (double)h->width;
+            double y = atlas->uvs[6 * (size_t)t + 2 * c + 1] * (double)h->height;
+            if (x < (double)chart->rect[0] - h->padding ||
+                x > (double)chart->rect[0] + chart->rect[2] + h->padding ||
+                y < (double)chart->rect[1] - h->padding ||
+                y > (double)chart->rect[1] + chart->rect[3] + h->padding)
+                __builtin_trap();
+            sum += (float)(x + y);
+        }
+    }
+    return sum;
+}
+
+static void parse(const unsigned char *aligned, size_t size)
+{
+    gb_atlas atlas;
+    gb_error error;
+    if (gb_atlas_parse(aligned, size, "fuzz", &atlas, &error) == GB_OK) {
+        if (gb_atlas_check(&atlas, "fuzz", &error) != GB_OK)
+            __builtin_trap(); /* a parsed atlas is always valid */
+        sink += fetch_every_corner(&atlas);
+        gb_atlas_free(&atlas);
+    } else if (strncmp(error.message, "fuzz: ", 6) != 0 || atlas.uvs || atlas.charts ||
+               atlas.chart_records || atlas.header.triangle_count) {
+        __builtin_trap(); /* failures name the input and leave an empty atlas */
+    }
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    unsigned char *aligned = aligned_alloc(16, (size + 16) & ~(size_t)15);
+    if (!aligned)
+        return 0;
+    memcpy(aligned, data, size);
+    parse(aligned, size);
+    gb_fuzz_fix_container_checksums(aligned, size);
+    parse(aligned, size);
+    free(aligned);
+    return 0;
+}
