@@ -1,0 +1,160 @@
+/* atlas_seams.c — where the atlas's seams are, and how two images differ
+ * there and elsewhere (bench/octree_atlas.sh).
+ *
+ *   atlas_seams SCENE NAME.atlas A.exr B.exr [CAMERA]
+ *
+ * Each pixel's centre ray (the scene's camera CAMERA, default 0, at the
+ * images' size; common/camera.h) is traced with Embree; the triangle hit
+ * and its barycentrics give the pixel's atlas UV, as the display reads it.
+ * A pixel is on a seam when any of the four texels its bilinear fetch
+ * weighs is not covered by its own chart: a texel is covered by a chart when
+ * its centre lies in one of the chart's triangles (the texels the render
+ * into the atlas fills; the others hold the gutter). Prints, for the seam
+ * pixels and for the others, their count and the relative MSE of A against
+ * B, Σ (a - b)² / Σ b² over their RGB, as "NAME VALUE" lines.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "atlas.h"
+#include "camera.h"
+#include "embree_scene.h"
+#include "image.h"
+#include "scene.h"
+
+#define NO_CHART 0xFFFFFFFFu
+
+/* Twice the signed area of (a, b, p). */
+static double edge(const double a[2], const double b[2], const double p[2])
+{
+    return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
+}
+
+/* texel_chart[j * width + i]: the chart whose triangle holds texel (i, j)'s
+ * centre, NO_CHART for none. */
+static uint32_t *covered_texels(const gb_atlas *atlas)
+{
+    const gb_atlas_header *h = &atlas->header;
+    uint32_t *texel_chart = malloc((size_t)h->width * h->height * sizeof *texel_chart);
+    if (!texel_chart)
+        return NULL;
+    for (size_t i = 0; i < (size_t)h->width * h->height; ++i)
+        texel_chart[i] = NO_CHART;
+    for (uint32_t t = 0; t < h->triangle_count; ++t) {
+        double p[3][2], lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
+        for (int c = 0; c < 3; ++c) {
+            p[c][0] = atlas->uvs[6 * (size_t)t + 2 * c] * (double)h->width;
+            p[c][1] = atlas->uvs[6 * (size_t)t + 2 * c + 1] * (double)h->height;
+            for (int k = 0; k < 2; ++k)
+                lo[k] = fmin(lo[k], p[c][k]), hi[k] = fmax(hi[k], p[c][k]);
+        }
+        for (long j = (long)floor(lo[1]); j <= (long)hi[1] && j < (long)h->height; ++j)
+            for (long i = (long)floor(lo[0]); i <= (long)hi[0] && i < (long)h->width; ++i) {
+                double centre[2] = {i + 0.5, j + 0.5};
+                if (i >= 0 && j >= 0 && edge(p[0], p[1], centre) >= 0.0 &&
+                    edge(p[1], p[2], centre) >= 0.0 && edge(p[2], p[0], centre) >= 0.0)
+                    texel_chart[(size_t)j * h->width + (size_t)i] = atlas->charts[t];
+            }
+    }
+    return texel_chart;
+}
+
+/* Whether the bilinear fetch at the hit's UV weighs a texel its chart does
+ * not cover. */
+static int on_seam(const gb_atlas *atlas, const uint32_t *texel_chart, const gb_hit *hit)
+{
+    const gb_atlas_header *h = &atlas->header;
+    const float *uv = atlas->uvs + 6 * (size_t)hit->triangle;
+    double w0 = 1.0 - hit->u - hit->v;
+    double x = (w0 * uv[0] + hit->u * uv[2] + hit->v * uv[4]) * h->width - 0.5;
+    double y = (w0 * uv[1] + hit->u * uv[3] + hit->v * uv[5]) * h->height - 0.5;
+    long i0 = (long)floor(x), j0 = (long)floor(y);
+    for (long j = j0; j <= j0 + 1; ++j)
+        for (long i = i0; i <= i0 + 1; ++i) {
+            long ci = i < 0 ? 0 : i >= (long)h->width ? (long)h->width - 1 : i;
+            long cj = j < 0 ? 0 : j >= (long)h->height ? (long)h->height - 1 : j;
+            if (texel_chart[(size_t)cj * h->width + (size_t)ci] != atlas->charts[hit->triangle])
+                return 1;
+        }
+    return 0;
+}
+
+typedef struct pixel_class {
+    long count;
+    double squared_difference, squared_reference;
+} pixel_class;
+
+static void add_pixel(pixel_class *c, const float *a, const float *b)
+{
+    ++c->count;
+    for (int k = 0; k < 3; ++k) {
+        c->squared_difference += ((double)a[k] - b[k]) * ((double)a[k] - b[k]);
+        c->squared_reference += (double)b[k] * b[k];
+    }
+}
+
+static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image *a,
+                   const gb_image *b, int camera, gb_error *error)
+{
+    gb_camera_frame frame;
+    gb_embree_scene *rays = NULL;
+    uint32_t *texel_chart = covered_texels(atlas);
+    if (!texel_chart ||
+        gb_camera_frame_make(&scene->cameras[camera], a->width, a->height, &frame, error) ||
+        gb_embree_scene_create(scene, 0, &rays, error)) {
+        free(texel_chart);
+        return 0;
+    }
+    pixel_class seam = {0}, inside = {0};
+    uint64_t ray_count = 0;
+    for (int y = 0; y < a->height; ++y)
+        for (int x = 0; x < a->width; ++x) {
+            gb_vec3 direction = gb_camera_direction(&frame, x + 0.5f, y + 0.5f);
+            gb_hit hit;
+            if (!gb_embree_intersect(rays, frame.position, direction, 0.0f, INFINITY, &hit,
+                                     &ray_count))
+                continue;
+            size_t i = ((size_t)y * a->width + x) * (size_t)a->channels;
+            add_pixel(on_seam(atlas, texel_chart, &hit) ? &seam : &inside, a->pixels + i,
+                      b->pixels + i);
+        }
+    printf("seam_pixels %ld\nseam_relative_mse %.6g\nother_pixels %ld\nother_relative_mse %.6g\n",
+           seam.count, seam.squared_difference / fmax(seam.squared_reference, 1e-30),
+           inside.count, inside.squared_difference / fmax(inside.squared_reference, 1e-30));
+    gb_embree_scene_destroy(rays);
+    free(texel_chart);
+    return 1;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 5 && argc != 6) {
+        fprintf(stderr, "usage: atlas_seams SCENE NAME.atlas A.exr B.exr [CAMERA]\n");
+        return 2;
+    }
+    gb_scene scene = {0};
+    gb_atlas atlas = {0};
+    gb_image a = {0}, b = {0};
+    gb_error error = {0};
+    int camera = argc == 6 ? atoi(argv[5]) : 0, ok = 0;
+    if (gb_scene_load(argv[1], NULL, &scene, &error) == GB_OK &&
+        gb_atlas_read(argv[2], &atlas, &error) == GB_OK &&
+        gb_atlas_check_scene(&atlas, scene.hash, scene.triangle_count, argv[2], &error) ==
+            GB_OK &&
+        gb_image_read(argv[3], &a, &error) == GB_OK && gb_image_read(argv[4], &b, &error) == GB_OK) {
+        if (a.width != b.width || a.height != b.height || a.channels < 3 || b.channels < 3)
+            fprintf(stderr, "atlas_seams: the images differ in size or have no RGB\n");
+        else if (camera < 0 || (uint32_t)camera >= scene.camera_count)
+            fprintf(stderr, "atlas_seams: no camera %d\n", camera);
+        else
+            ok = compare(&scene, &atlas, &a, &b, camera, &error);
+    }
+    if (!ok && error.message[0])
+        fprintf(stderr, "atlas_seams: %s\n", error.message);
+    gb_image_free(&a);
+    gb_image_free(&b);
+    gb_atlas_free(&atlas);
+    gb_scene_free(&scene);
+    return ok ? 0 : 1;
+}
