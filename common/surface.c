@@ -4,6 +4,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "scene_triangles.h"
+
 /* 2^-21: 4 to 8 float ulps of the corners' magnitude. A hit point
  * v0 + u e1 + v e2 is off its plane by at most about 2 ulps, the offset
  * origin rounds by half of one more, Embree's test by about 1. Larger
@@ -12,18 +14,6 @@
  * ceiling; the box moved by 1e6 mm gave relative MSE 0.015 against the
  * unmoved box (64x64, 8 spp), 0.0005 with this scale (48x48, 64 spp). */
 #define GB_RAY_OFFSET_SCALE 0x1p-21f
-
-static gb_vec3 corner(const gb_scene *scene, uint32_t t, int k)
-{
-    return gb_vec3_load(&scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + k]]);
-}
-
-/* The unit front normal of triangle t, cross(v1 - v0, v2 - v0). */
-static gb_vec3 triangle_normal(const gb_scene *scene, uint32_t t)
-{
-    gb_vec3 a = corner(scene, t, 0), b = corner(scene, t, 1), c = corner(scene, t, 2);
-    return gb_vec3_normalize(gb_vec3_cross(gb_vec3_sub(b, a), gb_vec3_sub(c, a)));
-}
 
 float gb_ray_offset(float magnitude)
 {
@@ -35,9 +25,9 @@ float gb_ray_offset(float magnitude)
  * point computed on it (robust offsets scaled by the point's magnitude). */
 static float triangle_ray_offset(const gb_scene *scene, uint32_t t)
 {
-    return gb_ray_offset(fmaxf(gb_vec3_max_abs(corner(scene, t, 0)),
-                               fmaxf(gb_vec3_max_abs(corner(scene, t, 1)),
-                                     gb_vec3_max_abs(corner(scene, t, 2)))));
+    return gb_ray_offset(fmaxf(gb_vec3_max_abs(gb_triangle_corner(scene, t, 0)),
+                               fmaxf(gb_vec3_max_abs(gb_triangle_corner(scene, t, 1)),
+                                     gb_vec3_max_abs(gb_triangle_corner(scene, t, 2)))));
 }
 
 /* An earlier material with the same texture file and size, or m itself. */
@@ -91,11 +81,11 @@ gb_result gb_surface_table_build(const gb_scene *scene, gb_surface_table *table,
     }
     for (uint32_t t = 0; t < scene->triangle_count; ++t) {
         gb_triangle_record *r = &table->records[t];
-        gb_vec3 a = corner(scene, t, 0);
+        gb_vec3 a = gb_triangle_corner(scene, t, 0);
         gb_vec3_store(a, r->v0);
-        gb_vec3_store(gb_vec3_sub(corner(scene, t, 1), a), r->e1);
-        gb_vec3_store(gb_vec3_sub(corner(scene, t, 2), a), r->e2);
-        gb_vec3_store(triangle_normal(scene, t), r->normal);
+        gb_vec3_store(gb_vec3_sub(gb_triangle_corner(scene, t, 1), a), r->e1);
+        gb_vec3_store(gb_vec3_sub(gb_triangle_corner(scene, t, 2), a), r->e2);
+        gb_vec3_store(gb_triangle_normal(scene, t), r->normal);
         r->offset = triangle_ray_offset(scene, t);
         r->material = scene->triangle_material[t];
         if (scene->corner_texcoords)

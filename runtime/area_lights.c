@@ -4,6 +4,7 @@
 #include <stdlib.h>
 
 #include "mat4.h"
+#include "scene_triangles.h"
 
 float gb_radical_inverse2(uint32_t i)
 {
@@ -13,11 +14,6 @@ float gb_radical_inverse2(uint32_t i)
     i = ((i & 0x0f0f0f0fu) << 4) | ((i & 0xf0f0f0f0u) >> 4);
     i = ((i & 0x00ff00ffu) << 8) | ((i & 0xff00ff00u) >> 8);
     return (float)(i >> 8) * 0x1p-24f;
-}
-
-static gb_vec3 corner(const gb_scene *scene, uint32_t t, int k)
-{
-    return gb_vec3_load(&scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + k]]);
 }
 
 static double mean_emission(const gb_scene *scene, uint32_t t)
@@ -59,7 +55,7 @@ static uint32_t find_interval(const double *cumulative, uint32_t count, double u
 static gb_vec3 point_on_triangle(const gb_scene *scene, uint32_t t, float u, float v)
 {
     float s = sqrtf(u);
-    gb_vec3 a = corner(scene, t, 0), b = corner(scene, t, 1), c = corner(scene, t, 2);
+    gb_vec3 a = gb_triangle_corner(scene, t, 0), b = gb_triangle_corner(scene, t, 1), c = gb_triangle_corner(scene, t, 2);
     gb_vec3 p = gb_vec3_scale(a, 1.0f - s);
     p = gb_vec3_add(p, gb_vec3_scale(b, s * (1.0f - v)));
     return gb_vec3_add(p, gb_vec3_scale(c, s * v));
@@ -68,9 +64,7 @@ static gb_vec3 point_on_triangle(const gb_scene *scene, uint32_t t, float u, flo
 static void make_emitter(const gb_scene *scene, uint32_t t, double probability, uint32_t count,
                          float u, float v, gb_point_emitter *e)
 {
-    gb_vec3 a = corner(scene, t, 0);
-    gb_vec3 normal = gb_vec3_normalize(gb_vec3_cross(gb_vec3_sub(corner(scene, t, 1), a),
-                                                     gb_vec3_sub(corner(scene, t, 2), a)));
+    gb_vec3 normal = gb_triangle_normal(scene, t);
     gb_vec3 p = point_on_triangle(scene, t, u, v);
     e->position[0] = p.x, e->position[1] = p.y, e->position[2] = p.z;
     e->normal[0] = normal.x, e->normal[1] = normal.y, e->normal[2] = normal.z;

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "mat4.h"
+#include "scene_triangles.h"
 
 typedef struct gpu_vertex {
     float position[3];
@@ -21,41 +22,18 @@ typedef struct gpu_material {
     float Ke[4];
 } gpu_material;
 
-static gb_vec3 corner_position(const gb_scene *scene, uint32_t t, int k)
-{
-    return gb_vec3_load(&scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + k]]);
-}
-
-static gb_vec3 face_normal(const gb_scene *scene, uint32_t t)
-{
-    gb_vec3 a = corner_position(scene, t, 0);
-    gb_vec3 ab = gb_vec3_sub(corner_position(scene, t, 1), a);
-    gb_vec3 ac = gb_vec3_sub(corner_position(scene, t, 2), a);
-    return gb_vec3_normalize(gb_vec3_cross(ab, ac));
-}
-
 static void store3(float out[3], gb_vec3 v)
 {
     out[0] = v.x, out[1] = v.y, out[2] = v.z;
 }
 
-/* The corner normal when it is usable, the face normal otherwise. */
-static gb_vec3 corner_normal(const gb_scene *scene, uint32_t t, int k, gb_vec3 face)
-{
-    if (!scene->corner_normals)
-        return face;
-    const float *normal = &scene->corner_normals[9 * (size_t)t + 3 * k];
-    gb_vec3 n = gb_vec3_normalize(gb_vec3_load(normal));
-    return isfinite(n.x + n.y + n.z) && gb_vec3_length(n) > 0.5f ? n : face;
-}
-
 static void fill_triangle(const gb_scene *scene, uint32_t t, gpu_vertex out[3])
 {
-    gb_vec3 face = face_normal(scene, t);
+    gb_vec3 face = gb_triangle_normal(scene, t);
     for (int k = 0; k < 3; ++k) {
         gpu_vertex *v = &out[k];
-        store3(v->position, corner_position(scene, t, k));
-        store3(v->normal, corner_normal(scene, t, k, face));
+        store3(v->position, gb_triangle_corner(scene, t, k));
+        store3(v->normal, gb_corner_normal(scene, t, k, face));
         store3(v->face_normal, face);
         const float *uv = scene->corner_texcoords ? &scene->corner_texcoords[6 * (size_t)t + 2 * k]
                                                   : NULL;

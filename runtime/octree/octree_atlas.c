@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "gl_util.h"
+#include "scene_triangles.h"
 
 enum { UNIT_ATLAS = 7, UNIT_SEEN_UV = 8 };
 
@@ -45,22 +46,6 @@ static const char display_fragment_shader[] =
 
 /* ---- the corners ---- */
 
-static void face_normal(const gb_scene *scene, uint32_t t, float out[3])
-{
-    const float *p[3];
-    for (int c = 0; c < 3; ++c)
-        p[c] = scene->positions + 3 * (size_t)scene->indices[3 * (size_t)t + c];
-    float e1[3], e2[3];
-    for (int k = 0; k < 3; ++k)
-        e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
-    out[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    out[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    out[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    float length = sqrtf(out[0] * out[0] + out[1] * out[1] + out[2] * out[2]);
-    for (int k = 0; k < 3; ++k)
-        out[k] = length > 0.0f ? out[k] / length : (k == 2);
-}
-
 /* Every triangle corner of the scene, CORNER_FLOATS each; NULL when out of
  * memory. */
 static float *make_corners(const gb_scene *scene, const gb_atlas *atlas)
@@ -69,18 +54,13 @@ static float *make_corners(const gb_scene *scene, const gb_atlas *atlas)
     if (!corners)
         return NULL;
     for (uint32_t t = 0; t < scene->triangle_count; ++t) {
-        float face[3];
-        face_normal(scene, t, face);
+        gb_vec3 face = gb_triangle_normal(scene, t);
         for (int c = 0; c < 3; ++c) {
             float *out = corners + ((size_t)t * 3 + c) * CORNER_FLOATS;
-            const float *position = scene->positions + 3 * (size_t)scene->indices[3 * t + c];
-            const float *normal = scene->corner_normals
-                                      ? scene->corner_normals + 9 * (size_t)t + 3 * c
-                                      : face;
             memcpy(out, atlas->uvs + 6 * (size_t)t + 2 * c, 2 * sizeof *out);
-            memcpy(out + 2, position, 3 * sizeof *out);
-            memcpy(out + 5, normal, 3 * sizeof *out);
-            memcpy(out + 8, face, 3 * sizeof *out);
+            gb_vec3_store(gb_triangle_corner(scene, t, c), out + 2);
+            gb_vec3_store(gb_corner_normal(scene, t, c, face), out + 5);
+            gb_vec3_store(face, out + 8);
         }
     }
     return corners;

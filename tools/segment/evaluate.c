@@ -8,6 +8,7 @@
 #include "embree_scene.h"
 #include "gate_pairs.h"
 #include "random.h"
+#include "scene_triangles.h"
 #include "segment.h"
 
 /* Pairs whose cosine at either end is below this exchange no light: drawn again. */
@@ -74,7 +75,7 @@ static surface_point sample_point(const evaluation *ev, gb_random *rng)
     float b1 = su * (1.0f - u2), b2 = su * u2;
     surface_point p;
     p.position = gb_vec3_madd(gb_vec3_madd(a, gb_vec3_sub(b, a), b1), gb_vec3_sub(c, a), b2);
-    p.normal = gb_vec3_normalize(gb_vec3_cross(gb_vec3_sub(b, a), gb_vec3_sub(c, a)));
+    p.normal = gb_triangle_normal(scene, t);
     return p;
 }
 
