@@ -184,6 +184,19 @@ int gb_gl_target_resize(gb_gl_target *target, GLenum color_format, int width, in
     return 1;
 }
 
+int gb_gl_target_stale(gb_gl_target *target, GLenum color_format, int width, int height,
+                       const float view[16], const float projection[16])
+{
+    int made = gb_gl_target_resize(target, color_format, width, height);
+    if (!made && target->drawn && !memcmp(target->view, view, sizeof target->view) &&
+        !memcmp(target->projection, projection, sizeof target->projection))
+        return 0;
+    target->drawn = 1;
+    memcpy(target->view, view, sizeof target->view);
+    memcpy(target->projection, projection, sizeof target->projection);
+    return 1;
+}
+
 void gb_gl_target_release(gb_gl_target *target)
 {
     if (target->framebuffer)

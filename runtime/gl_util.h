@@ -74,6 +74,8 @@ GLuint gb_gl_texture_2d(GLenum internal_format, int width, int height);
 typedef struct gb_gl_target {
     GLuint framebuffer, color, depth;
     int width, height;
+    int drawn;                  /* gb_gl_target_stale: drawn from view, projection */
+    float view[16], projection[16];
 } gb_gl_target;
 
 /* Makes target width x height with a colour texture of color_format,
@@ -81,6 +83,12 @@ typedef struct gb_gl_target {
  * are then undefined), 0 when it kept it. */
 int gb_gl_target_resize(gb_gl_target *target, GLenum color_format, int width, int height);
 void gb_gl_target_release(gb_gl_target *target);
+/* For a target that shows the static scene from a view: makes it as
+ * gb_gl_target_resize does, and returns 1 when it must be drawn (it was
+ * just made, or it was last drawn from another view or projection, which it
+ * then records as its own), 0 when what it holds is still right. */
+int gb_gl_target_stale(gb_gl_target *target, GLenum color_format, int width, int height,
+                       const float view[16], const float projection[16]);
 
 /* Binds target for a pass that draws geometry into it: its depth cleared to
  * far (0: the runtime's depth is reversed), the viewport its size, blending

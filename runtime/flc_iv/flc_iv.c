@@ -40,8 +40,6 @@ typedef struct flc_iv_state {
     GLuint depths_buffer, centres_buffer;
     GLuint position_buffer, element_buffer, index_buffer, vertex_array, elements_program;
     gb_gl_target element_ids;   /* R32UI, with its depth */
-    int drawn;                  /* the element ids are those of last_view */
-    gb_mat4 last_view, last_projection;
 } flc_iv_state;
 
 static void flc_iv_destroy(void *state)
@@ -195,14 +193,9 @@ static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_
  * only when the view or the size changed (the scene is static). */
 static void draw_element_ids(flc_iv_state *s, const gb_indirect_frame *frame)
 {
-    if (gb_gl_target_resize(&s->element_ids, GL_R32UI, frame->width, frame->height))
-        s->drawn = 0;
-    if (s->drawn && !memcmp(&s->last_view, frame->view_matrix, sizeof s->last_view) &&
-        !memcmp(&s->last_projection, frame->projection, sizeof s->last_projection))
+    if (!gb_gl_target_stale(&s->element_ids, GL_R32UI, frame->width, frame->height,
+                            frame->view_matrix->m, frame->projection->m))
         return;
-    s->drawn = 1;
-    s->last_view = *frame->view_matrix;
-    s->last_projection = *frame->projection;
     const GLuint none[4] = {NO_ELEMENT, 0, 0, 0};
     glClearNamedFramebufferuiv(s->element_ids.framebuffer, GL_COLOR, 0, none);
     gb_gl_target_begin_geometry(&s->element_ids);

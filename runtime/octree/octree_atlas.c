@@ -21,8 +21,6 @@ struct gb_octree_atlas {
     GLsizei corner_count;
     GLuint uv_program, display_program, empty_vertex_array;
     gb_gl_target seen_uv;       /* RG32F: the atlas UV at each pixel, -1 for none */
-    int drawn;
-    gb_mat4 last_view, last_projection;
 };
 
 static const char render_vertex_shader[] =
@@ -221,14 +219,9 @@ gb_result gb_octree_atlas_create(const gb_scene *scene, const gb_atlas *atlas,
  * size changed (the scene is static). */
 static void draw_seen_uv(gb_octree_atlas *s, const gb_indirect_frame *frame)
 {
-    if (gb_gl_target_resize(&s->seen_uv, GL_RG32F, frame->width, frame->height))
-        s->drawn = 0;
-    if (s->drawn && !memcmp(&s->last_view, frame->view_matrix, sizeof s->last_view) &&
-        !memcmp(&s->last_projection, frame->projection, sizeof s->last_projection))
+    if (!gb_gl_target_stale(&s->seen_uv, GL_RG32F, frame->width, frame->height,
+                            frame->view_matrix->m, frame->projection->m))
         return;
-    s->drawn = 1;
-    s->last_view = *frame->view_matrix;
-    s->last_projection = *frame->projection;
     static const float none[4] = {-1, -1, 0, 0};
     glClearNamedFramebufferfv(s->seen_uv.framebuffer, GL_COLOR, 0, none);
     gb_gl_target_begin_geometry(&s->seen_uv);
