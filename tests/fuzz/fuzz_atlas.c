@@ -59,13 +59,6 @@ static void parse(const unsigned char *aligned, size_t size)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    unsigned char *aligned = aligned_alloc(16, (size + 16) & ~(size_t)15);
-    if (!aligned)
-        return 0;
-    memcpy(aligned, data, size);
-    parse(aligned, size);
-    gb_fuzz_fix_container_checksums(aligned, size);
-    parse(aligned, size);
-    free(aligned);
+    gb_fuzz_parse_twice(data, size, parse);
     return 0;
 }
