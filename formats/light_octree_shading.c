@@ -1,0 +1,86 @@
+/* light_octree_shading.c — the light octree's irradiance at a point, the
+ * CPU twin of runtime/octree/octree_irradiance.glsl (light_octree_shading.h).
+ * Each function is named after the shader's and does what it does. */
+#include "light_octree_shading.h"
+
+#include <math.h>
+
+#include "photon_map.h"
+
+/* find_leaf: the leaf of integer cell, or GB_LIGHT_OCTREE_NONE; depth node
+ * fetches from the root. */
+static uint32_t find_leaf(const gb_light_octree *octree, const int cell[3])
+{
+    int depth = (int)octree->header.depth, resolution = 1 << depth;
+    for (int k = 0; k < 3; ++k)
+        if (cell[k] < 0 || cell[k] >= resolution)
+            return GB_LIGHT_OCTREE_NONE;
+    uint32_t node = 0;
+    for (int level = 0; level < depth; ++level) {
+        int shift = depth - 1 - level;
+        int child = (cell[0] >> shift & 1) | (cell[1] >> shift & 1) << 1 |
+                    (cell[2] >> shift & 1) << 2;
+        node = octree->nodes[node].child[child];
+        if (node == GB_LIGHT_OCTREE_NONE)
+            return GB_LIGHT_OCTREE_NONE;
+    }
+    return node;
+}
+
+static float dot3(const float a[3], const float b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* leaf_light: the sum of the leaf's VDLs, E max(0, n.w) / max(|nl.w|,
+ * MIN_COS), those from behind ng dropped; 0 (and sum 0) for no leaf or a
+ * leaf without VDLs, else 1. */
+static int leaf_light(const gb_light_octree *octree, uint32_t index, const float n[3],
+                      const float ng[3], float sum[3])
+{
+    sum[0] = sum[1] = sum[2] = 0.0f;
+    if (index == GB_LIGHT_OCTREE_NONE || octree->leaves[index].vdl_count == 0)
+        return 0;
+    const gb_light_octree_leaf *leaf = &octree->leaves[index];
+    for (uint32_t i = leaf->first_vdl; i < leaf->first_vdl + leaf->vdl_count; ++i) {
+        const gb_light_octree_vdl *vdl = &octree->vdls[i];
+        float w[3];
+        gb_photon_unpack_direction(vdl->direction, w);
+        float c = dot3(n, w) / fmaxf(fabsf(dot3(leaf->normal, w)), GB_LIGHT_OCTREE_MIN_COS);
+        if (c > 0.0f && dot3(ng, w) > 0.0f)
+            for (int k = 0; k < 3; ++k)
+                sum[k] += vdl->irradiance[k] * c;
+    }
+    return 1;
+}
+
+/* interpolate: trilinear between the 8 leaf centres around x, over those
+ * with VDLs, each weight at least MIN_WEIGHT. */
+void gb_light_octree_irradiance(const gb_light_octree *octree, const float x[3],
+                                const float n[3], const float ng[3], float out_rgb[3])
+{
+    const gb_light_octree_header *h = &octree->header;
+    float cell_size = h->size / (float)(1u << h->depth);
+    float base[3], f[3], total[3] = {0.0f, 0.0f, 0.0f}, weight = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+        float g = (x[k] - h->origin[k]) / cell_size - 0.5f;
+        base[k] = floorf(g);
+        f[k] = g - base[k];
+    }
+    for (int c = 0; c < 8; ++c) {
+        int o[3] = {c & 1, (c >> 1) & 1, c >> 2}, cell[3];
+        float t = 1.0f, sum[3];
+        for (int k = 0; k < 3; ++k) {
+            t *= o[k] ? f[k] : 1.0f - f[k];
+            cell[k] = (int)base[k] + o[k];
+        }
+        float w = fmaxf(t, GB_LIGHT_OCTREE_MIN_WEIGHT);
+        if (leaf_light(octree, find_leaf(octree, cell), n, ng, sum)) {
+            for (int k = 0; k < 3; ++k)
+                total[k] += w * sum[k];
+            weight += w;
+        }
+    }
+    for (int k = 0; k < 3; ++k)
+        out_rgb[k] = weight > 0.0f ? total[k] / weight : 0.0f;
+}

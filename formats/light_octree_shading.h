@@ -1,0 +1,36 @@
+/* light_octree_shading.h — the light octree's irradiance at a surface
+ * point, on the CPU: the twin of runtime/octree/octree_irradiance.glsl's
+ * interpolate(x, n, ng), which the octree display and the render into the
+ * atlas evaluate on the GPU (vivianloc-2007 §4.2; the convention is
+ * runtime/octree/octree.h's). `lightmap` bakes it per atlas texel; the
+ * display's radiance is Kd / π times it.
+ *
+ * At x, the 8 leaf cells whose centres surround x (the cell grid shifted by
+ * half a cell), each found from the root (δ node fetches); a cell that has
+ * a leaf with VDLs gives
+ *     sum = Σ E · c   over its VDLs with c > 0 and ng·ω > 0,
+ *     c   = n·ω / max(|n_leaf·ω|, MIN_COS),
+ * ω a VDL's direction (octahedral 2 x 16 bits, decoded as the GPU does),
+ * E its irradiance. The result is Σ w sum / Σ w over those cells, w the
+ * trilinear weight at least MIN_WEIGHT (the holes of Fig. 16c: cells
+ * without a leaf or without VDLs get no weight); 0 when none of the 8 has
+ * VDLs. Same constants, same order of operations, in float, as the shader:
+ * the two agree to float rounding (tests/unit/test_light_octree_shading.c).
+ *
+ * Preconditions: the octree passed gb_light_octree_check; n (shading) and
+ * ng (geometric) are unit, n on ng's side. Nothing is allocated; the
+ * caller owns every argument. Thread-safe (reads only).
+ */
+#ifndef GB_LIGHT_OCTREE_SHADING_H
+#define GB_LIGHT_OCTREE_SHADING_H
+
+#include "light_octree.h"
+
+#define GB_LIGHT_OCTREE_MIN_COS 0.25f       /* bounds a grazing VDL's gain (x4) */
+#define GB_LIGHT_OCTREE_MIN_WEIGHT 1e-6f    /* a leaf centre without VDLs is not black */
+
+/* out_rgb = the irradiance (W/m^2, linear RGB) the octree gives at x. */
+void gb_light_octree_irradiance(const gb_light_octree *octree, const float x[3],
+                                const float n[3], const float ng[3], float out_rgb[3]);
+
+#endif

@@ -1,0 +1,208 @@
+#!/bin/sh
+# lightmap.t — lightmap (the light octree baked into the atlas,
+# vivianloc-2007 §4.2.3) on the Cornell box: photons and cluster bake
+# cornell.lot, atlas cornell.atlas, lightmap the EXR and the glTF binary.
+# Readers written apart from gibake's C (lightmap_check.py: the GLB, its
+# PNG, the .lot and the octree's irradiance in double) check that every
+# sampled texel is the octree's irradiance at its point, and that the
+# embedded PNG, decoded with the scale its material's extras give, is the
+# EXR within 10^-3 relative MSE, over the whole image and at each
+# triangle's TEXCOORD_1; the Khronos glTF validator finds 0 errors. The
+# files do not depend on --threads; usage errors, the atlas or octree of
+# another scene and a bad output are clear errors that leave no file.
+# Prints TAP.
+#
+# GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the
+# repository; GLTF_VALIDATOR: the npm package gltf-validator's folder
+# (default build/node/node_modules/gltf-validator, which
+# `npm install --prefix build/node gltf-validator` makes).
+
+. "$(dirname "$0")/tap.sh"
+tool=$GB_BIN/lightmap
+scene=$GB_ROOT/scenes/cornell/cornell.scene
+check=$GB_ROOT/tests/cli/lightmap_check.py
+validate=$GB_ROOT/tests/cli/gltf_validate.mjs
+validator=${GLTF_VALIDATOR:-$GB_ROOT/build/node/node_modules/gltf-validator}
+
+needs lightmap atlas photons cluster
+
+# ---- the command line ----
+"$tool" --help >"$dir/out" 2>&1
+ok "$([ $? = 0 ] && grep -q '^usage: lightmap' "$dir/out"; echo $?)" "--help: usage on stdout"
+"$tool" --version >"$dir/out" 2>&1
+ok "$([ $? = 0 ] && grep -q '^lightmap (gibake)' "$dir/out"; echo $?)" "--version"
+expect_failure "no operands" 2 "expected SCENE NAME.atlas NAME.lot and -o OUT.exr"
+expect_failure "no -o" 2 "expected SCENE" "$scene" a.atlas a.lot
+expect_failure "--threads 0" 2 "threads: '0' is not an integer" -t 0 "$scene" a.atlas a.lot \
+    -o "$dir/x.exr"
+expect_failure "unknown option" 2 "unknown option '--frobnicate'" --frobnicate
+
+# ---- the bake ----
+"$GB_BIN/photons" -n 200000 --quiet "$scene" -o "$dir/cornell.phot" 2>"$dir/err" &&
+    "$GB_BIN/cluster" --depth 5 --quiet "$scene" "$dir/cornell.phot" -o "$dir/cornell.lot" \
+        2>>"$dir/err" &&
+    "$GB_BIN/atlas" --size 128 --quiet "$scene" -o "$dir/cornell.atlas" 2>>"$dir/err"
+status=$?
+[ $status = 0 ] || sed 's/^/# /' "$dir/err"
+ok $status "photons, cluster --depth 5 and atlas --size 128 bake the Cornell box"
+
+"$tool" --quiet --stats -t 2 "$scene" "$dir/cornell.atlas" "$dir/cornell.lot" \
+    -o "$dir/a.exr" --glb "$dir/a.glb" --depfile "$dir/a.d" >"$dir/stats" 2>"$dir/err"
+status=$?
+[ $status = 0 ] || sed 's/^/# /' "$dir/err"
+ok $status "lightmap writes the EXR and the glTF binary"
+sed 's/^/# /' "$dir/stats"
+ok "$([ "$(value width "$dir/stats")" = 128 ] && [ "$(value height "$dir/stats")" = 128 ]; \
+    echo $?)" "the lightmap has the atlas's size"
+ok "$(below 0 "$(value covered_texels "$dir/stats")" &&
+    below 0 "$(value gutter_texels "$dir/stats")"; echo $?)" "texels covered and a gutter"
+ok "$(grep -q 'cornell.atlas' "$dir/a.d" && grep -q 'cornell.lot' "$dir/a.d" &&
+    grep -q 'cornell.obj' "$dir/a.d"; echo $?)" "--depfile names the scene, the atlas and the octree"
+
+"$tool" --quiet -t 1 "$scene" "$dir/cornell.atlas" "$dir/cornell.lot" -o "$dir/b.exr" \
+    --glb "$dir/b.glb" 2>/dev/null
+ok "$(cmp -s "$dir/a.exr" "$dir/b.exr" && cmp -s "$dir/a.glb" "$dir/b.glb"; echo $?)" \
+    "1 thread or 2: byte-identical EXR and glTF binary"
+
+# ---- the values, read back apart from gibake ----
+if command -v python3 >/dev/null && command -v oiiotool >/dev/null; then
+    oiiotool --dumpdata "$dir/a.exr" >"$dir/a.txt" &&
+        python3 "$check" "$dir/a.glb" "$dir/cornell.lot" "$dir/a.txt" >"$dir/check" 2>"$dir/err"
+    status=$?
+    [ $status = 0 ] || sed 's/^/# /' "$dir/err"
+    ok $status "lightmap_check.py reads the GLB, its PNG, the octree and the EXR"
+    sed 's/^/# /' "$dir/check"
+    # Measured: 1.9e-6 (the C in float, the check in double).
+    ok "$(below 100 "$(value texels "$dir/check")" &&
+        below "$(value octree_max_relative "$dir/check")" 1e-4; echo $?)" \
+        "every sampled texel is the octree's irradiance at its point, within 10^-4"
+    # Measured: 9.8e-6 whole, 5.1e-6 at the centroids (8-bit sRGB of lightmap / scale).
+    ok "$(below "$(value png_relative_mse "$dir/check")" 1e-3; echo $?)" \
+        "the PNG decoded with its scale: the EXR within 10^-3 relative MSE"
+    ok "$(below "$(value sample_relative_mse "$dir/check")" 1e-3; echo $?)" \
+        "sampled at each triangle's TEXCOORD_1: the EXR within 10^-3 relative MSE"
+    ok "$([ "$(value png_relative_mse "$dir/check")" = "$(value png_relative_mse "$dir/stats")" ];
+        echo $?)" "the tool's own PNG error (--stats) is the one measured here"
+else
+    missing "python3 and oiiotool (openimageio-tools)"
+fi
+
+if command -v node >/dev/null && [ -d "$validator" ]; then
+    node "$validate" "$dir/a.glb" "$validator" >"$dir/valid" 2>&1
+    status=$?
+    sed 's/^/# /' "$dir/valid"
+    ok "$([ $status = 0 ] && [ "$(value errors "$dir/valid")" = 0 ]; echo $?)" \
+        "the Khronos glTF validator: 0 errors"
+else
+    missing "node and gltf-validator ($validator: npm install --prefix build/node gltf-validator)"
+fi
+
+# ---- textures: a PNG embedded as it is, an EXR encoded as PNG ----
+cat >"$dir/tf.obj" <<'EOF2'
+mtllib tf.mtl
+v -2 0 -2
+v 0 0 -2
+v 0 0 2
+v -2 0 2
+v 2 0 -2
+v 2 0 2
+vt 0 0
+vt 1 0
+vt 1 1
+vt 0 1
+usemtl png
+f 1/1 3/3 2/2
+f 1/1 4/4 3/3
+usemtl exr
+f 2/1 3/4 6/3
+f 2/1 6/3 5/2
+EOF2
+printf 'newmtl png\nKd 0.8 0.8 0.8\nmap_Kd tex.png\nnewmtl exr\nKd 0.5 0.6 0.7\nmap_Kd tex.exr\n' \
+    >"$dir/tf.mtl"
+printf 'gibake-scene 1\nmesh tf.obj\nlight directional direction 0.6 -0.8 0 irradiance 2 2 2\n' \
+    >"$dir/tf.scene"
+oiiotool --pattern checker:width=4:height=4 16x16 3 -o "$dir/tex.png" 2>"$dir/err" &&
+    oiiotool --pattern fill:top=0.8,0.2,0.1:bottom=0.1,0.3,0.9 16x16 3 -d float \
+        -o "$dir/tex.exr" 2>>"$dir/err" &&
+    "$GB_BIN/photons" -q -n 20000 --store all "$dir/tf.scene" -o "$dir/tf.phot" 2>>"$dir/err" &&
+    "$GB_BIN/cluster" -q --depth 4 "$dir/tf.scene" "$dir/tf.phot" -o "$dir/tf.lot" \
+        2>>"$dir/err" &&
+    "$GB_BIN/atlas" -q --size 64 "$dir/tf.scene" -o "$dir/tf.atlas" 2>>"$dir/err" &&
+    "$tool" -q "$dir/tf.scene" "$dir/tf.atlas" "$dir/tf.lot" -o "$dir/tf.exr" \
+        --glb "$dir/tf.glb" 2>>"$dir/err"
+status=$?
+[ $status = 0 ] || sed 's/^/# /' "$dir/err"
+ok $status "a textured scene (a PNG and an EXR map_Kd) exported"
+python3 - "$dir/tf.glb" "$dir/tex.png" >"$dir/tf" 2>&1 <<'EOF2'
+import json, struct, sys
+data = open(sys.argv[1], 'rb').read()
+size = struct.unpack_from('<I', data, 12)[0]
+doc, binary = json.loads(data[20:20 + size]), data[28 + size:]
+def view(i):
+    v = doc['bufferViews'][i]
+    return binary[v.get('byteOffset', 0):v.get('byteOffset', 0) + v['byteLength']]
+print('images', len(doc['images']))
+print('png_mimes', sum(i['mimeType'] == 'image/png' and view(i['bufferView'])[:4] == b'\x89PNG'
+                       for i in doc['images']))
+print('png_as_is', int(view(doc['images'][1]['bufferView']) == open(sys.argv[2], 'rb').read()))
+print('textured', sum('baseColorTexture' in m['pbrMetallicRoughness'] for m in doc['materials']))
+a = doc['meshes'][0]['primitives'][0]['attributes']
+def floats(i, width):
+    acc = doc['accessors'][i]
+    values = struct.unpack_from('<%df' % (acc['count'] * width), view(acc['bufferView']))
+    return [values[k:k + width] for k in range(0, len(values), width)]
+corner = [t for p, t in zip(floats(a['POSITION'], 3), floats(a['TEXCOORD_0'], 2))
+          if p == (-2.0, 0.0, -2.0)]
+print('texcoord0_flipped', int(corner == [(0.0, 1.0)]))
+EOF2
+sed 's/^/# /' "$dir/tf"
+ok "$([ "$(value images "$dir/tf")" = 3 ] && [ "$(value png_mimes "$dir/tf")" = 3 ] &&
+    [ "$(value textured "$dir/tf")" = 2 ]; echo $?)" \
+    "the lightmap and both textures embedded as PNG, each material textured"
+ok "$([ "$(value png_as_is "$dir/tf")" = 1 ]; echo $?)" "the PNG texture embedded byte for byte"
+ok "$([ "$(value texcoord0_flipped "$dir/tf")" = 1 ]; echo $?)" \
+    "TEXCOORD_0: the OBJ's v flipped to glTF's (vt 0 0 -> 0 1)"
+if command -v node >/dev/null && [ -d "$validator" ]; then
+    node "$validate" "$dir/tf.glb" "$validator" >"$dir/valid" 2>&1
+    status=$?
+    sed 's/^/# /' "$dir/valid"
+    ok "$([ $status = 0 ] && [ "$(value errors "$dir/valid")" = 0 ]; echo $?)" \
+        "the textured scene's glTF binary: 0 errors"
+else
+    missing "node and gltf-validator"
+fi
+
+# ---- inputs of another scene, a bad output ----
+cat >"$dir/floor.obj" <<'EOF2'
+v -2 0 -2
+v 2 0 -2
+v 2 0 2
+v -2 0 2
+f 1 3 2
+f 1 4 3
+EOF2
+cat >"$dir/floor.scene" <<'EOF2'
+gibake-scene 1
+mesh floor.obj
+light directional direction 0.6 -0.8 0 irradiance 2 2 2
+EOF2
+"$GB_BIN/atlas" --size 32 --quiet "$dir/floor.scene" -o "$dir/floor.atlas" 2>"$dir/err"
+ok $? "atlas of a floor"
+expect_failure "the atlas of another scene" 1 "floor.atlas: .*another scene" \
+    --quiet "$scene" "$dir/floor.atlas" "$dir/cornell.lot" -o "$dir/stale.exr"
+ok "$([ ! -e "$dir/stale.exr" ]; echo $?)" "the atlas of another scene: no EXR"
+"$GB_BIN/photons" -q -n 2000 --store all "$dir/floor.scene" -o "$dir/floor.phot" 2>/dev/null &&
+    "$GB_BIN/cluster" -q --depth 3 "$dir/floor.scene" "$dir/floor.phot" -o "$dir/floor.lot" \
+        2>/dev/null
+expect_failure "the octree of another scene" 1 "floor.lot: .*another scene" \
+    --quiet "$scene" "$dir/cornell.atlas" "$dir/floor.lot" -o "$dir/stale.exr" \
+    --glb "$dir/stale.glb"
+ok "$([ ! -e "$dir/stale.exr" ] && [ ! -e "$dir/stale.glb" ]; echo $?)" \
+    "the octree of another scene: no EXR, no glTF binary"
+expect_failure "an output that names no image format" 1 "x.txt: unknown image format" \
+    --quiet "$scene" "$dir/cornell.atlas" "$dir/cornell.lot" -o "$dir/x.txt"
+expect_failure "a missing atlas" 1 "nothing.atlas" \
+    --quiet "$scene" "$dir/nothing.atlas" "$dir/cornell.lot" -o "$dir/none.exr"
+ok "$([ ! -e "$dir/none.exr" ]; echo $?)" "a missing atlas: no EXR"
+
+tap_done

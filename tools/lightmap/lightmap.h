@@ -1,0 +1,59 @@
+/* lightmap.h — the light octree baked into the atlas, on the CPU
+ * (vivianloc-2007 §4.2.3, Figure 1: the render-to-texture stage, here
+ * without a GPU, so that other engines can load the result):
+ *
+ *   texel_cover.c   which triangle covers each texel's centre (each
+ *                   triangle rasterised at its atlas UVs)
+ *   lightmap.c      per covered texel, the octree's irradiance at its world
+ *                   point (light_octree_shading.h), on a work queue of rows
+ *   gutter.c        the texels around the charts filled from their covered
+ *                   neighbours (the padding), so bilinear reads never reach
+ *                   black
+ *   glb_export.c    the scene with the lightmap as a glTF 2.0 binary
+ *
+ * A texel holds the irradiance E, without Kd / π: the viewer multiplies the
+ * albedo (textured or not) at display, so textures keep their resolution.
+ *
+ * Decided here: the geometric normal is the face normal of the triangle's
+ * winding, cross(v1 - v0, v2 - v0), and the shading normal (the corner
+ * normals interpolated, else the face normal) is turned to its side, as the
+ * runtime's render into the atlas does (runtime/octree/octree_atlas.h): a
+ * texel has one side. The gutter follows the runtime's too: `padding`
+ * rounds, each filling every uncovered texel that has a filled neighbour
+ * with the mean of its filled 8 neighbours; texels further out stay 0.
+ *
+ * The caller owns the scene, the atlas, the octree (checked against the
+ * scene before the call) and the image it gets (gb_image_free).
+ */
+#ifndef GB_LIGHTMAP_H
+#define GB_LIGHTMAP_H
+
+#include <stdint.h>
+
+#include "atlas.h"
+#include "image.h"
+#include "light_octree.h"
+#include "progress.h"
+#include "result.h"
+#include "scene.h"
+
+typedef struct gb_lightmap_options {
+    int threads;                    /* 0: every core */
+    gb_progress_callback progress;  /* may be NULL */
+    void *progress_user;
+} gb_lightmap_options;
+
+typedef struct gb_lightmap_stats {
+    uint64_t covered;               /* texels whose centre a triangle covers */
+    uint64_t gutter;                /* texels the gutter filled */
+    int threads;
+    double seconds;
+} gb_lightmap_stats;
+
+/* image: width x height of the atlas, 3 channels (linear RGB irradiance,
+ * W/m^2), row 0 the atlas's row 0. stats may be NULL. */
+gb_result gb_lightmap_bake(const gb_scene *scene, const gb_atlas *atlas,
+                           const gb_light_octree *octree, const gb_lightmap_options *options,
+                           gb_image *image, gb_lightmap_stats *stats, gb_error *error);
+
+#endif

@@ -1,0 +1,208 @@
+/* lightmap — the light octree baked into the atlas as an EXR, and the
+ * scene with it as a glTF binary (lightmap.h, glb_export.h). */
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "atlas.h"
+#include "cli.h"
+#include "depfile.h"
+#include "glb_export.h"
+#include "image.h"
+#include "light_octree.h"
+#include "lightmap.h"
+#include "output_file.h"
+#include "progress.h"
+#include "scene.h"
+#include "scene_warnings.h"
+
+static const char usage[] =
+    "usage: lightmap [options] SCENE NAME.atlas NAME.lot -o OUT.exr [--glb OUT.glb]\n"
+    "Bakes the light octree NAME.lot of SCENE into its atlas NAME.atlas\n"
+    "(vivianloc-2007 4.2.3): per texel, the octree's irradiance at the point of\n"
+    "the triangle covering the texel's centre, trilinear as the octree display\n"
+    "does (W/m^2, linear RGB, without the albedo: a viewer multiplies Kd / pi),\n"
+    "then a gutter of the atlas's padding around every chart. Writes a linear\n"
+    "float EXR and, with --glb, the scene as a glTF 2.0 binary with the atlas\n"
+    "UVs as TEXCOORD_1 and the lightmap as an embedded PNG (formats/FORMATS.md,\n"
+    "\"glTF export\"). The files depend on the inputs only, never on --threads.\n"
+    "\n"
+    "  -o, --output FILE       the lightmap to write (.exr)\n"
+    "      --glb FILE          also the scene as a glTF binary (.glb)\n"
+    "  -t, --threads N         threads (default: every core)\n"
+    "      --stats             print texels, seconds, bytes and the PNG's error\n"
+    "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
+    "  -q, --quiet             no progress bar, no warnings\n"
+    "  -h, --help              this help\n"
+    "  -V, --version           the version\n";
+
+typedef struct arguments {
+    gb_lightmap_options lightmap;
+    const char *output, *glb, *scene, *atlas, *octree, *depfile;
+    int quiet, stats;
+} arguments;
+
+enum { OPTION_GLB = 256, OPTION_STATS, OPTION_DEPFILE };
+
+static const struct option long_options[] = {
+    GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("glb", OPTION_GLB),
+    GB_CLI_VALUE("threads", 't'),
+    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
+    GB_CLI_OPTIONS_END,
+};
+
+/* One option into a; 0, else the exit status. */
+static int parse_option(int option, const char *text, void *context)
+{
+    arguments *a = context;
+    switch (option) {
+    case 'o': a->output = text; return 0;
+    case 'q': a->quiet = 1; return 0;
+    case OPTION_GLB: a->glb = text; return 0;
+    case OPTION_STATS: a->stats = 1; return 0;
+    case OPTION_DEPFILE: a->depfile = text; return 0;
+    default: return gb_cli_int("lightmap", "threads", text, 1, 256, &a->lightmap.threads);
+    }
+}
+
+/* SCENE NAME.atlas NAME.lot, and -o; GB_CLI_GO_ON, else the exit status. */
+static int check_operands(int count, char **operands, void *context)
+{
+    arguments *a = context;
+    if (!a->output || count != 3)
+        return gb_cli_usage_error("lightmap", "expected SCENE NAME.atlas NAME.lot and -o "
+                                              "OUT.exr");
+    a->scene = operands[0];
+    a->atlas = operands[1];
+    a->octree = operands[2];
+    return GB_CLI_GO_ON;
+}
+
+static const gb_cli_command command = {"lightmap", usage, long_options, parse_option,
+                                       check_operands};
+
+static long file_bytes(const char *path)
+{
+    FILE *file = fopen(path, "rb");
+    long size = -1;
+    if (file && fseek(file, 0, SEEK_END) == 0)
+        size = ftell(file);
+    if (file)
+        fclose(file);
+    return size;
+}
+
+static void print_stats(const arguments *a, const gb_lightmap_stats *s,
+                        const gb_glb_export_stats *g, const gb_atlas *atlas)
+{
+    printf("width %u\nheight %u\ncovered_texels %llu\ngutter_texels %llu\nthreads %d\n"
+           "seconds %.3f\nbytes %ld\n", atlas->header.width, atlas->header.height,
+           (unsigned long long)s->covered, (unsigned long long)s->gutter, s->threads,
+           s->seconds, file_bytes(a->output));
+    if (a->glb)
+        printf("glb_vertices %llu\nglb_primitives %u\nglb_scale %.9g\npng_relative_mse %.3g\n"
+               "glb_seconds %.3f\nglb_bytes %ld\n", (unsigned long long)g->vertices,
+               g->primitives, g->scale, g->png_relative_mse, g->seconds, file_bytes(a->glb));
+}
+
+/* Every output writable and named as its format wants, before any work. */
+static gb_result check_outputs(const arguments *a, gb_error *error)
+{
+    gb_result result = gb_image_check_output(a->output, error);
+    if (result == GB_OK && a->glb)
+        result = gb_output_file_check(a->glb, error);
+    if (result == GB_OK && a->depfile)
+        result = gb_output_file_check(a->depfile, error);
+    return result;
+}
+
+static gb_result read_inputs(const arguments *a, gb_scene *scene, gb_atlas *atlas,
+                             gb_light_octree *octree, gb_error *error)
+{
+    gb_result result = gb_scene_load(a->scene, NULL, scene, error);
+    if (result == GB_OK && !a->quiet)
+        gb_scene_warn("lightmap", scene, GB_WARN_GEOMETRY);
+    if (result == GB_OK)
+        result = gb_atlas_read(a->atlas, atlas, error);
+    if (result == GB_OK)
+        result = gb_atlas_check_scene(atlas, scene->hash, scene->triangle_count, a->atlas,
+                                      error);
+    if (result == GB_OK)
+        result = gb_light_octree_read(a->octree, octree, error);
+    if (result == GB_OK)
+        result = gb_light_octree_check_scene(octree, scene->hash, a->octree, error);
+    return result;
+}
+
+static gb_result bake(arguments *a, const gb_scene *scene, const gb_atlas *atlas,
+                      const gb_light_octree *octree, gb_image *image,
+                      gb_lightmap_stats *stats, gb_error *error)
+{
+    gb_progress progress;
+    gb_progress_begin_for(&progress, "lightmap", a->quiet, &a->lightmap.progress,
+                          &a->lightmap.progress_user);
+    gb_result result = gb_lightmap_bake(scene, atlas, octree, &a->lightmap, image, stats, error);
+    gb_progress_end(&progress);
+    return result;
+}
+
+/* The make rule: the EXR from the scene's files, the atlas, the octree and
+ * the textures the glTF embedded. */
+static gb_result write_depfile(const arguments *a, const gb_scene *scene, gb_error *error)
+{
+    const char **inputs = malloc((scene->input_count + 2 + scene->material_count) *
+                                 sizeof *inputs);
+    if (!inputs)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "lightmap: out of memory");
+    uint32_t count = 0;
+    for (uint32_t i = 0; i < scene->input_count; ++i)
+        inputs[count++] = scene->inputs[i];
+    inputs[count++] = a->atlas;
+    inputs[count++] = a->octree;
+    for (uint32_t m = 0; a->glb && m < scene->material_count; ++m)
+        if (scene->materials[m].map_Kd)
+            inputs[count++] = scene->materials[m].map_Kd;
+    gb_result result = gb_depfile_write(a->depfile, a->output, inputs, count, error);
+    free(inputs);
+    return result;
+}
+
+static gb_result run(void *context, gb_error *error)
+{
+    arguments *a = context;
+    gb_result result = check_outputs(a, error);
+    if (result != GB_OK)
+        return result;
+    gb_scene scene;
+    gb_atlas atlas;
+    gb_light_octree octree;
+    gb_image image = {0};
+    gb_lightmap_stats stats = {0};
+    gb_glb_export_stats glb = {0};
+    memset(&atlas, 0, sizeof atlas);
+    memset(&octree, 0, sizeof octree);
+    result = read_inputs(a, &scene, &atlas, &octree, error);
+    if (result == GB_OK)
+        result = bake(a, &scene, &atlas, &octree, &image, &stats, error);
+    if (result == GB_OK)
+        result = gb_image_write(a->output, &image, error);
+    if (result == GB_OK && a->glb)
+        result = gb_glb_export(a->glb, &scene, &atlas, &image, &glb, error);
+    if (result == GB_OK && a->depfile)
+        result = write_depfile(a, &scene, error);
+    if (result == GB_OK && a->stats)
+        print_stats(a, &stats, &glb, &atlas);
+    gb_image_free(&image);
+    gb_light_octree_free(&octree);
+    gb_atlas_free(&atlas);
+    gb_scene_free(&scene);
+    return result;
+}
+
+int main(int argc, char **argv)
+{
+    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
+}
