@@ -62,10 +62,14 @@ void gb_light_octree_irradiance(const gb_light_octree *octree, const float x[3],
     const gb_light_octree_header *h = &octree->header;
     float cell_size = h->size / (float)(1u << h->depth);
     float base[3], f[3], total[3] = {0.0f, 0.0f, 0.0f}, weight = 0.0f;
+    float resolution = (float)(1u << h->depth);
     for (int k = 0; k < 3; ++k) {
         float g = (x[k] - h->origin[k]) / cell_size - 0.5f;
         base[k] = floorf(g);
         f[k] = g - base[k];
+        /* far outside the cube all 8 cells are outside too; clamped, the
+         * integer cell stays representable */
+        base[k] = fminf(fmaxf(base[k], -2.0f), resolution + 1.0f);
     }
     for (int c = 0; c < 8; ++c) {
         int o[3] = {c & 1, (c >> 1) & 1, c >> 2}, cell[3];

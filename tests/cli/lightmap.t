@@ -91,8 +91,9 @@ if command -v node >/dev/null && [ -d "$validator" ]; then
     node "$validate" "$dir/a.glb" "$validator" >"$dir/valid" 2>&1
     status=$?
     sed 's/^/# /' "$dir/valid"
-    ok "$([ $status = 0 ] && [ "$(value errors "$dir/valid")" = 0 ]; echo $?)" \
-        "the Khronos glTF validator: 0 errors"
+    ok "$([ $status = 0 ] && [ "$(value errors "$dir/valid")" = 0 ] &&
+        [ "$(value warnings "$dir/valid")" = 0 ]; echo $?)" \
+        "the Khronos glTF validator: 0 errors, 0 warnings"
 else
     missing "node and gltf-validator ($validator: npm install --prefix build/node gltf-validator)"
 fi
@@ -171,6 +172,18 @@ if command -v node >/dev/null && [ -d "$validator" ]; then
 else
     missing "node and gltf-validator"
 fi
+
+# A texture that cannot be read (the scene's hash does not cover the
+# images' bytes, so the atlas and octree still fit): a clear error and
+# neither output, the glTF binary being made before the EXR is written.
+mkdir "$dir/bad"
+cp "$dir/tf.obj" "$dir/tf.mtl" "$dir/tf.scene" "$dir/tex.png" "$dir/bad/"
+echo "not an image" >"$dir/bad/tex.exr"
+expect_failure "an unreadable texture" 1 "tex.exr: not an image" \
+    -q "$dir/bad/tf.scene" "$dir/tf.atlas" "$dir/tf.lot" -o "$dir/bad/x.exr" \
+    --glb "$dir/bad/x.glb"
+ok "$([ ! -e "$dir/bad/x.exr" ] && [ ! -e "$dir/bad/x.glb" ]; echo $?)" \
+    "an unreadable texture: no EXR, no glTF binary"
 
 # ---- inputs of another scene, a bad output ----
 cat >"$dir/floor.obj" <<'EOF2'

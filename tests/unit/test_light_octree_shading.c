@@ -19,6 +19,15 @@
  *     Kd / π times gb_light_octree_irradiance at the pixel's world point
  *     (common/camera.h's ray through the pixel's centre, met with the
  *     floor).
+ *  4. The lightmap (tools/lightmap/lightmap.h) of a hand-made atlas of the
+ *     floor: every texel centre of the chart covered once (the quad's
+ *     diagonal runs through texel centres), each covered texel exactly
+ *     gb_light_octree_irradiance at the point the test maps it to, the
+ *     gutter's rings the mean of their filled neighbours, 0 beyond.
+ *  5. That lightmap against the runtime's render into the same atlas
+ *     (gbview --method octree --atlas FILE): the atlas display at every
+ *     pixel against Kd / π times the CPU lightmap read bilinearly at the
+ *     pixel's UV (what a glTF viewer shows of the export).
  */
 #include <math.h>
 #include <stdio.h>
@@ -30,6 +39,8 @@
 #include "../../runtime/headless.h"
 #include "../../runtime/indirect_method.h"
 #include "../../runtime/methods.h"
+#include "../../tools/lightmap/lightmap.h"
+#include "atlas.h"
 #include "camera.h"
 #include "light_octree.h"
 #include "light_octree_shading.h"
@@ -339,18 +350,23 @@ static int make_folder(char *folder, size_t size)
     return mkdtemp(folder) != NULL;
 }
 
-/* The octree's indirect term of the floor, rendered headless from FOLDER/floor.lot. */
-static int render_display(const gb_scene *scene, const gb_light_octree *octree, gb_image *image)
+/* The octree's indirect term of the floor, rendered headless from
+ * FOLDER/floor.lot: the walk, or through atlas (written as FOLDER/floor.atlas)
+ * when it is not NULL. */
+static int render_display(const gb_scene *scene, const gb_light_octree *octree,
+                          const gb_atlas *atlas, gb_image *image)
 {
-    char folder[1024], path[1100], scene_path[1100];
+    char folder[1024], path[1100], scene_path[1100], atlas_path[1100];
     gb_error error;
     if (!make_folder(folder, sizeof folder))
         return 0;
     snprintf(path, sizeof path, "%s/floor.lot", folder);
     snprintf(scene_path, sizeof scene_path, "%s/floor.scene", folder);
+    snprintf(atlas_path, sizeof atlas_path, "%s/floor.atlas", folder);
     int ok = 0;
     gb_bake *bake = NULL;
     if (gb_light_octree_write(path, octree, &error) != GB_OK ||
+        (atlas && gb_atlas_write(atlas_path, atlas, &error) != GB_OK) ||
         gb_bake_open(scene, scene_path, folder, &bake, &error) != GB_OK) {
         printf("# %s\n", error.message);
     } else if (gb_bake_problem(bake, GB_BAKE_LIGHT_OCTREE)) {
@@ -359,7 +375,7 @@ static int render_display(const gb_scene *scene, const gb_light_octree *octree, 
         gb_headless_options options = {
             .renderer = {.method = GB_METHOD_OCTREE, .terms = GB_TERMS_INDIRECT,
                          .width = IMAGE_SIZE, .height = IMAGE_SIZE, .bake = bake,
-                         .parameters = {.atlas = "none"}},
+                         .parameters = {.atlas = atlas ? atlas_path : "none"}},
         };
         ok = gb_render_headless(scene, &options, image, NULL, &error) == GB_OK;
         if (!ok)
@@ -367,6 +383,7 @@ static int render_display(const gb_scene *scene, const gb_light_octree *octree, 
     }
     gb_bake_release(bake);
     unlink(path);
+    unlink(atlas_path);
     rmdir(folder);
     return ok;
 }
@@ -395,7 +412,7 @@ static void test_gpu(const gb_scene *scene, const gb_light_octree *octree)
     gb_error error;
     if (!CHECK(gb_camera_frame_make(&scene->cameras[0], IMAGE_SIZE, IMAGE_SIZE, &frame,
                                     &error) == GB_OK &&
-                   render_display(scene, octree, &image),
+                   render_display(scene, octree, NULL, &image),
                "the octree display of the floor rendered headless"))
         return;
     double worst = 0.0, lowest = INFINITY;
@@ -422,6 +439,188 @@ static void test_gpu(const gb_scene *scene, const gb_light_octree *octree)
     gb_image_free(&image);
 }
 
+/* ---- 4. the lightmap of a hand-made atlas --------------------------------- */
+
+/* The floor laid flat in one chart of SQUARE x SQUARE texels, PADDING
+ * texels of gutter around it: floor (x, z) at s = (x + 2) / 4, r = (z + 2)
+ * / 4 (or swapped, to keep the triangles counterclockwise), texel
+ * coordinates PADDING + SQUARE (s, r). The quad's diagonal runs through
+ * texel centres. */
+#define SQUARE 60
+#define PADDING 2
+#define SIDE (SQUARE + 2 * PADDING)
+
+typedef struct floor_atlas {
+    gb_atlas atlas;
+    float uvs[2 * 6];
+    uint32_t charts[2];
+    gb_atlas_chart record;
+    int straight;               /* s from x (else from z) */
+} floor_atlas;
+
+static void make_floor_atlas(const gb_scene *scene, floor_atlas *a)
+{
+    memset(a, 0, sizeof *a);
+    const float *p[3];
+    for (int c = 0; c < 3; ++c)
+        p[c] = scene->positions + 3 * scene->indices[c];
+    a->straight = (p[1][0] - p[0][0]) * (p[2][2] - p[0][2]) -
+                  (p[1][2] - p[0][2]) * (p[2][0] - p[0][0]) > 0.0f;
+    for (uint32_t t = 0; t < 2; ++t)
+        for (int c = 0; c < 3; ++c) {
+            const float *q = scene->positions + 3 * scene->indices[3 * t + c];
+            float s = (q[a->straight ? 0 : 2] + FLOOR_HALF) / (2.0f * FLOOR_HALF);
+            float r = (q[a->straight ? 2 : 0] + FLOOR_HALF) / (2.0f * FLOOR_HALF);
+            a->uvs[6 * t + 2 * c] = (PADDING + s * SQUARE) / SIDE;
+            a->uvs[6 * t + 2 * c + 1] = (PADDING + r * SQUARE) / SIDE;
+        }
+    a->record = (gb_atlas_chart){2, 16.0f, 0.0f, 0.0f, {PADDING, PADDING, SQUARE, SQUARE}};
+    a->atlas.header = (gb_atlas_header){
+        .scene_hash = scene->hash, .triangle_count = 2, .chart_count = 1, .width = SIDE,
+        .height = SIDE, .texels_per_unit = SQUARE / (2.0f * FLOOR_HALF), .padding = PADDING};
+    a->atlas.uvs = a->uvs;
+    a->atlas.charts = a->charts;
+    a->atlas.chart_records = &a->record;
+}
+
+/* The floor point at texel coordinates (tx, ty) of the atlas. */
+static void atlas_point(const floor_atlas *a, double tx, double ty, float x[3])
+{
+    double s = (tx - PADDING) / SQUARE, r = (ty - PADDING) / SQUARE;
+    x[0] = (float)(-FLOOR_HALF + 2.0 * FLOOR_HALF * (a->straight ? s : r));
+    x[1] = 0.0f;
+    x[2] = (float)(-FLOOR_HALF + 2.0 * FLOOR_HALF * (a->straight ? r : s));
+}
+
+static const float *texel(const gb_image *image, int i, int j)
+{
+    return image->pixels + 3 * ((size_t)j * image->width + i);
+}
+
+/* Gutter texel (i, j) of ring `ring` (1: next to the chart) against the
+ * mean of its 8 neighbours filled before its round (the chart's texels and
+ * the inner rings); the largest relative difference. */
+static double ring_difference(const gb_image *image, int i, int j, int ring)
+{
+    double sum[3] = {0, 0, 0}, worst = 0.0;
+    int count = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            int x = i + dx, y = j + dy;
+            int depth = (int)fmax(fmax(PADDING - x, x - (PADDING + SQUARE - 1)),
+                                  fmax(PADDING - y, y - (PADDING + SQUARE - 1)));
+            if (depth >= ring || x < 0 || y < 0 || x >= SIDE || y >= SIDE)
+                continue;   /* not filled before this ring's round */
+            for (int c = 0; c < 3; ++c)
+                sum[c] += texel(image, x, y)[c];
+            ++count;
+        }
+    for (int c = 0; c < 3; ++c)
+        worst = fmax(worst, relative(texel(image, i, j)[c], sum[c] / count));
+    return worst;
+}
+
+static void test_lightmap(const gb_scene *scene, const gb_light_octree *octree,
+                          const floor_atlas *a, gb_image *lightmap)
+{
+    gb_lightmap_options options = {.threads = 2};
+    gb_lightmap_stats stats;
+    gb_error error;
+    if (!CHECK(gb_atlas_check(&a->atlas, "floor atlas", &error) == GB_OK &&
+                   gb_lightmap_bake(scene, &a->atlas, octree, &options, lightmap, &stats,
+                                    &error) == GB_OK,
+               "lightmap: the floor's atlas baked")) {
+        printf("# %s\n", error.message);
+        return;
+    }
+    CHECK_EQ_INT(stats.covered, SQUARE * SQUARE,
+                 "lightmap: every texel centre of the chart covered, the diagonal's once");
+    double worst = 0.0, worst_ring = 0.0;
+    int black_outside = 1;
+    for (int j = 0; j < SIDE; ++j)
+        for (int i = 0; i < SIDE; ++i) {
+            int depth = (int)fmax(fmax(PADDING - i, i - (PADDING + SQUARE - 1)),
+                                  fmax(PADDING - j, j - (PADDING + SQUARE - 1)));
+            if (depth <= 0) {
+                float x[3], e[3];
+                atlas_point(a, i + 0.5, j + 0.5, x);
+                gb_light_octree_irradiance(octree, x, tilted, up, e);
+                for (int c = 0; c < 3; ++c)
+                    worst = fmax(worst, relative(texel(lightmap, i, j)[c], e[c]));
+            } else if (depth <= PADDING) {
+                worst_ring = fmax(worst_ring, ring_difference(lightmap, i, j, depth));
+            } else {
+                black_outside &= texel(lightmap, i, j)[0] == 0.0f;
+            }
+        }
+    printf("# lightmap: covered %llu, gutter %llu texels; covered texels against the "
+           "port %.3g, gutter against its neighbours' mean %.3g\n",
+           (unsigned long long)stats.covered, (unsigned long long)stats.gutter, worst,
+           worst_ring);
+    CHECK_EQ_INT(stats.gutter, (SQUARE + 4) * (SQUARE + 4) - SQUARE * SQUARE,
+                 "lightmap: the gutter fills the padding's two rings");
+    CHECK(worst < 1e-5, "lightmap: each covered texel is the octree's irradiance at its point");
+    CHECK(worst_ring < 1e-6, "lightmap: a gutter texel is the mean of its filled neighbours");
+    CHECK(black_outside, "lightmap: beyond the padding, 0");
+}
+
+/* ---- 5. the CPU lightmap against the GPU's render into the atlas ---------- */
+
+static void sample_bilinear(const gb_image *image, double u, double v, double out[3])
+{
+    double x = u * image->width - 0.5, y = v * image->height - 0.5;
+    int x0 = (int)floor(x), y0 = (int)floor(y);
+    double ax = x - x0, ay = y - y0;
+    for (int c = 0; c < 3; ++c) {
+        double t[2][2];
+        for (int dy = 0; dy < 2; ++dy)
+            for (int dx = 0; dx < 2; ++dx) {
+                int i = x0 + dx < 0 ? 0 : x0 + dx >= image->width ? image->width - 1 : x0 + dx;
+                int j = y0 + dy < 0 ? 0 : y0 + dy >= image->height ? image->height - 1 : y0 + dy;
+                t[dy][dx] = texel(image, i, j)[c];
+            }
+        out[c] = (1 - ay) * ((1 - ax) * t[0][0] + ax * t[0][1]) +
+                 ay * ((1 - ax) * t[1][0] + ax * t[1][1]);
+    }
+}
+
+/* Measured: 1.3e-6 (float rounding; the GPU's bilinear weights are fixed
+ * point, the field changes little over a texel). */
+#define ATLAS_TOLERANCE 1e-4
+
+static void test_against_gpu_atlas(const gb_scene *scene, const gb_light_octree *octree,
+                                   const floor_atlas *a, const gb_image *lightmap)
+{
+    gb_image image;
+    gb_camera_frame frame;
+    gb_error error;
+    if (!CHECK(gb_camera_frame_make(&scene->cameras[0], IMAGE_SIZE, IMAGE_SIZE, &frame,
+                                    &error) == GB_OK &&
+                   render_display(scene, octree, &a->atlas, &image),
+               "the octree through the floor's atlas rendered headless"))
+        return;
+    double worst = 0.0;
+    for (int py = 0; py < IMAGE_SIZE; ++py)
+        for (int px = 0; px < IMAGE_SIZE; ++px) {
+            float x[3];
+            if (!pixel_point(&frame, px, py, x))
+                continue;
+            double s = (x[a->straight ? 0 : 2] + FLOOR_HALF) / (2.0 * FLOOR_HALF);
+            double r = (x[a->straight ? 2 : 0] + FLOOR_HALF) / (2.0 * FLOOR_HALF);
+            double e[3];
+            sample_bilinear(lightmap, (PADDING + s * SQUARE) / SIDE,
+                            (PADDING + r * SQUARE) / SIDE, e);
+            for (int c = 0; c < 3; ++c)
+                worst = fmax(worst, relative(image.pixels[3 * ((size_t)py * IMAGE_SIZE + px) + c],
+                                             KD / PI * e[c]));
+        }
+    printf("# the runtime's atlas display against Kd/pi x the CPU lightmap, bilinear at "
+           "each pixel's UV: largest relative difference %.3g\n", worst);
+    CHECK(worst < ATLAS_TOLERANCE,
+          "the runtime's atlas display: Kd/pi x the CPU lightmap within 10^-4");
+    gb_image_free(&image);
+}
+
 int main(void)
 {
     normalize_directions();
@@ -439,6 +638,13 @@ int main(void)
     test_by_hand(&octree);
     test_direct(&octree);
     test_gpu(&scene, &octree);
+    floor_atlas atlas;
+    gb_image lightmap = {0};
+    make_floor_atlas(&scene, &atlas);
+    test_lightmap(&scene, &octree, &atlas, &lightmap);
+    if (lightmap.pixels)
+        test_against_gpu_atlas(&scene, &octree, &atlas, &lightmap);
+    gb_image_free(&lightmap);
     free(h);
     gb_scene_free(&scene);
     return tap_done();

@@ -140,21 +140,31 @@ static void make_corner(const export_state *s, uint32_t t, int c, float *out)
     memcpy(out + 8, s->atlas->uvs + 6 * (size_t)t + 2 * c, 2 * sizeof *out);
 }
 
-/* The corners of material m's triangles; *count of them (0: none). */
-static float *material_corners(const export_state *s, uint32_t m, uint32_t *count)
+/* The corners of the count triangles listed, in order. */
+static float *corners_of(const export_state *s, const uint32_t *triangles, uint32_t count)
 {
-    const gb_scene *scene = s->scene;
-    *count = 0;
-    for (uint32_t t = 0; t < scene->triangle_count; ++t)
-        *count += 3 * (scene->triangle_material[t] == m);
-    float *corners = malloc(((size_t)*count + 1) * GB_VERTEX_FLOATS * sizeof *corners);
-    if (!corners)
-        return NULL;
-    float *out = corners;
-    for (uint32_t t = 0; t < scene->triangle_count; ++t)
-        for (int c = 0; scene->triangle_material[t] == m && c < 3; ++c, out += GB_VERTEX_FLOATS)
-            make_corner(s, t, c, out);
+    float *corners = malloc(((size_t)count * 3 + 1) * GB_VERTEX_FLOATS * sizeof *corners);
+    for (uint32_t k = 0; corners && k < count; ++k)
+        for (int c = 0; c < 3; ++c)
+            make_corner(s, triangles[k], c, corners + ((size_t)k * 3 + c) * GB_VERTEX_FLOATS);
     return corners;
+}
+
+/* The triangles grouped by material, each group in scene order:
+ * triangles[first[m] .. first[m + 1]) are material m's. */
+static int group_by_material(const gb_scene *scene, uint32_t **triangles, uint32_t **first)
+{
+    *triangles = malloc(((size_t)scene->triangle_count + 1) * sizeof **triangles);
+    *first = calloc((size_t)scene->material_count + 2, sizeof **first);
+    if (!*triangles || !*first)
+        return 0;
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        ++(*first)[scene->triangle_material[t] + 2];
+    for (uint32_t m = 0; m < scene->material_count; ++m)
+        (*first)[m + 2] += (*first)[m + 1];
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        (*triangles)[(*first)[scene->triangle_material[t] + 1]++] = t;
+    return 1;
 }
 
 static void add_primitive(export_state *s, uint32_t m, const gb_corner_vertices *v,
@@ -182,22 +192,26 @@ static void add_primitive(export_state *s, uint32_t m, const gb_corner_vertices 
 
 static gb_result add_primitives(export_state *s, gb_error *error)
 {
-    for (uint32_t m = 0; m < s->scene->material_count; ++m) {
-        uint32_t count;
-        float *corners = material_corners(s, m, &count);
-        if (!corners)
-            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "lightmap: out of memory");
+    uint32_t *triangles = NULL, *first = NULL;
+    gb_result result = GB_OK;
+    if (!group_by_material(s->scene, &triangles, &first))
+        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "lightmap: out of memory");
+    for (uint32_t m = 0; result == GB_OK && m < s->scene->material_count; ++m) {
+        uint32_t count = first[m + 1] - first[m];
+        if (!count)
+            continue;
+        float *corners = corners_of(s, triangles + first[m], count);
         gb_corner_vertices vertices = {0};
-        gb_result result = count ? gb_corner_vertices_make(corners, count, &vertices, error)
-                                 : GB_OK;
-        if (result == GB_OK && count)
-            add_primitive(s, m, &vertices, count);
+        result = corners ? gb_corner_vertices_make(corners, 3 * count, &vertices, error)
+                         : gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "lightmap: out of memory");
+        if (result == GB_OK)
+            add_primitive(s, m, &vertices, 3 * count);
         gb_corner_vertices_free(&vertices);
         free(corners);
-        if (result != GB_OK)
-            return result;
     }
-    return GB_OK;
+    free(triangles);
+    free(first);
+    return result;
 }
 
 /* ---- materials ---- */

@@ -10,6 +10,10 @@
  *                   neighbours (the padding), so bilinear reads never reach
  *                   black
  *   glb_export.c    the scene with the lightmap as a glTF 2.0 binary
+ *                   (formats/gltf_binary.h the container): its vertices
+ *                   (corner_vertices.c), bufferViews and accessors
+ *                   (glb_builder.c over byte_buffer.c), its images
+ *                   (glb_images.c, PNG through png_bytes.c)
  *
  * A texel holds the irradiance E, without Kd / π: the viewer multiplies the
  * albedo (textured or not) at display, so textures keep their resolution.

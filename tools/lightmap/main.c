@@ -4,6 +4,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 #include "atlas.h"
 #include "cli.h"
@@ -170,6 +172,18 @@ static gb_result write_depfile(const arguments *a, const gb_scene *scene, gb_err
     return result;
 }
 
+/* The EXR, after the glTF binary (whose textures are likelier to fail):
+ * when the EXR cannot be written, the glTF binary just written goes too,
+ * so that a failed run leaves no output (a device or FIFO stays). */
+static gb_result write_lightmap(const arguments *a, const gb_image *image, gb_error *error)
+{
+    gb_result result = gb_image_write(a->output, image, error);
+    struct stat status;
+    if (result != GB_OK && a->glb && stat(a->glb, &status) == 0 && S_ISREG(status.st_mode))
+        unlink(a->glb);
+    return result;
+}
+
 static gb_result run(void *context, gb_error *error)
 {
     arguments *a = context;
@@ -187,10 +201,10 @@ static gb_result run(void *context, gb_error *error)
     result = read_inputs(a, &scene, &atlas, &octree, error);
     if (result == GB_OK)
         result = bake(a, &scene, &atlas, &octree, &image, &stats, error);
-    if (result == GB_OK)
-        result = gb_image_write(a->output, &image, error);
     if (result == GB_OK && a->glb)
         result = gb_glb_export(a->glb, &scene, &atlas, &image, &glb, error);
+    if (result == GB_OK)
+        result = write_lightmap(a, &image, error);
     if (result == GB_OK && a->depfile)
         result = write_depfile(a, &scene, error);
     if (result == GB_OK && a->stats)
