@@ -12,6 +12,7 @@
 #include "glb_images.h"
 #include "gltf_binary.h"
 #include "progress.h"
+#include "scene_triangles.h"
 
 #define NONE 0xFFFFFFFFu
 
@@ -97,42 +98,13 @@ static gb_result add_textures(export_state *s, gb_error *error)
 
 /* ---- primitives ---- */
 
-static void normalize3(float v[3])
-{
-    float length = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    for (int k = 0; k < 3; ++k)
-        v[k] = length > 0.0f ? v[k] / length : 0.0f;
-}
-
-static void face_normal(const gb_scene *scene, uint32_t t, float out[3])
-{
-    const float *p[3];
-    for (int c = 0; c < 3; ++c)
-        p[c] = scene->positions + 3 * (size_t)scene->indices[3 * (size_t)t + c];
-    float e1[3], e2[3];
-    for (int k = 0; k < 3; ++k)
-        e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
-    out[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    out[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    out[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    normalize3(out);
-    if (out[0] == 0.0f && out[1] == 0.0f && out[2] == 0.0f)
-        out[2] = 1.0f;
-}
-
-/* Corner c of triangle t: position, unit normal, texcoord 0 (glTF's v),
- * atlas UV. */
+/* Corner c of triangle t: position, unit normal (scene_triangles.h: the
+ * mesh's, else the face's), texcoord 0 (glTF's v), atlas UV. */
 static void make_corner(const export_state *s, uint32_t t, int c, float *out)
 {
     const gb_scene *scene = s->scene;
-    memcpy(out, scene->positions + 3 * (size_t)scene->indices[3 * (size_t)t + c],
-           3 * sizeof *out);
-    if (scene->corner_normals) {
-        memcpy(out + 3, scene->corner_normals + 9 * (size_t)t + 3 * c, 3 * sizeof *out);
-        normalize3(out + 3);
-    }
-    if (!scene->corner_normals || (out[3] == 0.0f && out[4] == 0.0f && out[5] == 0.0f))
-        face_normal(scene, t, out + 3);
+    gb_vec3_store(gb_triangle_corner(scene, t, c), out);
+    gb_vec3_store(gb_corner_normal(scene, t, c, gb_triangle_normal(scene, t)), out + 3);
     const float *texcoord = scene->corner_texcoords
                                 ? scene->corner_texcoords + 6 * (size_t)t + 2 * c : NULL;
     out[6] = texcoord ? texcoord[0] : 0.0f;

@@ -8,6 +8,7 @@
 
 #include "gutter.h"
 #include "light_octree_shading.h"
+#include "scene_triangles.h"
 #include "texel_cover.h"
 #include "work_queue.h"
 
@@ -19,52 +20,29 @@ typedef struct bake_job {
     gb_image *image;
 } bake_job;
 
-static void normalize3(float v[3])
-{
-    float length = sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    for (int k = 0; k < 3; ++k)
-        v[k] = length > 0.0f ? v[k] / length : 0.0f;
-}
-
-/* cross(v1 - v0, v2 - v0), unit (z for a degenerate triangle). */
-static void face_normal(const gb_scene *scene, uint32_t t, float out[3])
-{
-    const float *p[3];
-    for (int c = 0; c < 3; ++c)
-        p[c] = scene->positions + 3 * (size_t)scene->indices[3 * (size_t)t + c];
-    float e1[3], e2[3];
-    for (int k = 0; k < 3; ++k)
-        e1[k] = p[1][k] - p[0][k], e2[k] = p[2][k] - p[0][k];
-    out[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    out[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    out[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    normalize3(out);
-    if (out[0] == 0.0f && out[1] == 0.0f && out[2] == 0.0f)
-        out[2] = 1.0f;
-}
-
 /* The point, shading normal n and geometric normal ng of triangle t at
- * barycentric weights w (lightmap.h, "Decided here"). */
+ * barycentric weights w (lightmap.h, "Decided here"): the corners' normals
+ * as the runtime gives them (scene_triangles.h) interpolated, normalised,
+ * turned to ng's side. */
 static void surface_at(const gb_scene *scene, uint32_t t, const double w[3], float x[3],
                        float n[3], float ng[3])
 {
-    face_normal(scene, t, ng);
-    for (int k = 0; k < 3; ++k) {
-        double sum = 0.0, normal = 0.0;
-        for (int c = 0; c < 3; ++c) {
-            sum += w[c] * scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + c] + k];
-            if (scene->corner_normals)
-                normal += w[c] * scene->corner_normals[9 * (size_t)t + 3 * c + k];
-        }
-        x[k] = (float)sum;
-        n[k] = (float)normal;
+    gb_vec3 face = gb_triangle_normal(scene, t), normal = {0.0f, 0.0f, 0.0f};
+    double point[3] = {0.0, 0.0, 0.0};
+    for (int c = 0; c < 3; ++c) {
+        gb_vec3 corner = gb_triangle_corner(scene, t, c);
+        point[0] += w[c] * corner.x;
+        point[1] += w[c] * corner.y;
+        point[2] += w[c] * corner.z;
+        normal = gb_vec3_madd(normal, gb_corner_normal(scene, t, c, face), (float)w[c]);
     }
-    normalize3(n);
-    if (!scene->corner_normals || (n[0] == 0.0f && n[1] == 0.0f && n[2] == 0.0f))
-        memcpy(n, ng, 3 * sizeof *n);
-    if (n[0] * ng[0] + n[1] * ng[1] + n[2] * ng[2] < 0.0f)
-        for (int k = 0; k < 3; ++k)
-            n[k] = -n[k];
+    for (int k = 0; k < 3; ++k)
+        x[k] = (float)point[k];
+    normal = gb_vec3_length(normal) > 0.0f ? gb_vec3_normalize(normal) : face;
+    if (gb_vec3_dot(normal, face) < 0.0f)
+        normal = gb_vec3_negate(normal);
+    gb_vec3_store(normal, n);
+    gb_vec3_store(face, ng);
 }
 
 /* Row `item` of the atlas. */
