@@ -27,7 +27,9 @@
  *  5. That lightmap against the runtime's render into the same atlas
  *     (gbview --method octree --atlas FILE): the atlas display at every
  *     pixel against Kd / π times the CPU lightmap read bilinearly at the
- *     pixel's UV (what a glTF viewer shows of the export).
+ *     pixel's UV, and the same with the lightmap encoded as the glTF
+ *     export embeds it (what a glTF viewer shows of the export; issue 19's
+ *     bound: 10^-3 relative MSE).
  */
 #include <math.h>
 #include <stdio.h>
@@ -40,6 +42,7 @@
 #include "../../runtime/indirect_method.h"
 #include "../../runtime/methods.h"
 #include "../../tools/lightmap/lightmap.h"
+#include "../../tools/lightmap/png_bytes.h"
 #include "atlas.h"
 #include "camera.h"
 #include "light_octree.h"
@@ -588,10 +591,67 @@ static void sample_bilinear(const gb_image *image, double u, double v, double ou
  * point, the field changes little over a texel). */
 #define ATLAS_TOLERANCE 1e-4
 
+/* The atlas display (image) against Kd/pi x map read bilinearly at each
+ * pixel's UV: the largest relative difference and the relative MSE
+ * (imgdiff's: mean of (a - b)^2 / (b^2 + 0.01), b the display). */
+static void against_display(const gb_image *image, const gb_camera_frame *frame,
+                            const floor_atlas *a, const gb_image *map, double *worst,
+                            double *relative_mse)
+{
+    double sum = 0.0;
+    int count = 0;
+    *worst = 0.0;
+    for (int py = 0; py < IMAGE_SIZE; ++py)
+        for (int px = 0; px < IMAGE_SIZE; ++px) {
+            float x[3];
+            if (!pixel_point(frame, px, py, x))
+                continue;
+            double s = (x[a->straight ? 0 : 2] + FLOOR_HALF) / (2.0 * FLOOR_HALF);
+            double r = (x[a->straight ? 2 : 0] + FLOOR_HALF) / (2.0 * FLOOR_HALF);
+            double e[3];
+            sample_bilinear(map, (PADDING + s * SQUARE) / SIDE, (PADDING + r * SQUARE) / SIDE,
+                            e);
+            for (int c = 0; c < 3; ++c) {
+                double shown = image->pixels[3 * ((size_t)py * IMAGE_SIZE + px) + c];
+                *worst = fmax(*worst, relative(KD / PI * e[c], shown));
+                sum += (KD / PI * e[c] - shown) * (KD / PI * e[c] - shown) /
+                       (shown * shown + 0.01);
+                ++count;
+            }
+        }
+    *relative_mse = count ? sum / count : INFINITY;
+}
+
+/* The lightmap as the glTF export holds it (glb_images.h): an 8-bit sRGB
+ * PNG of lightmap / its largest value, decoded and scaled back. */
+static int exported(const gb_image *lightmap, gb_image *decoded)
+{
+    size_t n = (size_t)lightmap->width * lightmap->height * 3;
+    float scale = 0.0f;
+    for (size_t i = 0; i < n; ++i)
+        scale = fmaxf(scale, lightmap->pixels[i]);
+    gb_image scaled;
+    gb_error error;
+    void *bytes = NULL;
+    size_t size;
+    if (gb_image_allocate(&scaled, lightmap->width, lightmap->height, 3, &error) != GB_OK)
+        return 0;
+    for (size_t i = 0; i < n; ++i)
+        scaled.pixels[i] = lightmap->pixels[i] / scale;
+    int ok = gb_png_bytes(&scaled, &bytes, &size, decoded, &error) == GB_OK;
+    for (size_t i = 0; ok && i < n; ++i)
+        decoded->pixels[i] *= scale;
+    if (!ok)
+        printf("# %s\n", error.message);
+    free(bytes);
+    gb_image_free(&scaled);
+    return ok;
+}
+
 static void test_against_gpu_atlas(const gb_scene *scene, const gb_light_octree *octree,
                                    const floor_atlas *a, const gb_image *lightmap)
 {
-    gb_image image;
+    gb_image image, png;
     gb_camera_frame frame;
     gb_error error;
     if (!CHECK(gb_camera_frame_make(&scene->cameras[0], IMAGE_SIZE, IMAGE_SIZE, &frame,
@@ -599,25 +659,20 @@ static void test_against_gpu_atlas(const gb_scene *scene, const gb_light_octree 
                    render_display(scene, octree, &a->atlas, &image),
                "the octree through the floor's atlas rendered headless"))
         return;
-    double worst = 0.0;
-    for (int py = 0; py < IMAGE_SIZE; ++py)
-        for (int px = 0; px < IMAGE_SIZE; ++px) {
-            float x[3];
-            if (!pixel_point(&frame, px, py, x))
-                continue;
-            double s = (x[a->straight ? 0 : 2] + FLOOR_HALF) / (2.0 * FLOOR_HALF);
-            double r = (x[a->straight ? 2 : 0] + FLOOR_HALF) / (2.0 * FLOOR_HALF);
-            double e[3];
-            sample_bilinear(lightmap, (PADDING + s * SQUARE) / SIDE,
-                            (PADDING + r * SQUARE) / SIDE, e);
-            for (int c = 0; c < 3; ++c)
-                worst = fmax(worst, relative(image.pixels[3 * ((size_t)py * IMAGE_SIZE + px) + c],
-                                             KD / PI * e[c]));
-        }
+    double worst, mse;
+    against_display(&image, &frame, a, lightmap, &worst, &mse);
     printf("# the runtime's atlas display against Kd/pi x the CPU lightmap, bilinear at "
-           "each pixel's UV: largest relative difference %.3g\n", worst);
+           "each pixel's UV: largest relative difference %.3g, relative MSE %.3g\n", worst, mse);
     CHECK(worst < ATLAS_TOLERANCE,
           "the runtime's atlas display: Kd/pi x the CPU lightmap within 10^-4");
+    if (CHECK(exported(lightmap, &png), "the lightmap encoded as the glTF export does")) {
+        against_display(&image, &frame, a, &png, &worst, &mse);
+        printf("# the same with the exported PNG: largest relative difference %.3g, "
+               "relative MSE %.3g\n", worst, mse);
+        CHECK(mse < 1e-3, "the exported PNG at each pixel's UV: the atlas display within "
+                          "10^-3 relative MSE");
+        gb_image_free(&png);
+    }
     gb_image_free(&image);
 }
 
