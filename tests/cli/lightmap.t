@@ -7,7 +7,8 @@
 # sampled texel is the octree's irradiance at its point, and that the
 # embedded PNG, decoded with the scale its material's extras give, is the
 # EXR within 10^-3 relative MSE, over the whole image and at each
-# triangle's TEXCOORD_1; the Khronos glTF validator finds 0 errors. The
+# triangle's TEXCOORD_1, and its camera is the scene's; the Khronos glTF
+# validator finds 0 errors and 0 warnings. The
 # files do not depend on --threads; usage errors, the atlas or octree of
 # another scene and a bad output are clear errors that leave no file.
 # Prints TAP.
@@ -67,7 +68,8 @@ ok "$(cmp -s "$dir/a.exr" "$dir/b.exr" && cmp -s "$dir/a.glb" "$dir/b.glb"; echo
 # ---- the values, read back apart from gibake ----
 if command -v python3 >/dev/null && command -v oiiotool >/dev/null; then
     oiiotool --dumpdata "$dir/a.exr" >"$dir/a.txt" &&
-        python3 "$check" "$dir/a.glb" "$dir/cornell.lot" "$dir/a.txt" >"$dir/check" 2>"$dir/err"
+        python3 "$check" "$dir/a.glb" "$dir/cornell.lot" "$dir/a.txt" "$scene" >"$dir/check" \
+            2>"$dir/err"
     status=$?
     [ $status = 0 ] || sed 's/^/# /' "$dir/err"
     ok $status "lightmap_check.py reads the GLB, its PNG, the octree and the EXR"
@@ -81,6 +83,11 @@ if command -v python3 >/dev/null && command -v oiiotool >/dev/null; then
         "the PNG decoded with its scale: the EXR within 10^-3 relative MSE"
     ok "$(below "$(value sample_relative_mse "$dir/check")" 1e-3; echo $?)" \
         "sampled at each triangle's TEXCOORD_1: the EXR within 10^-3 relative MSE"
+    # The published camera (fov 39.3077 degrees), as the reference renders it.
+    ok "$(below "$(value camera_degrees "$dir/check")" 1e-3 &&
+        below "$(value camera_offset "$dir/check")" 1e-3 &&
+        [ "$(value camera_fov_degrees "$dir/check")" = 39.3077 ]; echo $?)" \
+        "the glTF camera: the scene camera's place, view, up and field of view"
     ok "$([ "$(value png_relative_mse "$dir/check")" = "$(value png_relative_mse "$dir/stats")" ];
         echo $?)" "the tool's own PNG error (--stats) is the one measured here"
 else
@@ -120,8 +127,12 @@ f 2/1 6/3 5/2
 EOF2
 printf 'newmtl png\nKd 0.8 0.8 0.8\nmap_Kd tex.png\nnewmtl exr\nKd 0.5 0.6 0.7\nmap_Kd tex.exr\n' \
     >"$dir/tf.mtl"
-printf 'gibake-scene 1\nmesh tf.obj\nlight directional direction 0.6 -0.8 0 irradiance 2 2 2\n' \
-    >"$dir/tf.scene"
+cat >"$dir/tf.scene" <<'EOF2'
+gibake-scene 1
+mesh tf.obj
+light directional direction 0.6 -0.8 0 irradiance 2 2 2
+camera position 3 2.5 -4 target 0 0 0.5 up 0 1 0 fov 50 resolution 320 240
+EOF2
 oiiotool --pattern checker:width=4:height=4 16x16 3 -o "$dir/tex.png" 2>"$dir/err" &&
     oiiotool --pattern fill:top=0.8,0.2,0.1:bottom=0.1,0.3,0.9 16x16 3 -d float \
         -o "$dir/tex.exr" 2>>"$dir/err" &&
@@ -163,6 +174,19 @@ ok "$([ "$(value images "$dir/tf")" = 3 ] && [ "$(value png_mimes "$dir/tf")" = 
 ok "$([ "$(value png_as_is "$dir/tf")" = 1 ]; echo $?)" "the PNG texture embedded byte for byte"
 ok "$([ "$(value texcoord0_flipped "$dir/tf")" = 1 ]; echo $?)" \
     "TEXCOORD_0: the OBJ's v flipped to glTF's (vt 0 0 -> 0 1)"
+oiiotool --dumpdata "$dir/tf.exr" >"$dir/tf.txt" &&
+    python3 "$check" "$dir/tf.glb" "$dir/tf.lot" "$dir/tf.txt" "$dir/tf.scene" >"$dir/check" \
+        2>"$dir/err"
+status=$?
+[ $status = 0 ] || sed 's/^/# /' "$dir/err"
+sed 's/^/# /' "$dir/check"
+ok "$([ $status = 0 ] && below "$(value octree_max_relative "$dir/check")" 1e-4 &&
+    below "$(value png_relative_mse "$dir/check")" 1e-3; echo $?)" \
+    "the textured scene: the EXR is the octree's irradiance, the PNG the EXR"
+ok "$(below "$(value camera_degrees "$dir/check")" 1e-3 &&
+    below "$(value camera_offset "$dir/check")" 1e-5 &&
+    [ "$(value camera_fov_degrees "$dir/check")" = 50 ]; echo $?)" \
+    "an oblique camera: the glTF camera's place, view, up and field of view"
 if command -v node >/dev/null && [ -d "$validator" ]; then
     node "$validate" "$dir/tf.glb" "$validator" >"$dir/valid" 2>&1
     status=$?

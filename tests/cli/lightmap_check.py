@@ -5,9 +5,10 @@ PNG filters), the light octree (.lot, formats/FORMATS.md "Container" and
 "Light octree") and the octree's irradiance (octree.h's convention, in
 double, each of the 8 leaves found from the root).
 
-    lightmap_check.py OUT.glb NAME.lot DUMP
+    lightmap_check.py OUT.glb NAME.lot DUMP [SCENE]
 
-DUMP: `oiiotool --dumpdata OUT.exr`. Prints, one per line:
+DUMP: `oiiotool --dumpdata OUT.exr`; SCENE: the .scene file, whose camera
+line the glTF camera is checked against. Prints, one per line:
   texels               covered texels checked (centres well inside a triangle)
   octree_max_relative  largest |EXR - irradiance| / max(irradiance, 1e-3 scale)
   png_relative_mse     the PNG decoded (scale x sRGB decode) against the EXR,
@@ -15,6 +16,10 @@ DUMP: `oiiotool --dumpdata OUT.exr`. Prints, one per line:
   samples              triangles sampled at their centroid's TEXCOORD_1
   sample_relative_mse  the PNG against the EXR, bilinear at those points
   sample_max_relative  the largest of those |a - b| / max(b, 0.05 scale)
+  camera_degrees       (with SCENE) the angle between the camera node's -Z
+                       and the scene camera's view, and between their ups
+  camera_offset        the distance from the node to the camera's position
+  camera_fov_degrees   the glTF camera's yfov in degrees
 """
 import json
 import math
@@ -225,6 +230,33 @@ def inside_texels(corners, width, height, most):
     return found[::step][:most]
 
 
+def rotate(q, v):
+    """v rotated by the unit quaternion q = (x, y, z, w)."""
+    u, w = q[:3], q[3]
+    t = [2 * c for c in cross(u, v)]
+    return [v[k] + w * t[k] + cross(u, t)[k] for k in range(3)]
+
+
+def check_camera(document, scene):
+    words = next(line.split() for line in open(scene) if line.startswith('camera '))
+    field = {words[i]: words[i + 1:i + 4] for i in range(1, len(words)) if words[i].isalpha()}
+    position = [float(v) for v in field['position']]
+    target = [float(v) for v in field['target']]
+    up = [float(v) for v in field['up']]
+    node = next(n for n in document['nodes'] if 'camera' in n)
+    forward = unit([target[k] - position[k] for k in range(3)])
+    right = unit(cross(forward, up))
+    true_up = cross(right, forward)
+    def angle(a, b):
+        return math.degrees(math.acos(max(-1.0, min(1.0, dot(unit(a), unit(b))))))
+    q = node['rotation']
+    degrees = max(angle(rotate(q, [0, 0, -1]), forward), angle(rotate(q, [0, 1, 0]), true_up))
+    offset = math.dist(node['translation'], position)
+    fov = math.degrees(document['cameras'][node['camera']]['perspective']['yfov'])
+    print('camera_degrees %.3g\ncamera_offset %.3g\ncamera_fov_degrees %.6g' %
+          (degrees, offset, fov))
+
+
 def main():
     glb, lot, dump = sys.argv[1:4]
     document, binary = glb_chunks(glb)
@@ -270,6 +302,8 @@ def main():
     print('png_relative_mse %.3g' % (total / (3 * width * height)))
     print('samples %d\nsample_relative_mse %.3g\nsample_max_relative %.3g' %
           (len(mesh), sample_total / (3 * len(mesh)), sample_worst))
+    if len(sys.argv) > 4:
+        check_camera(document, sys.argv[4])
 
 
 if __name__ == '__main__':

@@ -8,6 +8,7 @@
 
 #include "byte_buffer.h"
 #include "corner_vertices.h"
+#include "glb_camera.h"
 #include "glb_builder.h"
 #include "glb_images.h"
 #include "gltf_binary.h"
@@ -230,24 +231,38 @@ static void add_material(export_state *s, uint32_t m)
 
 /* ---- the file ---- */
 
+/* A buffer's text, "" when nothing was appended. */
+static const char *text(const gb_byte_buffer *b)
+{
+    return b->data ? b->data : "";
+}
+
 static void print_document(const export_state *s, gb_byte_buffer *json)
 {
+    gb_byte_buffer camera_node = {0}, cameras = {0};
+    int camera = gb_glb_print_camera(s->scene, &camera_node, &cameras);
     gb_byte_buffer_printf(json, "{\"asset\":{\"version\":\"2.0\",\"generator\":\"gibake "
                           "lightmap\"},");
     if (s->emissive_strength)
         gb_byte_buffer_printf(json, "\"extensionsUsed\":[\"KHR_materials_emissive_"
                               "strength\"],");
-    gb_byte_buffer_printf(json, "\"scene\":0,\"scenes\":[{\"nodes\":[0]}],\"nodes\":[{"
-                          "\"mesh\":0,\"name\":\"scene\"}],\"meshes\":[{\"primitives\":[%s]}],"
-                          "\"materials\":[%s],\"images\":[%s],\"textures\":[%s],",
-                          s->primitives.data, s->materials.data, s->images.data,
-                          s->textures.data);
+    gb_byte_buffer_printf(json, "\"scene\":0,\"scenes\":[{\"nodes\":[0%s]}],\"nodes\":[{"
+                          "\"mesh\":0,\"name\":\"scene\"}%s],", camera ? ",1" : "",
+                          text(&camera_node));
+    if (camera)
+        gb_byte_buffer_printf(json, "\"cameras\":%s,", text(&cameras));
+    gb_byte_buffer_printf(json, "\"meshes\":[{\"primitives\":[%s]}],\"materials\":[%s],"
+                          "\"images\":[%s],\"textures\":[%s],", text(&s->primitives),
+                          text(&s->materials), text(&s->images), text(&s->textures));
     gb_byte_buffer_printf(json, "\"samplers\":[{\"magFilter\":9729,\"minFilter\":9729,"
                           "\"wrapS\":33071,\"wrapT\":33071},{\"magFilter\":9729,"
                           "\"minFilter\":9987,\"wrapS\":10497,\"wrapT\":10497}],");
     gb_byte_buffer_printf(json, "\"accessors\":[%s],\"bufferViews\":[%s],\"buffers\":[{"
-                          "\"byteLength\":%zu}]}", s->builder.accessors.data,
-                          s->builder.views.data, s->builder.bin.size);
+                          "\"byteLength\":%zu}]}", text(&s->builder.accessors),
+                          text(&s->builder.views), s->builder.bin.size);
+    json->failed |= camera_node.failed || cameras.failed;
+    gb_byte_buffer_free(&camera_node);
+    gb_byte_buffer_free(&cameras);
 }
 
 static int any_failed(const export_state *s)

@@ -2,7 +2,8 @@
  * bake opens in Blender, three.js or Godot (formats/FORMATS.md, "glTF
  * export"; the container: formats/gltf_binary.h).
  *
- * One node, one mesh, one primitive per material that has triangles (in
+ * A node of the mesh and a node of the scene's first camera
+ * (glb_camera.h); one mesh, one primitive per material that has triangles (in
  * material order, triangles in scene order): POSITION, NORMAL (the corner
  * normals, else the face normal), TEXCOORD_0 the scene's texture
  * coordinates (v flipped to glTF's top-left origin; without them, the

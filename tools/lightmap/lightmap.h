@@ -13,7 +13,8 @@
  *                   (formats/gltf_binary.h the container): its vertices
  *                   (corner_vertices.c), bufferViews and accessors
  *                   (glb_builder.c over byte_buffer.c), its images
- *                   (glb_images.c, PNG through png_bytes.c)
+ *                   (glb_images.c, PNG through png_bytes.c), its camera
+ *                   (glb_camera.c)
  *
  * A texel holds the irradiance E, without Kd / π: the viewer multiplies the
  * albedo (textured or not) at display, so textures keep their resolution.
