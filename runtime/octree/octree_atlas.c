@@ -9,7 +9,7 @@
 #include "gl_util.h"
 #include "scene_triangles.h"
 
-enum { UNIT_ATLAS = 7, UNIT_SEEN_UV = 8 };
+enum { UNIT_ATLAS = 7, UNIT_SEEN_UV = 8, SSBO_CORNERS = 3 };
 
 /* A triangle corner as the two passes read it: atlas UV, world position,
  * shading normal, face normal. */
@@ -28,6 +28,9 @@ static const char render_vertex_shader[] =
     ;
 static const char render_fragment_shader[] =
 #include "runtime/octree/octree_atlas_render.frag.glsl.inc"
+    ;
+static const char border_fragment_shader[] =
+#include "runtime/octree/octree_atlas_border.frag.glsl.inc"
     ;
 static const char gutter_fragment_shader[] =
 #include "runtime/octree/octree_atlas_gutter.frag.glsl.inc"
@@ -120,8 +123,10 @@ static void set_octree_uniforms(GLuint program, const gb_light_octree_header *h)
     glProgramUniform1i(program, glGetUniformLocation(program, "depth"), (GLint)h->depth);
 }
 
+/* The triangles drawn at their UVs: the irradiance into s->texture, each
+ * texel's triangle (+ 1, 0 for none) into triangle_ids. */
 static gb_result render_triangles(gb_octree_atlas *s, const gb_light_octree_header *octree,
-                                  GLuint framebuffer, gb_error *error)
+                                  GLuint triangle_ids, gb_error *error)
 {
     GLuint program;
     gb_result result = gb_gl_program("octree atlas render", render_vertex_shader,
@@ -129,38 +134,61 @@ static gb_result render_triangles(gb_octree_atlas *s, const gb_light_octree_head
     if (result != GB_OK)
         return result;
     set_octree_uniforms(program, octree);
+    GLuint framebuffer = framebuffer_of(s->texture);
+    static const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+    static const float nothing_filled[4] = {0, 0, 0, 0};
+    static const GLuint no_triangle[4] = {0, 0, 0, 0};
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, triangle_ids, 0);
+    glNamedFramebufferDrawBuffers(framebuffer, 2, both);
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, nothing_filled);
+    glClearNamedFramebufferuiv(framebuffer, GL_COLOR, 1, no_triangle);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glUseProgram(program);
     glBindVertexArray(s->corner_array);
     glDrawArrays(GL_TRIANGLES, 0, s->corner_count);
+    glDeleteFramebuffers(1, &framebuffer);
     glDeleteProgram(program);
     return GB_OK;
 }
 
-/* padding rounds of the gutter, ping-pong between the atlas texture and
- * another; the atlas texture ends holding the last round. */
-static gb_result fill_gutter(gb_octree_atlas *s, const gb_atlas_header *h, gb_error *error)
+/* One full-screen pass of program reading s->texture (unit 0) into a new
+ * texture, which becomes s->texture. */
+static void pass_into_new_texture(gb_octree_atlas *s, const gb_atlas_header *h, GLuint program)
 {
-    GLuint program;
-    gb_result result = gb_gl_program("octree atlas gutter", gb_gl_fullscreen_vertex_shader,
-                                     gutter_fragment_shader, &program, error);
+    GLuint next = make_atlas_texture(h), framebuffer = framebuffer_of(next);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glUseProgram(program);
+    glBindTextureUnit(0, s->texture);
+    gb_gl_draw_fullscreen(s->empty_vertex_array);
+    glDeleteFramebuffers(1, &framebuffer);
+    glDeleteTextures(1, &s->texture);
+    s->texture = next;
+}
+
+/* The gutter: its first ring from the nearest point of the chart
+ * (octree_atlas_border.frag.glsl), then padding - 1 rounds of means. */
+static gb_result fill_gutter(gb_octree_atlas *s, const gb_atlas_header *h,
+                             const gb_light_octree_header *octree, GLuint triangle_ids,
+                             gb_error *error)
+{
+    GLuint border, gutter;
+    gb_result result = gb_gl_program("octree atlas border", gb_gl_fullscreen_vertex_shader,
+                                     border_fragment_shader, &border, error);
     if (result != GB_OK)
         return result;
-    GLuint other = make_atlas_texture(h), other_framebuffer = framebuffer_of(other);
-    GLuint atlas_framebuffer = framebuffer_of(s->texture);
-    glUseProgram(program);
-    for (uint32_t round = 0; round < h->padding; ++round) {
-        glBindFramebuffer(GL_FRAMEBUFFER, other_framebuffer);
-        glBindTextureUnit(0, s->texture);
-        gb_gl_draw_fullscreen(s->empty_vertex_array);
-        glBindFramebuffer(GL_FRAMEBUFFER, atlas_framebuffer);
-        glBindTextureUnit(0, other);
-        gb_gl_draw_fullscreen(s->empty_vertex_array);
+    result = gb_gl_program("octree atlas gutter", gb_gl_fullscreen_vertex_shader,
+                           gutter_fragment_shader, &gutter, error);
+    if (result != GB_OK) {
+        glDeleteProgram(border);
+        return result;
     }
-    glDeleteFramebuffers(1, &other_framebuffer);
-    glDeleteFramebuffers(1, &atlas_framebuffer);
-    glDeleteTextures(1, &other);
-    glDeleteProgram(program);
+    set_octree_uniforms(border, octree);
+    glBindTextureUnit(1, triangle_ids);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_CORNERS, s->corner_buffer);
+    for (uint32_t round = 0; round < h->padding; ++round)
+        pass_into_new_texture(s, h, round == 0 ? border : gutter);
+    glDeleteProgram(border);
+    glDeleteProgram(gutter);
     return GB_OK;
 }
 
@@ -171,17 +199,15 @@ static gb_result render_atlas(gb_octree_atlas *s, const gb_atlas_header *h,
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
     glGetIntegerv(GL_VIEWPORT, viewport);
     s->texture = make_atlas_texture(h);
-    GLuint framebuffer = framebuffer_of(s->texture);
-    static const float nothing_filled[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, nothing_filled);
+    GLuint triangle_ids = gb_gl_texture_2d(GL_R32UI, (int)h->width, (int)h->height);
     glViewport(0, 0, (GLsizei)h->width, (GLsizei)h->height);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
-    gb_result result = render_triangles(s, octree, framebuffer, error);
-    glDeleteFramebuffers(1, &framebuffer);
+    gb_result result = render_triangles(s, octree, triangle_ids, error);
     if (result == GB_OK)
-        result = fill_gutter(s, h, error);
+        result = fill_gutter(s, h, octree, triangle_ids, error);
+    glDeleteTextures(1, &triangle_ids);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     return result;

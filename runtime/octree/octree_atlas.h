@@ -10,10 +10,12 @@
  *         triangle drawn at its atlas UVs and evaluated at its world point,
  *         with its face normal (the side its winding faces) as the geometric
  *         normal and its corner normal turned to that side. Then the gutter
- *         (FORMATS.md, "Atlas"): in `padding` rounds, every texel whose
- *         centre no triangle covers takes the mean of its 8 neighbours filled
- *         before the round, so that bilinear reads at a chart's border never
- *         reach black. The caller binds the octree's node, leaf and VDL
+ *         (FORMATS.md, "Atlas"), `padding` rings: the first, the texels
+ *         beside covered ones, evaluated on the plane of their chart's
+ *         nearest triangle, extended past its edge
+ *         (octree_atlas_border.frag.glsl), which is all a bilinear read
+ *         inside a triangle reaches: no seam; each later ring the mean
+ *         of its filled 8 neighbours. The caller binds the octree's node, leaf and VDL
  *         buffers (octree.c's SSBO bindings 0, 1, 2) before the call.
  * draw    the atlas UV seen at each pixel (a geometry pass into a target of
  *         its own, redrawn only when the view or the size changes), then one

@@ -8,7 +8,9 @@ layout(location = 3) in vec3 face_normal;
 out vec3 v_position;
 out vec3 v_normal;
 flat out vec3 v_face_normal;
+flat out uint v_triangle;
 void main() {
+    v_triangle = uint(gl_VertexID) / 3u;
     v_position = position;
     v_normal = normal;
     v_face_normal = face_normal;

@@ -5,8 +5,12 @@
  *   texel_cover.c   which triangle covers each texel's centre (each
  *                   triangle rasterised at its atlas UVs)
  *   lightmap.c      per covered texel, the octree's irradiance at its world
- *                   point (light_octree_shading.h), on a work queue of rows
- *   gutter.c        the texels around the charts filled from their covered
+ *                   point (light_octree_shading.h), on a work queue of rows;
+ *                   so too the gutter's first ring, each texel beside a
+ *                   covered one on the plane of its chart's nearest
+ *                   triangle, extended past its edge (texel_cover.h): all a
+ *                   bilinear read inside a triangle reaches, so no seam
+ *   gutter.c        the gutter's further rings filled from their filled
  *                   neighbours (the padding), so bilinear reads never reach
  *                   black
  *   glb_export.c    the scene with the lightmap as a glTF 2.0 binary
@@ -24,8 +28,8 @@
  * normals interpolated, else the face normal) is turned to its side, as the
  * runtime's render into the atlas does (runtime/octree/octree_atlas.h): a
  * texel has one side. The gutter follows the runtime's too: `padding`
- * rounds, each filling every uncovered texel that has a filled neighbour
- * with the mean of its filled 8 neighbours; texels further out stay 0.
+ * rings, the first on the plane of the chart's nearest triangle, each later one the
+ * mean of its filled 8 neighbours; texels further out stay 0.
  *
  * The caller owns the scene, the atlas, the octree (checked against the
  * scene before the call) and the image it gets (gb_image_free).

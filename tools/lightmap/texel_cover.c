@@ -88,6 +88,53 @@ void gb_texel_cover_free(gb_texel_cover *cover)
     cover->triangle = NULL;
 }
 
+/* The squared distance from q (texel units) to the nearest point of
+ * triangle t. */
+static double squared_distance(const gb_atlas *atlas, uint32_t t, const double q[2])
+{
+    double p[3][2];
+    for (int c = 0; c < 3; ++c)
+        corner(atlas, t, c, p[c]);
+    if (edge(p[1], p[2], q) >= 0.0 && edge(p[2], p[0], q) >= 0.0 && edge(p[0], p[1], q) >= 0.0)
+        return 0.0;
+    double nearest = INFINITY;
+    for (int e = 0; e < 3; ++e) {
+        const double *a = p[e], *b = p[(e + 1) % 3];
+        double ab[2] = {b[0] - a[0], b[1] - a[1]};
+        double s = ((q[0] - a[0]) * ab[0] + (q[1] - a[1]) * ab[1]) /
+                   (ab[0] * ab[0] + ab[1] * ab[1]);
+        s = fmin(fmax(s, 0.0), 1.0);
+        double dx = q[0] - (a[0] + s * ab[0]), dy = q[1] - (a[1] + s * ab[1]);
+        nearest = fmin(nearest, dx * dx + dy * dy);
+    }
+    return nearest;
+}
+
+uint32_t gb_texel_border_triangle(const gb_atlas *atlas, const gb_texel_cover *cover,
+                                  uint32_t i, uint32_t j, double weights[3])
+{
+    const double q[2] = {(double)i + 0.5, (double)j + 0.5};
+    uint32_t chosen = GB_TEXEL_NONE;
+    double best = INFINITY;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            long x = (long)i + dx, y = (long)j + dy;
+            if (x < 0 || y < 0 || x >= (long)cover->width || y >= (long)cover->height)
+                continue;
+            uint32_t t = cover->triangle[(size_t)y * cover->width + (size_t)x];
+            if (t == GB_TEXEL_NONE)
+                continue;
+            double d = squared_distance(atlas, t, q);
+            if (d < best || (d == best && t < chosen)) {
+                best = d;
+                chosen = t;
+            }
+        }
+    if (chosen != GB_TEXEL_NONE)
+        gb_texel_barycentric(atlas, chosen, i, j, weights);
+    return chosen;
+}
+
 void gb_texel_barycentric(const gb_atlas *atlas, uint32_t t, uint32_t i, uint32_t j,
                           double weights[3])
 {

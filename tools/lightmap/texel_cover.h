@@ -33,4 +33,13 @@ void gb_texel_cover_free(gb_texel_cover *cover);
 void gb_texel_barycentric(const gb_atlas *atlas, uint32_t t, uint32_t i, uint32_t j,
                           double weights[3]);
 
+/* For texel (i, j), which no triangle covers: of the triangles covering its
+ * 8 neighbours, the one whose point nearest the texel's centre (texel
+ * units) is nearest, ties to the smaller index, with the barycentric
+ * weights of the centre in it (extended past its edges: some negative);
+ * GB_TEXEL_NONE when no neighbour is covered. The gutter's first ring (the
+ * runtime's octree_atlas_border.frag.glsl). */
+uint32_t gb_texel_border_triangle(const gb_atlas *atlas, const gb_texel_cover *cover,
+                                  uint32_t i, uint32_t j, double weights[3]);
+
 #endif
