@@ -87,4 +87,18 @@ gb_result gb_atlas_check_scene(const gb_atlas *atlas, uint64_t scene_hash,
                                uint32_t triangle_count, const char *path, gb_error *error);
 void gb_atlas_free(gb_atlas *atlas);
 
+/* How far (texels, from a texel's centre) a chart's field reaches into its
+ * gutter when the atlas is rendered: the texels whose centre lies within
+ * this distance of one of the chart's triangles hold the chart's own field,
+ * evaluated on the plane of the nearest such triangle (extended past its
+ * edges). √2 reaches every texel a bilinear read inside a triangle weighs,
+ * so a chart's border shows no seam; it is kept under the padding, so that
+ * it never reaches another chart's gutter (the padded rects are apart), and
+ * is 0 without padding: the runtime's render into the atlas and `lightmap`
+ * both use it. */
+static inline double gb_atlas_reach(uint32_t padding)
+{
+    return padding >= 2 ? 1.41421356237 : padding == 1 ? 0.9375 : 0.0;
+}
+
 #endif

@@ -29,9 +29,6 @@ static const char render_vertex_shader[] =
 static const char render_fragment_shader[] =
 #include "runtime/octree/octree_atlas_render.frag.glsl.inc"
     ;
-static const char border_fragment_shader[] =
-#include "runtime/octree/octree_atlas_border.frag.glsl.inc"
-    ;
 static const char gutter_fragment_shader[] =
 #include "runtime/octree/octree_atlas_gutter.frag.glsl.inc"
     ;
@@ -123,10 +120,11 @@ static void set_octree_uniforms(GLuint program, const gb_light_octree_header *h)
     glProgramUniform1i(program, glGetUniformLocation(program, "depth"), (GLint)h->depth);
 }
 
-/* The triangles drawn at their UVs: the irradiance into s->texture, each
- * texel's triangle (+ 1, 0 for none) into triangle_ids. */
-static gb_result render_triangles(gb_octree_atlas *s, const gb_light_octree_header *octree,
-                                  GLuint triangle_ids, gb_error *error)
+/* The triangles drawn at their UVs, each reaching gb_atlas_reach texels
+ * past its edges, the nearest triangle keeping a texel (a depth test on the
+ * distance): the irradiance into s->texture. */
+static gb_result render_triangles(gb_octree_atlas *s, const gb_atlas_header *h,
+                                  const gb_light_octree_header *octree, gb_error *error)
 {
     GLuint program;
     gb_result result = gb_gl_program("octree atlas render", render_vertex_shader,
@@ -134,19 +132,27 @@ static gb_result render_triangles(gb_octree_atlas *s, const gb_light_octree_head
     if (result != GB_OK)
         return result;
     set_octree_uniforms(program, octree);
+    glProgramUniform2f(program, glGetUniformLocation(program, "atlas_size"), (float)h->width,
+                       (float)h->height);
+    glProgramUniform1f(program, glGetUniformLocation(program, "reach"),
+                       (float)gb_atlas_reach(h->padding));
     GLuint framebuffer = framebuffer_of(s->texture);
-    static const GLenum both[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-    static const float nothing_filled[4] = {0, 0, 0, 0};
-    static const GLuint no_triangle[4] = {0, 0, 0, 0};
-    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT1, triangle_ids, 0);
-    glNamedFramebufferDrawBuffers(framebuffer, 2, both);
+    GLuint depth = gb_gl_texture_2d(GL_DEPTH_COMPONENT32F, (int)h->width, (int)h->height);
+    static const float nothing_filled[4] = {0, 0, 0, 0}, farthest = 1.0f;
+    glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, depth, 0);
     glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, nothing_filled);
-    glClearNamedFramebufferuiv(framebuffer, GL_COLOR, 1, no_triangle);
+    glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &farthest);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_CORNERS, s->corner_buffer);
     glUseProgram(program);
-    glBindVertexArray(s->corner_array);
+    glBindVertexArray(s->empty_vertex_array);
     glDrawArrays(GL_TRIANGLES, 0, s->corner_count);
+    glDisable(GL_DEPTH_TEST);
     glDeleteFramebuffers(1, &framebuffer);
+    glDeleteTextures(1, &depth);
     glDeleteProgram(program);
     return GB_OK;
 }
@@ -165,29 +171,17 @@ static void pass_into_new_texture(gb_octree_atlas *s, const gb_atlas_header *h, 
     s->texture = next;
 }
 
-/* The gutter: its first ring from the nearest point of the chart
- * (octree_atlas_border.frag.glsl), then padding - 1 rounds of means. */
-static gb_result fill_gutter(gb_octree_atlas *s, const gb_atlas_header *h,
-                             const gb_light_octree_header *octree, GLuint triangle_ids,
-                             gb_error *error)
+/* The rest of the gutter, past the triangles' reach: padding - 1 rounds of
+ * means. */
+static gb_result fill_gutter(gb_octree_atlas *s, const gb_atlas_header *h, gb_error *error)
 {
-    GLuint border, gutter;
-    gb_result result = gb_gl_program("octree atlas border", gb_gl_fullscreen_vertex_shader,
-                                     border_fragment_shader, &border, error);
+    GLuint gutter;
+    gb_result result = gb_gl_program("octree atlas gutter", gb_gl_fullscreen_vertex_shader,
+                                     gutter_fragment_shader, &gutter, error);
     if (result != GB_OK)
         return result;
-    result = gb_gl_program("octree atlas gutter", gb_gl_fullscreen_vertex_shader,
-                           gutter_fragment_shader, &gutter, error);
-    if (result != GB_OK) {
-        glDeleteProgram(border);
-        return result;
-    }
-    set_octree_uniforms(border, octree);
-    glBindTextureUnit(1, triangle_ids);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_CORNERS, s->corner_buffer);
-    for (uint32_t round = 0; round < h->padding; ++round)
-        pass_into_new_texture(s, h, round == 0 ? border : gutter);
-    glDeleteProgram(border);
+    for (uint32_t round = 1; round < h->padding; ++round)
+        pass_into_new_texture(s, h, gutter);
     glDeleteProgram(gutter);
     return GB_OK;
 }
@@ -199,15 +193,12 @@ static gb_result render_atlas(gb_octree_atlas *s, const gb_atlas_header *h,
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
     glGetIntegerv(GL_VIEWPORT, viewport);
     s->texture = make_atlas_texture(h);
-    GLuint triangle_ids = gb_gl_texture_2d(GL_R32UI, (int)h->width, (int)h->height);
     glViewport(0, 0, (GLsizei)h->width, (GLsizei)h->height);
-    glDisable(GL_DEPTH_TEST);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
-    gb_result result = render_triangles(s, octree, triangle_ids, error);
+    gb_result result = render_triangles(s, h, octree, error);
     if (result == GB_OK)
-        result = fill_gutter(s, h, octree, triangle_ids, error);
-    glDeleteTextures(1, &triangle_ids);
+        result = fill_gutter(s, h, error);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
     glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
     return result;

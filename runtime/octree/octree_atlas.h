@@ -7,16 +7,20 @@
  *
  * create  renders the octree's irradiance (octree_irradiance.glsl, the
  *         display's own) into an RGBA32F texture of the atlas's size: each
- *         triangle drawn at its atlas UVs and evaluated at its world point,
- *         with its face normal (the side its winding faces) as the geometric
- *         normal and its corner normal turned to that side. Then the gutter
- *         (FORMATS.md, "Atlas"), `padding` rings: the first, the texels
- *         beside covered ones, evaluated on the plane of their chart's
- *         nearest triangle, extended past its edge
- *         (octree_atlas_border.frag.glsl), which is all a bilinear read
- *         inside a triangle reaches: no seam; each later ring the mean
- *         of its filled 8 neighbours. The caller binds the octree's node, leaf and VDL
- *         buffers (octree.c's SSBO bindings 0, 1, 2) before the call.
+ *         triangle drawn at its atlas UVs, its edges pushed out by
+ *         gb_atlas_reach (√2 texels at the default padding), and every
+ *         texel whose centre lies within that distance of it evaluated on
+ *         its plane there (barycentric weights extended past the edges), the
+ *         nearest triangle keeping the texel: the covered texels and all
+ *         the others a bilinear read inside a triangle weighs hold the
+ *         chart's own field, so chart borders show no seam, and a chart too
+ *         small to cover a texel centre still gets its texels. The face
+ *         normal (the side the winding faces) is the geometric normal, the
+ *         corner normals turned to that side. Then the rest of the gutter
+ *         (FORMATS.md, "Atlas"): padding - 1 rounds, every unfilled texel
+ *         the mean of its 8 neighbours filled before the round. The caller
+ *         binds the octree's node, leaf and VDL buffers (octree.c's SSBO
+ *         bindings 0, 1, 2) before the call.
  * draw    the atlas UV seen at each pixel (a geometry pass into a target of
  *         its own, redrawn only when the view or the size changes), then one
  *         full-screen pass: Kd / π · texture(atlas, uv), bilinear.

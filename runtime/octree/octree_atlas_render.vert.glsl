@@ -1,18 +1,21 @@
-// The render into the atlas (octree_atlas.h), vertices: each triangle
-// corner placed at its atlas UV, v = 0 at row 0 (formats/atlas.h).
+// The render into the atlas (octree_atlas.h), vertices: each triangle drawn
+// at its atlas UVs (v = 0 at row 0, formats/atlas.h), its edges pushed out
+// by `reach` texels (gb_atlas_reach), so that its fragments include every
+// texel whose centre lies within reach of it: each corner moved to where
+// its two edges, offset, meet (the miter bounded for needles).
 #version 450 core
-layout(location = 0) in vec2 uv;
-layout(location = 1) in vec3 position;
-layout(location = 2) in vec3 normal;
-layout(location = 3) in vec3 face_normal;
-out vec3 v_position;
-out vec3 v_normal;
-flat out vec3 v_face_normal;
+#include "runtime/octree/octree_atlas_corners.glsl"
+uniform float reach;
 flat out uint v_triangle;
 void main() {
-    v_triangle = uint(gl_VertexID) / 3u;
-    v_position = position;
-    v_normal = normal;
-    v_face_normal = face_normal;
-    gl_Position = vec4(2.0 * uv - 1.0, 0.0, 1.0);
+    uint t = uint(gl_VertexID) / 3u;
+    int k = gl_VertexID % 3;
+    vec2 p = corner_texel(t, k);
+    vec2 before = normalize(p - corner_texel(t, (k + 2) % 3));
+    vec2 after = normalize(corner_texel(t, (k + 1) % 3) - p);
+    // counterclockwise: the outside is on the right of each edge
+    vec2 out_before = vec2(before.y, -before.x), out_after = vec2(after.y, -after.x);
+    vec2 offset = (out_before + out_after) * reach / max(1.0 + dot(out_before, out_after), 0.05);
+    v_triangle = t;
+    gl_Position = vec4(2.0 * (p + offset) / atlas_size - 1.0, 0.0, 1.0);
 }

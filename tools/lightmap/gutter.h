@@ -1,7 +1,7 @@
 /* gutter.h — the texels around the charts of a lightmap filled from the
  * filled ones (lightmap.h), so that a bilinear read at a chart's border
- * never reaches black: `rounds` rounds (the atlas's padding less the first
- * ring, which lightmap.c evaluates on the chart's nearest triangle), each giving
+ * never reaches black: `rounds` rounds (the atlas's padding less one: the
+ * triangles' reach fills the first ring, texel_cover.h), each giving
  * every unfilled texel that has filled neighbours the mean of its filled 8
  * neighbours as they were before the round. It is the rule of the
  * runtime's render into the atlas (octree_atlas_gutter.frag.glsl), so the

@@ -52,14 +52,11 @@ static int bake_row(void *context, uint64_t item)
     uint32_t j = (uint32_t)item, width = job->cover->width;
     for (uint32_t i = 0; i < width; ++i) {
         uint32_t t = job->cover->triangle[(size_t)j * width + i];
-        double w[3];
-        if (t != GB_TEXEL_NONE)
-            gb_texel_barycentric(job->atlas, t, i, j, w);
-        else if (job->atlas->header.padding > 0)
-            t = gb_texel_border_triangle(job->atlas, job->cover, i, j, w);
         if (t == GB_TEXEL_NONE)
             continue;
+        double w[3];
         float x[3], n[3], ng[3];
+        gb_texel_barycentric(job->atlas, t, i, j, w);
         surface_at(job->scene, t, w, x, n, ng);
         gb_light_octree_irradiance(job->octree, x, n, ng,
                                    job->image->pixels + 3 * ((size_t)j * width + i));
@@ -78,42 +75,24 @@ static gb_result bake_texels(bake_job *job, const gb_lightmap_options *options, 
     return GB_OK;
 }
 
-/* Whether texel (i, j) has a covered 8-neighbour: the gutter's first ring,
- * which bake_row evaluated. */
-static int beside_covered(const gb_texel_cover *cover, uint32_t i, uint32_t j)
-{
-    for (int dy = -1; dy <= 1; ++dy)
-        for (int dx = -1; dx <= 1; ++dx) {
-            long x = (long)i + dx, y = (long)j + dy;
-            if (x >= 0 && y >= 0 && x < (long)cover->width && y < (long)cover->height &&
-                cover->triangle[(size_t)y * cover->width + (size_t)x] != GB_TEXEL_NONE)
-                return 1;
-        }
-    return 0;
-}
-
-/* The gutter around the covered texels and their first ring; counts filled
- * into stats. */
+/* The gutter past the triangles' reach; counts into stats. */
 static gb_result fill_gutter(const gb_atlas *atlas, const gb_texel_cover *cover,
                              gb_image *image, gb_lightmap_stats *stats, gb_error *error)
 {
-    uint32_t padding = atlas->header.padding;
-    uint8_t *filled = malloc((size_t)cover->width * cover->height);
+    size_t texels = (size_t)cover->width * cover->height;
+    uint8_t *filled = malloc(texels);
     if (!filled)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "lightmap: out of memory");
-    for (uint32_t j = 0; j < cover->height; ++j)
-        for (uint32_t i = 0; i < cover->width; ++i) {
-            size_t k = (size_t)j * cover->width + i;
-            int covered = cover->triangle[k] != GB_TEXEL_NONE;
-            filled[k] = covered || (padding > 0 && beside_covered(cover, i, j));
-            stats->covered += (uint64_t)covered;
-            stats->gutter += (uint64_t)(filled[k] && !covered);
-        }
+    for (size_t k = 0; k < texels; ++k) {
+        filled[k] = cover->triangle[k] != GB_TEXEL_NONE;
+        stats->covered += filled[k];
+    }
+    uint32_t padding = atlas->header.padding;
     int64_t gutter = padding > 1 ? gb_gutter_fill(image, filled, padding - 1) : 0;
     free(filled);
     if (gutter < 0)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "lightmap: out of memory");
-    stats->gutter += (uint64_t)gutter;
+    stats->gutter = (uint64_t)gutter;
     return GB_OK;
 }
 

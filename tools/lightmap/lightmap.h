@@ -2,16 +2,16 @@
  * (vivianloc-2007 §4.2.3, Figure 1: the render-to-texture stage, here
  * without a GPU, so that other engines can load the result):
  *
- *   texel_cover.c   which triangle covers each texel's centre (each
- *                   triangle rasterised at its atlas UVs)
- *   lightmap.c      per covered texel, the octree's irradiance at its world
- *                   point (light_octree_shading.h), on a work queue of rows;
- *                   so too the gutter's first ring, each texel beside a
- *                   covered one on the plane of its chart's nearest
- *                   triangle, extended past its edge (texel_cover.h): all a
- *                   bilinear read inside a triangle reaches, so no seam
- *   gutter.c        the gutter's further rings filled from their filled
- *                   neighbours (the padding), so bilinear reads never reach
+ *   texel_cover.c   which triangle's field each texel holds: each triangle
+ *                   rasterised at its atlas UVs with its reach
+ *                   (gb_atlas_reach), the nearest keeping a texel
+ *   lightmap.c      per such texel, the octree's irradiance on its
+ *                   triangle's plane at the texel's centre
+ *                   (light_octree_shading.h), on a work queue of rows: the
+ *                   covered texels and every other one a bilinear read
+ *                   inside a triangle weighs, so chart borders show no seam
+ *   gutter.c        the rest of the gutter filled from the filled texels
+ *                   (padding - 1 rounds), so bilinear reads never reach
  *                   black
  *   glb_export.c    the scene with the lightmap as a glTF 2.0 binary
  *                   (formats/gltf_binary.h the container): its vertices
@@ -27,9 +27,9 @@
  * winding, cross(v1 - v0, v2 - v0), and the shading normal (the corner
  * normals interpolated, else the face normal) is turned to its side, as the
  * runtime's render into the atlas does (runtime/octree/octree_atlas.h): a
- * texel has one side. The gutter follows the runtime's too: `padding`
- * rings, the first on the plane of the chart's nearest triangle, each later one the
- * mean of its filled 8 neighbours; texels further out stay 0.
+ * texel has one side. The reach and the gutter follow the runtime's too:
+ * after the triangles' reach, padding - 1 rounds, each giving an unfilled
+ * texel the mean of its filled 8 neighbours; texels further out stay 0.
  *
  * The caller owns the scene, the atlas, the octree (checked against the
  * scene before the call) and the image it gets (gb_image_free).
@@ -53,8 +53,8 @@ typedef struct gb_lightmap_options {
 } gb_lightmap_options;
 
 typedef struct gb_lightmap_stats {
-    uint64_t covered;               /* texels whose centre a triangle covers */
-    uint64_t gutter;                /* texels the gutter filled */
+    uint64_t covered;               /* texels within a triangle's reach */
+    uint64_t gutter;                /* texels the gutter's rounds filled */
     int threads;
     double seconds;
 } gb_lightmap_stats;
