@@ -9,9 +9,13 @@
  * A pixel is on a seam when any of the four texels its bilinear fetch
  * weighs is not covered by its own chart: a texel is covered by a chart when
  * its centre lies in one of the chart's triangles (the texels the render
- * into the atlas fills; the others hold the gutter). Prints, for the seam
- * pixels and for the others, their count and the relative MSE of A against
- * B, Σ (a - b)² / Σ b² over their RGB, as "NAME VALUE" lines.
+ * into the atlas fills; the others hold the gutter). A pixel that sees the
+ * back of its triangle (the side its winding does not face, which the atlas
+ * does not hold: octree_atlas.h) is counted apart. Prints, for the seam
+ * pixels, the back-facing ones and the others, their count and the
+ * relative MSE of A against B as imgdiff defines it (image_error.h: the
+ * mean over their RGB values of (a - b)² / (b² + 0.01)), as "NAME VALUE"
+ * lines.
  */
 #include <math.h>
 #include <stdio.h>
@@ -22,6 +26,7 @@
 #include "embree_scene.h"
 #include "image.h"
 #include "scene.h"
+#include "scene_triangles.h"
 
 #define NO_CHART 0xFFFFFFFFu
 
@@ -82,16 +87,15 @@ static int on_seam(const gb_atlas *atlas, const uint32_t *texel_chart, const gb_
 
 typedef struct pixel_class {
     long count;
-    double squared_difference, squared_reference;
+    double relative_squared_error;  /* summed over the class's RGB values */
 } pixel_class;
 
 static void add_pixel(pixel_class *c, const float *a, const float *b)
 {
     ++c->count;
-    for (int k = 0; k < 3; ++k) {
-        c->squared_difference += ((double)a[k] - b[k]) * ((double)a[k] - b[k]);
-        c->squared_reference += (double)b[k] * b[k];
-    }
+    for (int k = 0; k < 3; ++k)
+        c->relative_squared_error += ((double)a[k] - b[k]) * ((double)a[k] - b[k]) /
+                                     ((double)b[k] * b[k] + 0.01);
 }
 
 static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image *a,
@@ -106,7 +110,7 @@ static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image 
         free(texel_chart);
         return 0;
     }
-    pixel_class seam = {0}, inside = {0};
+    pixel_class seam = {0}, back = {0}, inside = {0};
     uint64_t ray_count = 0;
     for (int y = 0; y < a->height; ++y)
         for (int x = 0; x < a->width; ++x) {
@@ -116,12 +120,16 @@ static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image 
                                      &ray_count))
                 continue;
             size_t i = ((size_t)y * a->width + x) * (size_t)a->channels;
-            add_pixel(on_seam(atlas, texel_chart, &hit) ? &seam : &inside, a->pixels + i,
-                      b->pixels + i);
+            pixel_class *c = gb_vec3_dot(gb_triangle_normal(scene, hit.triangle), direction) > 0.0f
+                                 ? &back
+                                 : on_seam(atlas, texel_chart, &hit) ? &seam : &inside;
+            add_pixel(c, a->pixels + i, b->pixels + i);
         }
-    printf("seam_pixels %ld\nseam_relative_mse %.6g\nother_pixels %ld\nother_relative_mse %.6g\n",
-           seam.count, seam.squared_difference / fmax(seam.squared_reference, 1e-30),
-           inside.count, inside.squared_difference / fmax(inside.squared_reference, 1e-30));
+    const pixel_class *classes[3] = {&seam, &back, &inside};
+    static const char *const names[3] = {"seam", "back", "other"};
+    for (int k = 0; k < 3; ++k)
+        printf("%s_pixels %ld\n%s_relative_mse %.6g\n", names[k], classes[k]->count, names[k],
+               classes[k]->relative_squared_error / fmax(3.0 * classes[k]->count, 1.0));
     gb_embree_scene_destroy(rays);
     free(texel_chart);
     return 1;
