@@ -13,7 +13,7 @@
 #   make clean
 #
 # Programs are linked with $(CXX), since the library holds the C++ adapters.
-# Sources are found by their place: formats/*.c and *.cpp, common/*.c, tools/<name>/*.c,
+# Sources are found by their place: formats/*.c and *.cpp, common/*.c, tools/<name>/*.c and *.cpp,
 # runtime/*.c (the renderer's core) and runtime/<method>/*.c (one folder per GI
 # method) go into one static library, but for the adapters (ADAPTER_SOURCES:
 # shared objects, loaded on first use); tools/<name>/main.c becomes
@@ -32,7 +32,7 @@ SANITIZE ?=
 FUZZ_SECONDS ?= 20
 
 DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
-  libopenvdb-dev libtbb-dev libembree-dev libflann-dev liblz4-dev libcgal-dev \
+  libopenvdb-dev libtbb-dev libembree-dev libflann-dev liblz4-dev libcgal-dev libeigen3-dev \
   libopenmesh-dev libopenimageio-dev libepoxy-dev libglfw3-dev libegl-dev \
   libegl-mesa0 libgl1-mesa-dri xvfb xauth libopenvdb-tools openimageio-tools time strace gnuplot-nox help2man \
   munge slurm-wlm
@@ -58,7 +58,9 @@ OPENVDB_LIBS = -lopenvdb -ltbb
 TOOLS := $(patsubst tools/%/main.c,%,$(wildcard tools/*/main.c))
 PROGRAMS := $(TOOLS) $(if $(wildcard runtime/main.c),gbview)
 LIBRARY_C := $(wildcard formats/*.c common/*.c) $(filter-out %/main.c,$(wildcard tools/*/*.c runtime/*.c runtime/*/*.c))
-LIBRARY_CXX := $(filter-out $(ADAPTER_SOURCES),$(wildcard formats/*.cpp))
+LIBRARY_CXX := $(filter-out $(ADAPTER_SOURCES),$(wildcard formats/*.cpp tools/*/*.cpp))
+# tools/atlas/lscm_cgal.cpp: CGAL's LSCM solves with Eigen (header-only, as CGAL is)
+CXXFLAGS += -I/usr/include/eigen3
 LIBRARY_OBJECTS := $(LIBRARY_C:%.c=$(BUILD)/obj/%.o) $(LIBRARY_CXX:%.cpp=$(BUILD)/obj/%.o)
 LIBRARY := $(BUILD)/libgibake.a
 UNIT_TESTS := $(patsubst tests/unit/%.c,$(BUILD)/tests/%,$(wildcard tests/unit/test_*.c))

@@ -1,0 +1,163 @@
+/* atlas — a scene's lightmap atlas: charts, CGAL LSCM UVs, packing
+ * (tools/atlas/atlas_build.h). Parses options, loads the scene, calls
+ * gb_atlas_build, writes the file. */
+
+#include <getopt.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "atlas.h"
+#include "atlas_build.h"
+#include "cli.h"
+#include "depfile.h"
+#include "output_file.h"
+#include "progress.h"
+#include "scene.h"
+#include "scene_warnings.h"
+
+static const char usage[] =
+    "usage: atlas [options] SCENE -o OUT.atlas\n"
+    "Cuts the triangles of SCENE into charts, maps each by least-squares conformal\n"
+    "maps (CGAL) and packs them into one lightmap atlas (vivianloc-2007 4.2.3;\n"
+    "formats/FORMATS.md, \"Atlas\"). Charts grow over shared edges while every\n"
+    "normal stays within --cone of the chart's first; each is cut until it is a\n"
+    "disc. No two triangles overlap in the atlas (tested exactly before writing)\n"
+    "and every triangle has a positive UV area.\n"
+    "\n"
+    "  -o, --output FILE        the atlas to write (required)\n"
+    "      --size N             an N x N atlas, at the largest texel density at\n"
+    "                           which the charts fit (default 1024)\n"
+    "      --texels-per-unit T  this texel density instead; the atlas is as large\n"
+    "                           as the charts need (at most 16384 a side)\n"
+    "      --padding P          texels of gutter around every chart (default 2)\n"
+    "      --cone DEGREES       largest angle between a chart's normals and its\n"
+    "                           first triangle's, 1..90 (default 70)\n"
+    "      --stats              print charts, fill ratio (the triangles' UV area\n"
+    "                           in texels over the atlas's width x height), max and\n"
+    "                           mean angle distortion (degrees, per triangle corner:\n"
+    "                           |UV angle - 3-D angle|) and seconds\n"
+    "      --depfile FILE       a make rule: the output and every file read (-MD)\n"
+    "  -q, --quiet              no progress bar, no warnings\n"
+    "  -h, --help               this help\n"
+    "  -V, --version            the version\n";
+
+typedef struct arguments {
+    gb_atlas_options atlas;
+    const char *scene, *output, *depfile;
+    int quiet, stats, size_given;
+} arguments;
+
+enum { OPTION_SIZE = 256, OPTION_TEXELS, OPTION_PADDING, OPTION_CONE, OPTION_STATS,
+       OPTION_DEPFILE };
+
+static const struct option long_options[] = {
+    GB_CLI_VALUE("output", 'o'),
+    GB_CLI_VALUE("size", OPTION_SIZE),
+    GB_CLI_VALUE("texels-per-unit", OPTION_TEXELS),
+    GB_CLI_VALUE("padding", OPTION_PADDING),
+    GB_CLI_VALUE("cone", OPTION_CONE),
+    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
+    GB_CLI_OPTIONS_END,
+};
+
+/* One option into a; 0, else the exit status. */
+static int parse_option(int option, const char *text, void *context)
+{
+    arguments *a = context;
+    gb_atlas_options *o = &a->atlas;
+    switch (option) {
+    case 'o': a->output = text; return 0;
+    case 'q': a->quiet = 1; return 0;
+    case OPTION_STATS: a->stats = 1; return 0;
+    case OPTION_DEPFILE: a->depfile = text; return 0;
+    case OPTION_SIZE:
+        a->size_given = 1;
+        return gb_cli_uint("atlas", "size", text, 8, GB_ATLAS_MAX_SIZE, &o->size);
+    case OPTION_TEXELS:
+        return gb_cli_number("atlas", "texels-per-unit", text, 1e-9, 1e9, &o->texels_per_unit);
+    case OPTION_PADDING: return gb_cli_uint("atlas", "padding", text, 0, 64, &o->padding);
+    default: return gb_cli_number("atlas", "cone", text, 1.0, 90.0, &o->cone_degrees);
+    }
+}
+
+/* SCENE, and -o; GB_CLI_GO_ON, else the exit status. */
+static int check_operands(int count, char **operands, void *context)
+{
+    arguments *a = context;
+    if (count != 1 || !a->output)
+        return gb_cli_usage_error("atlas", "expected one SCENE and -o OUT.atlas");
+    if (a->size_given && a->atlas.texels_per_unit > 0.0)
+        return gb_cli_usage_error("atlas", "--size and --texels-per-unit exclude each other");
+    a->scene = operands[0];
+    return GB_CLI_GO_ON;
+}
+
+static const gb_cli_command command = {"atlas", usage, long_options, parse_option,
+                                       check_operands};
+
+static void print_stats(const gb_atlas_stats *s, const gb_atlas *atlas, const char *output)
+{
+    const gb_atlas_header *h = &atlas->header;
+    printf("charts %u\nfill_ratio %.4f\nmax_angle_distortion %.3f\n"
+           "mean_angle_distortion %.3f\nseconds %.3f\n", s->charts, s->fill_ratio,
+           s->max_angle_distortion, s->mean_angle_distortion, s->seconds);
+    printf("size %ux%u\ntexels_per_unit %.6g\ntriangles %u\ngrown_charts %u\n"
+           "lone_triangles %u\n", h->width, h->height, (double)h->texels_per_unit,
+           h->triangle_count, s->grown_charts, s->lone_triangles);
+    /* why charts were split (atlas_build.h, parameterize.h) */
+    printf("split_not_disc %u\nsplit_lscm_failed %u\nsplit_folded %u\nsplit_overlapping %u\n"
+           "split_wasteful %u\nlaid_alone_collapsed %u\nsplit_overlapping_packed %u\n"
+           "packings %u\n", s->splits, s->lscm_failures, s->folded, s->overlapping, s->wasteful,
+           s->collapsed, s->self_overlaps, s->rounds);
+    FILE *file = fopen(output, "rb");
+    if (file && fseek(file, 0, SEEK_END) == 0)
+        printf("bytes %ld\n", ftell(file));
+    if (file)
+        fclose(file);
+}
+
+static gb_result make_atlas(arguments *a, const gb_scene *scene, gb_error *error)
+{
+    gb_progress progress;
+    gb_progress_begin_for(&progress, "atlas", a->quiet, &a->atlas.progress,
+                          &a->atlas.progress_user);
+    gb_atlas atlas;
+    gb_atlas_stats stats;
+    gb_result result = gb_atlas_build(scene, &a->atlas, &atlas, &stats, error);
+    gb_progress_end(&progress);
+    if (result == GB_OK)
+        result = gb_atlas_write(a->output, &atlas, error);
+    if (result == GB_OK && a->stats)
+        print_stats(&stats, &atlas, a->output);
+    gb_atlas_free(&atlas);
+    return result;
+}
+
+static gb_result run(void *context, gb_error *error)
+{
+    arguments *a = context;
+    gb_result result = gb_output_file_check(a->output, error);
+    if (result == GB_OK && a->depfile)
+        result = gb_output_file_check(a->depfile, error);
+    if (result != GB_OK)
+        return result;
+    gb_scene scene;
+    result = gb_scene_load(a->scene, NULL, &scene, error);
+    if (result == GB_OK && !a->quiet)
+        gb_scene_warn("atlas", &scene, GB_WARN_GEOMETRY);
+    if (result == GB_OK)
+        result = make_atlas(a, &scene, error);
+    if (result == GB_OK && a->depfile)
+        result = gb_depfile_write_scene(a->depfile, a->output, &scene, NULL, error);
+    gb_scene_free(&scene);
+    return result;
+}
+
+int main(int argc, char **argv)
+{
+    arguments a = {0};
+    a.atlas.padding = GB_ATLAS_DEFAULT_PADDING;
+    return gb_cli_main(&command, argc, argv, run, &a);
+}
