@@ -35,7 +35,7 @@ DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
   libopenvdb-dev libtbb-dev libembree-dev libflann-dev liblz4-dev libcgal-dev libeigen3-dev \
   libopenmesh-dev libopenimageio-dev libepoxy-dev libglfw3-dev libegl-dev \
   libegl-mesa0 libgl1-mesa-dri xvfb xauth libopenvdb-tools openimageio-tools time strace gnuplot-nox help2man \
-  munge slurm-wlm
+  munge slurm-wlm nodejs python3
 # What make bench needs beside: scikit-image's skeletonize_3d, thin's peer
 # in bench/thin.sh (for Debian's /usr/bin/python3).
 BENCH_DEB_PACKAGES = python3-skimage python3-openvdb
@@ -192,6 +192,14 @@ check-sanitized:
 
 check-fuzz:
 	$(MAKE) fuzz FUZZ_SECONDS=$(FUZZ_CHECK_SECONDS)
+
+# The Khronos glTF validator (npm gltf-validator), which tests/cli/lightmap.t
+# runs with node on lightmap's .glb. nodejs (NodeSource's on these machines)
+# brings npm: Debian's npm package would conflict with it.
+GLTF_VALIDATOR = build/node/node_modules/gltf-validator/package.json
+$(GLTF_VALIDATOR):
+	npm install --prefix build/node --no-audit --no-fund gltf-validator@2.0.0-dev.3.10
+check-optimised check-sanitized: $(GLTF_VALIDATOR)
 
 # The unit tests N times each (N/20 for those over a second) and the CLI
 # suite N/20 times, counting failures: make test-repeat N=1000 (not in CI).

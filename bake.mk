@@ -34,10 +34,12 @@ THIN_FLAGS ?=
 SEGMENT_FLAGS ?=
 PHOTONS_FLAGS ?=
 CLUSTER_FLAGS ?=
+ATLAS_FLAGS ?=
+LIGHTMAP_FLAGS ?=
 SHARDS ?= 1
 shard_indices = $(shell seq 0 $$(($(SHARDS) - 1)))
 BAKE_MK := $(abspath $(lastword $(MAKEFILE_LIST)))
-BAKE_TOOLS := voxelize thin segment photons cluster
+BAKE_TOOLS := voxelize thin segment photons cluster atlas lightmap
 
 .PHONY: bake bake-force slurm-bake
 bake:
@@ -50,7 +52,8 @@ slurm-bake: $(foreach s,scene-hash images-hash $(BAKE_TOOLS:%=%-flags),$(BAKE)/$
 	BAKE_MK=$(BAKE_MK) BIN=$(abspath $(BIN)) BAKE=$(BAKE) SCENE=$(SCENE) SHARDS=$(SHARDS) \
 	  VOXELIZE_FLAGS='$(VOXELIZE_FLAGS)' THIN_FLAGS='$(THIN_FLAGS)' \
 	  SEGMENT_FLAGS='$(SEGMENT_FLAGS)' PHOTONS_FLAGS='$(PHOTONS_FLAGS)' \
-	  CLUSTER_FLAGS='$(CLUSTER_FLAGS)' PREFIX=$(BAKE)/$(SCENE_NAME) \
+	  CLUSTER_FLAGS='$(CLUSTER_FLAGS)' ATLAS_FLAGS='$(ATLAS_FLAGS)' \
+	  LIGHTMAP_FLAGS='$(LIGHTMAP_FLAGS)' PREFIX=$(BAKE)/$(SCENE_NAME) \
 	  sh $(dir $(BAKE_MK))tools/slurm_bake.sh
 
 # timed PREFIX,TOOL: GNU time into PREFIX.TOOL.time, with TIME_BAKE=1.
@@ -72,7 +75,7 @@ BAKE_PREFIXES += $(2)
 $(if $(wildcard $(2).source),$(if $(filter-out $(abspath $(1)),$(file <$(2).source)),\
   $(error $(2).*: baked from $(file <$(2).source); $(1) has the same name: give it \
   another BAKE folder, or remove $(2).*)))
-bake: $(2).seg $(2).lot
+bake: $(2).seg $(2).lot $(2).atlas $(2).lightmap.exr
 
 $(2).content: $(1) $(BIN)/scene-info
 	@mkdir -p $$(@D)
@@ -130,11 +133,22 @@ $(2).lot.$(i)-of-$(SHARDS): $(2).scene-hash $(2).phot $(2).cluster-flags $(BIN)/
 $(2).lot: $(foreach i,$(shard_indices),$(2).lot.$(i)-of-$(SHARDS)) $(BIN)/cluster
 	$(call timed,$(2),cluster) $(BIN)/cluster --merge $$(filter %-of-$(SHARDS),$$^) -o $$@
 endif
+
+$(2).atlas: $(2).scene-hash $(2).atlas-flags $(BIN)/atlas
+	$(call timed,$(2),atlas) $(BIN)/atlas $(ATLAS_FLAGS) $(1) -o $$@
+
+# lightmap bakes the octree into the atlas (OUT.exr) and exports the scene
+# with it (OUT.glb, which embeds the scene's images: hence images-hash).
+$(2).lightmap.exr $(2).glb &: $(2).scene-hash $(2).images-hash $(2).atlas $(2).lot \
+  $(2).lightmap-flags $(BIN)/lightmap
+	$(call timed,$(2),lightmap) $(BIN)/lightmap $(LIGHTMAP_FLAGS) $(1) $(2).atlas $(2).lot \
+	  -o $(2).lightmap.exr --glb $(2).glb
 endef
 
 # flags_of TOOL: the name of its flags variable, e.g. VOXELIZE_FLAGS.
 flags_of = $(subst voxelize,VOXELIZE,$(subst thin,THIN,$(subst segment,SEGMENT,$(subst \
-  photons,PHOTONS,$(subst cluster,CLUSTER,$(1))))))_FLAGS
+  photons,PHOTONS,$(subst cluster,CLUSTER,$(subst atlas,ATLAS,$(subst \
+  lightmap,LIGHTMAP,$(1))))))))_FLAGS
 
 $(foreach scene,$(SCENES),$(eval $(call bake_scene,$(scene),$(BAKE)/$(basename \
   $(notdir $(scene))))))

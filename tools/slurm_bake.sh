@@ -4,12 +4,13 @@
 #   voxelize → thin → segment          three jobs, each afterok the one before
 #   photons, then cluster              each a job array of SHARDS tasks (--shard
 #                                      I/N) and a merge job afterok the array
+#   atlas, then lightmap               lightmap afterok atlas and cluster
 # then waits (sbatch --wait) for a last job that needs all of them. A job
 # that fails cancels what depends on it (--kill-on-invalid-dep), and this
 # script then fails naming the logs: PREFIX.slurm-STEP.*.log.
 #
 # The environment gives what make bake takes (bake.mk passes it): BAKE_MK,
-# BIN, BAKE, SCENE, SHARDS, VOXELIZE_FLAGS ... CLUSTER_FLAGS (each job gets
+# BIN, BAKE, SCENE, SHARDS, VOXELIZE_FLAGS ... LIGHTMAP_FLAGS (each job gets
 # this environment: sbatch's default --export=ALL), PREFIX the outputs'
 # BAKE/NAME, and SBATCH_FLAGS (for instance -p PARTITION).
 
@@ -46,13 +47,16 @@ if [ "$SHARDS" -gt 1 ]; then
 else
     cluster=$(submit cluster -d "afterok:$photons" --wrap "$(rule "$PREFIX.lot")") || exit 1
 fi
+atlas=$(submit atlas --wrap "$(rule "$PREFIX.atlas")") || exit 1
+lightmap=$(submit lightmap -d "afterok:$atlas:$cluster" --wrap "$(rule "$PREFIX.lightmap.exr")") ||
+    exit 1
 echo "slurm-bake: jobs $voxelize $thin $segment ${shards:+$shards (array of $SHARDS) }$photons" \
-    "${parts:+$parts (array of $SHARDS) }$cluster; waiting"
+    "${parts:+$parts (array of $SHARDS) }$cluster $atlas $lightmap; waiting"
 sbatch --wait --kill-on-invalid-dep=yes -J gibake-done -o /dev/null ${SBATCH_FLAGS:-} \
-    -d "afterok:$segment:$cluster" --wrap true >/dev/null
+    -d "afterok:$segment:$lightmap" --wrap true >/dev/null
 # A job cancelled for a failed dependency never ran, and --wait does not say
 # so: every job (every task of the array) must have completed.
-for job in $voxelize $thin $segment ${shards:-} $photons ${parts:-} $cluster; do
+for job in $voxelize $thin $segment ${shards:-} $photons ${parts:-} $cluster $atlas $lightmap; do
     states=$(scontrol -o show job "$job" | grep -o 'JobState=[A-Z_]*' | sort -u)
     if [ "$states" != JobState=COMPLETED ]; then
         echo "slurm-bake: a job failed: job $job:" $states "; see $PREFIX.slurm-*.log" >&2

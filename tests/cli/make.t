@@ -10,18 +10,18 @@
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
 . "$(dirname "$0")/tap.sh"
-needs scene-info voxelize thin segment photons cluster reference gbview
+needs scene-info voxelize thin segment photons cluster atlas lightmap reference gbview
 
 # The environment of the make running this suite (its jobserver) is not ours.
 unset MAKEFLAGS MFLAGS MAKELEVEL
-flags_v="-r 16" flags_p="-n 3000" flags_c="--depth 3"
+flags_v="-r 16" flags_p="-n 3000" flags_c="--depth 3" flags_a="--size 128"
 
 # bake [VAR=VALUE...]: make bake of $dir/scene/box.scene into $dir/bake;
 # $ran is the tools it ran, in order ("voxelize thin ..."), $dir/make.out its output.
 bake() {
     make --no-print-directory -f "$GB_ROOT/bake.mk" BIN="$GB_BIN" BAKE="$dir/bake" \
         SCENE="$dir/scene/box.scene" VOXELIZE_FLAGS="$flags_v" PHOTONS_FLAGS="$flags_p" \
-        CLUSTER_FLAGS="$flags_c" "$@" bake >"$dir/make.out" 2>&1
+        CLUSTER_FLAGS="$flags_c" ATLAS_FLAGS="$flags_a" "$@" bake >"$dir/make.out" 2>&1
     status=$?
     ran=$(grep -o "^$GB_BIN/[a-z-]* " "$dir/make.out" | sed "s|^$GB_BIN/||" | tr -d ' ' |
           grep -v '^scene-info$' | tr '\n' ' ' | sed 's/ $//')
@@ -48,12 +48,12 @@ first=$(sed -n 's/^newmtl //p' "$dir/scene/box.mtl" | head -1)
 sed -i "0,/^newmtl $first\$/s//newmtl $first\nmap_Kd wall.png/" "$dir/scene/box.mtl"
 ok "$(grep -q '^map_Kd wall.png' "$dir/scene/box.mtl"; echo $?)" "the box's $first has a texture"
 
-bake; expect "the first bake" voxelize thin segment photons cluster
+bake; expect "the first bake" voxelize thin segment photons cluster atlas lightmap
 mode=$(printf '%o' $((0666 & ~$(umask))))
 modes=$(stat -c '%a %n' "$dir"/bake/* | grep -v "^$mode " | sed "s|$dir/bake/||")
 ok "$([ -z "$modes" ]; echo $?)" \
     "every file of the bake, stamps too, is mode $mode (0666 less the umask)${modes:+; not: $modes}"
-for f in vdb skel grid.vdb seg lot; do cp "$dir/bake/box.$f" "$dir/box.$f.first"; done
+for f in vdb skel grid.vdb seg lot atlas lightmap.exr glb; do cp "$dir/bake/box.$f" "$dir/box.$f.first"; done
 "$GB_BIN/gbview" --headless -q --method topo -r 8x8 --bake "$dir/bake" "$dir/scene/box.scene" \
     -o "$dir/topo.png" 2>"$dir/err"
 ok "$([ $? = 0 ] && [ ! -s "$dir/err" ]; echo $?)" "gbview takes every baked file"
@@ -66,7 +66,7 @@ bake; expect "a camera edited (in no hash)"
 touch -d '+2 seconds' "$dir/scene/box.scene"
 bake; expect "the .scene touched"
 same=0
-for f in vdb skel grid.vdb seg lot; do
+for f in vdb skel grid.vdb seg lot atlas lightmap.exr glb; do
     cmp -s "$dir/bake/box.$f" "$dir/box.$f.first" || same=1
 done
 ok $same "the baked files kept their bytes"
@@ -74,17 +74,17 @@ ok $same "the baked files kept their bytes"
 "$GB_BIN/reference" -q --mode direct --spp 2 -r 8x8 "$dir/scene/box.scene" \
     -o "$dir/scene/wall.png"
 touch -d '+3 seconds' "$dir/scene/wall.png"
-bake; expect "the texture changed" photons cluster
+bake; expect "the texture changed" photons cluster lightmap
 awk '/^Kd / && !done { $2 = $2 * 0.5; done = 1 } { print }' "$dir/scene/box.mtl" \
     >"$dir/box.mtl" && mv "$dir/box.mtl" "$dir/scene/box.mtl"
 touch -d '+4 seconds' "$dir/scene/box.mtl"
-bake; expect "a colour in the .mtl changed" voxelize thin segment photons cluster
+bake; expect "a colour in the .mtl changed" voxelize thin segment photons cluster atlas lightmap
 echo "light point position 278 400 278 intensity 9000 9000 9000" >>"$dir/scene/box.scene"
 touch -d '+5 seconds' "$dir/scene/box.scene"
-bake; expect "a light added to the .scene" voxelize thin segment photons cluster
+bake; expect "a light added to the .scene" voxelize thin segment photons cluster atlas lightmap
 printf 'v 0 0 0\n' >>"$dir/scene/box.obj"
 touch -d '+6 seconds' "$dir/scene/box.obj"
-bake; expect "a vertex added to the mesh" voxelize thin segment photons cluster
+bake; expect "a vertex added to the mesh" voxelize thin segment photons cluster atlas lightmap
 "$GB_BIN/gbview" --headless -q --method topo -r 8x8 --bake "$dir/bake" "$dir/scene/box.scene" \
     -o "$dir/topo.png" 2>"$dir/err"
 ok "$([ $? = 0 ] && [ ! -s "$dir/err" ]; echo $?)" "gbview takes every baked file again"
@@ -92,7 +92,9 @@ ok "$([ $? = 0 ] && [ ! -s "$dir/err" ]; echo $?)" "gbview takes every baked fil
 flags_v="-r 20"
 bake; expect "VOXELIZE_FLAGS changed" voxelize thin segment
 flags_c="--depth 4"
-bake; expect "CLUSTER_FLAGS changed" cluster
+bake; expect "CLUSTER_FLAGS changed" cluster lightmap
+flags_a="--size 64"
+bake; expect "ATLAS_FLAGS changed" atlas lightmap
 bake THIN_FLAGS=--quiet; expect "THIN_FLAGS changed" thin segment
 bake THIN_FLAGS=--quiet; expect "and kept"
 
@@ -126,7 +128,7 @@ ok "$([ $? = 1 ]; echo $?)" "and out of date once the mesh is newer"
 # A mesh as SCENE, beside a .scene of the same name: the mesh is baked.
 make --no-print-directory -f "$GB_ROOT/bake.mk" BIN="$GB_BIN" BAKE="$dir/mesh-bake" \
     SCENE="$dir/scene/box.obj" VOXELIZE_FLAGS="-r 16" PHOTONS_FLAGS="-n 3000" \
-    CLUSTER_FLAGS="--depth 3" bake >"$dir/make.out" 2>&1
+    CLUSTER_FLAGS="--depth 3" ATLAS_FLAGS="--size 128" bake >"$dir/make.out" 2>&1
 ok "$([ $? = 0 ] && grep -q "voxelize -r 16 $dir/scene/box.obj " "$dir/make.out"; echo $?)" \
     "SCENE=box.obj bakes the mesh, not box.scene"
 
@@ -148,12 +150,14 @@ cp "$GB_ROOT/scenes/cornell/cornell.scene" "$GB_ROOT/scenes/cornell/cornell.obj"
 for j in 1 4; do
     make --no-print-directory -j$j -f "$GB_ROOT/bake.mk" BIN="$GB_BIN" BAKE="$dir/j$j" \
         SCENES="$dir/scene/box.scene $dir/other/cornell.scene" VOXELIZE_FLAGS="-r 16" \
-        PHOTONS_FLAGS="-n 3000" CLUSTER_FLAGS="--depth 3" bake >"$dir/make$j.out" 2>&1
+        PHOTONS_FLAGS="-n 3000" CLUSTER_FLAGS="--depth 3" ATLAS_FLAGS="--size 128" bake \
+        >"$dir/make$j.out" 2>&1
     ok $? "make -j$j bake of two scenes"
 done
 same=0
-for f in box.vdb box.skel box.grid.vdb box.seg box.phot box.lot cornell.vdb cornell.skel \
-         cornell.grid.vdb cornell.seg cornell.phot cornell.lot; do
+for f in box.vdb box.skel box.grid.vdb box.seg box.phot box.lot box.atlas box.lightmap.exr \
+         box.glb cornell.vdb cornell.skel cornell.grid.vdb cornell.seg cornell.phot cornell.lot \
+         cornell.atlas cornell.lightmap.exr cornell.glb; do
     cmp -s "$dir/j1/$f" "$dir/j4/$f" || { same=1; echo "# $f differs"; }
 done
 ok $same "every baked file of -j4 is byte-identical to -j1's"

@@ -10,7 +10,7 @@
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
 . "$(dirname "$0")/tap.sh"
-needs scene-info voxelize thin segment photons cluster
+needs scene-info voxelize thin segment photons cluster atlas lightmap
 unset MAKEFLAGS MFLAGS MAKELEVEL
 
 for program in munged slurmctld slurmd sbatch sinfo; do
@@ -94,7 +94,7 @@ cp "$GB_ROOT/scenes/cornell/cornell.scene" "$GB_ROOT/scenes/cornell/cornell.obj"
 flags() {
     make --no-print-directory -f "$GB_ROOT/bake.mk" BIN="$GB_BIN" SCENE="$dir/scene/cornell.scene" \
         VOXELIZE_FLAGS="-q -r 24" THIN_FLAGS=-q SEGMENT_FLAGS=-q PHOTONS_FLAGS="-q -n 20000" \
-        CLUSTER_FLAGS="-q --depth 4" "$@"
+        CLUSTER_FLAGS="-q --depth 4" ATLAS_FLAGS="-q --size 256" LIGHTMAP_FLAGS=-q "$@"
 }
 flags BAKE="$dir/here" bake >"$dir/here.out" 2>&1
 ok $? "make bake on this machine"
@@ -106,7 +106,7 @@ for step in photons cluster; do
           echo $?)" "$step ran as 4 array tasks"
 done
 same=0
-for f in vdb skel grid.vdb seg phot lot; do
+for f in vdb skel grid.vdb seg phot lot atlas lightmap.exr glb; do
     cmp -s "$dir/here/cornell.$f" "$dir/slurm/cornell.$f" || { same=1; echo "# cornell.$f differs"; }
 done
 ok $same "every baked file of slurm-bake is byte-identical to make bake's"
