@@ -15,12 +15,18 @@ enum { UNIT_ATLAS = 7, UNIT_SEEN_UV = 8, SSBO_CORNERS = 3 };
  * shading normal, face normal. */
 enum { CORNER_FLOATS = 11 };
 
+/* The two sides of every triangle, a layer each: 0 the side its winding
+ * faces, 1 the back. */
+enum { SIDES = 2 };
+
 struct gb_octree_atlas {
-    GLuint texture;             /* RGBA32F: irradiance, alpha 1 where filled */
+    GLuint texture;             /* RGBA32F array of SIDES layers: irradiance, alpha 1
+                                   where filled */
     GLuint corner_buffer, corner_array;
     GLsizei corner_count;
     GLuint uv_program, display_program, empty_vertex_array;
-    gb_gl_target seen_uv;       /* RG32F: the atlas UV at each pixel, -1 for none */
+    gb_gl_target seen_uv;       /* RGBA32F: the atlas UV at each pixel (-1 for none)
+                                   and the layer of the side seen */
 };
 
 static const char render_vertex_shader[] =
@@ -98,17 +104,22 @@ static gb_result upload_corners(gb_octree_atlas *s, const gb_scene *scene,
 
 static GLuint make_atlas_texture(const gb_atlas_header *h)
 {
-    GLuint texture = gb_gl_texture_2d(GL_RGBA32F, (int)h->width, (int)h->height);
+    GLuint texture;
+    glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
+    glTextureStorage3D(texture, 1, GL_RGBA32F, (GLsizei)h->width, (GLsizei)h->height, SIDES);
     glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
     return texture;
 }
 
-static GLuint framebuffer_of(GLuint texture)
+/* A framebuffer drawing into one layer of an atlas texture. */
+static GLuint framebuffer_of(GLuint texture, int layer)
 {
     GLuint framebuffer;
     glCreateFramebuffers(1, &framebuffer);
-    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0);
+    glNamedFramebufferTextureLayer(framebuffer, GL_COLOR_ATTACHMENT0, texture, 0, layer);
     return framebuffer;
 }
 
@@ -122,7 +133,7 @@ static void set_octree_uniforms(GLuint program, const gb_light_octree_header *h)
 
 /* The triangles drawn at their UVs, each reaching gb_atlas_reach texels
  * past its edges, the nearest triangle keeping a texel (a depth test on the
- * distance): the irradiance into s->texture. */
+ * distance): the irradiance of each side into its layer of s->texture. */
 static gb_result render_triangles(gb_octree_atlas *s, const gb_atlas_header *h,
                                   const gb_light_octree_header *octree, gb_error *error)
 {
@@ -136,37 +147,45 @@ static gb_result render_triangles(gb_octree_atlas *s, const gb_atlas_header *h,
                        (float)h->height);
     glProgramUniform1f(program, glGetUniformLocation(program, "reach"),
                        (float)gb_atlas_reach(h->padding));
-    GLuint framebuffer = framebuffer_of(s->texture);
     GLuint depth = gb_gl_texture_2d(GL_DEPTH_COMPONENT32F, (int)h->width, (int)h->height);
     static const float nothing_filled[4] = {0, 0, 0, 0}, farthest = 1.0f;
-    glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, depth, 0);
-    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, nothing_filled);
-    glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &farthest);
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_CORNERS, s->corner_buffer);
     glUseProgram(program);
     glBindVertexArray(s->empty_vertex_array);
-    glDrawArrays(GL_TRIANGLES, 0, s->corner_count);
+    for (int layer = 0; layer < SIDES; ++layer) {
+        GLuint framebuffer = framebuffer_of(s->texture, layer);
+        glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, depth, 0);
+        glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, nothing_filled);
+        glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &farthest);
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glProgramUniform1f(program, glGetUniformLocation(program, "side"),
+                           layer == 0 ? 1.0f : -1.0f);
+        glDrawArrays(GL_TRIANGLES, 0, s->corner_count);
+        glDeleteFramebuffers(1, &framebuffer);
+    }
     glDisable(GL_DEPTH_TEST);
-    glDeleteFramebuffers(1, &framebuffer);
     glDeleteTextures(1, &depth);
     glDeleteProgram(program);
     return GB_OK;
 }
 
-/* One full-screen pass of program reading s->texture (unit 0) into a new
- * texture, which becomes s->texture. */
+/* One full-screen pass of program per layer, reading s->texture (unit 0)
+ * into a new texture, which becomes s->texture. */
 static void pass_into_new_texture(gb_octree_atlas *s, const gb_atlas_header *h, GLuint program)
 {
-    GLuint next = make_atlas_texture(h), framebuffer = framebuffer_of(next);
-    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    GLuint next = make_atlas_texture(h);
     glUseProgram(program);
     glBindTextureUnit(0, s->texture);
-    gb_gl_draw_fullscreen(s->empty_vertex_array);
-    glDeleteFramebuffers(1, &framebuffer);
+    for (int layer = 0; layer < SIDES; ++layer) {
+        GLuint framebuffer = framebuffer_of(next, layer);
+        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+        glProgramUniform1i(program, glGetUniformLocation(program, "layer"), layer);
+        gb_gl_draw_fullscreen(s->empty_vertex_array);
+        glDeleteFramebuffers(1, &framebuffer);
+    }
     glDeleteTextures(1, &s->texture);
     s->texture = next;
 }
@@ -236,7 +255,7 @@ gb_result gb_octree_atlas_create(const gb_scene *scene, const gb_atlas *atlas,
  * size changed (the scene is static). */
 static void draw_seen_uv(gb_octree_atlas *s, const gb_indirect_frame *frame)
 {
-    if (!gb_gl_target_stale(&s->seen_uv, GL_RG32F, frame->width, frame->height,
+    if (!gb_gl_target_stale(&s->seen_uv, GL_RGBA32F, frame->width, frame->height,
                             frame->view_matrix->m, frame->projection->m))
         return;
     static const float none[4] = {-1, -1, 0, 0};
@@ -264,11 +283,6 @@ void gb_octree_atlas_draw(gb_octree_atlas *s, const gb_indirect_frame *frame)
     glBindTextureUnit(UNIT_ATLAS, s->texture);
     glBindTextureUnit(UNIT_SEEN_UV, s->seen_uv.color);
     gb_gl_draw_fullscreen(s->empty_vertex_array);
-}
-
-GLuint gb_octree_atlas_texture(const gb_octree_atlas *s)
-{
-    return s->texture;
 }
 
 void gb_octree_atlas_destroy(gb_octree_atlas *s)

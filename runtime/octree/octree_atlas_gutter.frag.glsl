@@ -1,11 +1,13 @@
-// One round of the atlas's gutter (octree_atlas.h): a texel no triangle
-// filled takes the mean of its 8 neighbours filled before this round.
+// One round of the atlas's gutter (octree_atlas.h), in one of its two
+// layers: a texel no triangle filled takes the mean of its 8 neighbours
+// filled before this round.
 #version 450 core
-layout(binding = 0) uniform sampler2D previous;
+layout(binding = 0) uniform sampler2DArray previous;
+uniform int layer;
 out vec4 texel;
 void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy), size = textureSize(previous, 0);
-    texel = texelFetch(previous, p, 0);
+    ivec2 p = ivec2(gl_FragCoord.xy), size = textureSize(previous, 0).xy;
+    texel = texelFetch(previous, ivec3(p, layer), 0);
     if (texel.a > 0.0)
         return;
     vec3 sum = vec3(0.0);
@@ -15,7 +17,7 @@ void main() {
             ivec2 q = p + ivec2(dx, dy);
             if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size)))
                 continue;
-            vec4 neighbour = texelFetch(previous, q, 0);
+            vec4 neighbour = texelFetch(previous, ivec3(q, layer), 0);
             if (neighbour.a > 0.0) {
                 sum += neighbour.rgb;
                 count += 1.0;

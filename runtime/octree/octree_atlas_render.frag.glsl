@@ -1,4 +1,5 @@
-// The render into the atlas (octree_atlas.h), texels: a texel whose centre
+// The render into the atlas (octree_atlas.h), texels, of one side (`side`
+// 1: the side the winding faces, layer 0; -1: the back, layer 1): a texel whose centre
 // lies within reach of the triangle takes the octree's irradiance on the
 // triangle's plane there (its barycentric weights, extended past the edges),
 // alpha 1 (filled); its depth is that distance, so that of several
@@ -7,6 +8,7 @@
 #version 450 core
 #include "runtime/octree/octree_atlas_corners.glsl"
 uniform float reach;
+uniform float side;
 flat in uint v_triangle;
 out vec4 irradiance;
 #include "runtime/octree/octree_irradiance.glsl"
@@ -37,7 +39,7 @@ void main() {
     if (point.w > reach * reach)
         discard;
     gl_FragDepth = 0.5 * point.w / max(reach * reach, 1e-6);
-    vec3 x = vec3(0.0), n = vec3(0.0), ng = normalize(corner_vector(t, 0, 8u));
+    vec3 x = vec3(0.0), n = vec3(0.0), ng = side * normalize(corner_vector(t, 0, 8u));
     for (int c = 0; c < 3; ++c) {
         x += point[c] * corner_vector(t, c, 2u);
         n += point[c] * corner_vector(t, c, 5u);

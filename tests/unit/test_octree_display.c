@@ -21,7 +21,8 @@
  *  4. Through the atlas (octree_atlas.h): the octree rendered into a
  *     hand-made atlas of the floor and shown through it gives the walk's
  *     image, within float rounding in one chart, within the gradient over a
- *     texel where two charts meet (a seam).
+ *     texel where two charts meet (a seam); a floor whose back is seen
+ *     through the atlas's second layer.
  */
 #include <math.h>
 #include <stdio.h>
@@ -63,19 +64,25 @@
 static const float sun_irradiance = 2.0f;
 static const float sun_direction[3] = {0.6f, -0.8f, 0.0f};    /* cos θ = 0.8 */
 
-static void build_sunlit_floor(gb_scene *scene)
+/* The floor wound to face toward (its front side), seen from above. */
+static void build_floor_facing(gb_scene *scene, const float toward[3])
 {
     memset(scene, 0, sizeof *scene);
     uint32_t grey = add_grey(scene, KD, 0.0f);
     const float h = FLOOR_HALF;
     const float corners[4][3] = {{-h, 0, -h}, {h, 0, -h}, {h, 0, h}, {-h, 0, h}};
-    const float above[3] = {0, 1, 0};
-    add_quad_facing(scene, corners, above, grey);
+    add_quad_facing(scene, corners, toward, grey);
     const float irradiance[3] = {sun_irradiance, sun_irradiance, sun_irradiance};
     add_point_light(scene, GB_LIGHT_DIRECTIONAL, NULL, sun_direction, irradiance);
     const float eye[3] = {0, CAMERA_HEIGHT, 0}, target[3] = {0, 0, 0};
     set_camera(scene, eye, target, CAMERA_FOV, IMAGE_SIZE, IMAGE_SIZE);
     scene_done(scene);
+}
+
+static void build_sunlit_floor(gb_scene *scene)
+{
+    const float above[3] = {0, 1, 0};
+    build_floor_facing(scene, above);
 }
 
 /* A fresh folder for NAME.lot. */
@@ -588,6 +595,37 @@ static void test_atlas(void)
     gb_scene_free(&scene);
 }
 
+/* The floor wound to face down, seen from above: the camera sees its back,
+ * which the walk lights (it turns the normals toward the viewer) and the
+ * atlas holds in its second layer. */
+static void test_atlas_back_side(void)
+{
+    gb_scene scene;
+    const float below[3] = {0, -1, 0};
+    build_floor_facing(&scene, below);
+    hand_octree *h = calloc(1, sizeof *h);
+    gb_light_octree octree;
+    gb_image walk;
+    if (!h)
+        return;
+    make_octree(h, &scene, &octree);
+    if (CHECK(render_octree(&scene, &octree, &walk), "atlas, back side: the walk displayed")) {
+        double low, high;
+        leaf_range(h, &low, &high);
+        double difference = atlas_against_walk(&scene, &octree, 1, &walk);
+        printf("# the floor's back seen: the walk shows %.4g at the centre (leaves from "
+               "%.4g); through the atlas, largest relative pixel difference %.3g\n",
+               pixel(&walk, IMAGE_SIZE / 2, IMAGE_SIZE / 2), low, difference);
+        CHECK(pixel(&walk, IMAGE_SIZE / 2, IMAGE_SIZE / 2) >= low * (1.0 - 1e-5),
+              "atlas, back side: the walk lights the side seen");
+        CHECK(difference >= 0.0 && difference <= ATLAS_TOLERANCE,
+              "atlas, back side: the atlas's back layer gives the walk's image within 10^-5");
+        gb_image_free(&walk);
+    }
+    free(h);
+    gb_scene_free(&scene);
+}
+
 /* ---- 3. VDL direction packing -------------------------------------------- */
 
 static const char decode_shader[] =
@@ -775,6 +813,7 @@ int main(void)
     test_direction_packing();
     test_holes();
     test_atlas();
+    test_atlas_back_side();
     test_sun_over_floor();
     return tap_done();
 }

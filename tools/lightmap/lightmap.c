@@ -20,14 +20,16 @@ typedef struct bake_job {
     gb_image *image;
 } bake_job;
 
-/* The point, shading normal n and geometric normal ng of triangle t at
- * barycentric weights w (lightmap.h, "Decided here"): the corners' normals
- * as the runtime gives them (scene_triangles.h) interpolated, normalised,
- * turned to ng's side. */
-static void surface_at(const gb_scene *scene, uint32_t t, const double w[3], float x[3],
-                       float n[3], float ng[3])
+/* The point, shading normal n and geometric normal ng of side `side` (1:
+ * the side the winding faces, -1 the back) of triangle t at barycentric
+ * weights w (lightmap.h, "Decided here"): the corners' normals as the
+ * runtime gives them (scene_triangles.h) interpolated, normalised, turned
+ * to ng's side. */
+static void surface_at(const gb_scene *scene, uint32_t t, const double w[3], float side,
+                       float x[3], float n[3], float ng[3])
 {
-    gb_vec3 face = gb_triangle_normal(scene, t), normal = {0.0f, 0.0f, 0.0f};
+    gb_vec3 face = gb_vec3_scale(gb_triangle_normal(scene, t), side);
+    gb_vec3 normal = {0.0f, 0.0f, 0.0f};
     double point[3] = {0.0, 0.0, 0.0};
     for (int c = 0; c < 3; ++c) {
         gb_vec3 corner = gb_triangle_corner(scene, t, c);
@@ -45,6 +47,20 @@ static void surface_at(const gb_scene *scene, uint32_t t, const double w[3], flo
     gb_vec3_store(face, ng);
 }
 
+/* The irradiance of the brighter side of triangle t at weights w: a glTF
+ * lightmap has one value a texel for both sides, and the side that light
+ * reaches is the one seen (the other faces into a wall or a solid). */
+static void brighter_side(const bake_job *job, uint32_t t, const double w[3], float out[3])
+{
+    float x[3], n[3], ng[3], back[3];
+    surface_at(job->scene, t, w, 1.0f, x, n, ng);
+    gb_light_octree_irradiance(job->octree, x, n, ng, out);
+    surface_at(job->scene, t, w, -1.0f, x, n, ng);
+    gb_light_octree_irradiance(job->octree, x, n, ng, back);
+    if (back[0] + back[1] + back[2] > out[0] + out[1] + out[2])
+        out[0] = back[0], out[1] = back[1], out[2] = back[2];
+}
+
 /* Row `item` of the atlas. */
 static int bake_row(void *context, uint64_t item)
 {
@@ -55,11 +71,8 @@ static int bake_row(void *context, uint64_t item)
         if (t == GB_TEXEL_NONE)
             continue;
         double w[3];
-        float x[3], n[3], ng[3];
         gb_texel_barycentric(job->atlas, t, i, j, w);
-        surface_at(job->scene, t, w, x, n, ng);
-        gb_light_octree_irradiance(job->octree, x, n, ng,
-                                   job->image->pixels + 3 * ((size_t)j * width + i));
+        brighter_side(job, t, w, job->image->pixels + 3 * ((size_t)j * width + i));
     }
     return 0;
 }

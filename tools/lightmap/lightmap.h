@@ -23,11 +23,14 @@
  * A texel holds the irradiance E, without Kd / π: the viewer multiplies the
  * albedo (textured or not) at display, so textures keep their resolution.
  *
- * Decided here: the geometric normal is the face normal of the triangle's
- * winding, cross(v1 - v0, v2 - v0), and the shading normal (the corner
- * normals interpolated, else the face normal) is turned to its side, as the
- * runtime's render into the atlas does (runtime/octree/octree_atlas.h): a
- * texel has one side. The reach and the gutter follow the runtime's too:
+ * Decided here: a texel has one value for both sides of its surface (a
+ * glTF lightmap has no more), the brighter side's: the one light reaches,
+ * which is the one seen, the other facing into a wall or a solid. A side's
+ * geometric normal is the face normal of the triangle's winding,
+ * cross(v1 - v0, v2 - v0), or its opposite, and the shading normal (the
+ * corner normals interpolated, else the face normal) is turned to it, as
+ * the runtime's render into the atlas does for each of its two layers
+ * (runtime/octree/octree_atlas.h). The reach and the gutter follow the runtime's too:
  * after the triangles' reach, padding - 1 rounds, each giving an unfilled
  * texel the mean of its filled 8 neighbours; texels further out stay 0.
  *
