@@ -2,7 +2,6 @@
  * through it (octree_atlas.h). */
 #include "octree_atlas.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -11,8 +10,9 @@
 
 enum { UNIT_ATLAS = 7, UNIT_SEEN_UV = 8, SSBO_CORNERS = 3 };
 
-/* A triangle corner as the two passes read it: atlas UV, world position,
- * shading normal, face normal. */
+/* A triangle corner as the passes read it (the render into the atlas from
+ * a storage buffer, octree_atlas_corners.glsl; the UV pass as attributes):
+ * atlas UV, world position, shading normal, face normal. */
 enum { CORNER_FLOATS = 11 };
 
 /* The two sides of every triangle, a layer each: 0 the side its winding
@@ -93,9 +93,8 @@ static gb_result upload_corners(gb_octree_atlas *s, const gb_scene *scene,
     glCreateVertexArrays(1, &s->corner_array);
     glVertexArrayVertexBuffer(s->corner_array, 0, s->corner_buffer, 0,
                               CORNER_FLOATS * sizeof(float));
-    attribute(s->corner_array, 0, 2, 0);
+    attribute(s->corner_array, 0, 2, 0);    /* the UV pass's: UV, position, face normal */
     attribute(s->corner_array, 1, 3, 2);
-    attribute(s->corner_array, 2, 3, 5);
     attribute(s->corner_array, 3, 3, 8);
     return GB_OK;
 }
@@ -251,8 +250,8 @@ gb_result gb_octree_atlas_create(const gb_scene *scene, const gb_atlas *atlas,
     return GB_OK;
 }
 
-/* The atlas UV seen at each pixel; drawn again only when the view or the
- * size changed (the scene is static). */
+/* The atlas UV and the side seen at each pixel; drawn again only when the
+ * view or the size changed (the scene is static). */
 static void draw_seen_uv(gb_octree_atlas *s, const gb_indirect_frame *frame)
 {
     if (!gb_gl_target_stale(&s->seen_uv, GL_RGBA32F, frame->width, frame->height,
