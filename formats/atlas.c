@@ -238,11 +238,6 @@ gb_result gb_atlas_write(const char *path, const gb_atlas *atlas, gb_error *erro
 
 /* ---- reading ---- */
 
-static const void *data_of(const gb_section *section)
-{
-    return section ? section->data : NULL;
-}
-
 static gb_result view_sections(const gb_container *container, const char *path,
                                gb_atlas *atlas, gb_error *error)
 {
@@ -263,9 +258,9 @@ static gb_result view_sections(const gb_container *container, const char *path,
         result = gb_container_find_array(container, "chart_records", h->chart_count,
                                          sizeof *atlas->chart_records, ALIGNMENT, path,
                                          &records, error);
-    atlas->uvs = data_of(uvs);
-    atlas->charts = data_of(charts);
-    atlas->chart_records = data_of(records);
+    atlas->uvs = gb_section_data(uvs);
+    atlas->charts = gb_section_data(charts);
+    atlas->chart_records = gb_section_data(records);
     return result;
 }
 

@@ -239,12 +239,6 @@ gb_result gb_light_octree_write(const char *path, const gb_light_octree *octree,
 
 /* ---- reading ---- */
 
-/* The section's data, or NULL when it was not found. */
-static const void *data_of(const gb_section *section)
-{
-    return section ? section->data : NULL;
-}
-
 static gb_result view_sections(const gb_container *container, const char *path,
                                gb_light_octree *octree, gb_error *error)
 {
@@ -264,9 +258,9 @@ static gb_result view_sections(const gb_container *container, const char *path,
     if (result == GB_OK)
         result = gb_container_find_array(container, "vdls", h->vdl_count, sizeof *octree->vdls,
                                          ALIGNMENT, path, &vdls, error);
-    octree->nodes = data_of(nodes);
-    octree->leaves = data_of(leaves);
-    octree->vdls = data_of(vdls);
+    octree->nodes = gb_section_data(nodes);
+    octree->leaves = gb_section_data(leaves);
+    octree->vdls = gb_section_data(vdls);
     return result;
 }
 

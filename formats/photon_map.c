@@ -348,12 +348,6 @@ static gb_result decode_header(const gb_container *container, const char *path,
     return GB_OK;
 }
 
-/* The section's data, or NULL when it was not found. */
-static const void *data_of(const gb_section *section)
-{
-    return section ? section->data : NULL;
-}
-
 static gb_result view_arrays(const gb_container *container, const char *path,
                              gb_photon_map *map, gb_error *error)
 {
@@ -370,10 +364,10 @@ static gb_result view_arrays(const gb_container *container, const char *path,
     if (result == GB_OK)
         result = gb_container_find_array(container, "normals", n, 4, ALIGNMENT, path, &normals,
                                          error);
-    map->positions = data_of(positions);
-    map->powers = data_of(powers);
-    map->directions = data_of(directions);
-    map->normals = data_of(normals);
+    map->positions = gb_section_data(positions);
+    map->powers = gb_section_data(powers);
+    map->directions = gb_section_data(directions);
+    map->normals = gb_section_data(normals);
     return result;
 }
 
