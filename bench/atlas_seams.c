@@ -8,8 +8,8 @@
  * and its barycentrics give the pixel's atlas UV, as the display reads it.
  * A pixel is on a seam when any of the four texels its bilinear fetch
  * weighs is not covered by its own chart: a texel is covered by a chart when
- * its centre lies in one of the chart's triangles (the texels the render
- * into the atlas fills; the others hold the gutter). A pixel that sees the
+ * its centre lies in one of the chart's triangles (tools/lightmap/
+ * texel_cover.h with no reach; the others hold the reach and the gutter). A pixel that sees the
  * back of its triangle (the side its winding does not face, which the atlas
  * does not hold: octree_atlas.h) is counted apart. Prints, for the seam
  * pixels, the back-facing ones and the others, their count and the
@@ -27,47 +27,11 @@
 #include "image.h"
 #include "scene.h"
 #include "scene_triangles.h"
-
-#define NO_CHART 0xFFFFFFFFu
-
-/* Twice the signed area of (a, b, p). */
-static double edge(const double a[2], const double b[2], const double p[2])
-{
-    return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
-}
-
-/* texel_chart[j * width + i]: the chart whose triangle holds texel (i, j)'s
- * centre, NO_CHART for none. */
-static uint32_t *covered_texels(const gb_atlas *atlas)
-{
-    const gb_atlas_header *h = &atlas->header;
-    uint32_t *texel_chart = malloc((size_t)h->width * h->height * sizeof *texel_chart);
-    if (!texel_chart)
-        return NULL;
-    for (size_t i = 0; i < (size_t)h->width * h->height; ++i)
-        texel_chart[i] = NO_CHART;
-    for (uint32_t t = 0; t < h->triangle_count; ++t) {
-        double p[3][2], lo[2] = {INFINITY, INFINITY}, hi[2] = {-INFINITY, -INFINITY};
-        for (int c = 0; c < 3; ++c) {
-            p[c][0] = atlas->uvs[6 * (size_t)t + 2 * c] * (double)h->width;
-            p[c][1] = atlas->uvs[6 * (size_t)t + 2 * c + 1] * (double)h->height;
-            for (int k = 0; k < 2; ++k)
-                lo[k] = fmin(lo[k], p[c][k]), hi[k] = fmax(hi[k], p[c][k]);
-        }
-        for (long j = (long)floor(lo[1]); j <= (long)hi[1] && j < (long)h->height; ++j)
-            for (long i = (long)floor(lo[0]); i <= (long)hi[0] && i < (long)h->width; ++i) {
-                double centre[2] = {i + 0.5, j + 0.5};
-                if (i >= 0 && j >= 0 && edge(p[0], p[1], centre) >= 0.0 &&
-                    edge(p[1], p[2], centre) >= 0.0 && edge(p[2], p[0], centre) >= 0.0)
-                    texel_chart[(size_t)j * h->width + (size_t)i] = atlas->charts[t];
-            }
-    }
-    return texel_chart;
-}
+#include "../tools/lightmap/texel_cover.h"
 
 /* Whether the bilinear fetch at the hit's UV weighs a texel its chart does
  * not cover. */
-static int on_seam(const gb_atlas *atlas, const uint32_t *texel_chart, const gb_hit *hit)
+static int on_seam(const gb_atlas *atlas, const gb_texel_cover *cover, const gb_hit *hit)
 {
     const gb_atlas_header *h = &atlas->header;
     const float *uv = atlas->uvs + 6 * (size_t)hit->triangle;
@@ -79,7 +43,8 @@ static int on_seam(const gb_atlas *atlas, const uint32_t *texel_chart, const gb_
         for (long i = i0; i <= i0 + 1; ++i) {
             long ci = i < 0 ? 0 : i >= (long)h->width ? (long)h->width - 1 : i;
             long cj = j < 0 ? 0 : j >= (long)h->height ? (long)h->height - 1 : j;
-            if (texel_chart[(size_t)cj * h->width + (size_t)ci] != atlas->charts[hit->triangle])
+            uint32_t t = cover->triangle[(size_t)cj * h->width + (size_t)ci];
+            if (t == GB_TEXEL_NONE || atlas->charts[t] != atlas->charts[hit->triangle])
                 return 1;
         }
     return 0;
@@ -103,11 +68,11 @@ static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image 
 {
     gb_camera_frame frame;
     gb_embree_scene *rays = NULL;
-    uint32_t *texel_chart = covered_texels(atlas);
-    if (!texel_chart ||
+    gb_texel_cover cover = {0};
+    if (gb_texel_cover_make(atlas, 0.0, &cover, error) ||
         gb_camera_frame_make(&scene->cameras[camera], a->width, a->height, &frame, error) ||
         gb_embree_scene_create(scene, 0, &rays, error)) {
-        free(texel_chart);
+        gb_texel_cover_free(&cover);
         return 0;
     }
     pixel_class seam = {0}, back = {0}, inside = {0};
@@ -122,7 +87,7 @@ static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image 
             size_t i = ((size_t)y * a->width + x) * (size_t)a->channels;
             pixel_class *c = gb_vec3_dot(gb_triangle_normal(scene, hit.triangle), direction) > 0.0f
                                  ? &back
-                                 : on_seam(atlas, texel_chart, &hit) ? &seam : &inside;
+                                 : on_seam(atlas, &cover, &hit) ? &seam : &inside;
             add_pixel(c, a->pixels + i, b->pixels + i);
         }
     const pixel_class *classes[3] = {&seam, &back, &inside};
@@ -131,7 +96,7 @@ static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image 
         printf("%s_pixels %ld\n%s_relative_mse %.6g\n", names[k], classes[k]->count, names[k],
                classes[k]->relative_squared_error / fmax(3.0 * classes[k]->count, 1.0));
     gb_embree_scene_destroy(rays);
-    free(texel_chart);
+    gb_texel_cover_free(&cover);
     return 1;
 }
 

@@ -125,7 +125,8 @@ gb_result gb_lightmap_bake(const gb_scene *scene, const gb_atlas *atlas,
     gb_result result = gb_image_allocate(image, (int)atlas->header.width,
                                          (int)atlas->header.height, 3, error);
     if (result == GB_OK)
-        result = gb_texel_cover_make(atlas, &cover, error);
+        result = gb_texel_cover_make(atlas, gb_atlas_reach(atlas->header.padding), &cover,
+                                     error);
     bake_job job = {scene, atlas, octree, &cover, image};
     if (result == GB_OK)
         result = bake_texels(&job, options, &stats->threads, error);

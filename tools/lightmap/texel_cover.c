@@ -73,7 +73,8 @@ static void cover_triangle(const gb_atlas *atlas, uint32_t t, double reach,
         }
 }
 
-gb_result gb_texel_cover_make(const gb_atlas *atlas, gb_texel_cover *cover, gb_error *error)
+gb_result gb_texel_cover_make(const gb_atlas *atlas, double reach, gb_texel_cover *cover,
+                              gb_error *error)
 {
     cover->width = atlas->header.width;
     cover->height = atlas->header.height;
@@ -92,7 +93,6 @@ gb_result gb_texel_cover_make(const gb_atlas *atlas, gb_texel_cover *cover, gb_e
         cover->triangle[k] = GB_TEXEL_NONE;
         best[k] = INFINITY;
     }
-    double reach = gb_atlas_reach(atlas->header.padding);
     for (uint32_t t = 0; t < atlas->header.triangle_count; ++t)
         cover_triangle(atlas, t, reach, cover, best);
     free(best);
