@@ -12,6 +12,7 @@
  * never a part; a device, FIFO or "-" gets the bytes straight through.
  */
 #include "container.h"
+#include "array_reserve.h"
 #include "mapped_file.h"
 #include "little_endian.h"
 #include "output_file.h"
@@ -459,7 +460,8 @@ struct gb_container_writer {
     int kind_is_valid;
     uint32_t version;
     pending_section *sections;
-    uint32_t count, capacity;
+    uint32_t count;
+    size_t capacity;
     int (*interrupt)(void *user);
     void *interrupt_user;
 };
@@ -493,16 +495,11 @@ static int has_section(const gb_container_writer *writer, const char *name)
 
 static gb_result grow_sections(gb_container_writer *writer, gb_error *error)
 {
-    if (writer->count < writer->capacity)
-        return GB_OK;
-    if (writer->capacity >= UINT32_MAX / 2)
+    if (writer->count == UINT32_MAX)
         return gb_fail(error, GB_ERROR_INVALID, "too many sections");
-    uint32_t capacity = writer->capacity ? 2 * writer->capacity : 8;
-    pending_section *sections = realloc(writer->sections, capacity * sizeof *sections);
-    if (!sections)
+    if (!gb_array_reserve(&writer->sections, &writer->capacity, (size_t)writer->count + 1,
+                          sizeof *writer->sections))
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory adding a section");
-    writer->sections = sections;
-    writer->capacity = capacity;
     return GB_OK;
 }
 

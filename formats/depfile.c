@@ -3,6 +3,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array_reserve.h"
 #include "output_file.h"
 
 typedef struct text {
@@ -12,14 +13,8 @@ typedef struct text {
 
 static int append(text *t, const char *bytes, size_t size)
 {
-    if (t->size + size + 1 > t->capacity) {
-        size_t capacity = 2 * (t->size + size + 1) + 256;
-        char *grown = realloc(t->bytes, capacity);
-        if (!grown)
-            return -1;
-        t->bytes = grown;
-        t->capacity = capacity;
-    }
+    if (!gb_array_reserve(&t->bytes, &t->capacity, t->size + size + 1, 1))
+        return -1;
     memcpy(t->bytes + t->size, bytes, size);
     t->size += size;
     return 0;

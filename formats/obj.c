@@ -8,6 +8,7 @@
 #include <strings.h>
 #include <sys/stat.h>
 
+#include "array_reserve.h"
 #include "text.h"
 
 /* ---- growable arrays ---------------------------------------------------- */
@@ -20,18 +21,9 @@ typedef struct array {
 /* Room for n more elements at the end; NULL when out of memory. */
 static void *array_push(array *a, size_t n)
 {
-    if (a->count + n > a->capacity) {
-        size_t capacity = a->capacity ? a->capacity : 256;
-        while (capacity < a->count + n)
-            capacity *= 2;
-        if (capacity > SIZE_MAX / a->element)
-            return NULL;
-        char *data = realloc(a->data, capacity * a->element);
-        if (!data)
-            return NULL;
-        a->data = data;
-        a->capacity = capacity;
-    }
+    if (n > SIZE_MAX - a->count ||
+        !gb_array_reserve(&a->data, &a->capacity, a->count + n, a->element))
+        return NULL;
     void *slot = a->data + a->count * a->element;
     a->count += n;
     return slot;
@@ -48,14 +40,9 @@ static void array_free(array *a)
 
 static gb_material *material_list_push(gb_material_list *list)
 {
-    if (list->count == list->capacity) {
-        uint32_t capacity = list->capacity ? list->capacity * 2 : 16;
-        gb_material *items = realloc(list->items, capacity * sizeof *items);
-        if (!items)
-            return NULL;
-        list->items = items;
-        list->capacity = capacity;
-    }
+    if (!gb_array_reserve(&list->items, &list->capacity, (size_t)list->count + 1,
+                          sizeof *list->items))
+        return NULL;
     gb_material *material = &list->items[list->count++];
     memset(material, 0, sizeof *material);
     return material;

@@ -33,7 +33,8 @@
 
 typedef struct gb_material_list {
     gb_material *items;
-    uint32_t count, capacity;
+    uint32_t count;
+    size_t capacity;
 } gb_material_list;
 
 /* Called for each name of a mtllib statement (at obj_name:obj_line): appends

@@ -10,6 +10,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array_reserve.h"
+
 enum {
     FILE_VERSION = 224,
     COMPRESS_ZIP = 0x1,
@@ -294,14 +296,8 @@ static gb_result read_values(walk *w, const unsigned char *value_mask, unsigned 
 
 static gb_result push_n4(walk *w, const unsigned char *child_mask)
 {
-    if (w->n4_count == w->n4_capacity) {
-        size_t capacity = w->n4_capacity ? 2 * w->n4_capacity : 64;
-        const unsigned char **bigger = realloc(w->n4_masks, capacity * sizeof *bigger);
-        if (!bigger)
-            return fail(w, GB_ERROR_OUT_OF_MEMORY, "out of memory");
-        w->n4_masks = bigger;
-        w->n4_capacity = capacity;
-    }
+    if (!gb_array_reserve(&w->n4_masks, &w->n4_capacity, w->n4_count + 1, sizeof *w->n4_masks))
+        return fail(w, GB_ERROR_OUT_OF_MEMORY, "out of memory");
     w->n4_masks[w->n4_count++] = child_mask;
     return GB_OK;
 }

@@ -45,6 +45,7 @@
  */
 #include "implicit_links.h"
 
+#include "array_reserve.h"
 #include "brdf.h"
 #include "implicit_link_lists.h"
 #include "progress.h"
@@ -291,14 +292,8 @@ typedef struct task_list {
 
 static int push_task(task_list *list, uint32_t a, uint32_t b)
 {
-    if (list->count == list->capacity) {
-        size_t capacity = 2 * list->capacity + 64;
-        link_task *items = realloc(list->items, capacity * sizeof *items);
-        if (!items)
-            return 0;
-        list->items = items;
-        list->capacity = capacity;
-    }
+    if (!gb_array_reserve(&list->items, &list->capacity, list->count + 1, sizeof *list->items))
+        return 0;
     list->items[list->count++] = (link_task){a, b};
     return 1;
 }

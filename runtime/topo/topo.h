@@ -86,7 +86,8 @@ typedef struct gb_topo_frame_input {
 gb_topo_frame_input gb_topo_frame_input_of_view(const gb_view *view, int width, int height);
 
 typedef struct gb_geometry_clusters {
-    uint32_t count, capacity;
+    uint32_t count;
+    size_t capacity;
     gb_geometry_cluster *clusters;
 } gb_geometry_clusters;
 
@@ -180,7 +181,8 @@ typedef struct gb_topo_entry {
 } gb_topo_entry;
 
 typedef struct gb_topo_assignment {
-    uint32_t cluster_count, entry_count, entry_capacity;
+    uint32_t cluster_count, entry_count;
+    size_t entry_capacity;
     uint32_t *ranges;           /* cluster_count * 2: offset, count */
     gb_topo_entry *entries;
 } gb_topo_assignment;

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array_reserve.h"
 #include "topo.h"
 
 static uint32_t beyond(const gb_visibility_gate *gate, uint32_t c)
@@ -268,14 +269,9 @@ static int route_hits_sphere(const float p[3], const gb_segmentation *s,
 
 static int add_entry(gb_topo_assignment *out, uint32_t vpl, uint32_t gate)
 {
-    if (out->entry_count == out->entry_capacity) {
-        uint32_t capacity = out->entry_capacity ? 2 * out->entry_capacity : 4096;
-        gb_topo_entry *grown = realloc(out->entries, capacity * sizeof *grown);
-        if (!grown)
-            return 0;
-        out->entries = grown;
-        out->entry_capacity = capacity;
-    }
+    if (!gb_array_reserve(&out->entries, &out->entry_capacity, out->entry_count + 1,
+                          sizeof *out->entries))
+        return 0;
     out->entries[out->entry_count++] = (gb_topo_entry){vpl, gate};
     return 1;
 }

@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array_reserve.h"
 #include "gbuffer.h"
 #include "topo.h"
 
@@ -57,14 +58,8 @@ static int compare_keys(const void *a, const void *b)
 
 static gb_geometry_cluster *new_cluster(gb_geometry_clusters *out, uint32_t visibility_cluster)
 {
-    if (out->count == out->capacity) {
-        uint32_t capacity = out->capacity ? 2 * out->capacity : 1024;
-        gb_geometry_cluster *grown = realloc(out->clusters, capacity * sizeof *grown);
-        if (!grown)
-            return NULL;
-        out->clusters = grown;
-        out->capacity = capacity;
-    }
+    if (!gb_array_reserve(&out->clusters, &out->capacity, out->count + 1, sizeof *out->clusters))
+        return NULL;
     gb_geometry_cluster *g = &out->clusters[out->count++];
     g->visibility_cluster = visibility_cluster;
     for (int a = 0; a < 3; ++a) {

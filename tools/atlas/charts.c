@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array_reserve.h"
 #include "triangle_geometry.h"
 
 /* ---- adjacency ---- */
@@ -141,14 +142,8 @@ static int before(candidate a, candidate b)
 
 static int heap_push(heap *h, candidate c)
 {
-    if (h->count == h->capacity) {
-        size_t capacity = h->capacity ? 2 * h->capacity : 64;
-        candidate *items = realloc(h->items, capacity * sizeof *items);
-        if (!items)
-            return 0;
-        h->items = items;
-        h->capacity = capacity;
-    }
+    if (!gb_array_reserve(&h->items, &h->capacity, h->count + 1, sizeof *h->items))
+        return 0;
     size_t i = h->count++;
     while (i > 0 && before(c, h->items[(i - 1) / 2])) {
         h->items[i] = h->items[(i - 1) / 2];

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array_reserve.h"
 #include "discs.h"
 #include "lscm.h"
 #include "min_area_rect.h"
@@ -15,14 +16,9 @@
 
 gb_chart *gb_chart_list_append(gb_chart_list *list, uint32_t count)
 {
-    if (list->count == list->capacity) {
-        uint32_t capacity = list->capacity ? 2 * list->capacity : 256;
-        gb_chart *charts = realloc(list->charts, capacity * sizeof *charts);
-        if (!charts)
-            return NULL;
-        list->charts = charts;
-        list->capacity = capacity;
-    }
+    if (!gb_array_reserve(&list->charts, &list->capacity, (size_t)list->count + 1,
+                          sizeof *list->charts))
+        return NULL;
     gb_chart *chart = &list->charts[list->count];
     chart->triangle_count = count;
     chart->triangles = malloc(count * sizeof *chart->triangles);
@@ -154,7 +150,8 @@ typedef struct piece {
 
 typedef struct pieces {
     piece *items;
-    uint32_t count, capacity;
+    uint32_t count;
+    size_t capacity;
 } pieces;
 
 /* Pushes the triangles of m with part[i] == label. */
@@ -165,14 +162,9 @@ static int push_part(pieces *work, const gb_chart_mesh *m, const uint32_t *part,
         count += part[i] == label;
     if (!count)
         return 1;
-    if (work->count == work->capacity) {
-        uint32_t capacity = work->capacity ? 2 * work->capacity : 16;
-        piece *items = realloc(work->items, capacity * sizeof *items);
-        if (!items)
-            return 0;
-        work->items = items;
-        work->capacity = capacity;
-    }
+    if (!gb_array_reserve(&work->items, &work->capacity, (size_t)work->count + 1,
+                          sizeof *work->items))
+        return 0;
     uint32_t *triangles = malloc(count * sizeof *triangles);
     if (!triangles)
         return 0;

@@ -48,7 +48,8 @@ typedef struct gb_chart {
 
 typedef struct gb_chart_list {
     gb_chart *charts;
-    uint32_t count, capacity;
+    uint32_t count;
+    size_t capacity;
 } gb_chart_list;
 
 typedef struct gb_parameterize_stats {

@@ -7,6 +7,7 @@
 #include <string.h>
 
 #include "../voxelize/triangle_box_overlap.h"
+#include "array_reserve.h"
 
 /* A triangle touching a cell: sorted by cell then triangle, so that the
  * normals are summed in one fixed order. */
@@ -69,14 +70,8 @@ static void bounding_cube(const gb_scene *scene, gb_octree_leaves *leaves)
 
 static int push_hit(hit_list *list, uint64_t key, uint32_t triangle)
 {
-    if (list->count == list->capacity) {
-        size_t capacity = list->capacity ? 2 * list->capacity : 4096;
-        cell_hit *grown = realloc(list->hits, capacity * sizeof *grown);
-        if (!grown)
-            return 0;
-        list->hits = grown;
-        list->capacity = capacity;
-    }
+    if (!gb_array_reserve(&list->hits, &list->capacity, list->count + 1, sizeof *list->hits))
+        return 0;
     list->hits[list->count++] = (cell_hit){key, triangle};
     return 1;
 }

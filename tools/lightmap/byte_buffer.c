@@ -6,24 +6,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array_reserve.h"
+
 /* Room for size more bytes and a NUL; 0 when out of memory. */
 static int reserve(gb_byte_buffer *b, size_t size)
 {
     if (b->failed)
         return 0;
-    if (b->size + size + 1 <= b->capacity)
-        return 1;
-    size_t capacity = b->capacity ? b->capacity : 4096;
-    while (capacity < b->size + size + 1)
-        capacity *= 2;
-    char *data = realloc(b->data, capacity);
-    if (!data) {
+    if (!gb_array_reserve(&b->data, &b->capacity, b->size + size + 1, 1))
         b->failed = 1;
-        return 0;
-    }
-    b->data = data;
-    b->capacity = capacity;
-    return 1;
+    return !b->failed;
 }
 
 void gb_byte_buffer_append(gb_byte_buffer *b, const void *bytes, size_t size)

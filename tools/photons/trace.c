@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "array_reserve.h"
 #include "brdf_sampling.h"
 
 static int is_finite_colour(gb_vec3 c)
@@ -11,21 +12,11 @@ static int is_finite_colour(gb_vec3 c)
     return isfinite(c.x) && isfinite(c.y) && isfinite(c.z);
 }
 
-static int grow(gb_photons_sink *sink)
-{
-    size_t capacity = sink->capacity ? 2 * sink->capacity : 256;
-    gb_photons_record *records = realloc(sink->records, capacity * sizeof *records);
-    if (!records)
-        return 0;
-    sink->records = records;
-    sink->capacity = capacity;
-    return 1;
-}
-
 static int store(gb_photons_sink *sink, const gb_surface *surface, gb_vec3 power,
                  unsigned bounce)
 {
-    if (sink->count == sink->capacity && !grow(sink))
+    if (!gb_array_reserve(&sink->records, &sink->capacity, sink->count + 1,
+                          sizeof *sink->records))
         return 0;
     gb_photons_record *r = &sink->records[sink->count++];
     float wo[3], ng[3];

@@ -4,6 +4,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array_reserve.h"
 #include "gate_openings.h"
 #include "gate_pairs.h"
 
@@ -146,14 +147,9 @@ static int add_pair(void *user, const int32_t ijk[3], int axis, int32_t a, int32
     (void)ijk;
     (void)axis;
     pair_list *list = user;
-    if (list->used == list->capacity) {
-        uint64_t *grown = realloc(list->pairs, 2 * list->capacity * sizeof *grown);
-        if (!grown) {
-            list->out_of_memory = 1;
-            return 0;
-        }
-        list->pairs = grown;
-        list->capacity *= 2;
+    if (!gb_array_reserve(&list->pairs, &list->capacity, list->used + 1, sizeof *list->pairs)) {
+        list->out_of_memory = 1;
+        return 0;
     }
     uint64_t lo = (uint64_t)(a < b ? a : b), hi = (uint64_t)(a < b ? b : a);
     list->pairs[list->used++] = lo << 32 | hi;

@@ -7,6 +7,7 @@
 #include <stdint.h>
 #include <stdlib.h>
 
+#include "array_reserve.h"
 #include "result.h"
 
 typedef struct gb_cell_list {
@@ -14,22 +15,11 @@ typedef struct gb_cell_list {
     size_t count, capacity;
 } gb_cell_list;
 
-static inline gb_result gb_cell_list_grow(gb_cell_list *list, gb_error *error)
-{
-    size_t capacity = list->capacity ? 2 * list->capacity : 1024;
-    uint32_t *items = realloc(list->items, capacity * sizeof *items);
-    if (!items)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory for a list of %zu cells",
-                       capacity);
-    list->items = items;
-    list->capacity = capacity;
-    return GB_OK;
-}
-
 static inline gb_result gb_cell_list_push(gb_cell_list *list, size_t cell, gb_error *error)
 {
-    if (list->count == list->capacity && gb_cell_list_grow(list, error))
-        return GB_ERROR_OUT_OF_MEMORY;
+    if (!gb_array_reserve(&list->items, &list->capacity, list->count + 1, sizeof *list->items))
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory for a list of %zu cells",
+                       list->count + 1);
     list->items[list->count++] = (uint32_t)cell;
     return GB_OK;
 }

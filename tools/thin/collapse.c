@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array_reserve.h"
+
 /* For the few small functions of the inner loops. */
 #define HOT static inline __attribute__((always_inline))
 
@@ -156,14 +158,9 @@ static gb_result end_iteration(gb_collapse *collapse, gb_error *error)
 
 static gb_result add_pair(gb_collapse *collapse, size_t cell, uint8_t g, gb_error *error)
 {
-    if (collapse->pair_count == collapse->pair_capacity) {
-        size_t capacity = collapse->pair_capacity ? 2 * collapse->pair_capacity : 1024;
-        uint64_t *pairs = realloc(collapse->pairs, capacity * sizeof *pairs);
-        if (!pairs)
-            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "collapse: out of memory");
-        collapse->pairs = pairs;
-        collapse->pair_capacity = capacity;
-    }
+    if (!gb_array_reserve(&collapse->pairs, &collapse->pair_capacity, collapse->pair_count + 1,
+                          sizeof *collapse->pairs))
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "collapse: out of memory");
     collapse->pairs[collapse->pair_count++] = (uint64_t)cell << 8 | g;
     return GB_OK;
 }

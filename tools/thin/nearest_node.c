@@ -17,6 +17,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array_reserve.h"
 #include "cell_list.h"
 #include "threads.h"
 
@@ -77,14 +78,8 @@ typedef struct slab {
 
 static gb_result push_arrival(arrivals *list, size_t cell, uint64_t state, gb_error *error)
 {
-    if (list->count == list->capacity) {
-        size_t capacity = list->capacity ? 2 * list->capacity : 1024;
-        arrival *items = realloc(list->items, capacity * sizeof *items);
-        if (!items)
-            return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "nearest node: out of memory");
-        list->items = items;
-        list->capacity = capacity;
-    }
+    if (!gb_array_reserve(&list->items, &list->capacity, list->count + 1, sizeof *list->items))
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "nearest node: out of memory");
     list->items[list->count++] = (arrival){state, cell};
     return GB_OK;
 }
