@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "gbuffer.h"
 #include "gl_util.h"
 
 static const char fragment_shader[] =
@@ -40,14 +41,7 @@ gb_result gb_direct_light_create(gb_direct_light *pass, const gb_texture *enviro
 static void set_uniforms(GLuint program, GLuint environment_map, const gb_direct_inputs *in)
 {
     const gb_view *view = in->view;
-    gb_mat4 view_to_world = gb_view_inverse_matrix(view);
-    float tan_y = tanf(0.5f * view->fov_y * 3.14159265358979f / 180.0f);
-    float aspect = (float)in->gbuffer->width / (float)in->gbuffer->height;
-    glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "view_to_world"), 1,
-                              GL_FALSE, view_to_world.m);
-    glProgramUniform2f(program, glGetUniformLocation(program, "tan_half_fov"), tan_y * aspect,
-                       tan_y);
-    glProgramUniform1f(program, glGetUniformLocation(program, "near"), view->near);
+    gb_gbuffer_set_view_of(program, view, in->gbuffer->width, in->gbuffer->height);
     glProgramUniform3fv(program, glGetUniformLocation(program, "environment"), 1,
                         in->environment);
     glProgramUniform1i(program, glGetUniformLocation(program, "has_environment_map"),

@@ -1,5 +1,6 @@
 #include "gbuffer.h"
 
+#include <math.h>
 #include <string.h>
 
 #include "gl_util.h"
@@ -96,6 +97,25 @@ void gb_gbuffer_draw(gb_gbuffer *gbuffer, const gb_gpu_scene *scene, const gb_ma
     gb_gl_set_view_projection(gbuffer->program, view->m, projection->m);
     gb_gpu_scene_draw(scene, 1);
     glDisable(GL_DEPTH_TEST);
+}
+
+void gb_gbuffer_set_view(GLuint program, const float view_to_world[16],
+                         const float tan_half_fov[2], float near)
+{
+    glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "view_to_world"), 1,
+                              GL_FALSE, view_to_world);
+    glProgramUniform2f(program, glGetUniformLocation(program, "tan_half_fov"), tan_half_fov[0],
+                       tan_half_fov[1]);
+    glProgramUniform1f(program, glGetUniformLocation(program, "near"), near);
+}
+
+void gb_gbuffer_set_view_of(GLuint program, const gb_view *view, int width, int height)
+{
+    gb_mat4 view_to_world = gb_view_inverse_matrix(view);
+    float tan_y = tanf(0.5f * view->fov_y * 3.14159265358979f / 180.0f);
+    float aspect = (float)width / (float)height;
+    float tan_half_fov[2] = {tan_y * aspect, tan_y};
+    gb_gbuffer_set_view(program, view_to_world.m, tan_half_fov, view->near);
 }
 
 void gb_gbuffer_bind(const gb_gbuffer *gbuffer)

@@ -27,6 +27,7 @@
 #include "gpu_scene.h"
 #include "mat4.h"
 #include "result.h"
+#include "view.h"
 
 #define GB_NO_CLUSTER 0xffffffffu
 
@@ -54,6 +55,12 @@ gb_result gb_gbuffer_resize(gb_gbuffer *gbuffer, int width, int height, gb_error
 void gb_gbuffer_draw(gb_gbuffer *gbuffer, const gb_gpu_scene *scene, const gb_mat4 *view,
                      const gb_mat4 *projection);
 void gb_gbuffer_bind(const gb_gbuffer *gbuffer);
+/* Sets the uniforms gbuffer_textures.glsl declares for reading a pixel back
+ * into world space (view_to_world, tan_half_fov, near) on program. */
+void gb_gbuffer_set_view(GLuint program, const float view_to_world[16],
+                         const float tan_half_fov[2], float near);
+/* The same for view seen in a width x height target. */
+void gb_gbuffer_set_view_of(GLuint program, const gb_view *view, int width, int height);
 void gb_gbuffer_destroy(gb_gbuffer *gbuffer);
 
 #endif

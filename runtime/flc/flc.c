@@ -6,6 +6,7 @@
 #include <string.h>
 #include <time.h>
 
+#include "gbuffer.h"
 #include "gl_util.h"
 #include "progress.h"
 
@@ -393,16 +394,9 @@ static void set_splat_uniforms(const flc_state *s, const gb_indirect_frame *fram
     GLuint program = s->splat_program;
     const gb_view *view = frame->view;
     gb_mat4 view_projection = gb_mat4_multiply(frame->projection, frame->view_matrix);
-    gb_mat4 view_to_world = gb_view_inverse_matrix(view);
-    float tan_y = tanf(0.5f * view->fov_y * 3.14159265358979f / 180.0f);
-    float aspect = (float)frame->width / (float)frame->height;
     glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "view_projection"), 1,
                               GL_FALSE, view_projection.m);
-    glProgramUniformMatrix4fv(program, glGetUniformLocation(program, "view_to_world"), 1,
-                              GL_FALSE, view_to_world.m);
-    glProgramUniform2f(program, glGetUniformLocation(program, "tan_half_fov"), tan_y * aspect,
-                       tan_y);
-    set_float(program, "near", view->near);
+    gb_gbuffer_set_view_of(program, view, frame->width, frame->height);
     set_size(program, "splat_size", s->tile_width << s->tiling, s->tile_height << s->tiling);
     set_tiles(program, s);
     set_levels(program, &s->levels);

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "gbuffer.h"
 #include "gl_util.h"
 #include "indirect_method.h"
 #include "light_octree.h"
@@ -148,13 +149,7 @@ static void set_uniforms(const octree_state *s, const gb_indirect_frame *frame)
     GLuint p = s->program;
     const gb_view *view = frame->view;
     const gb_light_octree_header *h = &s->octree->header;
-    gb_mat4 view_to_world = gb_view_inverse_matrix(view);
-    float tan_y = tanf(0.5f * view->fov_y * 3.14159265358979f / 180.0f);
-    float aspect = (float)frame->width / (float)frame->height;
-    glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "view_to_world"), 1, GL_FALSE,
-                              view_to_world.m);
-    glProgramUniform2f(p, glGetUniformLocation(p, "tan_half_fov"), tan_y * aspect, tan_y);
-    glProgramUniform1f(p, glGetUniformLocation(p, "near"), view->near);
+    gb_gbuffer_set_view_of(p, view, frame->width, frame->height);
     glProgramUniform2i(p, glGetUniformLocation(p, "full_size"), frame->width, frame->height);
     glProgramUniform3fv(p, glGetUniformLocation(p, "origin"), 1, h->origin);
     glProgramUniform1f(p, glGetUniformLocation(p, "cell_size"),

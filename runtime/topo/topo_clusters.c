@@ -140,11 +140,7 @@ void gb_topo_cluster_pass_run(const gb_topo_cluster_pass *pass, GLuint depth, GL
 {
     GLuint p = pass->program;
     glUseProgram(p);
-    glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "view_to_world"), 1, GL_FALSE,
-                              view_to_world);
-    glProgramUniform2f(p, glGetUniformLocation(p, "tan_half_fov"), tan_half_fov[0],
-                       tan_half_fov[1]);
-    glProgramUniform1f(p, glGetUniformLocation(p, "near"), near);
+    gb_gbuffer_set_view(p, view_to_world, tan_half_fov, near);
     glBindTextureUnit(GB_UNIT_GBUFFER_NORMAL, normal);
     glBindTextureUnit(GB_UNIT_GBUFFER_DEPTH, depth);
     glBindTextureUnit(UNIT_VOXEL_CLUSTERS, pass->voxel_clusters);

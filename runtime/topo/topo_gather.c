@@ -14,6 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "gbuffer.h"
 #include "gl_util.h"
 #include "topo.h"
 
@@ -109,11 +110,7 @@ void gb_topo_gather_draw(const gb_topo_gather_pass *pass, const float view_to_wo
 {
     GLuint p = pass->program;
     glUseProgram(p);
-    glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "view_to_world"), 1, GL_FALSE,
-                              view_to_world);
-    glProgramUniform2f(p, glGetUniformLocation(p, "tan_half_fov"), tan_half_fov[0],
-                       tan_half_fov[1]);
-    glProgramUniform1f(p, glGetUniformLocation(p, "near"), near);
+    gb_gbuffer_set_view(p, view_to_world, tan_half_fov, near);
     glProgramUniform1f(p, glGetUniformLocation(p, "clamp_distance2"),
                        pass->clamp_distance * pass->clamp_distance);
     glProgramUniform1i(p, glGetUniformLocation(p, "vpl_count"), (GLint)pass->vpl_count);

@@ -195,11 +195,7 @@ static void run_bounds(const gb_topo_iugc_gpu *iugc, const gb_topo_frame_input *
 {
     GLuint p = iugc->bounds_program;
     glUseProgram(p);
-    glProgramUniformMatrix4fv(p, glGetUniformLocation(p, "view_to_world"), 1, GL_FALSE,
-                              f->view_to_world);
-    glProgramUniform2f(p, glGetUniformLocation(p, "tan_half_fov"), f->tan_half_fov[0],
-                       f->tan_half_fov[1]);
-    glProgramUniform1f(p, glGetUniformLocation(p, "near"), f->near);
+    gb_gbuffer_set_view(p, f->view_to_world, f->tan_half_fov, f->near);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, iugc->tile_counts);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 2, iugc->tile_offsets);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, iugc->clusters);
