@@ -216,24 +216,14 @@ gb_result gb_atlas_write(const char *path, const gb_atlas *atlas, gb_error *erro
     if (result != GB_OK)
         return result;
     const gb_atlas_header *h = &atlas->header;
-    gb_container_writer *writer = gb_container_writer_create("ATLS", GB_ATLAS_VERSION);
-    if (!writer)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    result = gb_container_add(writer, "header", h, sizeof *h, error);
-    if (result == GB_OK)
-        result = gb_container_add(writer, "uvs", atlas->uvs,
-                                  (uint64_t)h->triangle_count * 6 * sizeof *atlas->uvs, error);
-    if (result == GB_OK)
-        result = gb_container_add(writer, "charts", atlas->charts,
-                                  (uint64_t)h->triangle_count * sizeof *atlas->charts, error);
-    if (result == GB_OK)
-        result = gb_container_add(writer, "chart_records", atlas->chart_records,
-                                  (uint64_t)h->chart_count * sizeof *atlas->chart_records,
-                                  error);
-    if (result == GB_OK)
-        result = gb_container_commit(writer, path, error);
-    gb_container_writer_destroy(writer);
-    return result;
+    const gb_container_array arrays[] = {
+        {"header", 1, sizeof *h, h},
+        {"uvs", (uint64_t)h->triangle_count * 6, sizeof *atlas->uvs, atlas->uvs},
+        {"charts", h->triangle_count, sizeof *atlas->charts, atlas->charts},
+        {"chart_records", h->chart_count, sizeof *atlas->chart_records, atlas->chart_records},
+    };
+    return gb_container_write_arrays(path, "ATLS", GB_ATLAS_VERSION, arrays, SECTION_COUNT,
+                                     error);
 }
 
 /* ---- reading ---- */
@@ -241,26 +231,22 @@ gb_result gb_atlas_write(const char *path, const gb_atlas *atlas, gb_error *erro
 static gb_result view_sections(const gb_container *container, const char *path,
                                gb_atlas *atlas, gb_error *error)
 {
-    const gb_section *header, *uvs = NULL, *charts = NULL, *records = NULL;
+    const gb_section *header;
     gb_result result = gb_container_find_array(container, "header", 1, sizeof atlas->header,
                                                ALIGNMENT, path, &header, error);
     if (result != GB_OK)
         return result;
     memcpy(&atlas->header, header->data, sizeof atlas->header);
     const gb_atlas_header *h = &atlas->header;
-    result = gb_container_find_array(container, "uvs", (uint64_t)h->triangle_count * 6,
-                                     sizeof *atlas->uvs, ALIGNMENT, path, &uvs, error);
-    if (result == GB_OK)
-        result = gb_container_find_array(container, "charts", h->triangle_count,
-                                         sizeof *atlas->charts, ALIGNMENT, path, &charts,
-                                         error);
-    if (result == GB_OK)
-        result = gb_container_find_array(container, "chart_records", h->chart_count,
-                                         sizeof *atlas->chart_records, ALIGNMENT, path,
-                                         &records, error);
-    atlas->uvs = gb_section_data(uvs);
-    atlas->charts = gb_section_data(charts);
-    atlas->chart_records = gb_section_data(records);
+    gb_container_array arrays[] = {
+        {"uvs", (uint64_t)h->triangle_count * 6, sizeof *atlas->uvs, NULL},
+        {"charts", h->triangle_count, sizeof *atlas->charts, NULL},
+        {"chart_records", h->chart_count, sizeof *atlas->chart_records, NULL},
+    };
+    result = gb_container_find_arrays(container, arrays, 3, ALIGNMENT, path, error);
+    atlas->uvs = arrays[0].data;
+    atlas->charts = arrays[1].data;
+    atlas->chart_records = arrays[2].data;
     return result;
 }
 

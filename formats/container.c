@@ -437,6 +437,24 @@ gb_result gb_container_find_array(const gb_container *container, const char *nam
     return GB_OK;
 }
 
+gb_result gb_container_find_arrays(const gb_container *container, gb_container_array *arrays,
+                                   int count, unsigned alignment, const char *path,
+                                   gb_error *error)
+{
+    for (int i = 0; i < count; ++i)
+        arrays[i].data = NULL;
+    for (int i = 0; i < count; ++i) {
+        const gb_section *section;
+        gb_result result =
+            gb_container_find_array(container, arrays[i].name, arrays[i].count,
+                                    arrays[i].item_size, alignment, path, &section, error);
+        if (result != GB_OK)
+            return result;
+        arrays[i].data = section->data;
+    }
+    return GB_OK;
+}
+
 void gb_container_close(gb_container *container)
 {
     if (!container)
@@ -665,4 +683,26 @@ void gb_container_writer_destroy(gb_container_writer *writer)
         return;
     free(writer->sections);
     free(writer);
+}
+
+gb_result gb_container_write_arrays(const char *path, const char *kind, uint32_t version,
+                                    const gb_container_array *arrays, int count,
+                                    gb_error *error)
+{
+    gb_container_writer *writer = gb_container_writer_create(kind, version);
+    if (!writer)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    gb_result result = GB_OK;
+    for (int i = 0; i < count && result == GB_OK; ++i) {
+        const gb_container_array *a = &arrays[i];
+        if (a->item_size && a->count > UINT64_MAX / a->item_size)
+            result = gb_fail(error, GB_ERROR_ARGUMENT, "%s: \"%s\" has too many items", path,
+                             a->name);
+        else
+            result = gb_container_add(writer, a->name, a->data, a->count * a->item_size, error);
+    }
+    if (result == GB_OK)
+        result = gb_container_commit(writer, path, error);
+    gb_container_writer_destroy(writer);
+    return result;
 }

@@ -83,6 +83,21 @@ gb_result gb_container_commit(gb_container_writer *writer, const char *path,
                               gb_error *error);
 void gb_container_writer_destroy(gb_container_writer *writer);
 
+/* One section seen as an array: its name and its items' count and size.
+ * data is the payload to write or, after gb_container_find_arrays, the
+ * payload found (NULL where it stopped). */
+typedef struct gb_container_array {
+    const char *name;
+    uint64_t count, item_size;
+    const void *data;
+} gb_container_array;
+
+/* Creates a writer of kind and version, adds the arrays in order and commits
+ * them to path: the whole write of a file in one call. */
+gb_result gb_container_write_arrays(const char *path, const char *kind, uint32_t version,
+                                    const gb_container_array *arrays, int count,
+                                    gb_error *error);
+
 /* expected_kind may be NULL to accept any kind; on success *out holds the
  * container, on failure *out is zeroed and nothing needs closing. path is used
  * in messages. */
@@ -111,6 +126,11 @@ static inline const void *gb_section_data(const gb_section *section)
 gb_result gb_container_find_array(const gb_container *container, const char *name,
                                   uint64_t count, uint64_t element_size, unsigned alignment,
                                   const char *path, const gb_section **out, gb_error *error);
+/* gb_container_find_array for each of the arrays in order, setting its data
+ * to the section's payload; stops at the first that fails. */
+gb_result gb_container_find_arrays(const gb_container *container, gb_container_array *arrays,
+                                   int count, unsigned alignment, const char *path,
+                                   gb_error *error);
 void gb_container_close(gb_container *container);
 
 #endif

@@ -218,23 +218,13 @@ gb_result gb_light_octree_write(const char *path, const gb_light_octree *octree,
     if (result != GB_OK)
         return result;
     const gb_light_octree_header *h = &octree->header;
-    gb_container_writer *writer = gb_container_writer_create("LOCT", GB_LIGHT_OCTREE_VERSION);
-    if (!writer)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    result = gb_container_add(writer, "header", h, sizeof *h, error);
-    if (result == GB_OK)
-        result = gb_container_add(writer, "nodes", octree->nodes,
-                                  (uint64_t)h->node_count * sizeof *octree->nodes, error);
-    if (result == GB_OK)
-        result = gb_container_add(writer, "leaves", octree->leaves,
-                                  (uint64_t)h->leaf_count * sizeof *octree->leaves, error);
-    if (result == GB_OK)
-        result = gb_container_add(writer, "vdls", octree->vdls,
-                                  (uint64_t)h->vdl_count * sizeof *octree->vdls, error);
-    if (result == GB_OK)
-        result = gb_container_commit(writer, path, error);
-    gb_container_writer_destroy(writer);
-    return result;
+    const gb_container_array arrays[] = {
+        {"header", 1, sizeof *h, h},
+        {"nodes", h->node_count, sizeof *octree->nodes, octree->nodes},
+        {"leaves", h->leaf_count, sizeof *octree->leaves, octree->leaves},
+        {"vdls", h->vdl_count, sizeof *octree->vdls, octree->vdls},
+    };
+    return gb_container_write_arrays(path, "LOCT", GB_LIGHT_OCTREE_VERSION, arrays, 4, error);
 }
 
 /* ---- reading ---- */
@@ -242,25 +232,22 @@ gb_result gb_light_octree_write(const char *path, const gb_light_octree *octree,
 static gb_result view_sections(const gb_container *container, const char *path,
                                gb_light_octree *octree, gb_error *error)
 {
-    const gb_section *header, *nodes = NULL, *leaves = NULL, *vdls = NULL;
+    const gb_section *header;
     gb_result result = gb_container_find_array(container, "header", 1, sizeof octree->header,
                                                ALIGNMENT, path, &header, error);
     if (result != GB_OK)
         return result;
     memcpy(&octree->header, header->data, sizeof octree->header);
     const gb_light_octree_header *h = &octree->header;
-    result = gb_container_find_array(container, "nodes", h->node_count, sizeof *octree->nodes,
-                                     ALIGNMENT, path, &nodes, error);
-    if (result == GB_OK)
-        result = gb_container_find_array(container, "leaves", h->leaf_count,
-                                         sizeof *octree->leaves, ALIGNMENT, path, &leaves,
-                                         error);
-    if (result == GB_OK)
-        result = gb_container_find_array(container, "vdls", h->vdl_count, sizeof *octree->vdls,
-                                         ALIGNMENT, path, &vdls, error);
-    octree->nodes = gb_section_data(nodes);
-    octree->leaves = gb_section_data(leaves);
-    octree->vdls = gb_section_data(vdls);
+    gb_container_array arrays[] = {
+        {"nodes", h->node_count, sizeof *octree->nodes, NULL},
+        {"leaves", h->leaf_count, sizeof *octree->leaves, NULL},
+        {"vdls", h->vdl_count, sizeof *octree->vdls, NULL},
+    };
+    result = gb_container_find_arrays(container, arrays, 3, ALIGNMENT, path, error);
+    octree->nodes = arrays[0].data;
+    octree->leaves = arrays[1].data;
+    octree->vdls = arrays[2].data;
     return result;
 }
 

@@ -282,22 +282,6 @@ static void encode_header(const gb_photon_map *map, unsigned char *bytes)
     }
 }
 
-static gb_result add_sections(gb_container_writer *writer, const gb_photon_map *map,
-                              const unsigned char *header, gb_error *error)
-{
-    uint64_t vectors = map->count * 3 * sizeof(float), words = map->count * sizeof(uint32_t);
-    gb_result result = gb_container_add(writer, "header", header, HEADER_SIZE, error);
-    if (result == GB_OK)
-        result = gb_container_add(writer, "positions", map->positions, vectors, error);
-    if (result == GB_OK)
-        result = gb_container_add(writer, "powers", map->powers, vectors, error);
-    if (result == GB_OK)
-        result = gb_container_add(writer, "directions", map->directions, words, error);
-    if (result == GB_OK)
-        result = gb_container_add(writer, "normals", map->normals, words, error);
-    return result;
-}
-
 gb_result gb_photon_map_write(const char *path, const gb_photon_map *map, gb_error *error)
 {
     gb_result result = gb_photon_map_check(map, path, error);
@@ -305,14 +289,14 @@ gb_result gb_photon_map_write(const char *path, const gb_photon_map *map, gb_err
         return result;
     unsigned char header[HEADER_SIZE];
     encode_header(map, header);
-    gb_container_writer *writer = gb_container_writer_create("PHOT", GB_PHOTON_MAP_VERSION);
-    if (!writer)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    result = add_sections(writer, map, header, error);
-    if (result == GB_OK)
-        result = gb_container_commit(writer, path, error);
-    gb_container_writer_destroy(writer);
-    return result;
+    const gb_container_array arrays[] = {
+        {"header", 1, HEADER_SIZE, header},
+        {"positions", map->count, 3 * sizeof(float), map->positions},
+        {"powers", map->count, 3 * sizeof(float), map->powers},
+        {"directions", map->count, sizeof(uint32_t), map->directions},
+        {"normals", map->count, sizeof(uint32_t), map->normals},
+    };
+    return gb_container_write_arrays(path, "PHOT", GB_PHOTON_MAP_VERSION, arrays, 5, error);
 }
 
 /* ---- reading ---- */
@@ -351,23 +335,18 @@ static gb_result decode_header(const gb_container *container, const char *path,
 static gb_result view_arrays(const gb_container *container, const char *path,
                              gb_photon_map *map, gb_error *error)
 {
-    const gb_section *positions = NULL, *powers = NULL, *directions = NULL, *normals = NULL;
     uint64_t n = map->count;
-    gb_result result = gb_container_find_array(container, "positions", n, 12, ALIGNMENT, path,
-                                               &positions, error);
-    if (result == GB_OK)
-        result = gb_container_find_array(container, "powers", n, 12, ALIGNMENT, path, &powers,
-                                         error);
-    if (result == GB_OK)
-        result = gb_container_find_array(container, "directions", n, 4, ALIGNMENT, path,
-                                         &directions, error);
-    if (result == GB_OK)
-        result = gb_container_find_array(container, "normals", n, 4, ALIGNMENT, path, &normals,
-                                         error);
-    map->positions = gb_section_data(positions);
-    map->powers = gb_section_data(powers);
-    map->directions = gb_section_data(directions);
-    map->normals = gb_section_data(normals);
+    gb_container_array arrays[] = {
+        {"positions", n, 12, NULL},
+        {"powers", n, 12, NULL},
+        {"directions", n, 4, NULL},
+        {"normals", n, 4, NULL},
+    };
+    gb_result result = gb_container_find_arrays(container, arrays, 4, ALIGNMENT, path, error);
+    map->positions = arrays[0].data;
+    map->powers = arrays[1].data;
+    map->directions = arrays[2].data;
+    map->normals = arrays[3].data;
     return result;
 }
 

@@ -447,23 +447,6 @@ static int encode_payloads(const gb_segmentation *s, payloads *p)
     return 0;
 }
 
-static gb_result add_sections(gb_container_writer *w, const uint8_t *header, const payloads *p,
-                              gb_error *error)
-{
-    gb_result result = gb_container_add(w, "header", header, HEADER_SIZE, error);
-    if (!result)
-        result = gb_container_add(w, "nodes", p->nodes, p->node_bytes, error);
-    if (!result)
-        result = gb_container_add(w, "edges", p->edges, p->edge_bytes, error);
-    if (!result)
-        result = gb_container_add(w, "clusters", p->clusters, p->cluster_bytes, error);
-    if (!result)
-        result = gb_container_add(w, "node_map", p->node_map, p->map_bytes, error);
-    if (!result)
-        result = gb_container_add(w, "gates", p->gates, p->gate_bytes, error);
-    return result;
-}
-
 gb_result gb_segmentation_write(const char *path, const gb_segmentation *segmentation,
                                 gb_error *error)
 {
@@ -473,16 +456,19 @@ gb_result gb_segmentation_write(const char *path, const gb_segmentation *segment
     uint8_t header[HEADER_SIZE];
     encode_header(segmentation, header);
     payloads p = {0};
-    gb_container_writer *writer =
-        gb_container_writer_create("SEGM", GB_SEGMENTATION_VERSION);
-    if (encode_payloads(segmentation, &p) || !writer)
+    if (encode_payloads(segmentation, &p))
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    const gb_container_array arrays[] = {
+        {"header", 1, HEADER_SIZE, header},
+        {"nodes", 1, p.node_bytes, p.nodes},
+        {"edges", 1, p.edge_bytes, p.edges},
+        {"clusters", 1, p.cluster_bytes, p.clusters},
+        {"node_map", 1, p.map_bytes, p.node_map},
+        {"gates", 1, p.gate_bytes, p.gates},
+    };
     if (!result)
-        result = add_sections(writer, header, &p, error);
-    if (!result)
-        result = gb_container_commit(writer, path, error);
-    if (writer)
-        gb_container_writer_destroy(writer);
+        result = gb_container_write_arrays(path, "SEGM", GB_SEGMENTATION_VERSION, arrays, 6,
+                                           error);
     free(p.bytes);
     return result;
 }

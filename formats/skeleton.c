@@ -150,21 +150,15 @@ gb_result gb_skeleton_write(const char *path, const gb_skeleton *skeleton, gb_er
     unsigned char header[HEADER_SIZE];
     encode_header(skeleton, header);
     unsigned char *nodes = encode_nodes(skeleton), *edges = encode_edges(skeleton);
-    gb_container_writer *writer = gb_container_writer_create("SKEL", GB_SKELETON_VERSION);
-    if (!nodes || !edges || !writer)
+    const gb_container_array arrays[] = {
+        {"header", 1, HEADER_SIZE, header},
+        {"nodes", skeleton->node_count, NODE_SIZE, nodes},
+        {"edges", skeleton->edge_count, EDGE_SIZE, edges},
+    };
+    if (!nodes || !edges)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    if (!result)
-        result = gb_container_add(writer, "header", header, HEADER_SIZE, error);
-    if (!result)
-        result = gb_container_add(writer, "nodes", nodes,
-                                  (uint64_t)skeleton->node_count * NODE_SIZE, error);
-    if (!result)
-        result = gb_container_add(writer, "edges", edges,
-                                  (uint64_t)skeleton->edge_count * EDGE_SIZE, error);
-    if (!result)
-        result = gb_container_commit(writer, path, error);
-    if (writer)
-        gb_container_writer_destroy(writer);
+    else
+        result = gb_container_write_arrays(path, "SKEL", GB_SKELETON_VERSION, arrays, 3, error);
     free(nodes);
     free(edges);
     return result;

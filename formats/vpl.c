@@ -65,16 +65,11 @@ static void decode_vpl(const unsigned char *p, gb_vpl *vpl)
 static gb_result commit(const char *path, const unsigned char *header,
                         const unsigned char *payload, uint64_t payload_size, gb_error *error)
 {
-    gb_container_writer *writer = gb_container_writer_create("VPLS", GB_VPL_VERSION);
-    if (!writer)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    gb_result result = gb_container_add(writer, "header", header, HEADER_SIZE, error);
-    if (result == GB_OK)
-        result = gb_container_add(writer, "vpls", payload, payload_size, error);
-    if (result == GB_OK)
-        result = gb_container_commit(writer, path, error);
-    gb_container_writer_destroy(writer);
-    return result;
+    const gb_container_array arrays[] = {
+        {"header", 1, HEADER_SIZE, header},
+        {"vpls", 1, payload_size, payload},
+    };
+    return gb_container_write_arrays(path, "VPLS", GB_VPL_VERSION, arrays, 2, error);
 }
 
 gb_result gb_vpl_write(const char *path, const gb_vpl_set *set, gb_error *error)

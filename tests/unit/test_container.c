@@ -622,6 +622,54 @@ static void test_missing_folder(void)
     gb_container_writer_destroy(writer);
 }
 
+/* ---- arrays in one call ---- */
+
+/* gb_container_write_arrays writes the bytes of the section-by-section
+ * writer; gb_container_find_arrays finds each array and stops, with NULL
+ * data from there on, at the first of the wrong size. */
+static void test_arrays(void)
+{
+    gb_error error = {""};
+    const char *by_sections = scratch_path("sections.test");
+    const char *by_arrays = scratch_path("arrays.test");
+    gb_container_writer *writer = sample_writer();
+    gb_container_commit(writer, by_sections, &error);
+    gb_container_writer_destroy(writer);
+    const gb_container_array arrays[] = {
+        {"positions", 25, 4, positions}, {"empty", 0, 8, NULL}, {"indices", 33, 1, indices},
+        {"aligned", 2, 16, aligned},     {"one", 1, 1, one},
+    };
+    CHECK_EQ_INT(gb_container_write_arrays(by_arrays, "TEST", 2, arrays, 5, &error), GB_OK,
+                 "write_arrays succeeds");
+    size_t size_a, size_b;
+    unsigned char *a = scratch_read(by_sections, &size_a), *b = scratch_read(by_arrays, &size_b);
+    CHECK(a && b && size_a == size_b && memcmp(a, b, size_a) == 0,
+          "write_arrays writes the bytes of adding the sections one by one");
+    free(a);
+    free(b);
+
+    gb_container container;
+    gb_container_read(by_arrays, "TEST", &container, &error);
+    gb_container_array found[] = {
+        {"positions", 25, 4, NULL}, {"indices", 33, 1, NULL}, {"aligned", 2, 16, NULL}};
+    CHECK_EQ_INT(gb_container_find_arrays(&container, found, 3, 16, by_arrays, &error), GB_OK,
+                 "find_arrays finds three arrays of the right sizes");
+    CHECK(found[0].data == gb_container_find(&container, "positions")->data &&
+              found[1].data == gb_container_find(&container, "indices")->data &&
+              found[2].data == gb_container_find(&container, "aligned")->data,
+          "find_arrays gives each array its section's payload");
+    found[1].count = 34;
+    CHECK_EQ_INT(gb_container_find_arrays(&container, found, 3, 16, by_arrays, &error),
+                 GB_ERROR_FORMAT, "find_arrays fails on a section of the wrong size");
+    CHECK(found[0].data && !found[1].data && !found[2].data,
+          "find_arrays stops there: the arrays before it found, the rest NULL");
+    CHECK(strstr(error.message, "\"indices\" section has 33 bytes") != NULL,
+          "the error names the section and its size");
+    gb_container_close(&container);
+    unlink(by_sections);
+    unlink(by_arrays);
+}
+
 int main(void)
 {
     umask(022);
@@ -644,6 +692,7 @@ int main(void)
     test_killed_commit(3);
     test_killed_commit(6);
     test_missing_folder();
+    test_arrays();
     scratch_remove();
     return tap_done();
 }
