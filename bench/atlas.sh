@@ -12,13 +12,10 @@
 #   (with the scene's load) and its peak memory, the file's bytes.
 # Prints a Markdown table on stdout. Run by `make bench`.
 
-root=$(cd "$(dirname "$0")/.." && pwd)
-GB_BIN=${GB_BIN:-$root/build/bin}
+. "$(dirname "$0")/common.sh"
 ATLAS_SIZE=${ATLAS_SIZE:-1024}
 s=$root/scenes
 ATLAS_SCENES=${ATLAS_SCENES:-"$s/cornell/cornell.scene $s/shared/cornell-original.scene $s/shared/sponza.scene $s/shared/staircase.scene"}
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-atlas.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
 
 echo "atlas --size $ATLAS_SIZE (default cone and padding); $(nproc) cores, load" \
     "$(cut -d' ' -f1-3 /proc/loadavg); $(date -u +%Y-%m-%d)"
@@ -29,7 +26,7 @@ for scene in $ATLAS_SCENES; do
     name=$(basename "$scene" .scene)
     /usr/bin/time -f "%e %M" -o "$dir/time" "$GB_BIN/atlas" --quiet --stats \
         --size "$ATLAS_SIZE" "$scene" -o "$dir/$name.atlas" >"$dir/stats" || exit 1
-    v() { sed -n "s/^$1 //p" "$dir/stats"; }
+    v() { value "$1" "$dir/stats"; }
     read -r wall peak <"$dir/time"
     printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.0f | %s |\n" "$name" \
         "$(v triangles)" "$(v charts)" "$(v lone_triangles)" "$(v fill_ratio)" \

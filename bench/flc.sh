@@ -25,8 +25,7 @@
 # (default build/bin); flc_passes is taken from GB_BIN/../bench (`make
 # bench` builds it).
 
-root=$(cd "$(dirname "$0")/.." && pwd)
-GB_BIN=${GB_BIN:-$root/build/bin}
+. "$(dirname "$0")/common.sh"
 FLC_SCENES=${FLC_SCENES:-"$root/scenes/cornell/cornell.scene $root/scenes/shared/sponza.scene"}
 FLC_BRUTE_SCENES=${FLC_BRUTE_SCENES:-"$root/scenes/shared/sponza.scene"}
 FLC_SIZE=${FLC_SIZE:-1024x512}
@@ -35,28 +34,17 @@ FLC_FRAMES=${FLC_FRAMES:-2}
 FLC_ERROR_SIZE=${FLC_ERROR_SIZE:-256x128}
 FLC_SPP=${FLC_SPP:-128}
 FLC_TABLE_TILINGS=${FLC_TABLE_TILINGS:-"0 3"}
-helper=$(dirname "$GB_BIN")/bench/flc_passes
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-flc.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-
-for tool in gbview reference imgdiff; do
-    if [ ! -x "$GB_BIN/$tool" ]; then
-        echo "flc.sh: $GB_BIN/$tool not built"
-        exit 1
-    fi
-done
-if [ ! -x "$helper" ]; then
-    echo "flc.sh: $helper not built: run make bench" >&2
-    exit 1
-fi
+needs gbview reference imgdiff
+helper=$(bench_program flc_passes) || exit 1
 
 # The mean of a pass over the frames after the first, from --timings.
 mean_ms() {
     sed -n "s/^$1  *\([0-9.]*\).*/\1/p" "$2"
 }
 
-relative_mse() {
-    "$GB_BIN/imgdiff" "$1" "$2" | sed -n 's/^relative_mse //p'
+# Column N of the row flc_passes printed (its second line) into FILE.
+passes_column() { # FILE N
+    awk -v n="$2" 'NR == 2 { print $n }' "$1"
 }
 
 # reference SCENE: the unshadowed first bounce at FLC_ERROR_SIZE, once.
@@ -67,13 +55,19 @@ reference() {
     echo "$out"
 }
 
+# section SCENE TITLE: sets name and ref (the scene's reference) and prints
+# the heading "### NAME: TITLE".
+section() {
+    name=$(basename "$1" .scene)
+    ref=$(reference "$1") || exit 1
+    echo "### $name: $2"
+    echo
+}
+
 echo "Load average before the run: $(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null)"
 echo
 for scene in $FLC_SCENES; do
-    name=$(basename "$scene" .scene)
-    ref=$(reference "$scene") || exit 1
-    echo "### $name: Fig. 10"
-    echo
+    section "$scene" "Fig. 10"
     echo "Times at $FLC_SIZE, tiling $FLC_TILING (ms, frames after the first of $FLC_FRAMES);"
     echo "relative MSE of the indirect light at $FLC_ERROR_SIZE against the unshadowed"
     echo "reference ($FLC_SPP spp)."
@@ -88,7 +82,7 @@ for scene in $FLC_SCENES; do
             --frames "$FLC_FRAMES" --navg $navg --tiling "$FLC_TILING" --timings "$scene" \
             >"$dir/t" || exit 1
         "$helper" "$scene" "$FLC_SIZE" 2 --navg $navg --tiling "$FLC_TILING" >"$dir/c" || exit 1
-        cpu=$(sed -n '2s/^ *//p' "$dir/c" | awk '{ print $13 }')
+        cpu=$(passes_column "$dir/c" 13)
         errors=""
         for frames in 1 16; do
             "$GB_BIN/gbview" --headless --quiet --method flc --terms indirect \
@@ -112,10 +106,7 @@ for scene in $FLC_SCENES; do
 done
 
 for scene in $FLC_BRUTE_SCENES; do
-    name=$(basename "$scene" .scene)
-    ref=$(reference "$scene") || exit 1
-    echo "### $name: FLC against no decimation ($FLC_ERROR_SIZE, N_avg 256, 2 frames)"
-    echo
+    section "$scene" "FLC against no decimation ($FLC_ERROR_SIZE, N_avg 256, 2 frames)"
     echo "| VPLs | indirect ms | frame ms | FLC passes, CPU ms | rel. MSE |"
     echo "|---|---:|---:|---:|---:|"
     for mode in flc all; do
@@ -123,9 +114,9 @@ for scene in $FLC_BRUTE_SCENES; do
         [ $mode = all ] && flag=--no-decimation
         "$helper" "$scene" "$FLC_ERROR_SIZE" 2 --indirect $flag -o "$dir/$mode.exr" \
             >"$dir/$mode" || exit 1
-        indirect=$(sed -n '2s/^ *//p' "$dir/$mode" | awk '{ print $10 }')
-        frame=$(sed -n '2s/^ *//p' "$dir/$mode" | awk '{ print $11 }')
-        cpu=$(sed -n '2s/^ *//p' "$dir/$mode" | awk '{ print $13 }')
+        indirect=$(passes_column "$dir/$mode" 10)
+        frame=$(passes_column "$dir/$mode" 11)
+        cpu=$(passes_column "$dir/$mode" 13)
         eval "indirect_$mode=$indirect cpu_$mode=$cpu"
         label="FLC (Alg. 1)"
         [ $mode = all ] && label="every VPL triangle"

@@ -23,9 +23,8 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../runtime/context.h"
 #include "../runtime/flc/flc.h"
-#include "../runtime/renderer.h"
+#include "headless_frames.h"
 
 typedef struct run {
     const char *scene, *output;
@@ -36,36 +35,31 @@ typedef struct run {
 
 static gb_result measure(const gb_scene *scene, const run *r, gb_error *error)
 {
-    gb_view view;
-    gb_result result = gb_scene_view(scene, 0, &view, error);
-    gb_context context;
-    if (result == GB_OK)
-        result = gb_context_create_headless(&context, error);
-    if (result != GB_OK)
-        return result;
     gb_renderer_options options = {.width = r->width, .height = r->height,
                                    .method = GB_METHOD_FLC, .terms = r->terms,
                                    .parameters = r->parameters};
-    gb_renderer renderer;
-    result = gb_renderer_create(scene, &options, &context.errors, &renderer, error);
+    headless_frames h;
+    gb_result result = headless_frames_create(scene, &options, &h, error);
+    if (result != GB_OK)
+        return result;
+    gb_renderer *renderer = &h.renderer;
     for (int i = 0; i < r->frames && result == GB_OK; ++i) {
-        gb_renderer_draw(&renderer, &view);
-        result = gb_renderer_finish_frame(&renderer, error);
+        result = headless_frames_draw(&h, error);
         if (i == 0)     /* the first frame compiles the shaders: not measured */
-            gb_flc_measure(renderer.method_state[GB_METHOD_FLC], 1);
+            gb_flc_measure(renderer->method_state[GB_METHOD_FLC], 1);
     }
     if (result == GB_OK && r->output) {
         gb_image image;
-        result = gb_renderer_read(&renderer, &image, error);
+        result = gb_renderer_read(renderer, &image, error);
         if (result == GB_OK)
             result = gb_image_write(r->output, &image, error);
         gb_image_free(&image);
     }
     if (result == GB_OK) {
         gb_flc_pass_times t;
-        gb_flc_times(renderer.method_state[GB_METHOD_FLC], &t);
+        gb_flc_times(renderer->method_state[GB_METHOD_FLC], &t);
         double n = t.frames ? t.frames : 1;
-        const gb_timings *timings = &renderer.timings;
+        const gb_timings *timings = &renderer->timings;
         const gb_method_parameters *p = &r->parameters;
         int levels = p->flc_levels > 0 ? p->flc_levels : GB_FLC_DEFAULT_LEVELS;
         char level_text[16];
@@ -82,8 +76,7 @@ static gb_result measure(const gb_scene *scene, const run *r, gb_error *error)
                gb_timings_mean_ms(timings, GB_PASS_COUNT), (double)t.divergent_vpls / n,
                t.cpu_ms / n);
     }
-    gb_renderer_destroy(&renderer);
-    gb_context_destroy(&context);
+    headless_frames_destroy(&h);
     return result;
 }
 

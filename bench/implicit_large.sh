@@ -15,23 +15,11 @@
 #
 # Run by `make bench` (GB_BIN: the tools folder, build/bin by default).
 
-root=$(cd "$(dirname "$0")/.." && pwd)
-GB_BIN=${GB_BIN:-$root/build/bin}
+. "$(dirname "$0")/common.sh"
 IMPLICIT_SPP=${IMPLICIT_SPP:-256}
 IMPLICIT_SIZE=${IMPLICIT_SIZE:-128x128}
 IMPLICIT_SCENES=${IMPLICIT_SCENES:-"$root/scenes/shared/sponza.scene $root/scenes/shared/staircase.scene $root/scenes/shared/living-room.scene"}
-helper=$(dirname "$GB_BIN")/bench/implicit_steps
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-implicit-large.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-
-if [ ! -x "$helper" ]; then
-    echo "implicit_large.sh: $helper not built: run make bench" >&2
-    exit 1
-fi
-
-relative_mse() {
-    "$GB_BIN/imgdiff" "$1" "$2" | sed -n 's/^relative_mse //p'
-}
+helper=$(bench_program implicit_steps) || exit 1
 
 echo "implicit visibility on large scenes; $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg);" \
     "$(date -u +%Y-%m-%d)"

@@ -38,8 +38,7 @@
 # OCTREE_SCENES: entries path:emitted-photons:error-size:spp, paths under
 # scenes/. Takes 4 to 6 minutes on 2 cores.
 
-root=$(cd "$(dirname "$0")/.." && pwd)
-GB_BIN=${GB_BIN:-$root/build/bin}
+. "$(dirname "$0")/common.sh"
 OCTREE_DEPTH=${OCTREE_DEPTH:-6}
 OCTREE_KNN=${OCTREE_KNN:-300}
 OCTREE_KS=${OCTREE_KS:-"1 2 4 6 8"}
@@ -50,23 +49,11 @@ OCTREE_FRAMES=${OCTREE_FRAMES:-10}
 # reference takes 1024 spp: at 256 its noise (relative MSE 0.0025 between
 # two seeds) is as large as the octree's error.
 scenes=${OCTREE_SCENES:-"cornell/cornell.scene:300000:128x128:1024 shared/sponza.scene:2500000:192x108:256"}
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-octree.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-for tool in photons cluster gbview reference imgdiff; do
-    if [ ! -x "$GB_BIN/$tool" ]; then
-        echo "octree.sh: $GB_BIN/$tool not built"
-        exit 1
-    fi
-done
+needs photons cluster gbview reference imgdiff
 if [ ! -x /usr/bin/time ]; then
     echo "octree.sh: /usr/bin/time missing (Debian package time)"
     exit 1
 fi
-
-# A field of a NAME VALUE file (cluster --stats, imgdiff).
-value() { # NAME FILE
-    sed -n "s/^$1 //p" "$2"
-}
 
 # Renders OCTREE_FRAMES frames at OCTREE_SIZE; prints the wall ms of a frame
 # (mean of frames 2..) and its CPU ms (see the top).
@@ -88,16 +75,7 @@ echo "light octree on llvmpipe; $(nproc) cores; $(date -u '+%Y-%m-%d %H:%M UTC')
 echo "depth $OCTREE_DEPTH, K $OCTREE_KNN; frames at $OCTREE_SIZE (frames 2..$OCTREE_FRAMES);"
 echo "indirect term against reference --mode full --min-bounces 2"
 for entry in $scenes; do
-    path=${entry%%:*}
-    rest=${entry#*:}
-    emitted=${rest%%:*}
-    rest=${rest#*:}
-    error_size=${rest%%:*}
-    spp=${rest#*:}
-    scene=$root/scenes/$path
-    name=$(basename "$scene" .scene)
-    bake=$dir/$name
-    mkdir -p "$bake"
+    scene_entry "$entry"
     "$GB_BIN/photons" -q --stats -n "$emitted" "$scene" -o "$dir/$name.phot" >"$dir/photons" ||
         exit 1
     "$GB_BIN/reference" -q --mode full --min-bounces 2 --spp "$spp" \

@@ -21,27 +21,13 @@
 # ATLAS_SCENES: entries path:emitted-photons:error-size:spp, paths under
 # scenes/. Prints a Markdown table. GB_BIN: the tools (build/bin).
 
-root=$(cd "$(dirname "$0")/.." && pwd)
-GB_BIN=${GB_BIN:-$root/build/bin}
-BENCH_BIN=${BENCH_BIN:-$root/build/bench}
+. "$(dirname "$0")/common.sh"
 ATLAS_SIZE=${ATLAS_SIZE:-1024}
 ATLAS_FRAME_SIZE=${ATLAS_FRAME_SIZE:-1024x512}
 ATLAS_FRAMES=${ATLAS_FRAMES:-10}
 scenes=${ATLAS_SCENES:-"cornell/cornell.scene:300000:128x128:512 shared/cornell-original.scene:300000:128x128:512 shared/sponza.scene:2500000:192x108:256 shared/staircase.scene:1000000:128x128:256"}
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-atlas.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-for tool in "$GB_BIN/photons" "$GB_BIN/cluster" "$GB_BIN/atlas" "$GB_BIN/lightmap" \
-            "$GB_BIN/gbview" "$GB_BIN/reference" "$GB_BIN/imgdiff" "$BENCH_BIN/atlas_seams"; do
-    if [ ! -x "$tool" ]; then
-        echo "octree_atlas.sh: $tool not built (make all build/bench/atlas_seams)"
-        exit 1
-    fi
-done
-
-# A field of a NAME VALUE file (--stats, imgdiff, atlas_seams).
-value() { # NAME FILE
-    sed -n "s/^$1 //p" "$2"
-}
+needs photons cluster atlas lightmap gbview reference imgdiff
+seams=$(bench_program atlas_seams) || exit 1
 
 # The wall ms of a frame at ATLAS_FRAME_SIZE, mean of frames 2..ATLAS_FRAMES.
 frame_ms() { # gbview-arguments...
@@ -66,16 +52,7 @@ echo
 echo "| scene | triangles | charts | fill | max ° | mean ° | atlas s | atlas MiB | lightmap s | EXR MiB | glb MiB | frame ms walk | frame ms atlas | atlas / walk | rel. MSE walk | rel. MSE atlas | atlas vs walk: seams (pixels) | others (pixels) |"
 echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for entry in $scenes; do
-    path=${entry%%:*}
-    rest=${entry#*:}
-    emitted=${rest%%:*}
-    rest=${rest#*:}
-    error_size=${rest%%:*}
-    spp=${rest#*:}
-    scene=$root/scenes/$path
-    name=$(basename "$scene" .scene)
-    bake=$dir/$name
-    mkdir -p "$bake"
+    scene_entry "$entry"
     "$GB_BIN/photons" -q -n "$emitted" "$scene" -o "$dir/$name.phot" || exit 1
     "$GB_BIN/cluster" -q "$scene" "$dir/$name.phot" -o "$bake/$name.lot" || exit 1
     /usr/bin/time -f '%e' -o "$dir/atlas.time" "$GB_BIN/atlas" -q --stats --size "$ATLAS_SIZE" \
@@ -93,7 +70,7 @@ for entry in $scenes; do
         "$scene" || exit 1
     "$GB_BIN/imgdiff" "$dir/walk.exr" "$dir/ref.exr" >"$dir/walk.err"
     "$GB_BIN/imgdiff" "$dir/atlas.exr" "$dir/ref.exr" >"$dir/atlas.err"
-    "$BENCH_BIN/atlas_seams" "$scene" "$dir/$name.atlas" "$dir/atlas.exr" "$dir/walk.exr" \
+    "$seams" "$scene" "$dir/$name.atlas" "$dir/atlas.exr" "$dir/walk.exr" \
         >"$dir/seams" || exit 1
     awk -v name="$name" -v triangles="$(value triangles "$dir/atlas.stats")" \
         -v charts="$(value charts "$dir/atlas.stats")" \

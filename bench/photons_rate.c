@@ -28,11 +28,12 @@
 #include <time.h>
 
 #include "../tools/photons/photons.h"
+#include "rate_rounds.h"
 #include "raw_ray_rate.h"
 #include "progress.h"
 #include "random.h"
 
-enum { MAX_ROUNDS = 15, COLUMNS = 10 };
+enum { COLUMNS = 10 };
 
 
 typedef struct photon_run {
@@ -59,64 +60,38 @@ static int photon_rate(const gb_scene *scene, const gb_photons_options *options,
     return 1;
 }
 
-static int compare_doubles(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
+typedef struct photons_bench {
+    const gb_photons_options *options;
+    int rounds;
+    uint64_t stored;            /* the last round's stored photons */
+} photons_bench;
 
-static double median(double *values, int count)
+static int photons_round(const gb_scene *scene, void *user, double *row, gb_error *error)
 {
-    qsort(values, (size_t)count, sizeof *values, compare_doubles);
-    return count % 2 ? values[count / 2] : 0.5 * (values[count / 2 - 1] + values[count / 2]);
-}
-
-/* Medians over the rounds of every column. */
-static int measure(const gb_scene *scene, const gb_photons_options *options, int rounds,
-                   double out[COLUMNS], uint64_t *stored, gb_error *error)
-{
-    double values[COLUMNS][MAX_ROUNDS];
-    for (int r = 0; r < rounds; ++r) {
-        rate raw = raw_rate(scene, options->threads, error);
-        photon_run run;
-        if (raw.wall <= 0 || !photon_rate(scene, options, &run, error))
-            return 0;
-        double row[COLUMNS] = {raw.wall, run.rays.wall, run.rays.wall / raw.wall, raw.cpu,
+    photons_bench *bench = user;
+    rate raw = raw_rate(scene, bench->options->threads, error);
+    photon_run run;
+    if (raw.wall <= 0 || !photon_rate(scene, bench->options, &run, error))
+        return 0;
+    double columns[COLUMNS] = {raw.wall, run.rays.wall, run.rays.wall / raw.wall, raw.cpu,
                                run.rays.cpu, run.rays.cpu / raw.cpu,
                                1e-6 * run.photons_per_second, run.total_seconds,
                                run.total_cpu_seconds, 0.0};
-        for (int k = 0; k < COLUMNS; ++k)
-            values[k][r] = row[k];
-        *stored = run.stored;
-    }
-    for (int k = 0; k < COLUMNS; ++k)
-        out[k] = median(values[k], rounds);
+    memcpy(row, columns, sizeof columns);
+    bench->stored = run.stored;
     return 1;
 }
 
-static int bench_scene(const char *path, const gb_photons_options *options, int rounds)
+static int photons_line(const gb_scene *scene, const char *name, void *user, gb_error *error)
 {
-    gb_scene scene;
-    gb_error error;
-    gb_scene_options scene_options = {.load_textures = 1};
-    if (gb_scene_load(path, &scene_options, &scene, &error) != GB_OK) {
-        fprintf(stderr, "photons_rate: %s\n", error.message);
-        return 1;
-    }
+    photons_bench *bench = user;
     double m[COLUMNS];
-    uint64_t stored = 0;
-    int measured = measure(&scene, options, rounds, m, &stored, &error);
-    if (measured) {
-        const char *name = strrchr(path, '/');
-        printf("%-14s %7u %2d %6.2f %6.2f %5.2f %7.2f %7.2f %5.2f %7.3f %7.3f %7.3f %8llu %3d\n",
-               name ? name + 1 : path, scene.triangle_count, options->threads, m[0], m[1], m[2],
-               m[3], m[4], m[5], m[6], m[7], m[8], (unsigned long long)stored, GB_PHOTON_SIZE);
-        fflush(stdout);
-    } else {
-        fprintf(stderr, "photons_rate: %s\n", error.message);
-    }
-    gb_scene_free(&scene);
-    return measured ? 0 : 1;
+    if (!rate_medians(scene, bench->rounds, COLUMNS, photons_round, bench, m, error))
+        return 0;
+    printf("%-14s %7u %2d %6.2f %6.2f %5.2f %7.2f %7.2f %5.2f %7.3f %7.3f %7.3f %8llu %3d\n",
+           name, scene->triangle_count, bench->options->threads, m[0], m[1], m[2], m[3], m[4],
+           m[5], m[6], m[7], m[8], (unsigned long long)bench->stored, GB_PHOTON_SIZE);
+    return 1;
 }
 
 int main(int argc, char **argv)
@@ -146,8 +121,6 @@ int main(int argc, char **argv)
     printf("%-14s %7s %2s %6s %6s %5s %7s %7s %5s %7s %7s %7s %8s %3s\n", "# scene", "tris",
            "th", "raw", "phot", "ratio", "raw_cpu", "ph_cpu", "ratio", "Mphot/s", "total_s",
            "cpu_s", "stored", "B");
-    int status = 0;
-    for (int i = optind; i < argc; ++i)
-        status |= bench_scene(argv[i], &options, rounds);
-    return status;
+    photons_bench bench = {.options = &options, .rounds = rounds};
+    return rate_scenes("photons_rate", argv + optind, argc - optind, photons_line, &bench);
 }

@@ -34,13 +34,14 @@
 #include <string.h>
 #include <time.h>
 
+#include "rate_rounds.h"
 #include "raw_path_rate.h"
 #include "raw_ray_rate.h"
 #include "../tools/reference/reference.h"
 #include "progress.h"
 #include "random.h"
 
-enum { MAX_ROUNDS = 15, COLUMNS = 12 };
+enum { COLUMNS = 12 };
 
 static rate reference_rate(const gb_scene *scene, const gb_reference_options *options,
                            double *rays_per_sample, gb_error *error)
@@ -55,23 +56,11 @@ static rate reference_rate(const gb_scene *scene, const gb_reference_options *op
     return (rate){mrays / stats.seconds, mrays / stats.cpu_seconds * options->threads};
 }
 
-static int compare_doubles(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static double median(double *values, int count)
-{
-    qsort(values, (size_t)count, sizeof *values, compare_doubles);
-    return count % 2 ? values[count / 2] : 0.5 * (values[count / 2 - 1] + values[count / 2]);
-}
-
 /* The columns of one round: reference, path yardstick, ratio, raw
  * yardstick, ratio, the same five in CPU time, then rays per sample. */
-static int measure_round(const gb_scene *scene, const gb_reference_options *options,
-                         double row[COLUMNS], gb_error *error)
+static int measure_round(const gb_scene *scene, void *user, double *row, gb_error *error)
 {
+    const gb_reference_options *options = user;
     double ref_rays = 0, path_rays = 0;
     rate raw = raw_rate(scene, options->threads, error);
     rate path = raw.wall > 0 ? raw_path_rate(scene, options, &path_rays, error) : raw;
@@ -87,44 +76,22 @@ static int measure_round(const gb_scene *scene, const gb_reference_options *opti
     return 1;
 }
 
-/* Medians over the rounds of every column. */
-static int measure(const gb_scene *scene, const gb_reference_options *options, int rounds,
-                   double out[COLUMNS], gb_error *error)
-{
-    double values[COLUMNS][MAX_ROUNDS], row[COLUMNS];
-    for (int r = 0; r < rounds; ++r) {
-        if (!measure_round(scene, options, row, error))
-            return 0;
-        for (int k = 0; k < COLUMNS; ++k)
-            values[k][r] = row[k];
-    }
-    for (int k = 0; k < COLUMNS; ++k)
-        out[k] = median(values[k], rounds);
-    return 1;
-}
+typedef struct reference_bench {
+    gb_reference_options *options;
+    int rounds;
+} reference_bench;
 
-static int bench_scene(const char *path, gb_reference_options *options, int rounds)
+static int reference_line(const gb_scene *scene, const char *name, void *user,
+                          gb_error *error)
 {
-    gb_scene scene;
-    gb_error error;
-    gb_scene_options scene_options = {.load_textures = 1};
-    if (gb_scene_load(path, &scene_options, &scene, &error) != GB_OK) {
-        fprintf(stderr, "reference_rate: %s\n", error.message);
-        return 1;
-    }
+    const reference_bench *bench = user;
     double m[COLUMNS];
-    int measured = measure(&scene, options, rounds, m, &error);
-    if (measured) {
-        const char *name = strrchr(path, '/');
-        printf("%-16s %8u %2d %6.2f %6.2f %5.2f %6.2f %5.2f %7.2f %7.2f %5.2f %7.2f %5.2f "
-               "%6.1f %6.1f\n", name ? name + 1 : path, scene.triangle_count, options->threads,
-               m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11]);
-        fflush(stdout);
-    } else {
-        fprintf(stderr, "reference_rate: %s\n", error.message);
-    }
-    gb_scene_free(&scene);
-    return measured ? 0 : 1;
+    if (!rate_medians(scene, bench->rounds, COLUMNS, measure_round, bench->options, m, error))
+        return 0;
+    printf("%-16s %8u %2d %6.2f %6.2f %5.2f %6.2f %5.2f %7.2f %7.2f %5.2f %7.2f %5.2f "
+           "%6.1f %6.1f\n", name, scene->triangle_count, bench->options->threads,
+           m[0], m[1], m[2], m[3], m[4], m[5], m[6], m[7], m[8], m[9], m[10], m[11]);
+    return 1;
 }
 
 int main(int argc, char **argv)
@@ -158,8 +125,6 @@ int main(int argc, char **argv)
     printf("%-16s %8s %2s %6s %6s %5s %6s %5s %7s %7s %5s %7s %5s %6s %6s\n", "# scene", "tris",
            "th", "ref", "path", "ratio", "raw", "r_raw", "ref_cpu", "pathcpu", "ratio",
            "raw_cpu", "r_raw", "r_rays", "p_rays");
-    int status = 0;
-    for (int i = optind; i < argc; ++i)
-        status |= bench_scene(argv[i], &options, rounds);
-    return status;
+    reference_bench bench = {.options = &options, .rounds = rounds};
+    return rate_scenes("reference_rate", argv + optind, argc - optind, reference_line, &bench);
 }

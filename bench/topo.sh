@@ -19,34 +19,19 @@
 # Run by `make bench` (GB_BIN: the tools folder, build/bin by default).
 # TOPO_CONFIGS: a subset of the names above; TOPO_TABLE1=0 skips Table I.
 
-root=$(cd "$(dirname "$0")/.." && pwd)
-GB_BIN=${GB_BIN:-$root/build/bin}
+. "$(dirname "$0")/common.sh"
 TOPO_SIZE=${TOPO_SIZE:-1024x512}
 TOPO_ERROR_SIZE=${TOPO_ERROR_SIZE:-512x256}
 TOPO_SPP=${TOPO_SPP:-16}
 TOPO_FRAMES=${TOPO_FRAMES:-3}
 TOPO_TABLE1=${TOPO_TABLE1:-1}
 configs=${TOPO_CONFIGS:-"cornell sponza sponza-gallery"}
-build=$(dirname "$GB_BIN")
-helper=$build/bench/topo_passes
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-topo.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-for tool in voxelize thin segment gbview reference imgdiff; do
-    if [ ! -x "$GB_BIN/$tool" ]; then
-        echo "topo.sh: $GB_BIN/$tool not built"
-        exit 1
-    fi
-done
-
-# The helper is bench code that `make bench` builds into build/bench/.
-if [ ! -x "$helper" ]; then
-    echo "topo.sh: $helper not built: run make bench" >&2
-    exit 1
-fi
+needs voxelize thin segment gbview reference imgdiff
+helper=$(bench_program topo_passes) || exit 1
 
 mse() {
     [ -f "$2" ] || { echo "n/a"; return; }
-    "$GB_BIN/imgdiff" "$1" "$2" | sed -n 's/^mse_srgb8 //p'
+    "$GB_BIN/imgdiff" "$1" "$2" | value mse_srgb8 -
 }
 
 ratio() {

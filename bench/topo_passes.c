@@ -11,9 +11,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "../runtime/context.h"
-#include "../runtime/renderer.h"
 #include "../runtime/topo/topo.h"
+#include "headless_frames.h"
 
 typedef struct pass_ms {
     double gp, iugc, la, il, total;
@@ -25,36 +24,30 @@ static gb_result measure(const gb_scene *scene, const gb_bake *bake, int width,
                          gb_error *error)
 {
     setenv("GB_TOPO_IUGC", iugc, 1);
-    gb_view view;
-    gb_result result = gb_scene_view(scene, 0, &view, error);
-    gb_context context;
-    if (result == GB_OK)
-        result = gb_context_create_headless(&context, error);
-    if (result != GB_OK)
-        return result;
     gb_renderer_options options = {.width = width, .height = height, .method = GB_METHOD_TOPO,
                                    .bake = bake, .parameters = {.vpls = vpls}};
-    gb_renderer renderer;
-    result = gb_renderer_create(scene, &options, &context.errors, &renderer, error);
+    headless_frames h;
+    gb_result result = headless_frames_create(scene, &options, &h, error);
+    if (result != GB_OK)
+        return result;
+    gb_renderer *renderer = &h.renderer;
     gb_topo_pass_times first = {0}, all = {0};
     for (int i = 0; i < frames && result == GB_OK; ++i) {
-        gb_renderer_draw(&renderer, &view);
-        result = gb_renderer_finish_frame(&renderer, error);
+        result = headless_frames_draw(&h, error);
         if (i == 0)
-            gb_topo_times(renderer.method_state[GB_METHOD_TOPO], &first);
+            gb_topo_times(renderer->method_state[GB_METHOD_TOPO], &first);
     }
     if (result == GB_OK) {
-        gb_topo_times(renderer.method_state[GB_METHOD_TOPO], &all);
+        gb_topo_times(renderer->method_state[GB_METHOD_TOPO], &all);
         double n = all.frames - first.frames > 0 ? all.frames - first.frames : 1;
-        ms->gp = gb_timings_mean_ms(&renderer.timings, GB_PASS_GBUFFER) +
+        ms->gp = gb_timings_mean_ms(&renderer->timings, GB_PASS_GBUFFER) +
                  (all.clusters_ms - first.clusters_ms) / n;
         ms->iugc = (all.iugc_ms - first.iugc_ms) / n;
         ms->la = (all.la_ms - first.la_ms) / n;
         ms->il = (all.il_ms - first.il_ms) / n;
-        ms->total = gb_timings_mean_ms(&renderer.timings, GB_PASS_COUNT);
-        gb_renderer_destroy(&renderer);
+        ms->total = gb_timings_mean_ms(&renderer->timings, GB_PASS_COUNT);
     }
-    gb_context_destroy(&context);
+    headless_frames_destroy(&h);
     return result;
 }
 

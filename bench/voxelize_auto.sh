@@ -10,13 +10,10 @@
 #   AUTO_SIZE (default 64x64) from the CHOSEN bake against the 2x one.
 # Prints a Markdown table on stdout. Run by `make bench`.
 
-root=$(cd "$(dirname "$0")/.." && pwd)
-GB_BIN=${GB_BIN:-$root/build/bin}
+. "$(dirname "$0")/common.sh"
 AUTO_SIZE=${AUTO_SIZE:-64x64}
 s=$root/scenes
 AUTO_SCENES=${AUTO_SCENES:-"$s/two-rooms/two-rooms.scene $s/cornell/cornell.scene $s/shared/cornell-original.scene $s/shared/classroom.scene $s/shared/bunny.scene $s/shared/sponza.scene $s/shared/staircase.scene $s/shared/living-room.scene"}
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-voxelize-auto.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
 
 seconds() { awk '{ print $1 }' "$1"; }
 
@@ -57,7 +54,7 @@ for scene in $AUTO_SCENES; do
         done
         bakes="$(seconds "$dir/$chosen.time") / $(seconds "$dir/$double.time")"
         nodes="$nodes_chosen / $nodes_double"
-        error=$("$GB_BIN/imgdiff" "$dir/$chosen.exr" "$dir/$double.exr" | sed -n 's/^relative_mse //p')
+        error=$(relative_mse "$dir/$chosen.exr" "$dir/$double.exr")
     fi
     echo "| $name | $chosen | $settled | $(seconds "$dir/auto.time") | $(seconds "$dir/plain.time") | $bakes | $nodes | $error |"
 done

@@ -11,7 +11,6 @@
 . "$(dirname "$0")/tap.sh"
 tool=$GB_BIN/gbview
 reference=$GB_BIN/reference
-imgdiff=$GB_BIN/imgdiff
 scene=$GB_ROOT/scenes/cornell/cornell.scene
 
 needs gbview imgdiff
@@ -19,16 +18,14 @@ needs gbview imgdiff
 small="--headless --method implicit --bins 8 --resolution 64x64 --quiet"
 
 "$tool" $small --terms indirect "$scene" -o "$dir/a.exr" >"$dir/out" 2>"$dir/err"
-status=$?
-[ $status = 0 ] || sed 's/^/# /' "$dir/err"
-ok $status "--method implicit renders the Cornell box headless"
+ok_run "--method implicit renders the Cornell box headless"
 "$tool" $small --terms indirect "$scene" -o "$dir/b.exr"
-"$imgdiff" "$dir/a.exr" "$dir/b.exr" >"$dir/same"
-ok "$([ "$(value max_error "$dir/same")" = 0 ]; echo $?)" "rendering twice: identical images"
+ok "$([ "$(image_diff max_error "$dir/a.exr" "$dir/b.exr")" = 0 ]; echo $?)" \
+    "rendering twice: identical images"
 
 "$tool" $small --terms indirect --bounces 2 "$scene" -o "$dir/two.exr"
-"$imgdiff" "$dir/two.exr" "$dir/a.exr" >"$dir/diff"
-ok "$([ "$(value max_error "$dir/diff")" != 0 ]; echo $?)" "--bounces 2 adds light"
+ok "$([ "$(image_diff max_error "$dir/two.exr" "$dir/a.exr")" != 0 ]; echo $?)" \
+    "--bounces 2 adds light"
 "$tool" $small --bins 0 "$scene" >"$dir/out" 2>"$dir/err"
 ok "$([ $? = 2 ] && grep -qx "gbview: --bins: '0' is not an integer in 1\.\.64" "$dir/err"; echo $?)" "--bins 0: a usage error"
 
@@ -40,10 +37,8 @@ if [ -x "$reference" ]; then
         -o "$dir/ref.exr"
     "$tool" --headless --method implicit --terms indirect --resolution 128x128 --quiet \
         "$scene" -o "$dir/implicit.exr"
-    "$imgdiff" "$dir/implicit.exr" "$dir/ref.exr" >"$dir/error"
-    error=$(value relative_mse "$dir/error")
-    echo "# relative MSE of the indirect term to reference --mode indirect1: $error"
-    ok "$(below "$error" 0.01; echo $?)" "indirect term: relative MSE below 0.01"
+    close_to "indirect term" "reference --mode indirect1" 0.01 "$dir/implicit.exr" \
+        "$dir/ref.exr"
 else
     missing "$reference not built"
 fi
@@ -89,18 +84,25 @@ mesh box.obj
 environment 1 1 1
 camera position 2.5 2.5 3.5 target 0 0.3 0 up 0 1 0 fov 45 resolution 64 64
 EOF
+
+# sky_checks WHAT IMAGE REFERENCE OTHER OTHER-NAME N CHECK: two checks, the
+# relative MSE of IMAGE against REFERENCE (reference --mode full --bounces 2)
+# below 0.005, and below OTHER's (the image OTHER-NAME) divided by N.
+sky_checks() {
+    error=$(image_diff relative_mse "$2" "$3")
+    other=$(image_diff relative_mse "$4" "$3")
+    echo "# $1, relative MSE to reference --mode full --bounces 2: $error ($5: $other)"
+    ok "$(below "$error" 0.005; echo $?)" "$1: relative MSE below 0.005"
+    ok "$(below "$error" "$(awk -v b="$other" -v n="$6" 'BEGIN { print b / n }')"; echo $?)" \
+        "$1: $7"
+}
 if [ -x "$reference" ]; then
     "$reference" --mode full --bounces 2 --spp 64 --quiet "$dir/box.scene" -o "$dir/box_ref.exr"
     "$tool" --headless --method implicit --supersample 2 --quiet "$dir/box.scene" \
         -o "$dir/box.exr"
     "$tool" --headless --supersample 2 --quiet "$dir/box.scene" -o "$dir/box_direct.exr"
-    error=$("$imgdiff" "$dir/box.exr" "$dir/box_ref.exr" | sed -n 's/^relative_mse //p')
-    black=$("$imgdiff" "$dir/box_direct.exr" "$dir/box_ref.exr" | sed -n 's/^relative_mse //p')
-    echo "# box under the sky, relative MSE to reference --mode full --bounces 2: $error" \
-        "(direct pass alone: $black)"
-    ok "$(below "$error" 0.005; echo $?)" "box under the sky: relative MSE below 0.005"
-    ok "$(below "$error" "$(awk -v b="$black" 'BEGIN { print b / 100 }')"; echo $?)" \
-        "box under the sky: a hundredth of the direct pass's error"
+    sky_checks "box under the sky" "$dir/box.exr" "$dir/box_ref.exr" "$dir/box_direct.exr" \
+        "direct pass alone" 100 "a hundredth of the direct pass's error"
 else
     missing "$reference not built"
     missing "$reference not built"
@@ -113,8 +115,7 @@ fi
     -o "$dir/one.exr"
 "$tool" --headless --method implicit --resolution 32x32 --frames 3 --quiet "$dir/box.scene" \
     -o "$dir/three.exr"
-"$imgdiff" "$dir/one.exr" "$dir/three.exr" >"$dir/frames"
-ok "$([ "$(value max_error "$dir/frames")" = 0 ]; echo $?)" \
+ok "$([ "$(image_diff max_error "$dir/one.exr" "$dir/three.exr")" = 0 ]; echo $?)" \
     "links rebuilt each frame: frame 3 is frame 1's image"
 
 # The same box under a lat-long sky map (environment-map, formats/FORMATS.md):
@@ -129,13 +130,9 @@ if [ -x "$reference" ] && command -v oiiotool >/dev/null 2>&1; then
     "$reference" --mode full --bounces 2 --spp 64 --quiet "$dir/sky.scene" -o "$dir/sky_ref.exr"
     "$tool" --headless --method implicit --supersample 2 --quiet "$dir/sky.scene" \
         -o "$dir/sky_implicit.exr"
-    error=$("$imgdiff" "$dir/sky_implicit.exr" "$dir/sky_ref.exr" | sed -n 's/^relative_mse //p')
-    white=$("$imgdiff" "$dir/box.exr" "$dir/sky_ref.exr" | sed -n 's/^relative_mse //p')
-    echo "# box under a sky map, relative MSE to reference --mode full --bounces 2: $error" \
-        "(the white sky's image: $white)"
-    ok "$(below "$error" 0.005; echo $?)" "box under a sky map: relative MSE below 0.005"
-    ok "$(below "$error" "$(awk -v b="$white" 'BEGIN { print b / 20 }')"; echo $?)" \
-        "box under a sky map: the map's direction matters (a twentieth of the white sky's error)"
+    sky_checks "box under a sky map" "$dir/sky_implicit.exr" "$dir/sky_ref.exr" "$dir/box.exr" \
+        "the white sky's image" 20 \
+        "the map's direction matters (a twentieth of the white sky's error)"
 else
     missing "$reference or oiiotool missing"
     missing "$reference or oiiotool missing"
@@ -153,11 +150,9 @@ if [ -x "$reference" ] && [ -r "$GB_ROOT/../shared/scenes/sponza-dabrovic/sponza
         -o "$dir/sponza_direct.exr"
     "$tool" --headless --method implicit --bins 3 --resolution 32x32 --quiet "$sponza" \
         -o "$dir/sponza_implicit.exr" 2>"$dir/err"
-    status=$?
-    [ $status = 0 ] || sed 's/^/# /' "$dir/err"
-    ok $status "Sponza renders with --method implicit"
-    error=$("$imgdiff" "$dir/sponza_implicit.exr" "$dir/sponza_ref.exr" | value relative_mse -)
-    direct=$("$imgdiff" "$dir/sponza_direct.exr" "$dir/sponza_ref.exr" | value relative_mse -)
+    ok_run "Sponza renders with --method implicit"
+    error=$(image_diff relative_mse "$dir/sponza_implicit.exr" "$dir/sponza_ref.exr")
+    direct=$(image_diff relative_mse "$dir/sponza_direct.exr" "$dir/sponza_ref.exr")
     echo "# Sponza, relative MSE to reference --mode full: implicit $error, direct only $direct"
     ok "$(below "$error" "$direct"; echo $?)" "Sponza: implicit closer to the reference than direct light alone"
 else

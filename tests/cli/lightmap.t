@@ -210,14 +210,7 @@ ok "$([ ! -e "$dir/bad/x.exr" ] && [ ! -e "$dir/bad/x.glb" ]; echo $?)" \
     "an unreadable texture: no EXR, no glTF binary"
 
 # ---- inputs of another scene, a bad output ----
-cat >"$dir/floor.obj" <<'EOF2'
-v -2 0 -2
-v 2 0 -2
-v 2 0 2
-v -2 0 2
-f 1 3 2
-f 1 4 3
-EOF2
+floor_obj "$dir/floor.obj"
 cat >"$dir/floor.scene" <<'EOF2'
 gibake-scene 1
 mesh floor.obj

@@ -14,7 +14,6 @@ tool=$GB_BIN/gbview
 photons=$GB_BIN/photons
 cluster=$GB_BIN/cluster
 reference=$GB_BIN/reference
-imgdiff=$GB_BIN/imgdiff
 scene=$GB_ROOT/scenes/cornell/cornell.scene
 
 needs gbview photons cluster imgdiff
@@ -24,24 +23,20 @@ mkdir "$dir/bake"
 "$photons" -n 200000 --quiet "$scene" -o "$dir/cornell.phot" >/dev/null 2>"$dir/err" &&
     "$cluster" --depth 5 --quiet "$scene" "$dir/cornell.phot" -o "$dir/bake/cornell.lot" \
         >/dev/null 2>>"$dir/err"
-status=$?
-[ $status = 0 ] || sed 's/^/# /' "$dir/err"
-ok $status "photons -n 200000 and cluster --depth 5 bake cornell.lot"
+ok_run "photons -n 200000 and cluster --depth 5 bake cornell.lot"
 
 small="--headless --method octree --terms indirect --resolution 96x96 --quiet"
 "$tool" $small --bake "$dir/bake" "$scene" -o "$dir/a.exr" >"$dir/out" 2>"$dir/err"
-status=$?
-[ $status = 0 ] || sed 's/^/# /' "$dir/err"
-ok $status "--method octree renders the Cornell box headless"
+ok_run "--method octree renders the Cornell box headless"
 "$tool" $small --bake "$dir/bake" "$scene" -o "$dir/b.exr" 2>/dev/null
-"$imgdiff" "$dir/a.exr" "$dir/b.exr" >"$dir/same"
+"$GB_BIN/imgdiff" "$dir/a.exr" "$dir/b.exr" >"$dir/same"
 ok "$([ "$(value max_error "$dir/same")" = 0 ]; echo $?)" "rendering twice: identical images"
 # A NaN pixel would make the error against itself NaN, not 0.
 ok "$([ "$(value relative_mse "$dir/same")" = 0 ]; echo $?)" "no NaN: relative MSE to itself is 0"
 "$tool" --headless --method direct --terms indirect --resolution 96x96 --quiet "$scene" \
     -o "$dir/black.exr" 2>/dev/null
-"$imgdiff" "$dir/a.exr" "$dir/black.exr" >"$dir/light"
-ok "$(below 0.01 "$(value max_error "$dir/light")"; echo $?)" "the octree adds indirect light"
+ok "$(below 0.01 "$(image_diff max_error "$dir/a.exr" "$dir/black.exr")"; echo $?)" \
+    "the octree adds indirect light"
 
 # The photons store light reflected at least once (photons --store indirect,
 # several bounces), so the octree's term is every path reflected at least
@@ -52,10 +47,8 @@ ok "$(below 0.01 "$(value max_error "$dir/light")"; echo $?)" "the octree adds i
 if [ -x "$reference" ]; then
     "$reference" --mode full --min-bounces 2 --spp 64 --resolution 96x96 --quiet "$scene" \
         -o "$dir/ref.exr"
-    "$imgdiff" "$dir/a.exr" "$dir/ref.exr" >"$dir/error"
-    error=$(value relative_mse "$dir/error")
-    echo "# relative MSE of the indirect term to reference --mode full --min-bounces 2: $error"
-    ok "$(below "$error" 0.012; echo $?)" "indirect term: relative MSE below 0.012"
+    close_to "indirect term" "reference --mode full --min-bounces 2" 0.012 "$dir/a.exr" \
+        "$dir/ref.exr"
 else
     missing "$reference not built"
 fi
@@ -69,14 +62,7 @@ fi
 # 2 each side: no gathering disc crosses its edge. K = 1000 photons a leaf:
 # ~3 % noise per leaf; measured relative MSE 0.00048 (the other convention,
 # E facing the VDL's direction, would be 20 % low: 0.037).
-cat >"$dir/floor.obj" <<'EOF'
-v -2 0 -2
-v 2 0 -2
-v 2 0 2
-v -2 0 2
-f 1 3 2
-f 1 4 3
-EOF
+floor_obj "$dir/floor.obj"
 cat >"$dir/floor.scene" <<'EOF'
 gibake-scene 1
 mesh floor.obj
@@ -90,13 +76,10 @@ mkdir "$dir/floor-all" "$dir/floor-indirect"
         -o "$dir/floor-all/floor.lot" 2>>"$dir/err" &&
     "$tool" --headless --quiet --method octree --terms indirect --bake "$dir/floor-all" \
         "$floor" -o "$dir/floor-octree.exr" 2>>"$dir/err"
-status=$?
-[ $status = 0 ] || sed 's/^/# /' "$dir/err"
-ok $status "sun over a floor: photons --store all, cluster, gbview --method octree"
+ok_run "sun over a floor: photons --store all, cluster, gbview --method octree"
 if [ -x "$reference" ]; then
     "$reference" -q --mode direct --spp 4 "$floor" -o "$dir/floor-direct.exr"
-    "$imgdiff" "$dir/floor-octree.exr" "$dir/floor-direct.exr" >"$dir/error"
-    error=$(value relative_mse "$dir/error")
+    error=$(image_diff relative_mse "$dir/floor-octree.exr" "$dir/floor-direct.exr")
     echo "# sun over a floor: relative MSE of the octree's term to Kd/pi E cos(theta): $error"
     ok "$(below "$error" 0.003; echo $?)" \
         "sun over a floor: the octree gives Kd/pi E cos(theta), relative MSE below 0.003"
@@ -114,10 +97,8 @@ fi
         "$floor" -o "$dir/floor-none.exr" 2>>"$dir/err" &&
     "$tool" --headless --quiet --method direct --terms indirect "$floor" \
         -o "$dir/floor-black.exr" 2>>"$dir/err"
-status=$?
-[ $status = 0 ] || sed 's/^/# /' "$dir/err"
-ok $status "lone floor, indirect photons only: an octree without VDLs renders"
-"$imgdiff" "$dir/floor-none.exr" "$dir/floor-black.exr" >"$dir/same"
+ok_run "lone floor, indirect photons only: an octree without VDLs renders"
+"$GB_BIN/imgdiff" "$dir/floor-none.exr" "$dir/floor-black.exr" >"$dir/same"
 ok "$([ "$(value max_error "$dir/same")" = 0 ] && [ "$(value relative_mse "$dir/same")" = 0 ]; \
     echo $?)" "lone floor, indirect photons only: black, no NaN"
 

@@ -10,11 +10,21 @@
 #   missing WHAT         one failed check: a program or package the test needs
 #                        is absent (make test installs them all, so in CI this
 #                        never hides a result: it fails)
+#   ok_run WHAT          one check, passed when the command just before exited
+#                        0; else its stderr, $dir/err, as comments (sets status)
 #   value KEY FILE       the value of the line "KEY value" of FILE
+#   image_diff KEY A B   imgdiff's KEY (max_error, relative_mse...) of image A
+#                        against image B
 #   below A B            true when the number A is below B (either empty: false)
+#   close_to WHAT TO LIMIT IMAGE REF
+#                        one check "WHAT: relative MSE below LIMIT" on the
+#                        relative MSE of IMAGE against REF (the image of TO),
+#                        which goes in a comment and in $error
 #   expect_failure WHAT STATUS PATTERN ARGS...
 #                        runs $tool ARGS: two checks, exit status STATUS
 #                        and PATTERN (grep) on stderr
+#   floor_obj FILE       writes a lone 4 x 4 floor at y = 0 (two triangles, no
+#                        material: Kd 0.8, the OBJ default) to FILE
 #   tap_done             prints the plan; returns nonzero if a check failed
 
 GB_ROOT=$(cd "${GB_ROOT:-.}" && pwd) || exit 1
@@ -47,6 +57,12 @@ needs() {
     done
 }
 
+ok_run() {
+    status=$?
+    [ $status = 0 ] || sed 's/^/# /' "$dir/err"
+    ok $status "$1"
+}
+
 missing() {
     ok 1 "missing: $1"
 }
@@ -55,8 +71,18 @@ value() {
     sed -n "s/^$1 //p" "$2"
 }
 
+image_diff() {
+    "$GB_BIN/imgdiff" "$2" "$3" | value "$1" -
+}
+
 below() {
     awk -v a="$1" -v b="$2" 'BEGIN { exit !(a != "" && b != "" && a + 0 < b + 0) }'
+}
+
+close_to() {
+    error=$(image_diff relative_mse "$4" "$5")
+    echo "# $1: relative MSE to $2: $error"
+    ok "$(below "$error" "$3"; echo $?)" "$1: relative MSE below $3"
 }
 
 expect_failure() {
@@ -66,6 +92,17 @@ expect_failure() {
     status=$?
     ok "$([ $status = "$want" ]; echo $?)" "$what: exit status $want (got $status)"
     ok "$(grep -q "$pattern" "$dir/err"; echo $?)" "$what: says '$pattern' on stderr"
+}
+
+floor_obj() {
+    cat >"$1" <<'EOF'
+v -2 0 -2
+v 2 0 -2
+v 2 0 2
+v -2 0 2
+f 1 3 2
+f 1 4 3
+EOF
 }
 
 tap_done() {

@@ -2,25 +2,19 @@
  * input, so that mutations reach the checks of the format inside it instead
  * of all stopping at the container's checksums. Used by the fuzz targets of
  * container-based formats (.lot, .skel, .atlas): each input is parsed as it is, then
- * again after gb_fuzz_fix_container_checksums.
+ * again after gb_fuzz_fix_container_checksums (gb_fuzz_parse_twice, fuzz_reader.h).
  *
  * Layout (formats/FORMATS.md, "Container"): a 32-byte header whose section
  * count is the u32 at 24 and whose CRC at 28 covers its first 28 bytes and
  * the table; 48-byte table entries after it, payload offset (u64) at 24,
  * size (u64) at 32, CRC (u32) at 40. Entries that point outside the input
  * are left as they are.
- *
- * gb_fuzz_parse_twice is the whole test of such a target: the input copied
- * into a 16-byte aligned buffer (as a mapped file is), parsed, its checksums
- * fixed, parsed again.
  */
 #ifndef GB_FUZZ_FIX_CHECKSUMS_H
 #define GB_FUZZ_FIX_CHECKSUMS_H
 
 #include <stddef.h>
 #include <stdint.h>
-#include <stdlib.h>
-#include <string.h>
 #include <zlib.h>
 
 static inline uint32_t gb_fuzz_get_u32(const unsigned char *p)
@@ -55,19 +49,6 @@ static inline void gb_fuzz_fix_container_checksums(unsigned char *bytes, size_t 
     }
     uLong crc = crc32(crc32(0L, Z_NULL, 0), bytes, 28);
     gb_fuzz_put_u32(bytes + 28, (uint32_t)crc32(crc, bytes + 32, (uInt)(count * 48)));
-}
-
-static inline void gb_fuzz_parse_twice(const uint8_t *data, size_t size,
-                                       void (*parse)(const unsigned char *aligned, size_t size))
-{
-    unsigned char *aligned = aligned_alloc(16, (size + 16) & ~(size_t)15);
-    if (!aligned)
-        return;
-    memcpy(aligned, data, size);
-    parse(aligned, size);
-    gb_fuzz_fix_container_checksums(aligned, size);
-    parse(aligned, size);
-    free(aligned);
 }
 
 #endif

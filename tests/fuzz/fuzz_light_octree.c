@@ -17,12 +17,8 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include <stdlib.h>
-#include <string.h>
 
-#include "fix_checksums.h"
-
-static volatile float sink;
+#include "fuzz_reader.h"
 
 /* Sums what the runtime reads; traps when the walk to a leaf's own cell
  * does not end at that leaf. */
@@ -51,20 +47,13 @@ static float walk(const gb_light_octree *octree)
            (float)gb_light_octree_find_leaf(octree, nan);
 }
 
-static void parse(const unsigned char *aligned, size_t size)
+static int is_empty(const gb_light_octree *octree)
 {
-    gb_light_octree octree;
-    gb_error error;
-    if (gb_light_octree_parse(aligned, size, "fuzz", &octree, &error) == GB_OK) {
-        if (gb_light_octree_check(&octree, "fuzz", &error) != GB_OK)
-            __builtin_trap(); /* a parsed octree is always valid */
-        sink += walk(&octree);
-        gb_light_octree_free(&octree);
-    } else if (strncmp(error.message, "fuzz: ", 6) != 0 || octree.nodes || octree.leaves ||
-               octree.vdls || octree.header.leaf_count) {
-        __builtin_trap(); /* failures name the input and leave an empty octree */
-    }
+    return !octree->nodes && !octree->leaves && !octree->vdls && !octree->header.leaf_count;
 }
+
+GB_FUZZ_READER(parse, gb_light_octree, gb_light_octree_parse, gb_light_octree_check,
+               gb_light_octree_free, walk, is_empty)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

@@ -20,8 +20,8 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "fuzz_reader.h"
 #include "scene.h"
-
 
 static const char *kind_of(const uint8_t *data, size_t size)
 {
@@ -39,13 +39,7 @@ static const char *kind_of(const uint8_t *data, size_t size)
 
 static void check_scene(const gb_scene *scene)
 {
-    for (size_t i = 0; i < 3 * (size_t)scene->triangle_count; ++i)
-        if (scene->indices[i] >= scene->vertex_count)
-            __builtin_trap();
-    for (uint32_t t = 0; t < scene->triangle_count; ++t)
-        if (scene->triangle_material[t] >= scene->material_count
-            || !(gb_triangle_area(scene, t) > 0))
-            __builtin_trap();
+    gb_fuzz_check_triangles(scene, 1);
     if (scene->material_count != 1 || scene->camera_count != 1)
         __builtin_trap();
 }
@@ -65,10 +59,8 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
     if (gb_scene_load(path, NULL, &scene, &error) == GB_OK) {
         check_scene(&scene);
         gb_scene_free(&scene);
-    } else {
-        size_t n = strlen(path);
-        if (strncmp(error.message, path, n) != 0 || error.message[n] != ':')
-            __builtin_trap(); /* every failure names the file */
+    } else if (!gb_fuzz_names(&error, path)) {
+        __builtin_trap(); /* every failure names the file */
     }
     unlink(path);
     rmdir(folder);

@@ -10,6 +10,7 @@
 #include <stdint.h>
 #include <string.h>
 
+#include "fuzz_reader.h"
 #include "obj.h"
 #include "scene.h"
 
@@ -31,13 +32,7 @@ static gb_result read_mtl(void *user, const char *mtllib, const char *obj_name, 
 
 static void check_scene(const gb_scene *scene)
 {
-    for (size_t i = 0; i < 3 * (size_t)scene->triangle_count; ++i)
-        if (scene->indices[i] >= scene->vertex_count)
-            __builtin_trap();
-    for (uint32_t t = 0; t < scene->triangle_count; ++t)
-        if (scene->triangle_material[t] >= scene->material_count
-            || !(gb_triangle_area(scene, t) > 0))
-            __builtin_trap();
+    gb_fuzz_check_triangles(scene, 1);
     for (uint32_t i = 0; i < scene->emissive_count; ++i)
         if (scene->emissive_triangles[i] >= scene->triangle_count)
             __builtin_trap();

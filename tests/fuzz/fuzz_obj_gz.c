@@ -23,6 +23,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include "fuzz_reader.h"
 #include "obj.h"
 #include "scene.h"
 
@@ -116,16 +117,6 @@ static int fix_trailer(uint8_t *bytes, size_t size)
     return 1;
 }
 
-static void check_scene(const gb_scene *scene)
-{
-    for (size_t i = 0; i < 3 * (size_t)scene->triangle_count; ++i)
-        if (scene->indices[i] >= scene->vertex_count)
-            __builtin_trap();
-    for (uint32_t t = 0; t < scene->triangle_count; ++t)
-        if (scene->triangle_material[t] >= scene->material_count)
-            __builtin_trap();
-}
-
 static void read_obj(const char *path, const uint8_t *data, size_t size)
 {
     write_file(path, data, size);
@@ -133,11 +124,9 @@ static void read_obj(const char *path, const uint8_t *data, size_t size)
     gb_error error;
     error.message[0] = '\0';
     if (gb_obj_read(path, &scene, &error) == GB_OK) {
-        check_scene(&scene);
-    } else {
-        size_t n = strlen(path);
-        if (strncmp(error.message, path, n) != 0 || error.message[n] != ':')
-            __builtin_trap(); /* every failure names the file */
+        gb_fuzz_check_triangles(&scene, 0);
+    } else if (!gb_fuzz_names(&error, path)) {
+        __builtin_trap(); /* every failure names the file */
     }
     gb_scene_free(&scene);
 }

@@ -9,10 +9,8 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include <stdlib.h>
-#include <string.h>
 
-static volatile float sink;
+#include "fuzz_reader.h"
 
 static float walk(const gb_photon_map *map)
 {
@@ -27,22 +25,16 @@ static float walk(const gb_photon_map *map)
     return sum;
 }
 
+static int is_empty(const gb_photon_map *map)
+{
+    return !map->count && !map->positions;
+}
+
+GB_FUZZ_READER(parse, gb_photon_map, gb_photon_map_parse, gb_photon_map_check,
+               gb_photon_map_free, walk, is_empty)
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    unsigned char *aligned = aligned_alloc(16, (size + 16) & ~(size_t)15);
-    if (!aligned)
-        return 0;
-    memcpy(aligned, data, size);
-    gb_photon_map map;
-    gb_error error;
-    if (gb_photon_map_parse(aligned, size, "fuzz", &map, &error) == GB_OK) {
-        if (gb_photon_map_check(&map, "fuzz", &error) != GB_OK)
-            __builtin_trap(); /* a parsed map is always valid */
-        sink += walk(&map);
-        gb_photon_map_free(&map);
-    } else if (strncmp(error.message, "fuzz: ", 6) != 0 || map.count || map.positions) {
-        __builtin_trap(); /* failures name the input and leave an empty map */
-    }
-    free(aligned);
+    gb_fuzz_parse_aligned(data, size, parse, 0);
     return 0;
 }

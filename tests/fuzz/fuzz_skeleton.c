@@ -13,12 +13,8 @@
 
 #include <stddef.h>
 #include <stdint.h>
-#include <stdlib.h>
-#include <string.h>
 
-#include "fix_checksums.h"
-
-static volatile float sink;
+#include "fuzz_reader.h"
 
 static float walk(const gb_skeleton *s)
 {
@@ -37,19 +33,8 @@ static int is_zeroed(const gb_skeleton *s)
     return !s->nodes && !s->edges && !s->node_count && !s->edge_count;
 }
 
-static void parse(const unsigned char *bytes, size_t size)
-{
-    gb_skeleton skeleton;
-    gb_error error;
-    if (gb_skeleton_parse(bytes, size, "fuzz", &skeleton, &error) == GB_OK) {
-        if (gb_skeleton_validate(&skeleton, "fuzz", &error) != GB_OK)
-            __builtin_trap(); /* what the reader accepts is valid */
-        sink += walk(&skeleton);
-        gb_skeleton_free(&skeleton);
-    } else if (strncmp(error.message, "fuzz: ", 6) != 0 || !is_zeroed(&skeleton)) {
-        __builtin_trap(); /* failures name the input and leave a zeroed skeleton */
-    }
-}
+GB_FUZZ_READER(parse, gb_skeleton, gb_skeleton_parse, gb_skeleton_validate, gb_skeleton_free,
+               walk, is_zeroed)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
