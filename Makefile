@@ -239,7 +239,8 @@ $(REFERENCE_IMAGES): $(BAKE)/$(SCENE_NAME).%.exr: $(SCENE) $(BIN)/reference
 -include $(REFERENCE_IMAGES:%=%.d)
 
 # Benchmarks: bench/*.c and bench/*.cpp are helper programs linked against
-# the library into build/bench/; each bench/*.sh prints its table.
+# the library into build/bench/; each bench/*.sh prints its table (but
+# common.sh, which they source, and report_*.sh, which make report runs).
 BENCH_PROGRAMS := $(patsubst bench/%.c,$(BUILD)/bench/%,$(wildcard bench/*.c)) \
   $(patsubst bench/%.cpp,$(BUILD)/bench/%,$(wildcard bench/*.cpp))
 $(BUILD)/bench/%: $(BUILD)/obj/bench/%.o $(LIBRARY)
@@ -252,7 +253,7 @@ bench-deps:
 	@$(MAKE) --no-print-directory deps DEB_PACKAGES="$(BENCH_DEB_PACKAGES)"
 
 bench: bench-deps all $(BENCH_PROGRAMS)
-	@for b in bench/*.sh; do GB_BIN=$(abspath $(BIN)) sh $$b || exit 1; done
+	@for b in $(filter-out bench/common.sh bench/report_%.sh,$(wildcard bench/*.sh)); do GB_BIN=$(abspath $(BIN)) sh $$b || exit 1; done
 
 # libFuzzer: the fuzz targets are linked on the sanitized build (whose code
 # carries libFuzzer's coverage instrumentation); each replays its seeds

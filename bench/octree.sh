@@ -59,7 +59,7 @@ fi
 # (mean of frames 2..) and its CPU ms (see the top).
 time_frames() { # gbview-arguments...
     /usr/bin/time -f '%U %S' -o "$dir/cpu1" "$GB_BIN/gbview" --headless --quiet \
-        --resolution "$OCTREE_SIZE" --frames 1 "$@" >/dev/null 2>&1 || return 1
+        --resolution "$OCTREE_SIZE" --frames 1 --timings "$@" >/dev/null 2>&1 || return 1
     /usr/bin/time -f '%U %S' -o "$dir/cpu" "$GB_BIN/gbview" --headless --quiet \
         --resolution "$OCTREE_SIZE" --frames "$OCTREE_FRAMES" --timings "$@" \
         >"$dir/timings" 2>/dev/null || return 1
