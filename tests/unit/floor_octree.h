@@ -40,9 +40,9 @@
 #include <unistd.h>
 
 #include "../../runtime/bake.h"
-#include "../../runtime/headless.h"
 #include "../../runtime/methods.h"
 #include "atlas.h"
+#include "headless_render.h"
 #include "light_octree.h"
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wunused-function"
@@ -195,9 +195,7 @@ static inline int floor_octree_render(const gb_scene *scene, const gb_light_octr
                          .width = size, .height = size, .bake = bake,
                          .parameters = {.atlas = atlas ? atlas_path : "none"}},
         };
-        ok = gb_render_headless(scene, &options, image, NULL, &error) == GB_OK;
-        if (!ok)
-            printf("# %s\n", error.message);
+        ok = render_headless(scene, &options, image);
     }
     gb_bake_release(bake);
     scratch_remove();
