@@ -131,10 +131,12 @@ static void test_ascii_non_finite(void)
           "a NaN in a property OpenMesh skips (quality) is accepted");
 }
 
-static size_t put_f32s(unsigned char *p, const float *values, int n)
+/* size bytes at p; how many (numbers as they are in memory: the test
+ * host is little-endian). */
+static size_t put(unsigned char *p, const void *bytes, size_t size)
 {
-    memcpy(p, values, (size_t)n * sizeof(float));  /* the test host is little-endian */
-    return (size_t)n * sizeof(float);
+    memcpy(p, bytes, size);
+    return size;
 }
 
 static void test_binary_non_finite(void)
@@ -146,23 +148,21 @@ static void test_binary_non_finite(void)
         "property list uchar int vertex_indices\nend_header\n";
     float vertices[9] = {0, 0, 0, 1, 0, 0, 0, NAN, 0};
     int32_t face[3] = {0, 1, 2};
-    size_t n = sizeof head - 1;
-    memcpy(bytes, head, n);
-    n += put_f32s(bytes + n, vertices, 9);
+    size_t n = put(bytes, head, sizeof head - 1);
+    n += put(bytes + n, vertices, sizeof vertices);
     bytes[n++] = 3;
-    memcpy(bytes + n, face, sizeof face);
-    n += sizeof face;
+    n += put(bytes + n, face, sizeof face);
     CHECK(load_fails("nan-binary.ply", bytes, n, GB_ERROR_INVALID,
                      "nan-binary.ply: vertex 2: y is not finite (nan)"),
           "binary PLY: the vertex and coordinate that is NaN");
     vertices[7] = 1;
-    put_f32s(bytes + sizeof head - 1, vertices, 9);
+    put(bytes + sizeof head - 1, vertices, sizeof vertices);
     CHECK(loads("binary.ply", bytes, n, 1), "the same PLY with a finite y loads");
 
     unsigned char stl[84 + 50] = {0};
     stl[80] = 1;
     float facet[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, INFINITY, 1, 0};
-    put_f32s(stl + 84, facet, 12);
+    put(stl + 84, facet, sizeof facet);
     CHECK(load_fails("inf-binary.stl", stl, sizeof stl, GB_ERROR_INVALID,
                      "inf-binary.stl: facet 0: vertex 2: x is not finite (inf)"),
           "binary STL: the facet, vertex and coordinate");
@@ -171,18 +171,15 @@ static void test_binary_non_finite(void)
     static const char off_head[] = "OFF BINARY\n";
     int32_t counts[3] = {3, 1, 0}, off_face[4] = {3, 0, 1, 2};
     float off_vertices[9] = {0, 0, 0, 1, 0, 0, 0, 1, -INFINITY};
-    n = sizeof off_head - 1;
-    memcpy(off, off_head, n);
-    memcpy(off + n, counts, sizeof counts);
-    n += sizeof counts;
-    n += put_f32s(off + n, off_vertices, 9);
-    memcpy(off + n, off_face, sizeof off_face);
-    n += sizeof off_face;
+    n = put(off, off_head, sizeof off_head - 1);
+    n += put(off + n, counts, sizeof counts);
+    n += put(off + n, off_vertices, sizeof off_vertices);
+    n += put(off + n, off_face, sizeof off_face);
     CHECK(load_fails("inf-binary.off", off, n, GB_ERROR_INVALID,
                      "inf-binary.off: vertex 2: z is not finite (-inf)"),
           "binary OFF: the vertex and coordinate");
     off_vertices[8] = 0;
-    put_f32s(off + sizeof off_head - 1 + sizeof counts, off_vertices, 9);
+    put(off + sizeof off_head - 1 + sizeof counts, off_vertices, sizeof off_vertices);
     CHECK(loads("binary.off", off, n, 1), "the same OFF with a finite z loads (little-endian)");
     for (int i = 0; i < 3; ++i) {   /* the Geomview byte order */
         uint32_t v = (uint32_t)counts[i];
