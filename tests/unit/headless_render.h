@@ -12,7 +12,8 @@
  *   double e = relative_mse(&image, &reference);  // INFINITY if not comparable
  *
  * Each returns 0 (relative_mse INFINITY) with "# reason" printed when it
- * cannot; the caller frees what it gets (gb_scene_free, gb_image_free).
+ * cannot (succeeded does that for any gb_result); the caller frees what it
+ * gets (gb_scene_free, gb_image_free).
  */
 #ifndef GB_HEADLESS_RENDER_H
 #define GB_HEADLESS_RENDER_H
@@ -33,49 +34,44 @@ static inline const char *tree_root(void)
     return env && *env ? env : ".";
 }
 
+/* 1 when result is GB_OK; else 0, with error's message printed. */
+static inline int succeeded(gb_result result, const gb_error *error)
+{
+    if (result == GB_OK)
+        return 1;
+    printf("# %s\n", error->message);
+    return 0;
+}
+
 static inline int load_cornell(gb_scene *scene)
 {
     char path[4096];
     snprintf(path, sizeof path, "%s/scenes/cornell/cornell.scene", tree_root());
     gb_error error;
-    if (gb_scene_load(path, NULL, scene, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-        return 0;
-    }
-    return 1;
+    return succeeded(gb_scene_load(path, NULL, scene, &error), &error);
 }
 
 static inline int render_headless(const gb_scene *scene, const gb_headless_options *options,
                                   gb_image *image)
 {
     gb_error error;
-    if (gb_render_headless(scene, options, image, NULL, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-        return 0;
-    }
-    return 1;
+    return succeeded(gb_render_headless(scene, options, image, NULL, &error), &error);
 }
 
 static inline int render_reference(const gb_scene *scene, const gb_reference_options *options,
                                    gb_image *image)
 {
     gb_error error;
-    if (gb_reference_render(scene, options, image, NULL, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-        return 0;
-    }
-    return 1;
+    return succeeded(gb_reference_render(scene, options, image, NULL, &error), &error);
 }
 
 static inline double relative_mse(const gb_image *image, const gb_image *reference)
 {
     gb_image_error measures;
     gb_error error;
-    if (gb_image_error_compute(image, reference, NULL, &measures, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-        return INFINITY;
-    }
-    return measures.relative_mse;
+    return succeeded(gb_image_error_compute(image, reference, NULL, &measures, &error), &error)
+               ? measures.relative_mse
+               : INFINITY;
 }
 
 #endif
