@@ -104,8 +104,7 @@ static void test_octree_single_triangle(void)
 /* Two faces of a box meeting in a cell: the normal leans to the larger one. */
 static void test_octree_area_weighted_normal(void)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     uint32_t grey = add_grey(&scene, 0.5f, 0.0f);
     /* floor 0..1 x 0..1 at y = 0 facing +y, wall at x = 0, y 0..0.5, facing +x */
     const float floor[4][3] = {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}};
@@ -129,8 +128,7 @@ static void test_octree_area_weighted_normal(void)
 /* The six faces of a box: leaves on its shell only, none inside. */
 static void test_octree_box_shell(void)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
     add_box(&scene, lo, hi, 1, add_grey(&scene, 0.5f, 0.0f));
     scene_done(&scene);
@@ -669,8 +667,7 @@ static void test_two_suns_and_determinism(void)
  * 1..K_max VDLs, all finite; the walls near the light are lit. */
 static void test_cornell_box(void)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     build_cornell_box(&scene, 64, 64);
     gb_photons_options po = {.count = 20000, .seed = 3, .threads = 2};
     gb_photon_map map;
