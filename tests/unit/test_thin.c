@@ -76,28 +76,42 @@ static int on_lattice(const gb_skeleton *s, const gb_voxel_grid *g)
     return 1;
 }
 
-/* Edges join nodes one lattice step apart. */
-static int edges_are_unit(const gb_skeleton *s, const gb_voxel_grid *g)
+/* Whether some edge's corners a (its first node's) and b pass test. */
+static int some_edge(const gb_skeleton *s, const gb_voxel_grid *g,
+                     int (*test)(const int a[3], const int b[3], const int *p), const int *p)
 {
     for (uint32_t e = 0; e < s->edge_count; ++e) {
         int a[3], b[3];
         edge_corners(s, g, e, a, b);
-        if (abs(a[0] - b[0]) + abs(a[1] - b[1]) + abs(a[2] - b[2]) != 1)
-            return 0;
+        if (test(a, b, p))
+            return 1;
     }
-    return 1;
+    return 0;
+}
+
+static int not_unit(const int a[3], const int b[3], const int *unused)
+{
+    (void)unused;
+    return abs(a[0] - b[0]) + abs(a[1] - b[1]) + abs(a[2] - b[2]) != 1;
+}
+
+/* From corner p = {x, y, z, axis} one step up along axis. */
+static int steps_from(const int a[3], const int b[3], const int *p)
+{
+    return a[0] == p[0] && a[1] == p[1] && a[2] == p[2] && b[p[3]] == p[p[3]] + 1;
+}
+
+/* Edges join nodes one lattice step apart. */
+static int edges_are_unit(const gb_skeleton *s, const gb_voxel_grid *g)
+{
+    return !some_edge(s, g, not_unit, NULL);
 }
 
 /* Is there an edge between the nodes at corners p and p + unit step? */
 static int has_edge_at(const gb_skeleton *s, const gb_voxel_grid *g, const int p[3], int axis)
 {
-    for (uint32_t e = 0; e < s->edge_count; ++e) {
-        int a[3], b[3];
-        edge_corners(s, g, e, a, b);
-        if (a[0] == p[0] && a[1] == p[1] && a[2] == p[2] && b[axis] == p[axis] + 1)
-            return 1;
-    }
-    return 0;
+    const int from[4] = {p[0], p[1], p[2], axis};
+    return some_edge(s, g, steps_from, from);
 }
 
 /* No unit square of the lattice has its 4 edges in the graph while it is a
