@@ -128,6 +128,21 @@ static gb_geometry_cluster sphere_cluster(uint32_t visibility, float x, float y,
     return g;
 }
 
+/* A VPL in room A (cluster 0): at (-2, 0, 0), facing +x. */
+static gb_vpl room_a_vpl = {{-2, 0, 0}, {1, 0, 0}, {1, 1, 1}};
+
+/* LA of room A's VPL alone over count geometry clusters. */
+static gb_result assign_room_a(gb_geometry_cluster *list, uint32_t count,
+                               const gb_segmentation *s, const gb_topo_gates *gates,
+                               gb_topo_visibility visibility, gb_topo_assignment *a)
+{
+    gb_geometry_clusters clusters = {count, count, list};
+    gb_vpl_set vpls = {0, 1, &room_a_vpl};
+    int32_t vpl_cluster = 0;
+    gb_error error;
+    return gb_topo_assign(&clusters, &vpls, &vpl_cluster, s, gates, visibility, a, &error);
+}
+
 static void test_two_rooms_assignment(void)
 {
     gb_segmentation s;
@@ -137,21 +152,17 @@ static void test_two_rooms_assignment(void)
     CHECK(gb_topo_gates_build(&s, &gates, &error) == GB_OK, "LA: gates per cluster");
     gb_geometry_cluster list[3] = {sphere_cluster(1, 3, 0, 0.2f), sphere_cluster(1, 3, 4, 0.2f),
                                    sphere_cluster(0, -3, 3, 0.2f)};
-    gb_geometry_clusters clusters = {3, 3, list};
-    gb_vpl vpl = {{-2, 0, 0}, {1, 0, 0}, {1, 1, 1}};
-    gb_vpl_set vpls = {0, 1, &vpl};
-    int32_t vpl_cluster = 0;
     gb_topo_assignment a = {0};
-    CHECK(gb_topo_assign(&clusters, &vpls, &vpl_cluster, &s, &gates, GB_TOPO_FULL, &a, &error) ==
-              GB_OK, "LA: two rooms assigned");
+    CHECK(assign_room_a(list, 3, &s, &gates, GB_TOPO_FULL, &a) == GB_OK,
+          "LA: two rooms assigned");
     CHECK(a.ranges[1] == 1 && a.entries[a.ranges[0]].vpl == 0 &&
               a.entries[a.ranges[0]].group == 0,
           "LA: room B in the door's cone gets the VPL with the door gate");
     CHECK_EQ_INT(a.ranges[3], 0, "LA: room B outside the cone gets nothing");
     CHECK(a.ranges[5] == 1 && a.entries[a.ranges[4]].group == GB_TOPO_NO_GATE,
           "LA: room A gets its own VPL without a gate");
-    CHECK(gb_topo_assign(&clusters, &vpls, &vpl_cluster, &s, &gates, GB_TOPO_CLUSTERS, &a,
-                         &error) == GB_OK && a.ranges[1] == 0 && a.ranges[5] == 1,
+    CHECK(assign_room_a(list, 3, &s, &gates, GB_TOPO_CLUSTERS, &a) == GB_OK &&
+              a.ranges[1] == 0 && a.ranges[5] == 1,
           "LA, gates off: room B gets nothing, room A its VPL");
     gb_topo_assignment_free(&a);
     gb_topo_gates_free(&gates);
@@ -176,13 +187,9 @@ static void test_routes(void)
     CHECK(gates.route_offsets[1] == 2 && two_gate == 1,
           "routes: room 0 reaches room 1 through one door, room 2 through both");
     gb_geometry_cluster list[2] = {sphere_cluster(2, 8, 0, 0.2f), sphere_cluster(2, 8, 3, 0.2f)};
-    gb_geometry_clusters clusters = {2, 2, list};
-    gb_vpl vpl = {{-2, 0, 0}, {1, 0, 0}, {1, 1, 1}};
-    gb_vpl_set vpls = {0, 1, &vpl};
-    int32_t vpl_cluster = 0;
     gb_topo_assignment a = {0};
-    CHECK(gb_topo_assign(&clusters, &vpls, &vpl_cluster, &s, &gates, GB_TOPO_FULL, &a, &error) ==
-              GB_OK && a.ranges[1] == 1 && a.ranges[3] == 0,
+    CHECK(assign_room_a(list, 2, &s, &gates, GB_TOPO_FULL, &a) == GB_OK && a.ranges[1] == 1 &&
+              a.ranges[3] == 0,
           "LA: room 2 in line with both doors gets the VPL, off the line nothing");
     const gb_topo_route_group *group = &gates.groups[a.entries[0].group];
     const gb_topo_route *route = &gates.routes[group->first];
@@ -193,15 +200,15 @@ static void test_routes(void)
               gb_topo_group_of(&gates, 2, 0) != GB_TOPO_NO_GATE &&
               gb_topo_group_of(&gates, 0, 0) == GB_TOPO_NO_GATE,
           "LA: groups found by source and target (none from a room to itself)");
-    CHECK(gb_topo_group_contains(vpl.position, &s, &gates, a.entries[0].group,
+    CHECK(gb_topo_group_contains(room_a_vpl.position, &s, &gates, a.entries[0].group,
                                  (float[3]){8, 0.2f, 0}),
           "IL: a point seen through both doors is lit");
     /* in the cone of the first door (8.5 degrees off its axis, half-angle
      * 14) but not of the second (half-angle 4.8): the paper's test, one
      * cone through a gate of the VPL's cluster, would light it */
     float beside[3] = {8, 1.5f, 0};
-    CHECK(gb_topo_cone_contains(vpl.position, &doors[0], beside) &&
-              !gb_topo_route_contains(vpl.position, &s, route, beside),
+    CHECK(gb_topo_cone_contains(room_a_vpl.position, &doors[0], beside) &&
+              !gb_topo_route_contains(room_a_vpl.position, &s, route, beside),
           "IL: a point behind the wall between the doors stays dark");
     gb_topo_assignment_free(&a);
     gb_topo_gates_free(&gates);
