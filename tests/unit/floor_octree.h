@@ -44,10 +44,7 @@
 #include "atlas.h"
 #include "headless_render.h"
 #include "light_octree.h"
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
 #include "scene_builder.h"
-#pragma GCC diagnostic pop
 #include "scratch.h"
 
 #define FLOOR_HALF 2.0f

@@ -14,10 +14,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"   /* the builder's other scenes */
 #include "scene_builder.h"
-#pragma GCC diagnostic pop
 #include "tap.h"
 #include "tap_printf.h"
 #include "topo_quadrants.h"
