@@ -8,9 +8,9 @@
  *   floor_octree *h = calloc(1, sizeof *h);      // large: the caller's
  *   floor_octree_punch_holes(h);                 // or cells of its own
  *   floor_octree_make(h, normal, vdls_max, fill, &scene, &octree);
- *   floor_octree_render(&scene, &octree, NULL, FLOOR_IMAGE_SIZE, &image);
- *   floor_atlas_make(&scene, square, padding, chart_count, &atlas);  // the
- *   floor_octree_render(&scene, &octree, &atlas.atlas, ...);         // same through it
+ *   floor_octree_render(&scene, &octree, NULL, FLOOR_IMAGE_SIZE, &image);  // the walk
+ *   floor_atlas_make(&scene, square, padding, charts, &a);  // the floor laid flat
+ *   floor_octree_render(&scene, &octree, &a.atlas, size, &image);   // through it
  *
  * The floor: y = 0, FLOOR_HALF each side of the origin in x and z, albedo
  * FLOOR_KD, seen from FLOOR_CAMERA_HEIGHT above its centre. The octree:
@@ -30,7 +30,7 @@
  * The caller owns the floor_octree (free it); the gb_light_octree that
  * floor_octree_make fills points into it, so it is not to be given to
  * gb_light_octree_free. floor_octree_make may be called again after the
- * cells change.
+ * cells change. The rendered image is the caller's (gb_image_free).
  */
 #ifndef GB_FLOOR_OCTREE_H
 #define GB_FLOOR_OCTREE_H
@@ -165,15 +165,17 @@ static inline void floor_octree_make(floor_octree *h, const float normal[3], uin
 }
 
 /* The octree's indirect term of scene, size x size pixels, rendered
- * headless from a scratch bake folder holding octree as floor.lot (gbview
+ * headless from a bake folder of its own (scratch.h's, the test's scratch
+ * folder left as it was) holding octree as floor.lot (gbview
  * --method octree --terms indirect --bake FOLDER): the walk, or through
  * atlas (written as floor.atlas, --atlas FILE) when it is not NULL. 0 when
  * it cannot, with the reason printed. */
 static inline int floor_octree_render(const gb_scene *scene, const gb_light_octree *octree,
                                       const gb_atlas *atlas, int size, gb_image *image)
 {
-    char path[512], scene_path[512], atlas_path[512];
+    char path[512], scene_path[512], atlas_path[512], outer[sizeof scratch_folder];
     gb_error error;
+    memcpy(outer, scratch_folder, sizeof outer);  /* the test's own, if it has one */
     scratch_create("floor-octree");
     scratch_path_into("floor.lot", path, sizeof path);
     scratch_path_into("floor.scene", scene_path, sizeof scene_path);
@@ -196,6 +198,7 @@ static inline int floor_octree_render(const gb_scene *scene, const gb_light_octr
     }
     gb_bake_release(bake);
     scratch_remove();
+    memcpy(scratch_folder, outer, sizeof outer);
     return ok;
 }
 
