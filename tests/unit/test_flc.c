@@ -389,7 +389,8 @@ static void test_renders(const gb_scene *scene)
         .width = SIZE, .height = SIZE,
     };
     gb_image reference, a, b;
-    if (!CHECK(render_reference(scene, &options, &reference), "reference --mode indirect1-unshadowed renders"))
+    if (!CHECK(render_reference(scene, &options, &reference),
+               "reference --mode indirect1-unshadowed renders"))
         return;
     test_progressive(scene, &reference);
     if (CHECK(render_flc(scene, 3, 0, &a), "3 frames") &&

@@ -336,8 +336,9 @@ static void test_holes(void)
 
 /* The floor laid flat in an atlas by hand (floor_octree.h's floor_atlas):
  * a square of ATLAS_SQUARE texels per chart, 2 texels of padding, one
- * chart or two (the quad's diagonal a seam between them). The octree rendered into it and shown through it (octree_atlas.h) must
- * give the walk's image, the seam included. */
+ * chart or two (the quad's diagonal a seam between them). The octree
+ * rendered into it and shown through it (octree_atlas.h) must give the
+ * walk's image, the seam included. */
 #define ATLAS_SQUARE 252
 #define ATLAS_PADDING 2
 
