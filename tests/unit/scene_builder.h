@@ -12,8 +12,9 @@
 #include <string.h>
 
 #include "scene.h"
+#include "vec3.h"
 
-static void *builder_grow(void *array, size_t count, size_t size)
+static inline void *builder_grow(void *array, size_t count, size_t size)
 {
     void *grown = realloc(array, count * size);
     if (!grown) {
@@ -23,8 +24,8 @@ static void *builder_grow(void *array, size_t count, size_t size)
     return grown;
 }
 
-static uint32_t add_material(gb_scene *scene, const float Kd[3], const float Ks[3], float Ns,
-                             const float Ke[3])
+static inline uint32_t add_material(gb_scene *scene, const float Kd[3], const float Ks[3], float Ns,
+                                    const float Ke[3])
 {
     scene->materials = builder_grow(scene->materials, scene->material_count + 1,
                                     sizeof *scene->materials);
@@ -40,13 +41,14 @@ static uint32_t add_material(gb_scene *scene, const float Kd[3], const float Ks[
     return scene->material_count++;
 }
 
-static uint32_t add_grey(gb_scene *scene, float albedo, float emission)
+static inline uint32_t add_grey(gb_scene *scene, float albedo, float emission)
 {
     const float Kd[3] = {albedo, albedo, albedo}, Ke[3] = {emission, emission, emission};
     return add_material(scene, Kd, NULL, 0.0f, Ke);
 }
 
-static void add_triangle(gb_scene *scene, uint32_t a, uint32_t b, uint32_t c, uint32_t material)
+static inline void add_triangle(gb_scene *scene, uint32_t a, uint32_t b, uint32_t c,
+                                uint32_t material)
 {
     uint32_t t = scene->triangle_count++;
     scene->indices = builder_grow(scene->indices, 3 * (size_t)scene->triangle_count,
@@ -61,7 +63,7 @@ static void add_triangle(gb_scene *scene, uint32_t a, uint32_t b, uint32_t c, ui
 
 /* Quad p0 p1 p2 p3 (in order around it); its front is the side of
  * cross(p1 - p0, p2 - p0). */
-static void add_quad(gb_scene *scene, const float p[4][3], uint32_t material)
+static inline void add_quad(gb_scene *scene, const float p[4][3], uint32_t material)
 {
     uint32_t first = scene->vertex_count;
     scene->vertex_count += 4;
@@ -73,20 +75,12 @@ static void add_quad(gb_scene *scene, const float p[4][3], uint32_t material)
 }
 
 /* The same quad with its front toward `toward` (a point). */
-static void add_quad_facing(gb_scene *scene, const float p[4][3], const float toward[3],
-                            uint32_t material)
+static inline void add_quad_facing(gb_scene *scene, const float p[4][3], const float toward[3],
+                                   uint32_t material)
 {
-    float e1[3], e2[3], n[3], d = 0.0f;
-    for (int k = 0; k < 3; ++k) {
-        e1[k] = p[1][k] - p[0][k];
-        e2[k] = p[2][k] - p[0][k];
-    }
-    n[0] = e1[1] * e2[2] - e1[2] * e2[1];
-    n[1] = e1[2] * e2[0] - e1[0] * e2[2];
-    n[2] = e1[0] * e2[1] - e1[1] * e2[0];
-    for (int k = 0; k < 3; ++k)
-        d += n[k] * (toward[k] - p[0][k]);
-    if (d >= 0.0f) {
+    gb_vec3 o = gb_vec3_load(p[0]), e1 = gb_vec3_sub(gb_vec3_load(p[1]), o),
+            e2 = gb_vec3_sub(gb_vec3_load(p[2]), o);
+    if (gb_vec3_dot(gb_vec3_cross(e1, e2), gb_vec3_sub(gb_vec3_load(toward), o)) >= 0.0f) {
         add_quad(scene, p, material);
         return;
     }
@@ -96,8 +90,8 @@ static void add_quad_facing(gb_scene *scene, const float p[4][3], const float to
 }
 
 /* The six faces of the box lo..hi, fronts inward (a room) or outward. */
-static void add_box(gb_scene *scene, const float lo[3], const float hi[3], int inward,
-                    uint32_t material)
+static inline void add_box(gb_scene *scene, const float lo[3], const float hi[3], int inward,
+                           uint32_t material)
 {
     float centre[3], outside[3];
     for (int k = 0; k < 3; ++k)
@@ -117,8 +111,8 @@ static void add_box(gb_scene *scene, const float lo[3], const float hi[3], int i
         }
 }
 
-static void add_point_light(gb_scene *scene, gb_light_type type, const float position[3],
-                            const float direction[3], const float intensity[3])
+static inline void add_point_light(gb_scene *scene, gb_light_type type, const float position[3],
+                                   const float direction[3], const float intensity[3])
 {
     scene->lights = builder_grow(scene->lights, scene->light_count + 1, sizeof *scene->lights);
     gb_light *light = &scene->lights[scene->light_count++];
@@ -132,8 +126,8 @@ static void add_point_light(gb_scene *scene, gb_light_type type, const float pos
 }
 
 /* A camera with up +y (or +z when looking along y). */
-static void set_camera(gb_scene *scene, const float position[3], const float target[3],
-                       float fov_y, int width, int height)
+static inline void set_camera(gb_scene *scene, const float position[3], const float target[3],
+                              float fov_y, int width, int height)
 {
     free(scene->cameras);
     scene->cameras = builder_grow(NULL, 1, sizeof *scene->cameras);
@@ -149,7 +143,7 @@ static void set_camera(gb_scene *scene, const float position[3], const float tar
     camera->height = height;
 }
 
-static void scene_done(gb_scene *scene)
+static inline void scene_done(gb_scene *scene)
 {
     gb_error error;
     if (gb_scene_finish(scene, &error) != GB_OK) {
@@ -160,7 +154,7 @@ static void scene_done(gb_scene *scene)
 
 /* The Cornell box of scenes/cornell (millimetres, light 0.5 mm below the
  * ceiling), its published camera at width x height. */
-static void build_cornell_box(gb_scene *scene, int width, int height)
+static inline void build_cornell_box(gb_scene *scene, int width, int height)
 {
     static const float quads[16][4][3] = {
         {{552.8f, 0, 0}, {0, 0, 0}, {0, 0, 559.2f}, {549.6f, 0, 559.2f}},

@@ -104,8 +104,7 @@ static void test_octree_single_triangle(void)
 /* Two faces of a box meeting in a cell: the normal leans to the larger one. */
 static void test_octree_area_weighted_normal(void)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     uint32_t grey = add_grey(&scene, 0.5f, 0.0f);
     /* floor 0..1 x 0..1 at y = 0 facing +y, wall at x = 0, y 0..0.5, facing +x */
     const float floor[4][3] = {{0, 0, 0}, {0, 0, 1}, {1, 0, 1}, {1, 0, 0}};
@@ -129,8 +128,7 @@ static void test_octree_area_weighted_normal(void)
 /* The six faces of a box: leaves on its shell only, none inside. */
 static void test_octree_box_shell(void)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
     add_box(&scene, lo, hi, 1, add_grey(&scene, 0.5f, 0.0f));
     scene_done(&scene);
@@ -151,6 +149,16 @@ static void test_octree_box_shell(void)
 
 /* ---- k-means and VDLs ---------------------------------------------------- */
 
+/* An empty workspace for up to capacity photons and 8 VDLs (1), or 0. */
+static int empty_workspace(gb_vdl_workspace *w, uint32_t capacity)
+{
+    gb_error error;
+    if (gb_vdl_workspace_create(w, capacity, 8, &error) != GB_OK)
+        return 0;
+    w->count = 0;
+    return 1;
+}
+
 /* n directions within `noise` (radians, roughly) of d, power p each. */
 static void add_bundle(gb_vdl_workspace *w, const float d[3], uint32_t n, float noise,
                        const float power[3], gb_random *rng)
@@ -168,13 +176,11 @@ static void add_bundle(gb_vdl_workspace *w, const float d[3], uint32_t n, float 
 static void test_two_bundles(void)
 {
     gb_vdl_workspace w;
-    gb_error error;
-    CHECK(gb_vdl_workspace_create(&w, 300, 8, &error) == GB_OK, "workspace");
+    CHECK(empty_workspace(&w, 300), "workspace");
     gb_random rng = gb_random_make(7, 0);
     float a[3] = {0.0f, 1.0f, 0.0f}, b[3] = {0.7f, 0.7f, 0.1f};
     normalize3(b);
     const float pa[3] = {1.0f, 0.5f, 0.25f}, pb[3] = {0.2f, 0.2f, 0.4f};
-    w.count = 0;
     add_bundle(&w, a, 200, 0.01f, pa, &rng);
     add_bundle(&w, b, 100, 0.01f, pb, &rng);
     gb_light_octree_vdl vdls[8];
@@ -203,11 +209,9 @@ static void test_two_bundles(void)
 static void test_identical_directions(void)
 {
     gb_vdl_workspace w;
-    gb_error error;
-    gb_vdl_workspace_create(&w, 300, 8, &error);
+    empty_workspace(&w, 300);
     gb_random rng = gb_random_make(7, 1);
     const float d[3] = {0.0f, 0.0f, 1.0f}, p[3] = {1.0f, 1.0f, 1.0f};
-    w.count = 0;
     add_bundle(&w, d, 300, 0.0f, p, &rng);
     gb_light_octree_vdl vdls[8];
     double spread;
@@ -231,11 +235,9 @@ static void test_identical_directions(void)
 static void test_count_by_spread(void)
 {
     gb_vdl_workspace w;
-    gb_error error;
-    gb_vdl_workspace_create(&w, 400, 8, &error);
+    empty_workspace(&w, 400);
     gb_random rng = gb_random_make(9, 0);
     const float d[4][3] = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, 0, 1}}, p[3] = {1, 1, 1};
-    w.count = 0;
     for (int i = 0; i < 4; ++i)
         add_bundle(&w, d[i], 100, 0.05f, p, &rng);
     gb_light_octree_vdl vdls[8];
@@ -377,15 +379,13 @@ static void test_cosine_hemisphere(void)
 static void test_known_clusters(void)
 {
     gb_vdl_workspace w;
-    gb_error error;
-    CHECK(gb_vdl_workspace_create(&w, 500, 8, &error) == GB_OK, "workspace");
+    CHECK(empty_workspace(&w, 500), "workspace");
     const float axes[5][3] = {{0, 0, 1}, {0.8f, 0, 0.6f}, {-0.6f, 0.64f, 0.48f},
                               {0, -0.8f, 0.6f}, {-0.5f, -0.5f, 0.707f}};
     const uint32_t sizes[5] = {200, 120, 80, 60, 40};
     const float powers[5][3] = {{1, 1, 1}, {0.1f, 0.1f, 0.1f}, {3, 2, 1}, {0.5f, 0, 0},
                                 {0.05f, 0.05f, 0.2f}};
     gb_random rng = gb_random_make(13, 0);
-    w.count = 0;
     for (int b = 0; b < 5; ++b) {
         float axis[3] = {axes[b][0], axes[b][1], axes[b][2]};
         normalize3(axis);
@@ -669,8 +669,7 @@ static void test_two_suns_and_determinism(void)
  * 1..K_max VDLs, all finite; the walls near the light are lit. */
 static void test_cornell_box(void)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     build_cornell_box(&scene, 64, 64);
     gb_photons_options po = {.count = 20000, .seed = 3, .threads = 2};
     gb_photon_map map;

@@ -16,8 +16,7 @@
 #include "../../runtime/context.h"
 #include "../../runtime/flc/flc.h"
 #include "../../runtime/headless.h"
-#include "../../tools/imgdiff/image_error.h"
-#include "../../tools/reference/reference.h"
+#include "headless_render.h"
 #include "scene_builder.h"
 #include "tap.h"
 
@@ -28,8 +27,6 @@
 #define FLC_RELATIVE_MSE_MAX 0.001
 #define FLC_TILED_RELATIVE_MSE_MAX 0.003
 enum { SIZE = 64, REFERENCE_SPP = 1024 };
-
-static char root[2048];
 
 static void test_parameters(void)
 {
@@ -330,18 +327,6 @@ static void test_hard_scenes(void)
     gb_scene_free(&scene);
 }
 
-static int load_cornell(gb_scene *scene)
-{
-    char path[4096];
-    snprintf(path, sizeof path, "%s/scenes/cornell/cornell.scene", root);
-    gb_error error;
-    if (gb_scene_load(path, NULL, scene, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-        return 0;
-    }
-    return 1;
-}
-
 static int render_flc_levels(const gb_scene *scene, int frames, int tiling, int levels,
                              gb_image *image)
 {
@@ -351,12 +336,7 @@ static int render_flc_levels(const gb_scene *scene, int frames, int tiling, int 
                      .parameters = {.flc_tiling = tiling, .flc_levels = levels}},
         .frames = frames,
     };
-    gb_error error;
-    if (gb_render_headless(scene, &options, image, NULL, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-        return 0;
-    }
-    return 1;
+    return render_headless(scene, &options, image);
 }
 
 static int render_flc(const gb_scene *scene, int frames, int tiling, gb_image *image)
@@ -373,16 +353,6 @@ static int all_finite(const gb_image *image)
     return 1;
 }
 
-static double relative_mse(const gb_image *image, const gb_image *reference)
-{
-    gb_image_error measures;
-    gb_error error;
-    if (gb_image_error_compute(image, reference, NULL, &measures, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-        return INFINITY;
-    }
-    return measures.relative_mse;
-}
 
 /* The slope of log(error) over log(frames), least squares. */
 static double log_slope(const int *frames, const double *errors, int count)
@@ -419,12 +389,9 @@ static void test_renders(const gb_scene *scene)
         .width = SIZE, .height = SIZE,
     };
     gb_image reference, a, b;
-    gb_error error;
-    if (!CHECK(gb_reference_render(scene, &options, &reference, NULL, &error) == GB_OK,
-               "reference --mode indirect1-unshadowed renders")) {
-        printf("# %s\n", error.message);
+    if (!CHECK(render_reference(scene, &options, &reference),
+               "reference --mode indirect1-unshadowed renders"))
         return;
-    }
     test_progressive(scene, &reference);
     if (CHECK(render_flc(scene, 3, 0, &a), "3 frames") &&
         CHECK(render_flc(scene, 3, 0, &b), "3 frames again")) {
@@ -544,21 +511,16 @@ static void test_extreme_render(void)
                      .parameters = {.flc_n_avg = 64}},
         .frames = 2,
     };
-    gb_error error;
-    gb_result result = gb_render_headless(&scene, &options, &image, NULL, &error);
-    if (CHECK(result == GB_OK, "the scene of areas 1e-12 to 1e6 renders")) {
+    if (CHECK(render_headless(&scene, &options, &image),
+              "the scene of areas 1e-12 to 1e6 renders")) {
         CHECK(all_finite(&image), "no NaN, no Inf");
         gb_image_free(&image);
-    } else {
-        printf("# %s\n", error.message);
     }
     gb_scene_free(&scene);
 }
 
 int main(void)
 {
-    const char *env = getenv("GB_ROOT");
-    snprintf(root, sizeof root, "%s", env && *env ? env : ".");
     test_parameters();
     test_partition_of_unity();
     test_levels();

@@ -107,8 +107,7 @@ static void visit(const gb_implicit_model *m, uint32_t node, uint32_t *seen)
 static void test_element_cells(int side, float cell, uint32_t vertices_expected,
                                uint32_t elements_expected)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     uint32_t grey = add_grey(&scene, 0.5f, 0.0f), row = (uint32_t)side + 1;
     scene.vertex_count = row * row;
     scene.positions = builder_grow(NULL, 3 * (size_t)scene.vertex_count, sizeof(float));
@@ -459,44 +458,85 @@ static void test_hierarchical_against_brute_force(const gb_scene *scene)
     gb_implicit_model_free(&m);
 }
 
+typedef struct lit_model {
+    gb_implicit_model m;
+    gb_implicit_bins bins;
+    gb_implicit_links links;
+    gb_implicit_solution s;
+} lit_model;
+
+/* The model of scene, its bins, links made with options, and its light
+ * after bounces; 0 (the reason printed) when it cannot be built. */
+static int light_model_with(const gb_scene *scene, float element_size,
+                            const gb_implicit_link_options *options, int bounces, lit_model *x)
+{
+    gb_error error;
+    memset(x, 0, sizeof *x);
+    int ok =
+        gb_implicit_model_create(scene, element_size, RUNTIME_CELL, &x->m, &error) == GB_OK &&
+             gb_implicit_bins_create(8, &x->bins, &error) == GB_OK &&
+             gb_implicit_create_links(&x->m, &x->bins, options, &x->links, NULL, &error) ==
+                 GB_OK &&
+             gb_implicit_solution_create(&x->m, &x->s, &error) == GB_OK;
+    if (!ok)
+        printf("# %s\n", error.message);
+    else
+        gb_implicit_illuminate(scene, &x->m, &x->links, bounces, &x->s);
+    return ok;
+}
+
+/* The same with hierarchical links shadowed by the scene's lights. */
+static int light_model(const gb_scene *scene, float element_size, int bounces, lit_model *x)
+{
+    gb_implicit_link_options options = {.hierarchical = 1, .lights = scene};
+    return light_model_with(scene, element_size, &options, bounces, x);
+}
+
+/* light_model under a white sky (environment radiance 1), checked as
+ * what; on failure the scene is freed. */
+static int white_sky_model(gb_scene *scene, float element_size, int bounces, lit_model *x,
+                           const char *what)
+{
+    scene->environment[0] = scene->environment[1] = scene->environment[2] = 1.0f;
+    if (CHECK(light_model(scene, element_size, bounces, x), what))
+        return 1;
+    gb_scene_free(scene);
+    return 0;
+}
+
+static void free_lit(lit_model *x)
+{
+    gb_implicit_solution_free(&x->s);
+    gb_implicit_links_free(&x->links);
+    gb_implicit_bins_free(&x->bins);
+    gb_implicit_model_free(&x->m);
+}
+
 /* A point light of intensity I at height h over the centre of a 1 x 1
  * square facing it: every element gets E = I cos / r^2 (no shadow to
  * cast), so direct E / pi at the element under it is I / (pi h^2). */
 static void test_point_light(void)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     const float p[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     const float up[3] = {0.5f, 0.5f, 1.0f}, light[3] = {0.5f, 0.5f, 2.0f}, I[3] = {4, 4, 4};
     add_quad_facing(&scene, p, up, add_grey(&scene, 0.5f, 0.0f));
     add_point_light(&scene, GB_LIGHT_POINT, light, NULL, I);
     scene_done(&scene);
-    gb_implicit_model m;
-    gb_implicit_bins bins;
-    gb_implicit_links links;
-    gb_implicit_solution s;
-    gb_error error;
-    int ok = gb_implicit_model_create(&scene, 0.1f, RUNTIME_CELL, &m, &error) == GB_OK &&
-             gb_implicit_bins_create(8, &bins, &error) == GB_OK &&
-             gb_implicit_create_links(&m, &bins, NULL, &links, NULL, &error) == GB_OK &&
-             gb_implicit_solution_create(&m, &s, &error) == GB_OK;
-    if (!CHECK(ok, "point light over a square: built"))
+    lit_model x;
+    if (!CHECK(light_model_with(&scene, 0.1f, NULL, 1, &x), "point light over a square: built"))
         return;
-    gb_implicit_illuminate(&scene, &m, &links, 1, &s);
     double worst = 0.0, display = 0.0;
-    for (uint32_t e = 0; e < m.element_count; ++e) {
-        const float *x = m.nodes[e].position;
-        double dx = x[0] - light[0], dy = x[1] - light[1], dz = x[2] - light[2];
+    for (uint32_t e = 0; e < x.m.element_count; ++e) {
+        const float *p = x.m.nodes[e].position;
+        double dx = p[0] - light[0], dy = p[1] - light[1], dz = p[2] - light[2];
         double r2 = dx * dx + dy * dy + dz * dz, cosine = -dz / sqrt(r2);
-        worst = fmax(worst, fabs(s.direct[3 * e] - I[0] * cosine / r2 / M_PI));
-        display = fmax(display, fabs(s.display[3 * e]));
+        worst = fmax(worst, fabs(x.s.direct[3 * e] - I[0] * cosine / r2 / M_PI));
+        display = fmax(display, fabs(x.s.display[3 * e]));
     }
     CHECK_NEAR(worst, 0.0, 1e-5, "point light: E / pi = I cos / (pi r^2) at every element");
     CHECK_NEAR(display, 0.0, 0.0, "a lone square has no indirect light");
-    gb_implicit_solution_free(&s);
-    gb_implicit_links_free(&links);
-    gb_implicit_bins_free(&bins);
-    gb_implicit_model_free(&m);
+    free_lit(&x);
     gb_scene_free(&scene);
 }
 
@@ -507,8 +547,7 @@ static void test_point_light(void)
  * links leave the light unshadowed. */
 static void test_implicit_shadow(void)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     uint32_t grey = add_grey(&scene, 0.5f, 0.0f);
     const float up[3] = {0.5f, 0.5f, 10.0f}, down[3] = {0.5f, 0.5f, -10.0f};
     const float a[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
@@ -518,36 +557,28 @@ static void test_implicit_shadow(void)
     add_quad_facing(&scene, b, down, grey);
     add_point_light(&scene, GB_LIGHT_POINT, light, NULL, I);
     scene_done(&scene);
-    gb_implicit_model m;
-    gb_implicit_bins bins;
-    gb_implicit_links shadowed, unshadowed;
-    gb_implicit_solution s;
+    gb_implicit_links unshadowed;
     gb_error error;
     gb_implicit_link_options with = {.hierarchical = 1, .lights = &scene};
     gb_implicit_link_options without = {.hierarchical = 1};
-    int ok = gb_implicit_model_create(&scene, 0.1f, RUNTIME_CELL, &m, &error) == GB_OK &&
-             gb_implicit_bins_create(8, &bins, &error) == GB_OK &&
-             gb_implicit_create_links(&m, &bins, &with, &shadowed, NULL, &error) == GB_OK &&
-             gb_implicit_create_links(&m, &bins, &without, &unshadowed, NULL, &error) == GB_OK &&
-             gb_implicit_solution_create(&m, &s, &error) == GB_OK;
+    lit_model x;
+    int ok = light_model_with(&scene, 0.1f, &with, 1, &x) &&
+             gb_implicit_create_links(&x.m, &x.bins, &without, &unshadowed, NULL, &error) == GB_OK;
     if (!CHECK(ok, "occluded point light: built"))
         return;
     double lit[2] = {0.0, 0.0};
     for (int pass = 0; pass < 2; ++pass) {
-        gb_implicit_illuminate(&scene, &m, pass ? &unshadowed : &shadowed, 1, &s);
-        for (uint32_t e = 0; e < m.element_count; ++e)
-            if (m.nodes[e].segment == 0)
-                lit[pass] += m.nodes[e].area * s.direct[3 * e];
+        gb_implicit_illuminate(&scene, &x.m, pass ? &unshadowed : &x.links, 1, &x.s);
+        for (uint32_t e = 0; e < x.m.element_count; ++e)
+            if (x.m.nodes[e].segment == 0)
+                lit[pass] += x.m.nodes[e].area * x.s.direct[3 * e];
     }
     printf("# occluded point light: direct on A %.5f with implicit shadows, %.5f without\n",
            lit[0], lit[1]);
     CHECK(lit[1] > 0.0, "occluded point light: unshadowed, it lights A");
     CHECK_NEAR(lit[0], 0.0, 0.01 * lit[1], "occluded point light: B's links shadow A");
-    gb_implicit_solution_free(&s);
-    gb_implicit_links_free(&shadowed);
     gb_implicit_links_free(&unshadowed);
-    gb_implicit_bins_free(&bins);
-    gb_implicit_model_free(&m);
+    free_lit(&x);
     gb_scene_free(&scene);
 }
 
@@ -596,39 +627,6 @@ static int all_finite(const float *values, size_t count)
     return 1;
 }
 
-typedef struct lit_model {
-    gb_implicit_model m;
-    gb_implicit_bins bins;
-    gb_implicit_links links;
-    gb_implicit_solution s;
-} lit_model;
-
-static int light_model(const gb_scene *scene, float element_size, int bounces, lit_model *x)
-{
-    gb_error error;
-    gb_implicit_link_options options = {.hierarchical = 1, .lights = scene};
-    memset(x, 0, sizeof *x);
-    int ok =
-        gb_implicit_model_create(scene, element_size, RUNTIME_CELL, &x->m, &error) == GB_OK &&
-             gb_implicit_bins_create(8, &x->bins, &error) == GB_OK &&
-             gb_implicit_create_links(&x->m, &x->bins, &options, &x->links, NULL, &error) ==
-                 GB_OK &&
-             gb_implicit_solution_create(&x->m, &x->s, &error) == GB_OK;
-    if (!ok)
-        printf("# %s\n", error.message);
-    else
-        gb_implicit_illuminate(scene, &x->m, &x->links, bounces, &x->s);
-    return ok;
-}
-
-static void free_lit(lit_model *x)
-{
-    gb_implicit_solution_free(&x->s);
-    gb_implicit_links_free(&x->links);
-    gb_implicit_bins_free(&x->bins);
-    gb_implicit_model_free(&x->m);
-}
-
 /* Section 4.4: a lone square under a constant environment has every bin
  * above it empty, so each element's sky E / pi is the environment's
  * radiance exactly; a box standing on it hides part of the sky from the
@@ -636,8 +634,7 @@ static void free_lit(lit_model *x)
 static void test_sky(void)
 {
     const float L[3] = {1.0f, 0.5f, 0.25f};
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     const float p[4][3] = {{-2, 0, -2}, {2, 0, -2}, {2, 0, 2}, {-2, 0, 2}};
     const float up[3] = {0, 10, 0};
     add_quad_facing(&scene, p, up, add_grey(&scene, 0.5f, 0.0f));
@@ -700,20 +697,16 @@ static uint32_t push_vertex(gb_scene *scene, float x, float y, float z)
  * area, no NaN, and they hide nothing. */
 static void test_zero_area(void)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     uint32_t grey = add_grey(&scene, 0.5f, 0.0f);
     const float p[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     add_quad(&scene, p, grey);
     uint32_t a = push_vertex(&scene, 0.2f, 0.5f, 0.3f), b = push_vertex(&scene, 0.8f, 0.5f, 0.3f),
              c = push_vertex(&scene, 0.5f, 0.5f, 0.3f);
     add_triangle(&scene, a, b, c, grey);
-    scene.environment[0] = scene.environment[1] = scene.environment[2] = 1.0f;
     lit_model x;
-    if (!CHECK(light_model(&scene, 0.1f, 2, &x), "zero-area triangle: built")) {
-        gb_scene_free(&scene);
+    if (!white_sky_model(&scene, 0.1f, 2, &x, "zero-area triangle: built"))
         return;
-    }
     uint32_t zero = 0;
     double worst = 0.0;
     int finite = all_finite(x.s.display, 3 * (size_t)x.m.element_count) &&
@@ -739,17 +732,13 @@ static void test_zero_area(void)
 /* The smallest mesh: one vertex, one triangle on it. */
 static void test_one_vertex(void)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     uint32_t grey = add_grey(&scene, 0.5f, 1.0f);
     uint32_t v = push_vertex(&scene, 1.0f, 2.0f, 3.0f);
     add_triangle(&scene, v, v, v, grey);
-    scene.environment[0] = scene.environment[1] = scene.environment[2] = 1.0f;
     lit_model x;
-    if (!CHECK(light_model(&scene, 0.0f, 2, &x), "one vertex: built")) {
-        gb_scene_free(&scene);
+    if (!white_sky_model(&scene, 0.0f, 2, &x, "one vertex: built"))
         return;
-    }
     CHECK_EQ_INT(x.m.element_count, 1, "one vertex: one element");
     CHECK_EQ_INT(x.m.root_count, 1, "one vertex: one root, the element");
     CHECK_NEAR(x.m.nodes[0].area, 0.0, 0.0, "one vertex: the element has no area");
@@ -773,19 +762,15 @@ static void test_one_vertex(void)
  * sky has no position). */
 static void test_dynamic_update(void)
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     const float p[4][3] = {{-2, 0, -2}, {2, 0, -2}, {2, 0, 2}, {-2, 0, 2}};
     const float up[3] = {0, 10, 0}, lo[3] = {-0.5f, 0, -0.5f}, hi[3] = {0.5f, 1, 0.5f};
     add_quad_facing(&scene, p, up, add_grey(&scene, 0.5f, 0.0f));
     add_box(&scene, lo, hi, 0, add_grey(&scene, 0.7f, 0.0f));
     scene_done(&scene);
-    scene.environment[0] = scene.environment[1] = scene.environment[2] = 1.0f;
     lit_model x;
-    if (!CHECK(light_model(&scene, 0.25f, 1, &x), "UpdateElements: built")) {
-        gb_scene_free(&scene);
+    if (!white_sky_model(&scene, 0.25f, 1, &x, "UpdateElements: built"))
         return;
-    }
     uint32_t nodes = x.m.node_count, elements = x.m.element_count;
     gb_implicit_node *before = malloc(nodes * sizeof *before);
     float *display = malloc(3 * (size_t)elements * sizeof *display);
@@ -859,8 +844,7 @@ static void make_map(gb_texture *map, int width, int height, int mode)
 static double square_sky(const gb_implicit_bins *bins, const float *radiance,
                          const float toward[3])
 {
-    gb_scene scene;
-    memset(&scene, 0, sizeof scene);
+    gb_scene scene = {0};
     float p[4][3];
     int axis = fabsf(toward[0]) > 0.5f ? 0 : fabsf(toward[1]) > 0.5f ? 1 : 2;
     for (int i = 0; i < 4; ++i) {
@@ -951,8 +935,7 @@ static void test_cornell(const char *root)
     }
     test_model(&scene, "Cornell box");
     gb_scene_free(&scene);
-    gb_scene built;
-    memset(&built, 0, sizeof built);
+    gb_scene built = {0};
     build_cornell_box(&built, 64, 64);
     test_hierarchical_against_brute_force(&built);
     gb_scene_free(&built);

@@ -38,51 +38,21 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "../../runtime/bake.h"
-#include "../../runtime/headless.h"
 #include "../../runtime/indirect_method.h"
-#include "../../runtime/methods.h"
 #include "../../tools/lightmap/lightmap.h"
 #include "../../tools/lightmap/png_bytes.h"
-#include "atlas.h"
 #include "camera.h"
-#include "light_octree.h"
+#include "floor_octree.h"
 #include "light_octree_shading.h"
 #include "photon_map.h"
 #include "random.h"
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#include "scene_builder.h"
-#pragma GCC diagnostic pop
 #include "tap.h"
 
 #define PI 3.14159265358979323846
 
-/* The floor y = 0, FLOOR_HALF each side of the origin, albedo KD, seen
- * from CAMERA_HEIGHT above its centre. */
-#define FLOOR_HALF 2.0f
-#define KD 0.5f
-#define CAMERA_HEIGHT 3.0f
-#define IMAGE_SIZE 64
-
-/* Depth 4 over the cube (-2, -2.1, -2) + 4: leaf edge 0.25, the floor in
- * layer 8 (0.1 above its bottom face); every cell (i, 8, k) a leaf but the
- * holes. */
-#define DEPTH 4u
-#define GRID (1u << DEPTH)
-#define LAYER 8u
-#define CELL 0.25
+/* The floor (floor_octree.h) and its hand-made octree, three VDLs a lit
+ * leaf. */
 #define VDLS 3u
-
-typedef enum { CELL_LIT, CELL_EMPTY, CELL_MISSING } cell_kind;
-
-typedef struct hand_octree {
-    cell_kind cells[GRID][GRID];        /* [i][k] of layer LAYER */
-    gb_light_octree_node nodes[GRID * GRID * DEPTH];
-    gb_light_octree_leaf leaves[GRID * GRID];
-    gb_light_octree_vdl vdls[GRID * GRID * VDLS];
-    uint32_t node_count, leaf_count, vdl_count;
-} hand_octree;
 
 /* The three VDLs' directions (unit after normalize3), the leaves' normal,
  * and the floor's shading normal, tilted so that the third VDL has
@@ -117,84 +87,31 @@ static double vdl_irradiance(int v, double i, double k, int c)
     return v == 0 ? (1.0 + 0.05 * i + 0.03 * k) * tint[0][c] : tint[v][c];
 }
 
-static uint32_t add_leaf(hand_octree *h, uint32_t i, uint32_t k)
+/* Leaf (i, k)'s three VDLs. */
+static uint32_t fill_vdls(uint32_t i, uint32_t k, gb_light_octree_vdl *vdls)
 {
-    gb_light_octree_leaf *leaf = &h->leaves[h->leaf_count];
-    memset(leaf, 0, sizeof *leaf);
-    memcpy(leaf->normal, leaf_normal, sizeof leaf->normal);
-    leaf->cell[0] = i;
-    leaf->cell[1] = LAYER;
-    leaf->cell[2] = k;
-    leaf->first_vdl = h->vdl_count;
     const float *directions[VDLS] = {from_above, grazing, from_below};
-    for (uint32_t v = 0; h->cells[i][k] == CELL_LIT && v < VDLS; ++v) {
-        gb_light_octree_vdl *vdl = &h->vdls[h->vdl_count++];
+    for (uint32_t v = 0; v < VDLS; ++v) {
         for (int c = 0; c < 3; ++c)
-            vdl->irradiance[c] = (float)vdl_irradiance((int)v, i, k, c);
-        vdl->direction = gb_photon_pack_direction(directions[v]);
-        leaf->vdl_count++;
+            vdls[v].irradiance[c] = (float)vdl_irradiance((int)v, i, k, c);
+        vdls[v].direction = gb_photon_pack_direction(directions[v]);
     }
-    return h->leaf_count++;
+    return VDLS;
 }
 
-static int has_leaf(const hand_octree *h, uint32_t level, uint32_t x, uint32_t y, uint32_t z)
+static void make_octree(floor_octree *h, const gb_scene *scene, gb_light_octree *octree)
 {
-    uint32_t span = 1u << (DEPTH - level);
-    if (LAYER < y * span || LAYER >= (y + 1) * span)
-        return 0;
-    for (uint32_t i = x * span; i < (x + 1) * span; ++i)
-        for (uint32_t k = z * span; k < (z + 1) * span; ++k)
-            if (h->cells[i][k] != CELL_MISSING)
-                return 1;
-    return 0;
-}
-
-/* Nodes in preorder, leaves in Morton order (light_octree.h). */
-static uint32_t build_node(hand_octree *h, uint32_t level, uint32_t x, uint32_t y, uint32_t z)
-{
-    if (!has_leaf(h, level, x, y, z))
-        return GB_LIGHT_OCTREE_NONE;
-    if (level == DEPTH)
-        return add_leaf(h, x, z);
-    uint32_t node = h->node_count++;
-    for (uint32_t c = 0; c < 8; ++c)
-        h->nodes[node].child[c] =
-            build_node(h, level + 1, 2 * x + (c & 1), 2 * y + (c >> 1 & 1), 2 * z + (c >> 2));
-    return node;
-}
-
-static void make_octree(hand_octree *h, const gb_scene *scene, gb_light_octree *octree)
-{
-    h->cells[6][6] = CELL_MISSING;
-    h->cells[9][6] = CELL_EMPTY;
-    h->cells[9][9] = CELL_MISSING;
-    h->cells[10][9] = CELL_EMPTY;
-    h->cells[9][10] = CELL_EMPTY;
-    build_node(h, 0, 0, 0, 0);
-    memset(octree, 0, sizeof *octree);
-    octree->header = (gb_light_octree_header){
-        .depth = DEPTH, .node_count = h->node_count, .leaf_count = h->leaf_count,
-        .vdl_count = h->vdl_count, .origin = {-2.0f, -2.1f, -2.0f}, .size = 4.0f,
-        .scene_hash = scene->hash, .photon_count = 1, .emitted_count = 1, .knn = 1,
-        .radius = 1.0f, .vdls_max = VDLS, .max_spread = 15.0f, .flattening = 0.5f};
-    octree->nodes = h->nodes;
-    octree->leaves = h->leaves;
-    octree->vdls = h->vdls;
+    floor_octree_punch_holes(h);
+    floor_octree_make(h, leaf_normal, VDLS, fill_vdls, scene, octree);
 }
 
 /* The floor, its corner normals all `tilted`, a camera above it. */
 static void build_floor(gb_scene *scene)
 {
-    memset(scene, 0, sizeof *scene);
-    uint32_t grey = add_grey(scene, KD, 0.0f);
-    const float h = FLOOR_HALF;
-    const float corners[4][3] = {{-h, 0, -h}, {h, 0, -h}, {h, 0, h}, {-h, 0, h}};
-    add_quad_facing(scene, corners, up, grey);
+    floor_scene_begin(scene, up);
     scene->corner_normals = malloc(9 * scene->triangle_count * sizeof *scene->corner_normals);
     for (uint32_t c = 0; c < 3 * scene->triangle_count; ++c)
         memcpy(scene->corner_normals + 3 * c, tilted, 3 * sizeof(float));
-    const float eye[3] = {0, CAMERA_HEIGHT, 0}, target[3] = {0, 0, 0};
-    set_camera(scene, eye, target, 30.0f, IMAGE_SIZE, IMAGE_SIZE);
     scene_done(scene);
 }
 
@@ -233,9 +150,9 @@ static double relative(double a, double b)
 /* The floor point over leaf coordinates (i, k) (leaf centres at integers). */
 static void floor_point(double i, double k, float x[3])
 {
-    x[0] = (float)(-2.0 + CELL * (i + 0.5));
+    x[0] = (float)(-2.0 + FLOOR_CELL * (i + 0.5));
     x[1] = 0.0f;
-    x[2] = (float)(-2.0 + CELL * (k + 0.5));
+    x[2] = (float)(-2.0 + FLOOR_CELL * (k + 0.5));
 }
 
 static void test_by_hand(const gb_light_octree *octree)
@@ -347,51 +264,6 @@ static void test_direct(const gb_light_octree *octree)
 
 /* ---- 3. the GPU display --------------------------------------------------- */
 
-static int make_folder(char *folder, size_t size)
-{
-    const char *tmp = getenv("TMPDIR");
-    snprintf(folder, size, "%s/gibake-octree-shading.XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    return mkdtemp(folder) != NULL;
-}
-
-/* The octree's indirect term of the floor, rendered headless from
- * FOLDER/floor.lot: the walk, or through atlas (written as FOLDER/floor.atlas)
- * when it is not NULL. */
-static int render_display(const gb_scene *scene, const gb_light_octree *octree,
-                          const gb_atlas *atlas, gb_image *image)
-{
-    char folder[1024], path[1100], scene_path[1100], atlas_path[1100];
-    gb_error error;
-    if (!make_folder(folder, sizeof folder))
-        return 0;
-    snprintf(path, sizeof path, "%s/floor.lot", folder);
-    snprintf(scene_path, sizeof scene_path, "%s/floor.scene", folder);
-    snprintf(atlas_path, sizeof atlas_path, "%s/floor.atlas", folder);
-    int ok = 0;
-    gb_bake *bake = NULL;
-    if (gb_light_octree_write(path, octree, &error) != GB_OK ||
-        (atlas && gb_atlas_write(atlas_path, atlas, &error) != GB_OK) ||
-        gb_bake_open(scene, scene_path, folder, &bake, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-    } else if (gb_bake_problem(bake, GB_BAKE_LIGHT_OCTREE)) {
-        printf("# %s\n", gb_bake_problem(bake, GB_BAKE_LIGHT_OCTREE));
-    } else {
-        gb_headless_options options = {
-            .renderer = {.method = GB_METHOD_OCTREE, .terms = GB_TERMS_INDIRECT,
-                         .width = IMAGE_SIZE, .height = IMAGE_SIZE, .bake = bake,
-                         .parameters = {.atlas = atlas ? atlas_path : "none"}},
-        };
-        ok = gb_render_headless(scene, &options, image, NULL, &error) == GB_OK;
-        if (!ok)
-            printf("# %s\n", error.message);
-    }
-    gb_bake_release(bake);
-    unlink(path);
-    unlink(atlas_path);
-    rmdir(folder);
-    return ok;
-}
-
 /* Where the ray through pixel (px, py)'s centre meets the floor. */
 static int pixel_point(const gb_camera_frame *frame, int px, int py, float x[3])
 {
@@ -414,22 +286,22 @@ static void test_gpu(const gb_scene *scene, const gb_light_octree *octree)
     gb_image image;
     gb_camera_frame frame;
     gb_error error;
-    if (!CHECK(gb_camera_frame_make(&scene->cameras[0], IMAGE_SIZE, IMAGE_SIZE, &frame,
+    if (!CHECK(gb_camera_frame_make(&scene->cameras[0], FLOOR_IMAGE_SIZE, FLOOR_IMAGE_SIZE, &frame,
                                     &error) == GB_OK &&
-                   render_display(scene, octree, NULL, &image),
+                   floor_octree_render(scene, octree, NULL, FLOOR_IMAGE_SIZE, &image),
                "the octree display of the floor rendered headless"))
         return;
     double worst = 0.0, lowest = INFINITY;
     int compared = 0;
-    for (int py = 0; py < IMAGE_SIZE; ++py)
-        for (int px = 0; px < IMAGE_SIZE; ++px) {
+    for (int py = 0; py < FLOOR_IMAGE_SIZE; ++py)
+        for (int px = 0; px < FLOOR_IMAGE_SIZE; ++px) {
             float x[3], e[3];
             if (!pixel_point(&frame, px, py, x))
                 continue;
             gb_light_octree_irradiance(octree, x, tilted, up, e);
             for (int c = 0; c < 3; ++c) {
-                double expected = KD / PI * e[c];
-                double got = image.pixels[3 * ((size_t)py * IMAGE_SIZE + px) + c];
+                double expected = FLOOR_KD / PI * e[c];
+                double got = image.pixels[3 * ((size_t)py * FLOOR_IMAGE_SIZE + px) + c];
                 worst = fmax(worst, relative(got, expected));
                 lowest = fmin(lowest, expected);
             }
@@ -437,7 +309,7 @@ static void test_gpu(const gb_scene *scene, const gb_light_octree *octree)
         }
     printf("# %d pixels: the display against Kd/pi x the CPU port, largest relative "
            "difference %.3g (darkest expected %.4g)\n", compared, worst, lowest);
-    CHECK(compared == IMAGE_SIZE * IMAGE_SIZE, "every pixel sees the floor");
+    CHECK(compared == FLOOR_IMAGE_SIZE * FLOOR_IMAGE_SIZE, "every pixel sees the floor");
     CHECK(lowest > 0.0, "no pixel expects black");
     CHECK(worst < GPU_TOLERANCE, "every pixel: Kd/pi x gb_light_octree_irradiance within 10^-4");
     gb_image_free(&image);
@@ -445,47 +317,12 @@ static void test_gpu(const gb_scene *scene, const gb_light_octree *octree)
 
 /* ---- 4. the lightmap of a hand-made atlas --------------------------------- */
 
-/* The floor laid flat in one chart of SQUARE x SQUARE texels, PADDING
- * texels of gutter around it: floor (x, z) at s = (x + 2) / 4, r = (z + 2)
- * / 4 (or swapped, to keep the triangles counterclockwise), texel
- * coordinates PADDING + SQUARE (s, r). The quad's diagonal runs through
- * texel centres. */
+/* The floor laid flat in one chart (floor_octree.h's floor_atlas) of
+ * SQUARE x SQUARE texels, PADDING texels of gutter around it. The quad's
+ * diagonal runs through texel centres. */
 #define SQUARE 60
 #define PADDING 2
 #define SIDE (SQUARE + 2 * PADDING)
-
-typedef struct floor_atlas {
-    gb_atlas atlas;
-    float uvs[2 * 6];
-    uint32_t charts[2];
-    gb_atlas_chart record;
-    int straight;               /* s from x (else from z) */
-} floor_atlas;
-
-static void make_floor_atlas(const gb_scene *scene, floor_atlas *a)
-{
-    memset(a, 0, sizeof *a);
-    const float *p[3];
-    for (int c = 0; c < 3; ++c)
-        p[c] = scene->positions + 3 * scene->indices[c];
-    a->straight = (p[1][0] - p[0][0]) * (p[2][2] - p[0][2]) -
-                  (p[1][2] - p[0][2]) * (p[2][0] - p[0][0]) > 0.0f;
-    for (uint32_t t = 0; t < 2; ++t)
-        for (int c = 0; c < 3; ++c) {
-            const float *q = scene->positions + 3 * scene->indices[3 * t + c];
-            float s = (q[a->straight ? 0 : 2] + FLOOR_HALF) / (2.0f * FLOOR_HALF);
-            float r = (q[a->straight ? 2 : 0] + FLOOR_HALF) / (2.0f * FLOOR_HALF);
-            a->uvs[6 * t + 2 * c] = (PADDING + s * SQUARE) / SIDE;
-            a->uvs[6 * t + 2 * c + 1] = (PADDING + r * SQUARE) / SIDE;
-        }
-    a->record = (gb_atlas_chart){2, 16.0f, 0.0f, 0.0f, {PADDING, PADDING, SQUARE, SQUARE}};
-    a->atlas.header = (gb_atlas_header){
-        .scene_hash = scene->hash, .triangle_count = 2, .chart_count = 1, .width = SIDE,
-        .height = SIDE, .texels_per_unit = SQUARE / (2.0f * FLOOR_HALF), .padding = PADDING};
-    a->atlas.uvs = a->uvs;
-    a->atlas.charts = a->charts;
-    a->atlas.chart_records = &a->record;
-}
 
 /* The floor point at texel coordinates (tx, ty) of the atlas. */
 static void atlas_point(const floor_atlas *a, double tx, double ty, float x[3])
@@ -607,8 +444,8 @@ static void against_display(const gb_image *image, const gb_camera_frame *frame,
     double sum = 0.0;
     int count = 0;
     *worst = 0.0;
-    for (int py = 0; py < IMAGE_SIZE; ++py)
-        for (int px = 0; px < IMAGE_SIZE; ++px) {
+    for (int py = 0; py < FLOOR_IMAGE_SIZE; ++py)
+        for (int px = 0; px < FLOOR_IMAGE_SIZE; ++px) {
             float x[3];
             if (!pixel_point(frame, px, py, x))
                 continue;
@@ -618,9 +455,9 @@ static void against_display(const gb_image *image, const gb_camera_frame *frame,
             sample_bilinear(map, (PADDING + s * SQUARE) / SIDE, (PADDING + r * SQUARE) / SIDE,
                             e);
             for (int c = 0; c < 3; ++c) {
-                double shown = image->pixels[3 * ((size_t)py * IMAGE_SIZE + px) + c];
-                *worst = fmax(*worst, relative(KD / PI * e[c], shown));
-                sum += (KD / PI * e[c] - shown) * (KD / PI * e[c] - shown) /
+                double shown = image->pixels[3 * ((size_t)py * FLOOR_IMAGE_SIZE + px) + c];
+                *worst = fmax(*worst, relative(FLOOR_KD / PI * e[c], shown));
+                sum += (FLOOR_KD / PI * e[c] - shown) * (FLOOR_KD / PI * e[c] - shown) /
                        (shown * shown + 0.01);
                 ++count;
             }
@@ -660,9 +497,9 @@ static void test_against_gpu_atlas(const gb_scene *scene, const gb_light_octree 
     gb_image image, png;
     gb_camera_frame frame;
     gb_error error;
-    if (!CHECK(gb_camera_frame_make(&scene->cameras[0], IMAGE_SIZE, IMAGE_SIZE, &frame,
+    if (!CHECK(gb_camera_frame_make(&scene->cameras[0], FLOOR_IMAGE_SIZE, FLOOR_IMAGE_SIZE, &frame,
                                     &error) == GB_OK &&
-                   render_display(scene, octree, &a->atlas, &image),
+                   floor_octree_render(scene, octree, &a->atlas, FLOOR_IMAGE_SIZE, &image),
                "the octree through the floor's atlas rendered headless"))
         return;
     double worst, mse;
@@ -687,7 +524,7 @@ int main(void)
     normalize_directions();
     gb_scene scene;
     build_floor(&scene);
-    hand_octree *h = calloc(1, sizeof *h);
+    floor_octree *h = calloc(1, sizeof *h);
     gb_light_octree octree;
     if (!h)
         return 1;
@@ -695,13 +532,13 @@ int main(void)
     gb_error error;
     CHECK(gb_light_octree_check(&octree, "hand-made", &error) == GB_OK,
           "the hand-made octree passes the reader's checks");
-    CHECK_EQ_INT(h->leaf_count, GRID * GRID - 2, "two leaves missing");
+    CHECK_EQ_INT(h->leaf_count, FLOOR_GRID * FLOOR_GRID - 2, "two leaves missing");
     test_by_hand(&octree);
     test_direct(&octree);
     test_gpu(&scene, &octree);
     floor_atlas atlas;
     gb_image lightmap = {0};
-    make_floor_atlas(&scene, &atlas);
+    floor_atlas_make(&scene, SQUARE, PADDING, 1, &atlas);
     test_lightmap(&scene, &octree, &atlas, &lightmap);
     if (lightmap.pixels)
         test_against_gpu_atlas(&scene, &octree, &atlas, &lightmap);

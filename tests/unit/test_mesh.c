@@ -131,10 +131,12 @@ static void test_ascii_non_finite(void)
           "a NaN in a property OpenMesh skips (quality) is accepted");
 }
 
-static size_t put_f32s(unsigned char *p, const float *values, int n)
+/* size bytes at p; how many (numbers as they are in memory: the test
+ * host is little-endian). */
+static size_t put(unsigned char *p, const void *bytes, size_t size)
 {
-    memcpy(p, values, (size_t)n * sizeof(float));  /* the test host is little-endian */
-    return (size_t)n * sizeof(float);
+    memcpy(p, bytes, size);
+    return size;
 }
 
 static void test_binary_non_finite(void)
@@ -146,23 +148,21 @@ static void test_binary_non_finite(void)
         "property list uchar int vertex_indices\nend_header\n";
     float vertices[9] = {0, 0, 0, 1, 0, 0, 0, NAN, 0};
     int32_t face[3] = {0, 1, 2};
-    size_t n = sizeof head - 1;
-    memcpy(bytes, head, n);
-    n += put_f32s(bytes + n, vertices, 9);
+    size_t n = put(bytes, head, sizeof head - 1);
+    n += put(bytes + n, vertices, sizeof vertices);
     bytes[n++] = 3;
-    memcpy(bytes + n, face, sizeof face);
-    n += sizeof face;
+    n += put(bytes + n, face, sizeof face);
     CHECK(load_fails("nan-binary.ply", bytes, n, GB_ERROR_INVALID,
                      "nan-binary.ply: vertex 2: y is not finite (nan)"),
           "binary PLY: the vertex and coordinate that is NaN");
     vertices[7] = 1;
-    put_f32s(bytes + sizeof head - 1, vertices, 9);
+    put(bytes + sizeof head - 1, vertices, sizeof vertices);
     CHECK(loads("binary.ply", bytes, n, 1), "the same PLY with a finite y loads");
 
     unsigned char stl[84 + 50] = {0};
     stl[80] = 1;
     float facet[12] = {0, 0, 1, 0, 0, 0, 1, 0, 0, INFINITY, 1, 0};
-    put_f32s(stl + 84, facet, 12);
+    put(stl + 84, facet, sizeof facet);
     CHECK(load_fails("inf-binary.stl", stl, sizeof stl, GB_ERROR_INVALID,
                      "inf-binary.stl: facet 0: vertex 2: x is not finite (inf)"),
           "binary STL: the facet, vertex and coordinate");
@@ -171,18 +171,15 @@ static void test_binary_non_finite(void)
     static const char off_head[] = "OFF BINARY\n";
     int32_t counts[3] = {3, 1, 0}, off_face[4] = {3, 0, 1, 2};
     float off_vertices[9] = {0, 0, 0, 1, 0, 0, 0, 1, -INFINITY};
-    n = sizeof off_head - 1;
-    memcpy(off, off_head, n);
-    memcpy(off + n, counts, sizeof counts);
-    n += sizeof counts;
-    n += put_f32s(off + n, off_vertices, 9);
-    memcpy(off + n, off_face, sizeof off_face);
-    n += sizeof off_face;
+    n = put(off, off_head, sizeof off_head - 1);
+    n += put(off + n, counts, sizeof counts);
+    n += put(off + n, off_vertices, sizeof off_vertices);
+    n += put(off + n, off_face, sizeof off_face);
     CHECK(load_fails("inf-binary.off", off, n, GB_ERROR_INVALID,
                      "inf-binary.off: vertex 2: z is not finite (-inf)"),
           "binary OFF: the vertex and coordinate");
     off_vertices[8] = 0;
-    put_f32s(off + sizeof off_head - 1 + sizeof counts, off_vertices, 9);
+    put(off + sizeof off_head - 1 + sizeof counts, off_vertices, sizeof off_vertices);
     CHECK(loads("binary.off", off, n, 1), "the same OFF with a finite z loads (little-endian)");
     for (int i = 0; i < 3; ++i) {   /* the Geomview byte order */
         uint32_t v = (uint32_t)counts[i];
@@ -197,53 +194,58 @@ static void test_binary_non_finite(void)
 /* Headers and counts OpenMesh crashes, loops or over-allocates on. */
 static void test_guards(void)
 {
-    CHECK(check_fails("a.ply", TEXT("ply\nformat ascii 1.0\ncomment x\nelement vertex 3\n"
-                                    "property float x\n"),
-                      GB_ERROR_PARSE, "a.ply:6: the PLY header has no end_header"),
-          "PLY without end_header (OpenMesh loops forever)");
-    CHECK(check_fails("a.ply", TEXT("ply\nformat ascii 1.0\nproperty float x\nend_header\n"),
-                      GB_ERROR_PARSE, "a.ply:3: a property before any element"),
-          "PLY property before any element (OpenMesh: segmentation fault)");
-    CHECK(check_fails("a.ply", TEXT("ply\nformat ascii abc\nend_header\n"), GB_ERROR_PARSE,
-                      "PLY version 'abc' is not a number"),
-          "PLY malformed version (OpenMesh loops forever)");
-    CHECK(check_fails("a.ply", TEXT("ply\nformat ascii 1.0\nelement vertex -1\nend_header\n"),
-                      GB_ERROR_PARSE, "element vertex: count '-1' is not a count"),
-          "PLY negative count");
-    char text[1024];
-    snprintf(text, sizeof text, "%s0 0 0\n1 0 0\n0 1 0\n300000000 0 1 2\n", ply_head);
-    CHECK(check_fails("a.ply", text, strlen(text), GB_ERROR_FORMAT,
-                      "a.ply:13: face 0: 300000000 corners, more than the rest of the file holds"),
-          "PLY face corner count beyond the file (OpenMesh: 2.2 GB, 5 s)");
-    snprintf(text, sizeof text, "%s", "ply\nformat ascii 1.0\nelement vertex 4000000000\n"
-             "property float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n");
-    CHECK(check_fails("a.ply", text, strlen(text), GB_ERROR_FORMAT,
-                      "element vertex declares 4000000000 items, more than the 7 bytes"),
-          "PLY vertex count beyond the file (OpenMesh reserves it)");
-    snprintf(text, sizeof text, "%s0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", ply_head);
-    CHECK(check_fails("a.ply", text, strlen(text), GB_ERROR_INVALID,
-                      "a.ply:13: face 0: vertex index 3 out of range (3 vertices)"),
-          "PLY vertex index out of range, named");
-    snprintf(text, sizeof text, "%s", "ply\nformat ascii 1.0\nelement vertex 3\n"
-             "property float x\nproperty float y\nproperty float z\nelement face 2\n"
-             "property list uchar int vertex_indices\nproperty list uchar float texcoord\n"
-             "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 6 0 0 1 0 0 1\n3 0 2 1 6 0 0 1 0 0 1\n");
-    CHECK(check_fails("a.ply", text, strlen(text), GB_ERROR_UNSUPPORTED,
-                      "list property texcoord is not supported"),
-          "PLY face texcoord list (OpenMesh misreads the next face)");
-    snprintf(text, sizeof text, "%s", "ply\nformat binary_little_endian 1.0\nelement vertex 0\n"
-             "property float x\ncomment last\nend_header\n");
-    CHECK(check_fails("a.ply", text, strlen(text), GB_ERROR_UNSUPPORTED,
-                      "OpenMesh would read the data from the wrong byte"),
-          "binary PLY with a comment just before end_header (OpenMesh is off by one byte)");
-    CHECK(check_fails("a.off", TEXT("OFF\n# a cube\n8 6 12\n"), GB_ERROR_UNSUPPORTED,
-                      "a.off:2: a comment ('#') in the body"),
-          "OFF comment (OpenMesh reads it as a number)");
-    CHECK(check_fails("a.off", TEXT("OFF\n3 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n"),
-                      GB_ERROR_FORMAT, "more than the file holds"),
-          "OFF face count beyond the file (OpenMesh loops over it)");
-    CHECK(check_fails("a.off", TEXT("4OFF\n"), GB_ERROR_UNSUPPORTED, "4OFF and nOFF"),
-          "4OFF refused");
+    /* gb_mesh_check on head (ply_head or none) and body: refused with
+     * result, its message holding message. */
+    static const struct {
+        const char *name, *head, *body;
+        gb_result result;
+        const char *message, *what;
+    } cases[] = {
+        {"a.ply", "", "ply\nformat ascii 1.0\ncomment x\nelement vertex 3\nproperty float x\n",
+         GB_ERROR_PARSE, "a.ply:6: the PLY header has no end_header",
+         "PLY without end_header (OpenMesh loops forever)"},
+        {"a.ply", "", "ply\nformat ascii 1.0\nproperty float x\nend_header\n", GB_ERROR_PARSE,
+         "a.ply:3: a property before any element",
+         "PLY property before any element (OpenMesh: segmentation fault)"},
+        {"a.ply", "", "ply\nformat ascii abc\nend_header\n", GB_ERROR_PARSE,
+         "PLY version 'abc' is not a number", "PLY malformed version (OpenMesh loops forever)"},
+        {"a.ply", "", "ply\nformat ascii 1.0\nelement vertex -1\nend_header\n", GB_ERROR_PARSE,
+         "element vertex: count '-1' is not a count", "PLY negative count"},
+        {"a.ply", ply_head, "0 0 0\n1 0 0\n0 1 0\n300000000 0 1 2\n", GB_ERROR_FORMAT,
+         "a.ply:13: face 0: 300000000 corners, more than the rest of the file holds",
+         "PLY face corner count beyond the file (OpenMesh: 2.2 GB, 5 s)"},
+        {"a.ply", "",
+         "ply\nformat ascii 1.0\nelement vertex 4000000000\n"
+         "property float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n",
+         GB_ERROR_FORMAT, "element vertex declares 4000000000 items, more than the 7 bytes",
+         "PLY vertex count beyond the file (OpenMesh reserves it)"},
+        {"a.ply", ply_head, "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", GB_ERROR_INVALID,
+         "a.ply:13: face 0: vertex index 3 out of range (3 vertices)",
+         "PLY vertex index out of range, named"},
+        {"a.ply", "",
+         "ply\nformat ascii 1.0\nelement vertex 3\n"
+         "property float x\nproperty float y\nproperty float z\nelement face 2\n"
+         "property list uchar int vertex_indices\nproperty list uchar float texcoord\n"
+         "end_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2 6 0 0 1 0 0 1\n3 0 2 1 6 0 0 1 0 0 1\n",
+         GB_ERROR_UNSUPPORTED, "list property texcoord is not supported",
+         "PLY face texcoord list (OpenMesh misreads the next face)"},
+        {"a.ply", "",
+         "ply\nformat binary_little_endian 1.0\nelement vertex 0\n"
+         "property float x\ncomment last\nend_header\n",
+         GB_ERROR_UNSUPPORTED, "OpenMesh would read the data from the wrong byte",
+         "binary PLY with a comment just before end_header (OpenMesh is off by one byte)"},
+        {"a.off", "", "OFF\n# a cube\n8 6 12\n", GB_ERROR_UNSUPPORTED,
+         "a.off:2: a comment ('#') in the body", "OFF comment (OpenMesh reads it as a number)"},
+        {"a.off", "", "OFF\n3 4000000000 0\n0 0 0\n1 0 0\n0 1 0\n", GB_ERROR_FORMAT,
+         "more than the file holds", "OFF face count beyond the file (OpenMesh loops over it)"},
+        {"a.off", "", "4OFF\n", GB_ERROR_UNSUPPORTED, "4OFF and nOFF", "4OFF refused"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; ++i) {
+        char text[1024];
+        snprintf(text, sizeof text, "%s%s", cases[i].head, cases[i].body);
+        CHECK(check_fails(cases[i].name, text, strlen(text), cases[i].result, cases[i].message),
+              cases[i].what);
+    }
     CHECK(load_fails("lines.off", TEXT("OFF\n3 2 0\n0 0 0\n1 0 0\n0 1 0\n2 0 1\n1 2\n"),
                      GB_ERROR_INVALID, "lines.off: no triangles (empty mesh, all degenerate)"),
           "OFF of a line and a point: degenerate faces, counted (was: faces unread, an index "

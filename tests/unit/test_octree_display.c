@@ -30,52 +30,32 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "../../runtime/bake.h"
 #include "../../runtime/context.h"
-#include "../../runtime/headless.h"
-#include "../../runtime/methods.h"
 #include "../../runtime/octree/octree.h"
 #include "../../tools/cluster/cluster.h"
 #include "../../tools/photons/photons.h"
-#include "atlas.h"
-#include "light_octree.h"
+#include "floor_octree.h"
 #include "photon_map.h"
-/* Of scene_builder.h this test needs only the quad, the light and the
- * camera. */
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"
-#include "scene_builder.h"
-#pragma GCC diagnostic pop
 #include "tap.h"
 
 #define PI 3.14159265358979323846
 
-/* The floor: FLOOR_HALF on each side of the origin in x and z, y = 0,
- * albedo KD; seen from above at CAMERA_HEIGHT with a vertical field of view
- * of CAMERA_FOV degrees: x, z within 3 tan(15°) = 0.80 of the centre. */
-#define FLOOR_HALF 2.0f
-#define KD 0.5f
-#define CAMERA_HEIGHT 3.0f
-#define CAMERA_FOV 30.0f
-#define IMAGE_SIZE 64
+/* The floor (floor_octree.h), seen from above with a vertical field of
+ * view of FLOOR_CAMERA_FOV degrees: x, z within 3 tan(15°) = 0.80 of the
+ * centre. */
 
 /* ---- scene and rendering ------------------------------------------------- */
 
 static const float sun_irradiance = 2.0f;
 static const float sun_direction[3] = {0.6f, -0.8f, 0.0f};    /* cos θ = 0.8 */
 
-/* The floor wound to face toward (its front side), seen from above. */
+/* The floor wound to face toward (its front side), seen from above, lit
+ * by the sun. */
 static void build_floor_facing(gb_scene *scene, const float toward[3])
 {
-    memset(scene, 0, sizeof *scene);
-    uint32_t grey = add_grey(scene, KD, 0.0f);
-    const float h = FLOOR_HALF;
-    const float corners[4][3] = {{-h, 0, -h}, {h, 0, -h}, {h, 0, h}, {-h, 0, h}};
-    add_quad_facing(scene, corners, toward, grey);
+    floor_scene_begin(scene, toward);
     const float irradiance[3] = {sun_irradiance, sun_irradiance, sun_irradiance};
     add_point_light(scene, GB_LIGHT_DIRECTIONAL, NULL, sun_direction, irradiance);
-    const float eye[3] = {0, CAMERA_HEIGHT, 0}, target[3] = {0, 0, 0};
-    set_camera(scene, eye, target, CAMERA_FOV, IMAGE_SIZE, IMAGE_SIZE);
     scene_done(scene);
 }
 
@@ -85,58 +65,15 @@ static void build_sunlit_floor(gb_scene *scene)
     build_floor_facing(scene, above);
 }
 
-/* A fresh folder for NAME.lot. */
-static int make_folder(char *folder, size_t size)
-{
-    const char *tmp = getenv("TMPDIR");
-    snprintf(folder, size, "%s/gibake-octree-display.XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    return mkdtemp(folder) != NULL;
-}
-
-/* Writes octree as FOLDER/floor.lot and renders the octree's indirect term
- * of scene with it (gbview --method octree --terms indirect --bake FOLDER),
- * size x size pixels; through atlas (--atlas FILE) unless it is NULL. */
-static int render_octree_through(const gb_scene *scene, const gb_light_octree *octree,
-                                 const char *atlas, int size, gb_image *image)
-{
-    char folder[1024], path[1100], scene_path[1100];
-    gb_error error;
-    if (!make_folder(folder, sizeof folder))
-        return 0;
-    snprintf(path, sizeof path, "%s/floor.lot", folder);
-    snprintf(scene_path, sizeof scene_path, "%s/floor.scene", folder);
-    int ok = 0;
-    gb_bake *bake = NULL;
-    if (gb_light_octree_write(path, octree, &error) != GB_OK ||
-        gb_bake_open(scene, scene_path, folder, &bake, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-    } else if (gb_bake_problem(bake, GB_BAKE_LIGHT_OCTREE)) {
-        printf("# %s\n", gb_bake_problem(bake, GB_BAKE_LIGHT_OCTREE));
-    } else {
-        gb_headless_options options = {
-            .renderer = {.method = GB_METHOD_OCTREE, .terms = GB_TERMS_INDIRECT,
-                         .width = size, .height = size, .bake = bake,
-                         .parameters = {.atlas = atlas}},
-        };
-        ok = gb_render_headless(scene, &options, image, NULL, &error) == GB_OK;
-        if (!ok)
-            printf("# %s\n", error.message);
-    }
-    gb_bake_release(bake);
-    unlink(path);
-    rmdir(folder);
-    return ok;
-}
-
 static int render_octree_at(const gb_scene *scene, const gb_light_octree *octree, int size,
                             gb_image *image)
 {
-    return render_octree_through(scene, octree, NULL, size, image);
+    return floor_octree_render(scene, octree, NULL, size, image);
 }
 
 static int render_octree(const gb_scene *scene, const gb_light_octree *octree, gb_image *image)
 {
-    return render_octree_at(scene, octree, IMAGE_SIZE, image);
+    return render_octree_at(scene, octree, FLOOR_IMAGE_SIZE, image);
 }
 
 static float pixel(const gb_image *image, int x, int y)
@@ -200,7 +137,7 @@ static void test_sun_over_floor(void)
     gb_image image;
     if (CHECK(render_octree(&scene, &octree, &image), "sun over a floor: octree displayed")) {
         double cos_theta = -sun_direction[1];
-        double expected = KD / PI * sun_irradiance * cos_theta;
+        double expected = FLOOR_KD / PI * sun_irradiance * cos_theta;
         double sum = 0.0, worst = 0.0;
         for (int y = 0; y < image.height; ++y)
             for (int x = 0; x < image.width; ++x) {
@@ -225,118 +162,69 @@ static void test_sun_over_floor(void)
 
 /* ---- 2. holes: a hand-made octree ---------------------------------------- */
 
-/* Depth 4 over the cube (-2, -2.1, -2) + 4: leaf edge 0.25, the floor
- * (y = 0) in layer 8, 0.1 above its bottom face. Every cell (i, 8, k) is a
- * leaf with one VDL straight up, irradiance E0 (1 + GRADIENT_X i +
- * GRADIENT_Z k), except the holes. */
-#define HAND_DEPTH 4u
-#define HAND_GRID (1u << HAND_DEPTH)
-#define HAND_LAYER 8u
+/* The hand-made octree (floor_octree.h): every leaf has one VDL straight
+ * up, irradiance E0 (1 + GRADIENT_X i + GRADIENT_Z k), except the holes. */
 #define E0 1.0f
 #define GRADIENT_X 0.05f
 #define GRADIENT_Z 0.03f
-
-typedef enum { CELL_LIT, CELL_EMPTY, CELL_MISSING } cell_kind;
-
-typedef struct hand_octree {
-    cell_kind cells[HAND_GRID][HAND_GRID];  /* [i][k] of layer HAND_LAYER */
-    gb_light_octree_node nodes[HAND_GRID * HAND_GRID * HAND_DEPTH];
-    gb_light_octree_leaf leaves[HAND_GRID * HAND_GRID];
-    gb_light_octree_vdl vdls[HAND_GRID * HAND_GRID];
-    uint32_t node_count, leaf_count, vdl_count;
-} hand_octree;
 
 static float cell_irradiance(uint32_t i, uint32_t k)
 {
     return E0 * (1.0f + GRADIENT_X * (float)i + GRADIENT_Z * (float)k);
 }
 
-/* Is there a leaf in the cube of level `level` at cell (x, y, z)? */
-static int has_leaf(const hand_octree *h, uint32_t level, uint32_t x, uint32_t y, uint32_t z)
+static const float up[3] = {0, 1, 0};
+
+static uint32_t fill_vdl(uint32_t i, uint32_t k, gb_light_octree_vdl *vdl)
 {
-    uint32_t span = 1u << (HAND_DEPTH - level);
-    if (HAND_LAYER < y * span || HAND_LAYER >= (y + 1) * span)
+    float e = cell_irradiance(i, k);
+    vdl->irradiance[0] = vdl->irradiance[1] = vdl->irradiance[2] = e;
+    vdl->direction = gb_photon_pack_direction(up);
+    return 1;
+}
+
+static void make_octree(floor_octree *h, const gb_scene *scene, gb_light_octree *octree)
+{
+    floor_octree_make(h, up, 1, fill_vdl, scene, octree);
+}
+
+/* The floor facing toward, the hand-made octree without holes over it, and
+ * the walk's image of it (checked as `what`): 1 when there is an image. */
+typedef struct walked_floor {
+    gb_scene scene;
+    floor_octree *h;
+    gb_light_octree octree;
+    gb_image walk;
+} walked_floor;
+
+static int walk_floor(walked_floor *w, const float toward[3], const char *what)
+{
+    build_floor_facing(&w->scene, toward);
+    if (!(w->h = calloc(1, sizeof *w->h)))
         return 0;
-    for (uint32_t i = x * span; i < (x + 1) * span; ++i)
-        for (uint32_t k = z * span; k < (z + 1) * span; ++k)
-            if (h->cells[i][k] != CELL_MISSING)
-                return 1;
-    return 0;
+    make_octree(w->h, &w->scene, &w->octree);
+    return CHECK(render_octree(&w->scene, &w->octree, &w->walk), what);
 }
 
-static uint32_t add_leaf(hand_octree *h, uint32_t i, uint32_t k)
+static void walked_floor_free(walked_floor *w, int walked)
 {
-    gb_light_octree_leaf *leaf = &h->leaves[h->leaf_count];
-    const float up[3] = {0, 1, 0};
-    memset(leaf, 0, sizeof *leaf);
-    memcpy(leaf->normal, up, sizeof leaf->normal);
-    leaf->cell[0] = i;
-    leaf->cell[1] = HAND_LAYER;
-    leaf->cell[2] = k;
-    leaf->first_vdl = h->vdl_count;
-    if (h->cells[i][k] == CELL_LIT) {
-        gb_light_octree_vdl *vdl = &h->vdls[h->vdl_count++];
-        float e = cell_irradiance(i, k);
-        vdl->irradiance[0] = vdl->irradiance[1] = vdl->irradiance[2] = e;
-        vdl->direction = gb_photon_pack_direction(up);
-        leaf->vdl_count = 1;
-    }
-    return h->leaf_count++;
-}
-
-/* The node pool in preorder, leaves in Morton order (children in order
- * c = x | y << 1 | z << 2, as the format says). */
-static uint32_t build_node(hand_octree *h, uint32_t level, uint32_t x, uint32_t y, uint32_t z)
-{
-    if (!has_leaf(h, level, x, y, z))
-        return GB_LIGHT_OCTREE_NONE;
-    if (level == HAND_DEPTH)
-        return add_leaf(h, x, z);
-    uint32_t node = h->node_count++;
-    for (uint32_t c = 0; c < 8; ++c)
-        h->nodes[node].child[c] =
-            build_node(h, level + 1, 2 * x + (c & 1), 2 * y + (c >> 1 & 1), 2 * z + (c >> 2));
-    return node;
-}
-
-static void make_octree(hand_octree *h, const gb_scene *scene, gb_light_octree *octree)
-{
-    h->node_count = h->leaf_count = h->vdl_count = 0;
-    build_node(h, 0, 0, 0, 0);
-    memset(octree, 0, sizeof *octree);
-    gb_light_octree_header *header = &octree->header;
-    header->depth = HAND_DEPTH;
-    header->node_count = h->node_count;
-    header->leaf_count = h->leaf_count;
-    header->vdl_count = h->vdl_count;
-    header->origin[0] = -2.0f;
-    header->origin[1] = -2.1f;
-    header->origin[2] = -2.0f;
-    header->size = 4.0f;
-    header->scene_hash = scene->hash;
-    header->photon_count = 1;
-    header->emitted_count = 1;
-    header->knn = 1;
-    header->radius = 1.0f;
-    header->vdls_max = 1;
-    header->max_spread = 15.0f;
-    header->flattening = 0.5f;
-    octree->nodes = h->nodes;
-    octree->leaves = h->leaves;
-    octree->vdls = h->vdls;
+    if (walked)
+        gb_image_free(&w->walk);
+    free(w->h);
+    gb_scene_free(&w->scene);
 }
 
 /* What the display may show on the floor: Kd/pi times the leaves'
  * irradiances, interpolated (a convex combination of them). */
-static void leaf_range(const hand_octree *h, double *low, double *high)
+static void leaf_range(const floor_octree *h, double *low, double *high)
 {
     *low = INFINITY;
     *high = 0.0;
-    for (uint32_t i = 0; i < HAND_GRID; ++i)
-        for (uint32_t k = 0; k < HAND_GRID; ++k)
+    for (uint32_t i = 0; i < FLOOR_GRID; ++i)
+        for (uint32_t k = 0; k < FLOOR_GRID; ++k)
             if (h->cells[i][k] == CELL_LIT) {
-                *low = fmin(*low, KD / PI * cell_irradiance(i, k));
-                *high = fmax(*high, KD / PI * cell_irradiance(i, k));
+                *low = fmin(*low, FLOOR_KD / PI * cell_irradiance(i, k));
+                *high = fmax(*high, FLOOR_KD / PI * cell_irradiance(i, k));
             }
 }
 
@@ -360,23 +248,11 @@ static double largest_jump(const gb_image *image)
     return worst;
 }
 
-/* The holes, all inside the view (cells 4..11 in x and z): a missing leaf,
- * a leaf without VDLs beside a lit one, and an L of three (a missing leaf
- * between two empty ones) whose corner window keeps a single lit leaf. */
-static void punch_holes(hand_octree *h)
-{
-    h->cells[6][6] = CELL_MISSING;
-    h->cells[9][6] = CELL_EMPTY;
-    h->cells[9][9] = CELL_MISSING;
-    h->cells[10][9] = CELL_EMPTY;
-    h->cells[9][10] = CELL_EMPTY;
-}
-
 /* Straight above the centre of a missing leaf, on an odd image, the middle
  * pixel's ray goes through that centre, where every weight of the 2 x 2
  * windows around but the missing leaf's own vanishes (the trilinear
  * weights there are 1 for it, 0 for the others). */
-static void test_hole_centres(const hand_octree *h, gb_scene *scene,
+static void test_hole_centres(const floor_octree *h, gb_scene *scene,
                               const gb_light_octree *octree)
 {
     static const uint32_t holes[2][2] = {{6, 6}, {9, 9}};
@@ -407,20 +283,17 @@ static void test_hole_centres(const hand_octree *h, gb_scene *scene,
 
 static void test_holes(void)
 {
-    gb_scene scene;
-    build_sunlit_floor(&scene);
-    hand_octree *h = calloc(1, sizeof *h);
-    gb_light_octree octree;
-    gb_image whole, holed;
+    walked_floor w;
+    int rendered = walk_floor(&w, up, "whole hand-made octree displayed");
+    floor_octree *h = w.h;
+    gb_image holed;
     if (!h)
         return;
-    make_octree(h, &scene, &octree);
-    int rendered = CHECK(render_octree(&scene, &octree, &whole), "whole hand-made octree displayed");
-    punch_holes(h);
-    make_octree(h, &scene, &octree);
-    CHECK_EQ_INT(h->leaf_count, HAND_GRID * HAND_GRID - 2, "holes: two leaves missing");
-    CHECK_EQ_INT(h->vdl_count, HAND_GRID * HAND_GRID - 5, "holes: three leaves without VDLs");
-    if (CHECK(render_octree(&scene, &octree, &holed), "octree with holes displayed") &&
+    floor_octree_punch_holes(h);
+    make_octree(h, &w.scene, &w.octree);
+    CHECK_EQ_INT(h->leaf_count, FLOOR_GRID * FLOOR_GRID - 2, "holes: two leaves missing");
+    CHECK_EQ_INT(h->vdl_count, FLOOR_GRID * FLOOR_GRID - 5, "holes: three leaves without VDLs");
+    if (CHECK(render_octree(&w.scene, &w.octree, &holed), "octree with holes displayed") &&
         rendered) {
         double low, high, darkest = INFINITY, brightest = 0.0;
         leaf_range(h, &low, &high);
@@ -435,91 +308,39 @@ static void test_holes(void)
          * both are at least E0 Kd/pi: a relative jump of at most 0.16.
          * A black seam would jump by 100 %. */
         double bound = 2.0 * (GRADIENT_X + GRADIENT_Z);
-        double smooth = largest_jump(&whole), jump = largest_jump(&holed);
+        double smooth = largest_jump(&w.walk), jump = largest_jump(&holed);
         int differ = 0;
-        for (size_t i = 0; i < (size_t)IMAGE_SIZE * IMAGE_SIZE; ++i)
-            differ += holed.pixels[3 * i] != whole.pixels[3 * i];
+        for (size_t i = 0; i < (size_t)FLOOR_IMAGE_SIZE * FLOOR_IMAGE_SIZE; ++i)
+            differ += holed.pixels[3 * i] != w.walk.pixels[3 * i];
         printf("# leaves Kd/pi E in [%.5g, %.5g]; with holes the floor shows [%.5g, %.5g]; "
                "largest relative jump between neighbours %.4f (no holes %.4f, bound %.2f); "
                "%d of %d pixels changed\n",
                low, high, darkest, brightest, jump, smooth, bound, differ,
-               IMAGE_SIZE * IMAGE_SIZE);
+               FLOOR_IMAGE_SIZE * FLOOR_IMAGE_SIZE);
         CHECK(all_finite(&holed), "holes: every pixel finite (no NaN, no infinity)");
         CHECK(darkest >= low * (1.0 - 1e-5) && brightest <= high * (1.0 + 1e-5),
               "holes: every pixel within the leaves' range (no black seam)");
         CHECK(jump <= bound, "holes: neighbouring pixels differ by at most 0.16 (relative)");
-        CHECK(differ > 0 && differ < IMAGE_SIZE * IMAGE_SIZE / 2,
+        CHECK(differ > 0 && differ < FLOOR_IMAGE_SIZE * FLOOR_IMAGE_SIZE / 2,
               "holes: only the pixels near a hole change");
         /* Without holes the field is linear and trilinear interpolation
          * reproduces it: a pixel's jump is the gradient over one pixel. */
         CHECK(smooth < 0.02, "no holes: neighbouring pixels differ by under 2 %");
     }
-    test_hole_centres(h, &scene, &octree);
-    if (rendered)
-        gb_image_free(&whole);
+    test_hole_centres(h, &w.scene, &w.octree);
     gb_image_free(&holed);
-    free(h);
-    gb_scene_free(&scene);
+    walked_floor_free(&w, rendered);
 }
 
 /* ---- 4. through the atlas ------------------------------------------------ */
 
-/* The floor laid flat in an atlas by hand: texel (x, z) of a square of
- * ATLAS_SQUARE texels per chart, 2 texels of padding. With one chart both
- * triangles share the square; with two, each triangle has a square of its
- * own, side by side, so that the quad's diagonal is a seam between charts.
- * The octree rendered into it and shown through it (octree_atlas.h) must
- * give the walk's image, the seam included. */
+/* The floor laid flat in an atlas by hand (floor_octree.h's floor_atlas):
+ * a square of ATLAS_SQUARE texels per chart, 2 texels of padding, one
+ * chart or two (the quad's diagonal a seam between them). The octree
+ * rendered into it and shown through it (octree_atlas.h) must give the
+ * walk's image, the seam included. */
 #define ATLAS_SQUARE 252
 #define ATLAS_PADDING 2
-
-typedef struct floor_atlas {
-    gb_atlas atlas;
-    float uvs[2 * 6];
-    uint32_t charts[2];
-    gb_atlas_chart records[2];
-} floor_atlas;
-
-/* Whether (x, z) -> (u, v) keeps the floor's triangles counterclockwise;
- * otherwise (z, x) -> (u, v) does. */
-static int keeps_winding(const gb_scene *scene)
-{
-    const float *p[3];
-    for (int c = 0; c < 3; ++c)
-        p[c] = scene->positions + 3 * scene->indices[c];
-    return (p[1][0] - p[0][0]) * (p[2][2] - p[0][2]) - (p[1][2] - p[0][2]) * (p[2][0] - p[0][0]) >
-           0.0f;
-}
-
-static void make_floor_atlas(const gb_scene *scene, int chart_count, floor_atlas *a)
-{
-    const uint32_t side = ATLAS_SQUARE + 2 * ATLAS_PADDING;
-    int straight = keeps_winding(scene);
-    memset(a, 0, sizeof *a);
-    for (uint32_t t = 0; t < 2; ++t) {
-        uint32_t chart = chart_count == 1 ? 0 : t;
-        a->charts[t] = chart;
-        for (int c = 0; c < 3; ++c) {
-            const float *p = scene->positions + 3 * scene->indices[3 * t + c];
-            float s = (p[straight ? 0 : 2] + FLOOR_HALF) / (2.0f * FLOOR_HALF);
-            float r = (p[straight ? 2 : 0] + FLOOR_HALF) / (2.0f * FLOOR_HALF);
-            a->uvs[6 * t + 2 * c] =
-                (float)(chart * side + ATLAS_PADDING + s * ATLAS_SQUARE) / (chart_count * side);
-            a->uvs[6 * t + 2 * c + 1] = (float)(ATLAS_PADDING + r * ATLAS_SQUARE) / side;
-        }
-    }
-    for (int chart = 0; chart < chart_count; ++chart)
-        a->records[chart] = (gb_atlas_chart){
-            chart_count == 1 ? 2 : 1, 0.0f, 0.0f, 0.0f,
-            {chart * side + ATLAS_PADDING, ATLAS_PADDING, ATLAS_SQUARE, ATLAS_SQUARE}};
-    a->atlas.header = (gb_atlas_header){
-        .scene_hash = scene->hash, .triangle_count = 2, .chart_count = (uint32_t)chart_count,
-        .width = (uint32_t)chart_count * side, .height = side,
-        .texels_per_unit = ATLAS_SQUARE / (2.0f * FLOOR_HALF), .padding = ATLAS_PADDING};
-    a->atlas.uvs = a->uvs;
-    a->atlas.charts = a->charts;
-    a->atlas.chart_records = a->records;
-}
 
 /* The largest relative difference between two images of the floor. */
 static double largest_difference(const gb_image *a, const gb_image *b)
@@ -539,22 +360,13 @@ static double atlas_against_walk(const gb_scene *scene, const gb_light_octree *o
                                  int chart_count, const gb_image *walk)
 {
     floor_atlas a;
-    make_floor_atlas(scene, chart_count, &a);
-    char folder[1024], path[1100];
-    gb_error error;
+    floor_atlas_make(scene, ATLAS_SQUARE, ATLAS_PADDING, (uint32_t)chart_count, &a);
     gb_image image;
     double worst = -1.0;
-    if (!make_folder(folder, sizeof folder))
-        return worst;
-    snprintf(path, sizeof path, "%s/floor.atlas", folder);
-    if (gb_atlas_write(path, &a.atlas, &error) != GB_OK)
-        printf("# %s\n", error.message);
-    else if (render_octree_through(scene, octree, path, IMAGE_SIZE, &image)) {
+    if (floor_octree_render(scene, octree, &a.atlas, FLOOR_IMAGE_SIZE, &image)) {
         worst = all_finite(&image) ? largest_difference(&image, walk) : INFINITY;
         gb_image_free(&image);
     }
-    unlink(path);
-    rmdir(folder);
     return worst;
 }
 
@@ -572,27 +384,19 @@ static double atlas_against_walk(const gb_scene *scene, const gb_light_octree *o
 
 static void test_atlas(void)
 {
-    gb_scene scene;
-    build_sunlit_floor(&scene);
-    hand_octree *h = calloc(1, sizeof *h);
-    gb_light_octree octree;
-    gb_image walk;
-    if (!h)
-        return;
-    make_octree(h, &scene, &octree);
-    if (CHECK(render_octree(&scene, &octree, &walk), "atlas: the walk displayed")) {
-        double one = atlas_against_walk(&scene, &octree, 1, &walk);
-        double two = atlas_against_walk(&scene, &octree, 2, &walk);
+    walked_floor w;
+    int walked = walk_floor(&w, up, "atlas: the walk displayed");
+    if (walked) {
+        double one = atlas_against_walk(&w.scene, &w.octree, 1, &w.walk);
+        double two = atlas_against_walk(&w.scene, &w.octree, 2, &w.walk);
         printf("# through the atlas against the walk, largest relative pixel difference: "
                "one chart %.3g, two charts (a seam on the diagonal) %.3g\n", one, two);
         CHECK(one >= 0.0 && one <= ATLAS_TOLERANCE,
               "atlas of one chart: the walk's image within 10^-5");
         CHECK(two >= 0.0 && two <= SEAM_TOLERANCE,
               "atlas of two charts: the walk's image within 0.15 %, the seam included");
-        gb_image_free(&walk);
     }
-    free(h);
-    gb_scene_free(&scene);
+    walked_floor_free(&w, walked);
 }
 
 /* The floor wound to face down, seen from above: the camera sees its back,
@@ -600,30 +404,22 @@ static void test_atlas(void)
  * atlas holds in its second layer. */
 static void test_atlas_back_side(void)
 {
-    gb_scene scene;
     const float below[3] = {0, -1, 0};
-    build_floor_facing(&scene, below);
-    hand_octree *h = calloc(1, sizeof *h);
-    gb_light_octree octree;
-    gb_image walk;
-    if (!h)
-        return;
-    make_octree(h, &scene, &octree);
-    if (CHECK(render_octree(&scene, &octree, &walk), "atlas, back side: the walk displayed")) {
+    walked_floor w;
+    int walked = walk_floor(&w, below, "atlas, back side: the walk displayed");
+    if (walked) {
         double low, high;
-        leaf_range(h, &low, &high);
-        double difference = atlas_against_walk(&scene, &octree, 1, &walk);
+        leaf_range(w.h, &low, &high);
+        double difference = atlas_against_walk(&w.scene, &w.octree, 1, &w.walk);
+        double centre = pixel(&w.walk, FLOOR_IMAGE_SIZE / 2, FLOOR_IMAGE_SIZE / 2);
         printf("# the floor's back seen: the walk shows %.4g at the centre (leaves from "
                "%.4g); through the atlas, largest relative pixel difference %.3g\n",
-               pixel(&walk, IMAGE_SIZE / 2, IMAGE_SIZE / 2), low, difference);
-        CHECK(pixel(&walk, IMAGE_SIZE / 2, IMAGE_SIZE / 2) >= low * (1.0 - 1e-5),
-              "atlas, back side: the walk lights the side seen");
+               centre, low, difference);
+        CHECK(centre >= low * (1.0 - 1e-5), "atlas, back side: the walk lights the side seen");
         CHECK(difference >= 0.0 && difference <= ATLAS_TOLERANCE,
               "atlas, back side: the atlas's back layer gives the walk's image within 10^-5");
-        gb_image_free(&walk);
     }
-    free(h);
-    gb_scene_free(&scene);
+    walked_floor_free(&w, walked);
 }
 
 /* ---- 3. VDL direction packing -------------------------------------------- */

@@ -10,6 +10,7 @@
 #include "output_file.h"
 #include "scratch.h"
 #include "tap.h"
+#include "tap_printf.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -381,6 +382,21 @@ static void test_check(void)
     unlink(scratch_path("dangling"));
 }
 
+/* path holding "old", stdout flushed, then fork(): 0 in the child, its pid
+ * in the parent. */
+static pid_t fork_over_old(const char *path)
+{
+    scratch_write_text(path, "old");
+    fflush(stdout);
+    return fork();
+}
+
+/* The old file at path as it was, and no temporary beside it. */
+static int old_intact(const char *path)
+{
+    return strcmp(read_text(path), "old") == 0 && count_temporaries("") == 0;
+}
+
 /* ---- limits ---- */
 
 /* In a child limited to 1 KiB files: writing 4 KiB fails with EFBIG (the
@@ -388,9 +404,7 @@ static void test_check(void)
 static void test_file_size_limit(void)
 {
     const char *path = scratch_path("limited.bin");
-    scratch_write_text(path, "old");
-    fflush(stdout);
-    pid_t child = fork();
+    pid_t child = fork_over_old(path);
     if (child == 0) {
         struct rlimit limit = {1024, 1024};
         setrlimit(RLIMIT_FSIZE, &limit);
@@ -405,19 +419,18 @@ static void test_file_size_limit(void)
     waitpid(child, &status, 0);
     CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0,
           "past a file-size limit: an error 'cannot write: File too large', no SIGXFSZ kill");
-    CHECK(strcmp(read_text(path), "old") == 0 && count_temporaries("") == 0,
-          "... the old file is kept and the temporary removed");
+    CHECK(old_intact(path), "... the old file is kept and the temporary removed");
     unlink(path);
 }
 
 /* ---- signals ---- */
 
-/* A child opens path, writes part of it, then sends itself signal_number
- * (ignored first when ignore); returns the child's wait status. */
+/* Over path holding "old", a child opens path, writes part of it, then
+ * sends itself signal_number (ignored first when ignore); returns the
+ * child's wait status. */
 static int signalled_child(const char *path, int signal_number, int ignore)
 {
-    fflush(stdout);
-    pid_t child = fork();
+    pid_t child = fork_over_old(path);
     if (child == 0) {
         if (ignore)
             signal(signal_number, SIG_IGN);
@@ -440,24 +453,17 @@ static void test_signals(void)
     static const int signals[] = {SIGINT, SIGTERM, SIGHUP};
     static const char *names[] = {"SIGINT", "SIGTERM", "SIGHUP"};
     const char *path = scratch_path("signalled.bin");
-    char label[128];
     for (int i = 0; i < 3; ++i) {
-        scratch_write_text(path, "old");
         int status = signalled_child(path, signals[i], 0);
-        snprintf(label, sizeof label, "%s while the temporary exists: the child dies by it",
-                 names[i]);
-        CHECK(WIFSIGNALED(status) && WTERMSIG(status) == signals[i], label);
-        snprintf(label, sizeof label, "%s: the old file is intact, the temporary removed",
-                 names[i]);
-        CHECK(strcmp(read_text(path), "old") == 0 && count_temporaries("") == 0, label);
+        CHECKF(WIFSIGNALED(status) && WTERMSIG(status) == signals[i],
+               "%s while the temporary exists: the child dies by it", names[i]);
+        CHECKF(old_intact(path), "%s: the old file is intact, the temporary removed", names[i]);
     }
-    scratch_write_text(path, "old");
     int status = signalled_child(path, SIGINT, 1);
     CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0,
           "an ignored SIGINT stays ignored (a background job): the write completes");
     CHECK(strcmp(read_text(path), "partial and the rest") == 0 && count_temporaries("") == 0,
           "... with the whole new file");
-    scratch_write_text(path, "old");
     status = signalled_child(path, SIGKILL, 0);
     CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL, "SIGKILL kills the child");
     CHECK(strcmp(read_text(path), "old") == 0,
@@ -501,9 +507,7 @@ static void *hold_output(void *argument)
 static void test_signal_to_another_thread(void)
 {
     const char *path = scratch_path("threaded.bin");
-    scratch_write_text(path, "old");
-    fflush(stdout);
-    pid_t child = fork();
+    pid_t child = fork_over_old(path);
     if (child == 0) {
         alarm(20);   /* only a broken forward would wait that long: SIGALRM fails the check */
         holder h = {path, {-1, -1}, {-1, -1}};
@@ -520,7 +524,7 @@ static void test_signal_to_another_thread(void)
     waitpid(child, &status, 0);
     CHECK(WIFSIGNALED(status) && WTERMSIG(status) == SIGINT,
           "SIGINT taken by a thread that writes nothing: sent on, the process dies by it");
-    CHECK(strcmp(read_text(path), "old") == 0 && count_temporaries("") == 0,
+    CHECK(old_intact(path),
           "... the writer thread removed its temporary, the old file is intact");
     unlink(path);
 }

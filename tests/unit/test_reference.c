@@ -169,15 +169,22 @@ static void build_plane(gb_scene *scene, float kd, float ks, float ns)
     set_camera(scene, eye, target, 20.0f, 32, 32);
 }
 
+/* The same plane under a point light, finished. */
+static void build_point_lit_plane(gb_scene *scene, float kd, float ks, float ns,
+                                  const float position[3], const float intensity[3])
+{
+    build_plane(scene, kd, ks, ns);
+    add_point_light(scene, GB_LIGHT_POINT, position, NULL, intensity);
+    scene_done(scene);
+}
+
 static const float sample_points[4][2] = {{0, 0}, {1, 0.5f}, {-2, 1}, {3, -3}};
 
 static void test_point_light(void)
 {
     gb_scene scene;
-    build_plane(&scene, 0.5f, 0.3f, 10.0f);
     const float position[3] = {0, 2, 0}, intensity[3] = {10, 5, 2};
-    add_point_light(&scene, GB_LIGHT_POINT, position, NULL, intensity);
-    scene_done(&scene);
+    build_point_lit_plane(&scene, 0.5f, 0.3f, 10.0f, position, intensity);
     tracer t;
     tracer_make(&t, &scene, GB_REFERENCE_DIRECT, NULL);
     double worst = 0;
@@ -210,10 +217,8 @@ static double plane_under_light(const gb_camera_frame *frame, double x, double y
 static void test_point_light_image(void)
 {
     gb_scene scene;
-    build_plane(&scene, 0.6f, 0.0f, 0.0f);
     const float position[3] = {0.5f, 3, 0.5f}, intensity[3] = {20, 20, 20};
-    add_point_light(&scene, GB_LIGHT_POINT, position, NULL, intensity);
-    scene_done(&scene);
+    build_point_lit_plane(&scene, 0.6f, 0.0f, 0.0f, position, intensity);
     gb_image image = render(&scene, (gb_reference_options){.mode = GB_REFERENCE_DIRECT,
                                                             .spp = 256});
     gb_camera_frame frame;

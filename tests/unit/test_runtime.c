@@ -18,9 +18,8 @@
 #include "../../runtime/mat4.h"
 #include "../../runtime/methods.h"
 #include "../../runtime/view.h"
-#include "../../tools/imgdiff/image_error.h"
-#include "../../tools/reference/reference.h"
 #include "camera.h"
+#include "headless_render.h"
 #include "scene.h"
 #include "scratch.h"
 #include "tap.h"
@@ -31,20 +30,6 @@
  * light's edges); without shadows about 0.026. The threshold sits between. */
 #define DIRECT_RELATIVE_MSE_MAX 0.004
 enum { SIZE = 128 };
-
-static char root[2048];
-
-static int load_cornell(gb_scene *scene)
-{
-    char path[4096];
-    snprintf(path, sizeof path, "%s/scenes/cornell/cornell.scene", root);
-    gb_error error;
-    if (gb_scene_load(path, NULL, scene, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-        return 0;
-    }
-    return 1;
-}
 
 static void test_radical_inverse(void)
 {
@@ -239,23 +224,7 @@ static int render(const gb_scene *scene, uint32_t camera, int width, int height,
         .camera = camera,
         .supersample = supersample,
     };
-    gb_error error;
-    if (gb_render_headless(scene, &options, image, NULL, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-        return 0;
-    }
-    return 1;
-}
-
-static double relative_mse(const gb_image *image, const gb_image *reference)
-{
-    gb_image_error measures;
-    gb_error error;
-    if (gb_image_error_compute(image, reference, NULL, &measures, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-        return INFINITY;
-    }
-    return measures.relative_mse;
+    return render_headless(scene, &options, image);
 }
 
 static void test_against_reference(const gb_scene *scene)
@@ -264,12 +233,8 @@ static void test_against_reference(const gb_scene *scene)
         .mode = GB_REFERENCE_DIRECT, .spp = 64, .width = SIZE, .height = SIZE,
     };
     gb_image reference, frame, unshadowed;
-    gb_error error;
-    if (!CHECK(gb_reference_render(scene, &options, &reference, NULL, &error) == GB_OK,
-               "reference --mode direct renders")) {
-        printf("# %s\n", error.message);
+    if (!CHECK(render_reference(scene, &options, &reference), "reference --mode direct renders"))
         return;
-    }
     if (!CHECK(render(scene, 0, SIZE, SIZE, 0, 4, &frame), "supersampled 4x4")) {
         gb_image_free(&reference);
         return;
@@ -339,8 +304,6 @@ static void test_renders(gb_scene *scene)
 
 int main(void)
 {
-    const char *env = getenv("GB_ROOT");
-    snprintf(root, sizeof root, "%s", env && *env ? env : ".");
     test_radical_inverse();
     test_matrices();
     test_camera_projection();

@@ -16,13 +16,17 @@
 #include "image.h"
 #include "scratch.h"
 #include "tap.h"
+#include "tap_printf.h"
 
 static char root[2048];
 
-static const char *shared(const char *relative, char *out, size_t size)
+/* The path of a shared scene (../shared/scenes beside the tree), in a
+ * buffer of its own that the next call overwrites. */
+static const char *shared(const char *relative)
 {
-    snprintf(out, size, "%s/../shared/scenes/%s", root, relative);
-    return out;
+    static char path[4096];
+    snprintf(path, sizeof path, "%s/../shared/scenes/%s", root, relative);
+    return path;
 }
 
 /* Loads path; on failure prints the message as a TAP comment. */
@@ -33,6 +37,21 @@ static int load(const char *path, const gb_scene_options *options, gb_scene *sce
     if (result != GB_OK)
         printf("#   %s\n", error.message);
     return result == GB_OK;
+}
+
+/* A shared scene loaded, checked as what. */
+static int load_shared(const char *relative, const gb_scene_options *options, gb_scene *scene,
+                       const char *what)
+{
+    return CHECK(load(shared(relative), options, scene), what);
+}
+
+/* A scene's triangle and vertex counts, as its README gives them. */
+static void check_counts(const gb_scene *scene, const char *name, uint32_t triangles,
+                         uint32_t vertices)
+{
+    CHECK_EQ_INTF(scene->triangle_count, triangles, "%s: %u triangles", name, triangles);
+    CHECK_EQ_INTF(scene->vertex_count, vertices, "%s: %u vertices", name, vertices);
 }
 
 static const gb_material *find_material(const gb_scene *scene, const char *name)
@@ -52,10 +71,9 @@ static int emits(const gb_material *material)
 
 static void test_cornell_original(void)
 {
-    char path[4096];
     gb_scene scene;
-    if (!CHECK(load(shared("cornell-box/CornellBox-Original.obj", path, sizeof path), NULL,
-                    &scene), "Cornell box (CRLF OBJ + MTL) loads"))
+    if (!load_shared("cornell-box/CornellBox-Original.obj", NULL, &scene,
+                     "Cornell box (CRLF OBJ + MTL) loads"))
         return;
     /* Two faces of each block are in the file twice ("f -4 -3 -2 -1" of
      * shortBox and of tallBox repeat four corners given before). */
@@ -104,24 +122,20 @@ static void test_cornell_original(void)
 
 static void test_bunny(void)
 {
-    char path[4096];
     gb_scene ply, obj;
-    int ply_loaded = load(shared("stanford-bunny/bun_zipper.ply", path, sizeof path), NULL,
-                          &ply);
-    if (CHECK(ply_loaded, "bun_zipper.ply loads through OpenMesh")) {
-        CHECK_EQ_INT(ply.triangle_count, 69451, "bunny PLY: 69451 triangles");
-        CHECK_EQ_INT(ply.vertex_count, 35947, "bunny PLY: 35947 vertices");
+    int ply_loaded = load_shared("stanford-bunny/bun_zipper.ply", NULL, &ply,
+                                 "bun_zipper.ply loads through OpenMesh");
+    if (ply_loaded) {
+        check_counts(&ply, "bunny PLY", 69451, 35947);
         CHECK_EQ_INT(ply.material_count, 1, "bunny PLY: one default material");
         CHECK_NEAR(ply.materials[0].Kd[1], 0.8, 1e-7, "default material Kd 0.8");
         CHECK_NEAR(ply.bounds_min[0], -0.09469, 1e-5, "bunny PLY bounds min x (README)");
         CHECK_NEAR(ply.bounds_max[1], 0.1873, 1e-4, "bunny PLY bounds max y (README)");
     }
-    int obj_loaded = load(shared("stanford-bunny/bun_zipper.obj", path, sizeof path), NULL,
-                          &obj);
-    if (CHECK(obj_loaded, "bun_zipper.obj loads")) {
-        CHECK_EQ_INT(obj.triangle_count, 69451, "bunny OBJ: 69451 triangles");
-        CHECK_EQ_INT(obj.vertex_count, 35947, "bunny OBJ: 35947 vertices");
-    }
+    int obj_loaded = load_shared("stanford-bunny/bun_zipper.obj", NULL, &obj,
+                                 "bun_zipper.obj loads");
+    if (obj_loaded)
+        check_counts(&obj, "bunny OBJ", 69451, 35947);
     if (ply_loaded && obj_loaded)
         CHECK(ply.hash == obj.hash, "bunny PLY and OBJ hold the same scene (equal hashes)");
     if (ply_loaded)
@@ -132,13 +146,11 @@ static void test_bunny(void)
 
 static void test_bunny_gz(void)
 {
-    char path[4096];
     gb_scene scene;
-    if (!CHECK(load(shared("stanford-bunny/bunny_mcguire.obj.gz", path, sizeof path), NULL,
-                    &scene), "bunny_mcguire.obj.gz (gzip, CRLF) loads"))
+    if (!load_shared("stanford-bunny/bunny_mcguire.obj.gz", NULL, &scene,
+                     "bunny_mcguire.obj.gz (gzip, CRLF) loads"))
         return;
-    CHECK_EQ_INT(scene.triangle_count, 144046, "McGuire bunny: 144046 triangles");
-    CHECK_EQ_INT(scene.vertex_count, 72027, "McGuire bunny: 72027 vertices");
+    check_counts(&scene, "McGuire bunny", 144046, 72027);
     CHECK(scene.corner_normals != NULL, "McGuire bunny: corner normals (v/vt/vn)");
     CHECK(scene.corner_texcoords != NULL, "McGuire bunny: corner texture coordinates");
     if (scene.corner_normals) {
@@ -151,13 +163,11 @@ static void test_bunny_gz(void)
 
 static void test_teapot(void)
 {
-    char path[4096];
     gb_scene scene;
-    if (!CHECK(load(shared("utah-teapot/teapot.obj", path, sizeof path), NULL, &scene),
-               "teapot.obj (CRLF, quads, v/vt corners) loads"))
+    if (!load_shared("utah-teapot/teapot.obj", NULL, &scene,
+                     "teapot.obj (CRLF, quads, v/vt corners) loads"))
         return;
-    CHECK_EQ_INT(scene.triangle_count, 15704, "teapot: 15704 triangles");
-    CHECK_EQ_INT(scene.vertex_count, 7850, "teapot: 7850 vertices");
+    check_counts(&scene, "teapot", 15704, 7850);
     const gb_material *material = find_material(&scene, "default");
     if (CHECK(material && material->map_Kd, "teapot: material 'default' with map_Kd")) {
         const char *tail = strstr(material->map_Kd, "utah-teapot/default.png");
@@ -169,7 +179,8 @@ static void test_teapot(void)
     gb_scene_free(&scene);
 
     gb_scene_options options = {.load_textures = 1};
-    if (!CHECK(load(path, &options, &scene), "teapot loads with load_textures"))
+    if (!load_shared("utah-teapot/teapot.obj", &options, &scene,
+                     "teapot loads with load_textures"))
         return;
     material = find_material(&scene, "default");
     CHECK(material && material->texture.width == 128 && material->texture.height == 128
@@ -179,10 +190,9 @@ static void test_teapot(void)
 
 static void test_sponza(void)
 {
-    char path[4096];
     gb_scene scene;
-    if (!CHECK(load(shared("sponza-dabrovic/sponza.obj", path, sizeof path), NULL, &scene),
-               "sponza.obj (20 materials, textures checked) loads"))
+    if (!load_shared("sponza-dabrovic/sponza.obj", NULL, &scene,
+                     "sponza.obj (20 materials, textures checked) loads"))
         return;
     CHECK_EQ_INT(scene.triangle_count + scene.dropped_triangle_count +
                      scene.duplicate_triangle_count, 66450,
@@ -732,9 +742,8 @@ static void test_default_camera(void)
 
 static void test_hash_stable(void)
 {
-    char path[4096];
+    const char *path = shared("cornell-box/CornellBox-Original.obj");
     gb_scene a, b;
-    shared("cornell-box/CornellBox-Original.obj", path, sizeof path);
     if (!CHECK(load(path, NULL, &a) && load(path, NULL, &b), "Cornell box loads twice"))
         return;
     CHECK(a.hash == b.hash, "hash equal for two loads");

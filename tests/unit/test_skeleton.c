@@ -162,19 +162,34 @@ static void test_rejections(void)
     put32(edges + 4, 1);
 
     valid_header(header, 2, 1);
-    CHECK_EQ_INT(read_crafted(header, 88, nodes, 32, edges, 8, 1, &error), GB_OK,
-                 "crafted: the valid file is read");
-    CHECK_EQ_INT(read_crafted(header, 80, nodes, 32, edges, 8, 1, &error), GB_ERROR_FORMAT,
-                 "rejects: a short header");
-    CHECK_EQ_INT(read_crafted(header, 88, nodes, 16, edges, 8, 1, &error), GB_ERROR_FORMAT,
-                 "rejects: fewer node bytes than the count says");
-    CHECK(strstr(error.message, "nodes") != NULL, "rejects: the message names the section");
-    CHECK_EQ_INT(read_crafted(header, 88, nodes, 32, edges, 0, 1, &error), GB_ERROR_FORMAT,
-                 "rejects: fewer edge bytes than the count says");
-    CHECK_EQ_INT(read_crafted(header, 88, NULL, 0, edges, 8, 1, &error), GB_ERROR_FORMAT,
-                 "rejects: a missing nodes section");
-    CHECK_EQ_INT(read_crafted(NULL, 0, nodes, 32, edges, 8, 1, &error), GB_ERROR_FORMAT,
-                 "rejects: a missing header");
+    /* The valid file, then a section short or missing, one at a time. */
+    const struct {
+        const void *header;
+        uint64_t header_size;
+        const void *nodes;
+        uint64_t node_size, edge_size;
+        gb_result result;
+        const char *what;
+        int names_nodes;        /* the message names the nodes section */
+    } sections[] = {
+        {header, 88, nodes, 32, 8, GB_OK, "crafted: the valid file is read", 0},
+        {header, 80, nodes, 32, 8, GB_ERROR_FORMAT, "rejects: a short header", 0},
+        {header, 88, nodes, 16, 8, GB_ERROR_FORMAT,
+         "rejects: fewer node bytes than the count says", 1},
+        {header, 88, nodes, 32, 0, GB_ERROR_FORMAT,
+         "rejects: fewer edge bytes than the count says", 0},
+        {header, 88, NULL, 0, 8, GB_ERROR_FORMAT, "rejects: a missing nodes section", 0},
+        {NULL, 0, nodes, 32, 8, GB_ERROR_FORMAT, "rejects: a missing header", 0},
+    };
+    for (size_t i = 0; i < sizeof sections / sizeof *sections; ++i) {
+        CHECK_EQ_INT(read_crafted(sections[i].header, sections[i].header_size, sections[i].nodes,
+                                  sections[i].node_size, edges, sections[i].edge_size, 1,
+                                  &error),
+                     sections[i].result, sections[i].what);
+        if (sections[i].names_nodes)
+            CHECK(strstr(error.message, "nodes") != NULL,
+                  "rejects: the message names the section");
+    }
     CHECK(read_crafted(header, 88, nodes, 32, edges, 8, 2, &error) != GB_OK,
           "rejects: a newer format version");
 

@@ -8,6 +8,7 @@
 #include "../../tools/thin/persistence.h"
 #include "../../tools/thin/thin.h"
 #include "tap.h"
+#include "tap_printf.h"
 #include "thin_volumes.h"
 
 #include <stdio.h>
@@ -49,6 +50,14 @@ static void node_corner(const gb_skeleton *s, const gb_voxel_grid *g, uint32_t n
         corner[a] = (int)lround((s->nodes[n].position[a] - g->world_origin[a]) / g->voxel_size);
 }
 
+/* The corners of edge e's two nodes. */
+static void edge_corners(const gb_skeleton *s, const gb_voxel_grid *g, uint32_t e, int a[3],
+                         int b[3])
+{
+    node_corner(s, g, s->edges[2 * e], a);
+    node_corner(s, g, s->edges[2 * e + 1], b);
+}
+
 static int on_lattice(const gb_skeleton *s, const gb_voxel_grid *g)
 {
     for (uint32_t n = 0; n < s->node_count; ++n) {
@@ -67,30 +76,42 @@ static int on_lattice(const gb_skeleton *s, const gb_voxel_grid *g)
     return 1;
 }
 
-/* Edges join nodes one lattice step apart. */
-static int edges_are_unit(const gb_skeleton *s, const gb_voxel_grid *g)
+/* Whether some edge's corners a (its first node's) and b pass test. */
+static int some_edge(const gb_skeleton *s, const gb_voxel_grid *g,
+                     int (*test)(const int a[3], const int b[3], const int *p), const int *p)
 {
     for (uint32_t e = 0; e < s->edge_count; ++e) {
         int a[3], b[3];
-        node_corner(s, g, s->edges[2 * e], a);
-        node_corner(s, g, s->edges[2 * e + 1], b);
-        if (abs(a[0] - b[0]) + abs(a[1] - b[1]) + abs(a[2] - b[2]) != 1)
-            return 0;
+        edge_corners(s, g, e, a, b);
+        if (test(a, b, p))
+            return 1;
     }
-    return 1;
+    return 0;
+}
+
+static int not_unit(const int a[3], const int b[3], const int *unused)
+{
+    (void)unused;
+    return abs(a[0] - b[0]) + abs(a[1] - b[1]) + abs(a[2] - b[2]) != 1;
+}
+
+/* From corner p = {x, y, z, axis} one step up along axis. */
+static int steps_from(const int a[3], const int b[3], const int *p)
+{
+    return a[0] == p[0] && a[1] == p[1] && a[2] == p[2] && b[p[3]] == p[p[3]] + 1;
+}
+
+/* Edges join nodes one lattice step apart. */
+static int edges_are_unit(const gb_skeleton *s, const gb_voxel_grid *g)
+{
+    return !some_edge(s, g, not_unit, NULL);
 }
 
 /* Is there an edge between the nodes at corners p and p + unit step? */
 static int has_edge_at(const gb_skeleton *s, const gb_voxel_grid *g, const int p[3], int axis)
 {
-    for (uint32_t e = 0; e < s->edge_count; ++e) {
-        int a[3], b[3];
-        node_corner(s, g, s->edges[2 * e], a);
-        node_corner(s, g, s->edges[2 * e + 1], b);
-        if (a[0] == p[0] && a[1] == p[1] && a[2] == p[2] && b[axis] == p[axis] + 1)
-            return 1;
-    }
-    return 0;
+    const int from[4] = {p[0], p[1], p[2], axis};
+    return some_edge(s, g, steps_from, from);
 }
 
 /* No unit square of the lattice has its 4 edges in the graph while it is a
@@ -99,8 +120,7 @@ static int no_filled_square(const gb_skeleton *s, const gb_voxel_grid *g)
 {
     for (uint32_t e = 0; e < s->edge_count; ++e) {
         int p[3], q[3];
-        node_corner(s, g, s->edges[2 * e], p);
-        node_corner(s, g, s->edges[2 * e + 1], q);
+        edge_corners(s, g, e, p, q);
         int u = q[0] != p[0] ? 0 : q[1] != p[1] ? 1 : 2;
         for (int v = 0; v < 3; ++v) {
             if (v == u)
@@ -171,45 +191,35 @@ static void check_topology(const char *name, gb_voxel_grid *g, long expected_b0,
 {
     volume_finish(g);
     volume_topology t = volume_topology_of(g);
-    char what[256];
-    snprintf(what, sizeof what, "%s: empty space has b0 = %ld (flood fill)", name, expected_b0);
-    CHECK_EQ_INT(t.b0, expected_b0, what);
-    snprintf(what, sizeof what, "%s: empty space has b1 = %ld (Euler characteristic)", name,
-             expected_b1);
-    CHECK_EQ_INT(t.b1, expected_b1, what);
-    snprintf(what, sizeof what, "%s: empty space has b2 = %ld (complement)", name, expected_b2);
-    CHECK_EQ_INT(t.b2, expected_b2, what);
+    CHECK_EQ_INTF(t.b0, expected_b0, "%s: empty space has b0 = %ld (flood fill)", name,
+                  expected_b0);
+    CHECK_EQ_INTF(t.b1, expected_b1, "%s: empty space has b1 = %ld (Euler characteristic)",
+                  name, expected_b1);
+    CHECK_EQ_INTF(t.b2, expected_b2, "%s: empty space has b2 = %ld (complement)", name,
+                  expected_b2);
 
     gb_cubical_complex complex;
     gb_error error;
     gb_result built = gb_cubical_complex_build(&complex, g, &error);
-    snprintf(what, sizeof what, "%s: thin's complex has the Euler characteristic", name);
-    CHECK_EQ_INT(built ? -999 : gb_euler_characteristic(gb_cubical_complex_count(&complex)),
-                 t.euler, what);
+    CHECK_EQ_INTF(built ? -999 : gb_euler_characteristic(gb_cubical_complex_count(&complex)),
+                  t.euler, "%s: thin's complex has the Euler characteristic", name);
     gb_cubical_complex_free(&complex);
 
     outcome o = run_thin(g, NULL);
-    snprintf(what, sizeof what, "%s: thin succeeds", name);
-    CHECK_EQ_INT(o.result, GB_OK, what);
+    CHECK_EQ_INTF(o.result, GB_OK, "%s: thin succeeds", name);
     const gb_skeleton *s = &o.skeleton;
     long components = graph_components(s);
     long cycles = (long)s->edge_count - (long)s->node_count + components;
-    snprintf(what, sizeof what, "%s: skeleton has the empty space's components", name);
-    CHECK_EQ_INT(components, t.b0, what);
-    snprintf(what, sizeof what, "%s: skeleton has its independent cycles (E - V + C)", name);
-    CHECK_EQ_INT(cycles, t.b1, what);
-    snprintf(what, sizeof what, "%s: one square opened per cavity", name);
-    CHECK_EQ_INT(o.stats.cavities_opened, t.b2, what);
-    snprintf(what, sizeof what, "%s: thin: no square left", name);
-    CHECK_EQ_INT(o.stats.squares_left, 0, what);
-    snprintf(what, sizeof what, "%s: no unit square of edges over an empty voxel face", name);
-    CHECK(no_filled_square(s, g), what);
-    snprintf(what, sizeof what, "%s: nodes on lattice corners of empty voxels", name);
-    CHECK(on_lattice(s, g), what);
-    snprintf(what, sizeof what, "%s: edges are unit lattice steps", name);
-    CHECK(edges_are_unit(s, g), what);
-    snprintf(what, sizeof what, "%s: every voxel next to empty space has a node, others -1", name);
-    CHECK(o.nearest && nearest_is_consistent(g, &o), what);
+    CHECK_EQ_INTF(components, t.b0, "%s: skeleton has the empty space's components", name);
+    CHECK_EQ_INTF(cycles, t.b1, "%s: skeleton has its independent cycles (E - V + C)", name);
+    CHECK_EQ_INTF(o.stats.cavities_opened, t.b2, "%s: one square opened per cavity", name);
+    CHECK_EQ_INTF(o.stats.squares_left, 0, "%s: thin: no square left", name);
+    CHECKF(no_filled_square(s, g), "%s: no unit square of edges over an empty voxel face",
+           name);
+    CHECKF(on_lattice(s, g), "%s: nodes on lattice corners of empty voxels", name);
+    CHECKF(edges_are_unit(s, g), "%s: edges are unit lattice steps", name);
+    CHECKF(o.nearest && nearest_is_consistent(g, &o),
+           "%s: every voxel next to empty space has a node, others -1", name);
     printf("# %s: %u nodes, %u edges, %u iterations\n", name, s->node_count, s->edge_count,
            o.stats.iterations);
     free_outcome(&o);
@@ -218,115 +228,85 @@ static void check_topology(const char *name, gb_voxel_grid *g, long expected_b0,
 
 /* ---- the volumes of the issue ---- */
 
+/* A volume: a solid grid of `size`, carved by `carve` (when not NULL),
+ * then its boxes (volume_boxes); the Betti numbers of its empty space. */
+typedef struct topology_case {
+    const char *name;
+    int size[3];
+    long b0, b1, b2;
+    void (*carve)(gb_voxel_grid *g);
+    int boxes[7][7];            /* room for the VOLUME_END after six */
+} topology_case;
+
+/* A corridor along the diagonal of the xy plane: the 3 x 3 blocks around
+ * (i, i), z 1..4; the boxes after it close the grid's walls again. */
+static void carve_diagonal(gb_voxel_grid *g)
+{
+    for (int i = 1; i < 19; ++i)
+        volume_box(g, i - 1, i - 1, 1, i + 1, i + 1, 4, 0);
+}
+
+/* Empty voxels (i, i, i), each touching the next at a corner only. */
+static void carve_corners(gb_voxel_grid *g)
+{
+    for (int i = 1; i < 7; ++i)
+        volume_box(g, i, i, i, i, i, i, 0);
+}
+
+static const topology_case topology_cases[] = {
+    {"box room", {14, 12, 10}, 1, 0, 0, NULL, {{1, 1, 1, 12, 10, 8, VOLUME_EMPTY}}},
+    {"ring corridor", {16, 16, 6}, 1, 1, 0, NULL,
+     {{1, 1, 1, 14, 14, 4, VOLUME_EMPTY}, {5, 5, 1, 10, 10, 4, VOLUME_SOLID}}},
+    {"two rooms and a door", {24, 12, 9}, 1, 0, 0, NULL,
+     {{1, 1, 1, 22, 10, 7, VOLUME_EMPTY}, {11, 0, 0, 12, 11, 8, VOLUME_SOLID},
+      {11, 5, 1, 12, 6, 4, VOLUME_EMPTY}}},
+    {"room with a floor-to-ceiling pillar", {14, 14, 7}, 1, 1, 0, NULL,
+     {{1, 1, 1, 12, 12, 5, VOLUME_EMPTY}, {6, 6, 1, 7, 7, 5, VOLUME_SOLID}}},
+    {"room with two pillars", {16, 16, 7}, 1, 2, 0, NULL,
+     {{1, 1, 1, 14, 14, 5, VOLUME_EMPTY}, {4, 4, 1, 5, 5, 5, VOLUME_SOLID},
+      {10, 9, 1, 11, 11, 5, VOLUME_SOLID}}},
+    {"1-voxel corridor", {14, 3, 3}, 1, 0, 0, NULL, {{1, 1, 1, 12, 1, 1, VOLUME_EMPTY}}},
+    {"1-voxel ring corridor", {9, 9, 3}, 1, 1, 0, NULL,
+     {{1, 1, 1, 7, 1, 1, VOLUME_EMPTY}, {1, 7, 1, 7, 7, 1, VOLUME_EMPTY},
+      {1, 1, 1, 1, 7, 1, VOLUME_EMPTY}, {7, 1, 1, 7, 7, 1, VOLUME_EMPTY}}},
+    {"diagonal corridor", {20, 20, 6}, 1, 0, 0, carve_diagonal,
+     {{0, 0, 0, 19, 19, 0, VOLUME_SOLID}, {0, 0, 5, 19, 19, 5, VOLUME_SOLID},
+      {0, 0, 0, 0, 19, 5, VOLUME_SOLID}, {0, 0, 0, 19, 0, 5, VOLUME_SOLID},
+      {19, 0, 0, 19, 19, 5, VOLUME_SOLID}, {0, 19, 0, 19, 19, 5, VOLUME_SOLID}}},
+    {"voxels touching only at corners", {8, 8, 8}, 1, 0, 0, carve_corners, {{0}}},
+    {"empty space filling the grid", {10, 9, 8}, 1, 0, 0, NULL, {{0, 0, 0, 9, 8, 7, VOLUME_EMPTY}}},
+    {"corridors leaving the grid", {12, 7, 7}, 1, 0, 0, NULL,
+     {{0, 2, 2, 11, 4, 4, VOLUME_EMPTY}, {4, 0, 2, 6, 6, 4, VOLUME_EMPTY}}},
+    {"no empty voxel", {6, 5, 4}, 0, 0, 0, NULL, {{0}}},
+    {"single empty voxel", {3, 3, 3}, 1, 0, 0, NULL, {{1, 1, 1, 1, 1, 1, VOLUME_EMPTY}}},
+    {"a grid of one empty voxel", {1, 1, 1}, 1, 0, 0, NULL, {{0, 0, 0, 0, 0, 0, VOLUME_EMPTY}}},
+    {"a grid one voxel thick, cut in two", {1, 9, 1}, 2, 0, 0, NULL,
+     {{0, 0, 0, 0, 8, 0, VOLUME_EMPTY}, {0, 4, 0, 0, 4, 0, VOLUME_SOLID}}},
+    {"object floating in a room", {16, 16, 16}, 1, 0, 1, NULL,
+     {{1, 1, 1, 14, 14, 14, VOLUME_EMPTY}, {6, 5, 7, 9, 9, 9, VOLUME_SOLID}}},
+    {"two floating objects, one hollow", {18, 16, 16}, 2, 0, 2, NULL,
+     {{1, 1, 1, 16, 14, 14, VOLUME_EMPTY}, {4, 5, 5, 7, 9, 9, VOLUME_SOLID},
+      {11, 5, 5, 14, 9, 9, VOLUME_SOLID}, {12, 6, 6, 13, 8, 8, VOLUME_EMPTY}}},
+    {"floating object with a hole through it", {16, 16, 16}, 1, 1, 1, NULL,
+     {{1, 1, 1, 14, 14, 14, VOLUME_EMPTY}, {5, 5, 5, 10, 10, 10, VOLUME_SOLID},
+      {7, 5, 7, 8, 10, 8, VOLUME_EMPTY}}},
+    {"two separate rooms", {20, 8, 8}, 2, 0, 0, NULL,
+     {{1, 1, 1, 7, 6, 6, VOLUME_EMPTY}, {12, 1, 1, 18, 6, 6, VOLUME_EMPTY}}},
+    {"an object floating in a hollow floating object", {22, 22, 22}, 2, 0, 2, NULL,
+     {{1, 1, 1, 20, 20, 20, VOLUME_EMPTY}, {4, 4, 4, 17, 17, 17, VOLUME_SOLID},
+      {6, 6, 6, 15, 15, 15, VOLUME_EMPTY}, {9, 9, 9, 12, 12, 12, VOLUME_SOLID}}},
+};
+
 static void test_topology_cases(void)
 {
-    gb_voxel_grid g = volume_solid(14, 12, 10);
-    volume_box(&g, 1, 1, 1, 12, 10, 8, 0);
-    check_topology("box room", &g, 1, 0, 0);
-
-    g = volume_solid(16, 16, 6);
-    volume_box(&g, 1, 1, 1, 14, 14, 4, 0);
-    volume_box(&g, 5, 5, 1, 10, 10, 4, 1);
-    check_topology("ring corridor", &g, 1, 1, 0);
-
-    g = volume_solid(24, 12, 9);
-    volume_box(&g, 1, 1, 1, 22, 10, 7, 0);
-    volume_box(&g, 11, 0, 0, 12, 11, 8, 1);
-    volume_box(&g, 11, 5, 1, 12, 6, 4, 0);
-    check_topology("two rooms and a door", &g, 1, 0, 0);
-
-    g = volume_solid(14, 14, 7);
-    volume_box(&g, 1, 1, 1, 12, 12, 5, 0);
-    volume_box(&g, 6, 6, 1, 7, 7, 5, 1);
-    check_topology("room with a floor-to-ceiling pillar", &g, 1, 1, 0);
-
-    g = volume_solid(16, 16, 7);
-    volume_box(&g, 1, 1, 1, 14, 14, 5, 0);
-    volume_box(&g, 4, 4, 1, 5, 5, 5, 1);
-    volume_box(&g, 10, 9, 1, 11, 11, 5, 1);
-    check_topology("room with two pillars", &g, 1, 2, 0);
-
-    g = volume_solid(14, 3, 3);
-    volume_box(&g, 1, 1, 1, 12, 1, 1, 0);
-    check_topology("1-voxel corridor", &g, 1, 0, 0);
-
-    g = volume_solid(9, 9, 3);
-    volume_box(&g, 1, 1, 1, 7, 1, 1, 0);
-    volume_box(&g, 1, 7, 1, 7, 7, 1, 0);
-    volume_box(&g, 1, 1, 1, 1, 7, 1, 0);
-    volume_box(&g, 7, 1, 1, 7, 7, 1, 0);
-    check_topology("1-voxel ring corridor", &g, 1, 1, 0);
-
-    g = volume_solid(20, 20, 6);
-    for (int i = 1; i < 19; ++i)
-        volume_box(&g, i - 1, i - 1, 1, i + 1, i + 1, 4, 0);
-    volume_box(&g, 0, 0, 0, 19, 19, 0, 1);
-    volume_box(&g, 0, 0, 5, 19, 19, 5, 1);
-    volume_box(&g, 0, 0, 0, 0, 19, 5, 1);
-    volume_box(&g, 0, 0, 0, 19, 0, 5, 1);
-    volume_box(&g, 19, 0, 0, 19, 19, 5, 1);
-    volume_box(&g, 0, 19, 0, 19, 19, 5, 1);
-    check_topology("diagonal corridor", &g, 1, 0, 0);
-
-    g = volume_solid(8, 8, 8);
-    for (int i = 1; i < 7; ++i)
-        volume_box(&g, i, i, i, i, i, i, 0);
-    check_topology("voxels touching only at corners", &g, 1, 0, 0);
-
-    g = volume_solid(10, 9, 8);
-    volume_box(&g, 0, 0, 0, 9, 8, 7, 0);
-    check_topology("empty space filling the grid", &g, 1, 0, 0);
-
-    g = volume_solid(12, 7, 7);
-    volume_box(&g, 0, 2, 2, 11, 4, 4, 0);
-    volume_box(&g, 4, 0, 2, 6, 6, 4, 0);
-    check_topology("corridors leaving the grid", &g, 1, 0, 0);
-
-    g = volume_solid(6, 5, 4);
-    check_topology("no empty voxel", &g, 0, 0, 0);
-
-    g = volume_solid(3, 3, 3);
-    volume_box(&g, 1, 1, 1, 1, 1, 1, 0);
-    check_topology("single empty voxel", &g, 1, 0, 0);
-
-    g = volume_solid(1, 1, 1);
-    volume_box(&g, 0, 0, 0, 0, 0, 0, 0);
-    check_topology("a grid of one empty voxel", &g, 1, 0, 0);
-
-    g = volume_solid(1, 9, 1);
-    volume_box(&g, 0, 0, 0, 0, 8, 0, 0);
-    volume_box(&g, 0, 4, 0, 0, 4, 0, 1);
-    check_topology("a grid one voxel thick, cut in two", &g, 2, 0, 0);
-
-    g = volume_solid(16, 16, 16);
-    volume_box(&g, 1, 1, 1, 14, 14, 14, 0);
-    volume_box(&g, 6, 5, 7, 9, 9, 9, 1);
-    check_topology("object floating in a room", &g, 1, 0, 1);
-
-    g = volume_solid(18, 16, 16);
-    volume_box(&g, 1, 1, 1, 16, 14, 14, 0);
-    volume_box(&g, 4, 5, 5, 7, 9, 9, 1);
-    volume_box(&g, 11, 5, 5, 14, 9, 9, 1);
-    volume_box(&g, 12, 6, 6, 13, 8, 8, 0);
-    check_topology("two floating objects, one hollow", &g, 2, 0, 2);
-
-    g = volume_solid(16, 16, 16);
-    volume_box(&g, 1, 1, 1, 14, 14, 14, 0);
-    volume_box(&g, 5, 5, 5, 10, 10, 10, 1);
-    volume_box(&g, 7, 5, 7, 8, 10, 8, 0);
-    check_topology("floating object with a hole through it", &g, 1, 1, 1);
-
-    g = volume_solid(20, 8, 8);
-    volume_box(&g, 1, 1, 1, 7, 6, 6, 0);
-    volume_box(&g, 12, 1, 1, 18, 6, 6, 0);
-    check_topology("two separate rooms", &g, 2, 0, 0);
-
-    g = volume_solid(22, 22, 22);
-    volume_box(&g, 1, 1, 1, 20, 20, 20, 0);
-    volume_box(&g, 4, 4, 4, 17, 17, 17, 1);
-    volume_box(&g, 6, 6, 6, 15, 15, 15, 0);
-    volume_box(&g, 9, 9, 9, 12, 12, 12, 1);
-    check_topology("an object floating in a hollow floating object", &g, 2, 0, 2);
+    for (size_t c = 0; c < sizeof topology_cases / sizeof *topology_cases; ++c) {
+        const topology_case *t = &topology_cases[c];
+        gb_voxel_grid g = volume_solid(t->size[0], t->size[1], t->size[2]);
+        if (t->carve)
+            t->carve(&g);
+        volume_boxes(&g, t->boxes);
+        check_topology(t->name, &g, t->b0, t->b1, t->b2);
+    }
 }
 
 /* ---- geometry ---- */
@@ -380,11 +360,10 @@ static void check_centred(int w, int h)
  * wall, although the nodes across are nearer in a straight line. */
 static void test_grid_through_door(void)
 {
-    gb_voxel_grid g = volume_solid(28, 24, 9);
-    volume_box(&g, 1, 1, 1, 26, 20, 7, 0);
-    volume_box(&g, 12, 0, 0, 13, 23, 8, 1);
-    volume_box(&g, 12, 1, 1, 13, 3, 7, 0); /* door at one end of the wall */
-    volume_finish(&g);
+    static const int rooms[][7] = {
+        {1, 1, 1, 26, 20, 7, VOLUME_EMPTY}, {12, 0, 0, 13, 23, 8, VOLUME_SOLID},
+        {12, 1, 1, 13, 3, 7, VOLUME_EMPTY} /* the door, at one end of the wall */, {0}};
+    gb_voxel_grid g = volume_made(28, 24, 9, rooms);
     outcome o = run_thin(&g, NULL);
     CHECK_EQ_INT(o.result, GB_OK, "two rooms: thin succeeds");
     int wrong_side = 0, changed_far_from_door = 0;
@@ -422,11 +401,10 @@ static void test_grid_through_door(void)
  * the end of the other branch is nearer in a straight line but not by path. */
 static void test_grid_is_geodesic(void)
 {
-    gb_voxel_grid g = volume_solid(24, 13, 5);
-    volume_box(&g, 1, 1, 1, 22, 3, 3, 0);
-    volume_box(&g, 1, 9, 1, 22, 11, 3, 0);
-    volume_box(&g, 20, 1, 1, 22, 11, 3, 0);
-    volume_finish(&g);
+    static const int branches[][7] = {
+        {1, 1, 1, 22, 3, 3, VOLUME_EMPTY}, {1, 9, 1, 22, 11, 3, VOLUME_EMPTY},
+        {20, 1, 1, 22, 11, 3, VOLUME_EMPTY}, {0}};
+    gb_voxel_grid g = volume_made(24, 13, 5, branches);
     outcome o = run_thin(&g, NULL);
     int crossing = 0;
     for (int i = 1; i <= 17; ++i)
@@ -504,10 +482,12 @@ static void check_maps(gb_voxel_grid g, const char *what)
 static void test_maps(void)
 {
     gb_voxel_grid g = volume_solid(17, 13, 9);
-    volume_box(&g, 1, 1, 1, 15, 11, 7, 0);
-    volume_box(&g, 5, 4, 1, 6, 5, 7, 1);
-    volume_box(&g, 11, 1, 3, 15, 3, 4, 1);
-    volume_box(&g, 0, 6, 3, 0, 8, 5, 0); /* an opening onto the grid border */
+    volume_boxes(&g, (const int[][7]){{1, 1, 1, 15, 11, 7, VOLUME_EMPTY},
+                                      {5, 4, 1, 6, 5, 7, VOLUME_SOLID},
+                                      {11, 1, 3, 15, 3, 4, VOLUME_SOLID},
+                                      /* an opening onto the grid border */
+                                      {0, 6, 3, 0, 8, 5, VOLUME_EMPTY},
+                                      {0}});
     check_maps(g, "boxes");
     /* rooms of every size: random solid boxes and single voxels in an empty
      * volume (a fixed linear congruential sequence) */
@@ -563,11 +543,11 @@ static void check_nearest_ways(const char *name, const gb_voxel_grid *g, int swe
 
 static void test_nearest_ways(void)
 {
-    gb_voxel_grid g = volume_solid(30, 24, 14);
-    volume_box(&g, 1, 1, 1, 28, 22, 12, 0);
-    volume_box(&g, 8, 6, 1, 9, 7, 12, 1);
-    volume_box(&g, 12, 3, 4, 16, 8, 6, 1);
-    volume_finish(&g);
+    gb_voxel_grid g = volume_made(30, 24, 14,
+                                  (const int[][7]){{1, 1, 1, 28, 22, 12, VOLUME_EMPTY},
+                                                   {8, 6, 1, 9, 7, 12, VOLUME_SOLID},
+                                                   {12, 3, 4, 16, 8, 6, VOLUME_SOLID},
+                                                   {0}});
     check_nearest_ways("cluttered room", &g, 0);
     gb_voxel_grid_free(&g);
 
@@ -597,15 +577,14 @@ static int same_outcome(const outcome *a, const outcome *b, size_t voxels)
 
 static gb_voxel_grid cluttered_room(void)
 {
-    gb_voxel_grid g = volume_solid(30, 24, 14);
-    volume_box(&g, 1, 1, 1, 28, 22, 12, 0);
-    volume_box(&g, 8, 6, 1, 9, 7, 12, 1);
-    volume_box(&g, 18, 12, 1, 20, 14, 12, 1);
-    volume_box(&g, 12, 3, 4, 16, 8, 6, 1);
-    volume_box(&g, 3, 15, 1, 10, 16, 8, 1);
-    volume_box(&g, 22, 2, 7, 26, 6, 9, 1);
-    volume_finish(&g);
-    return g;
+    return volume_made(30, 24, 14,
+                       (const int[][7]){{1, 1, 1, 28, 22, 12, VOLUME_EMPTY},
+                                        {8, 6, 1, 9, 7, 12, VOLUME_SOLID},
+                                        {18, 12, 1, 20, 14, 12, VOLUME_SOLID},
+                                        {12, 3, 4, 16, 8, 6, VOLUME_SOLID},
+                                        {3, 15, 1, 10, 16, 8, VOLUME_SOLID},
+                                        {22, 2, 7, 26, 6, 9, VOLUME_SOLID},
+                                        {0}});
 }
 
 static void test_determinism(void)

@@ -13,13 +13,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../runtime/context.h"
-#include "../../runtime/gbuffer.h"
-#include "../../runtime/view.h"
-#include "../../runtime/topo/topo.h"
 #include "random.h"
 #include "scene_builder.h"
 #include "tap.h"
+#include "topo_quadrants.h"
 
 static void test_vpls_cornell(void)
 {
@@ -48,6 +45,22 @@ static void test_vpls_cornell(void)
     gb_scene_free(&scene);
 }
 
+/* Channel c of the power summed over count VPLs traced in scene with
+ * seed; the trace checked as what. */
+static double vpl_power(const gb_scene *scene, uint32_t count, uint64_t seed, int c,
+                        const char *what)
+{
+    gb_error error;
+    gb_vpl_set set;
+    double sum = 0.0;
+    if (CHECK(gb_topo_vpls_generate(scene, count, seed, &set, &error) == GB_OK, what)) {
+        for (uint32_t i = 0; i < set.count; ++i)
+            sum += set.vpls[i].power[c];
+        gb_vpl_free(&set);
+    }
+    return sum;
+}
+
 /* A closed grey box of albedo 1/2 around a point light: the VPLs' power sums
  * to Phi (a + a^2 + ...) = Phi in expectation. */
 static void test_vpls_energy(void)
@@ -59,15 +72,9 @@ static void test_vpls_energy(void)
                     (float[3]){0, 0, -1}, (float[3]){2, 2, 2});
     set_camera(&scene, (float[3]){0, 0, 0.9f}, (float[3]){0, 0, 0}, 60.0f, 16, 16);
     scene_done(&scene);
-    gb_error error;
-    gb_vpl_set set;
-    CHECK(gb_topo_vpls_generate(&scene, 20000, 1, &set, &error) == GB_OK, "energy: traced");
-    double sum = 0.0;
-    for (uint32_t i = 0; i < set.count; ++i)
-        sum += set.vpls[i].power[0];
-    CHECK_NEAR(sum, 4.0 * M_PI * 2.0, 0.06 * 4.0 * M_PI * 2.0,
+    CHECK_NEAR(vpl_power(&scene, 20000, 1, 0, "energy: traced"), 4.0 * M_PI * 2.0,
+               0.06 * 4.0 * M_PI * 2.0,
                "energy: VPL powers sum to the light's power (albedo 1/2, closed box)");
-    gb_vpl_free(&set);
     gb_scene_free(&scene);
 }
 
@@ -83,14 +90,8 @@ static void test_vpls_sun(void)
                     (float[3]){3, 3, 3});
     set_camera(&scene, (float[3]){0, 5, 8}, (float[3]){0, 0, 0}, 60.0f, 16, 16);
     scene_done(&scene);
-    gb_error error;
-    gb_vpl_set set;
-    CHECK(gb_topo_vpls_generate(&scene, 8000, 2, &set, &error) == GB_OK, "sun: traced");
-    double sum = 0.0;
-    for (uint32_t i = 0; i < set.count; ++i)
-        sum += set.vpls[i].power[1];
-    CHECK_NEAR(sum, 150.0, 0.05 * 150.0, "sun: VPL powers sum to E x area x albedo");
-    gb_vpl_free(&set);
+    CHECK_NEAR(vpl_power(&scene, 8000, 2, 1, "sun: traced"), 150.0, 0.05 * 150.0,
+               "sun: VPL powers sum to E x area x albedo");
     gb_scene_free(&scene);
 }
 
@@ -127,6 +128,21 @@ static gb_geometry_cluster sphere_cluster(uint32_t visibility, float x, float y,
     return g;
 }
 
+/* A VPL in room A (cluster 0): at (-2, 0, 0), facing +x. */
+static gb_vpl room_a_vpl = {{-2, 0, 0}, {1, 0, 0}, {1, 1, 1}};
+
+/* LA of room A's VPL alone over count geometry clusters. */
+static gb_result assign_room_a(gb_geometry_cluster *list, uint32_t count,
+                               const gb_segmentation *s, const gb_topo_gates *gates,
+                               gb_topo_visibility visibility, gb_topo_assignment *a)
+{
+    gb_geometry_clusters clusters = {count, count, list};
+    gb_vpl_set vpls = {0, 1, &room_a_vpl};
+    int32_t vpl_cluster = 0;
+    gb_error error;
+    return gb_topo_assign(&clusters, &vpls, &vpl_cluster, s, gates, visibility, a, &error);
+}
+
 static void test_two_rooms_assignment(void)
 {
     gb_segmentation s;
@@ -136,21 +152,17 @@ static void test_two_rooms_assignment(void)
     CHECK(gb_topo_gates_build(&s, &gates, &error) == GB_OK, "LA: gates per cluster");
     gb_geometry_cluster list[3] = {sphere_cluster(1, 3, 0, 0.2f), sphere_cluster(1, 3, 4, 0.2f),
                                    sphere_cluster(0, -3, 3, 0.2f)};
-    gb_geometry_clusters clusters = {3, 3, list};
-    gb_vpl vpl = {{-2, 0, 0}, {1, 0, 0}, {1, 1, 1}};
-    gb_vpl_set vpls = {0, 1, &vpl};
-    int32_t vpl_cluster = 0;
     gb_topo_assignment a = {0};
-    CHECK(gb_topo_assign(&clusters, &vpls, &vpl_cluster, &s, &gates, GB_TOPO_FULL, &a, &error) ==
-              GB_OK, "LA: two rooms assigned");
+    CHECK(assign_room_a(list, 3, &s, &gates, GB_TOPO_FULL, &a) == GB_OK,
+          "LA: two rooms assigned");
     CHECK(a.ranges[1] == 1 && a.entries[a.ranges[0]].vpl == 0 &&
               a.entries[a.ranges[0]].group == 0,
           "LA: room B in the door's cone gets the VPL with the door gate");
     CHECK_EQ_INT(a.ranges[3], 0, "LA: room B outside the cone gets nothing");
     CHECK(a.ranges[5] == 1 && a.entries[a.ranges[4]].group == GB_TOPO_NO_GATE,
           "LA: room A gets its own VPL without a gate");
-    CHECK(gb_topo_assign(&clusters, &vpls, &vpl_cluster, &s, &gates, GB_TOPO_CLUSTERS, &a,
-                         &error) == GB_OK && a.ranges[1] == 0 && a.ranges[5] == 1,
+    CHECK(assign_room_a(list, 3, &s, &gates, GB_TOPO_CLUSTERS, &a) == GB_OK &&
+              a.ranges[1] == 0 && a.ranges[5] == 1,
           "LA, gates off: room B gets nothing, room A its VPL");
     gb_topo_assignment_free(&a);
     gb_topo_gates_free(&gates);
@@ -175,13 +187,9 @@ static void test_routes(void)
     CHECK(gates.route_offsets[1] == 2 && two_gate == 1,
           "routes: room 0 reaches room 1 through one door, room 2 through both");
     gb_geometry_cluster list[2] = {sphere_cluster(2, 8, 0, 0.2f), sphere_cluster(2, 8, 3, 0.2f)};
-    gb_geometry_clusters clusters = {2, 2, list};
-    gb_vpl vpl = {{-2, 0, 0}, {1, 0, 0}, {1, 1, 1}};
-    gb_vpl_set vpls = {0, 1, &vpl};
-    int32_t vpl_cluster = 0;
     gb_topo_assignment a = {0};
-    CHECK(gb_topo_assign(&clusters, &vpls, &vpl_cluster, &s, &gates, GB_TOPO_FULL, &a, &error) ==
-              GB_OK && a.ranges[1] == 1 && a.ranges[3] == 0,
+    CHECK(assign_room_a(list, 2, &s, &gates, GB_TOPO_FULL, &a) == GB_OK && a.ranges[1] == 1 &&
+              a.ranges[3] == 0,
           "LA: room 2 in line with both doors gets the VPL, off the line nothing");
     const gb_topo_route_group *group = &gates.groups[a.entries[0].group];
     const gb_topo_route *route = &gates.routes[group->first];
@@ -192,15 +200,15 @@ static void test_routes(void)
               gb_topo_group_of(&gates, 2, 0) != GB_TOPO_NO_GATE &&
               gb_topo_group_of(&gates, 0, 0) == GB_TOPO_NO_GATE,
           "LA: groups found by source and target (none from a room to itself)");
-    CHECK(gb_topo_group_contains(vpl.position, &s, &gates, a.entries[0].group,
+    CHECK(gb_topo_group_contains(room_a_vpl.position, &s, &gates, a.entries[0].group,
                                  (float[3]){8, 0.2f, 0}),
           "IL: a point seen through both doors is lit");
     /* in the cone of the first door (8.5 degrees off its axis, half-angle
      * 14) but not of the second (half-angle 4.8): the paper's test, one
      * cone through a gate of the VPL's cluster, would light it */
     float beside[3] = {8, 1.5f, 0};
-    CHECK(gb_topo_cone_contains(vpl.position, &doors[0], beside) &&
-              !gb_topo_route_contains(vpl.position, &s, route, beside),
+    CHECK(gb_topo_cone_contains(room_a_vpl.position, &doors[0], beside) &&
+              !gb_topo_route_contains(room_a_vpl.position, &s, route, beside),
           "IL: a point behind the wall between the doors stays dark");
     gb_topo_assignment_free(&a);
     gb_topo_gates_free(&gates);
@@ -341,8 +349,8 @@ static void test_iugc(void)
     gb_geometry_clusters_free(&clusters);
 }
 
-/* The Cornell box cut into four visibility clusters (quadrants of x and z)
- * with a gate in the middle of each inner wall; geometry clusters on a grid. */
+/* The Cornell box cut into four visibility clusters (topo_quadrants.h),
+ * the gates at mid-height; geometry clusters on a grid. */
 typedef struct quadrants {
     float mid[3], size[3];
     gb_visibility_gate gates[4];
@@ -361,24 +369,7 @@ static void make_quadrants(const gb_scene *scene, quadrants *q)
         q->mid[a] = 0.5f * (scene->bounds_min[a] + scene->bounds_max[a]);
         q->size[a] = scene->bounds_max[a] - scene->bounds_min[a];
     }
-    const uint32_t pairs[4][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}};
-    for (int i = 0; i < 4; ++i) {
-        int along_x = i < 2;   /* gates between 0|1 and 2|3 face x */
-        float *c = q->gates[i].centre;
-        memcpy(c, q->mid, sizeof q->mid);
-        if (along_x)
-            c[2] += (i == 0 ? -0.25f : 0.25f) * q->size[2];
-        else
-            c[0] += (i == 2 ? -0.25f : 0.25f) * q->size[0];
-        q->gates[i].normal[along_x ? 0 : 2] = 1.0f;
-        q->gates[i].radius = 0.1f * q->size[0];
-        q->gates[i].clusters[0] = pairs[i][0];
-        q->gates[i].clusters[1] = pairs[i][1];
-        q->gates[i].edge = (uint32_t)i;
-    }
-    q->s.cluster_count = 4;
-    q->s.gate_count = 4;
-    q->s.gates = q->gates;
+    quadrant_gates(q->gates, q->mid, q->size, q->mid[1], &q->s);
 }
 
 static void grid_clusters(const gb_scene *scene, const quadrants *q, gb_geometry_clusters *out)
@@ -400,10 +391,8 @@ static void test_la_cpu_equals_gpu(void)
 {
     gb_error error;
     gb_context context;
-    if (gb_context_create_headless(&context, &error) != GB_OK) {
-        printf("ok %d # skip LA on the GPU: %s\n", ++tap_count, error.message);
+    if (!gpu_or_skip(&context, "LA"))
         return;
-    }
     gb_scene scene = {0};
     build_cornell_box(&scene, 32, 32);
     gb_vpl_set vpls;
@@ -470,30 +459,6 @@ static void oct_decode(float x, float y, float n[3])
         n[a] /= l;
 }
 
-/* A voxel grid over the Cornell box whose clusters are its four quadrants
- * in x and z (and -1 in five layers under the ceiling, as if they had no
- * node: deep enough that the lookup's offsets and its 27-voxel fallback
- * find nothing for the ceiling's fragments). */
-static int32_t *quadrant_voxels(const gb_scene *scene, gb_segmentation *s)
-{
-    memset(s, 0, sizeof *s);
-    s->voxel_size = 20.0;
-    for (int a = 0; a < 3; ++a) {
-        s->world_origin[a] = scene->bounds_min[a] - 2.0 * s->voxel_size;
-        s->grid_size[a] = (int32_t)ceil((scene->bounds_max[a] - scene->bounds_min[a]) /
-                                        s->voxel_size) + 4;
-    }
-    const int32_t *n = s->grid_size;
-    int32_t *clusters = malloc((size_t)n[0] * n[1] * n[2] * sizeof *clusters);
-    for (int32_t k = 0; k < n[2]; ++k)
-        for (int32_t j = 0; j < n[1]; ++j)
-            for (int32_t i = 0; i < n[0]; ++i)
-                clusters[i + n[0] * (j + n[1] * k)] =
-                    j >= n[1] - 7 && j <= n[1] - 3 ? -1
-                                                   : (i >= n[0] / 2) + 2 * (k >= n[2] / 2);
-    return clusters;
-}
-
 /* Compares the GPU's cluster of each fragment with gb_topo_surface_cluster
  * on the fragment read back; returns how many differ, *seen the fragments. */
 static int compare_cluster_lookup(const gb_gbuffer *gbuffer, const gb_segmentation *s,
@@ -533,47 +498,27 @@ static void test_cluster_lookup_gpu(void)
 {
     gb_error error;
     gb_context context;
-    if (gb_context_create_headless(&context, &error) != GB_OK) {
-        printf("ok %d # skip cluster lookup on the GPU: %s\n", ++tap_count, error.message);
+    if (!gpu_or_skip(&context, "cluster lookup"))
         return;
-    }
-    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     enum { W = 96, H = 80 };
     gb_scene scene = {0};
     build_cornell_box(&scene, W, H);
     gb_segmentation s;
     int32_t *voxels = quadrant_voxels(&scene, &s);
-    gb_gpu_scene gpu = {0};
-    gb_gbuffer gbuffer = {0};
-    gb_topo_cluster_pass pass = {0};
-    gb_view view;
-    gb_result result = gb_gpu_scene_create(&scene, &gpu, &error);
-    if (result == GB_OK)
-        result = gb_gbuffer_create(W, H, &gbuffer, &error);
-    if (result == GB_OK)
-        result = gb_topo_cluster_pass_create(&s, voxels, &pass, &error);
-    if (result == GB_OK)
-        result = gb_scene_view(&scene, 0, &view, &error);
+    cluster_frame f;
+    gb_result result = cluster_frame_draw(&f, &scene, &s, voxels, W, H, &error);
     CHECK(result == GB_OK, "GP: G-buffer and cluster pass made");
     if (result == GB_OK) {
-        gb_mat4 world_to_view = gb_view_matrix(&view);
-        gb_mat4 projection = gb_view_projection(&view, W, H);
-        gb_gbuffer_draw(&gbuffer, &gpu, &world_to_view, &projection);
-        gb_topo_frame_input frame = gb_topo_frame_input_of_view(&view, W, H);
-        gb_topo_cluster_pass_run(&pass, gbuffer.depth, gbuffer.normal, gbuffer.clusters, W, H,
-                                 frame.view_to_world, frame.tan_half_fov, frame.near);
         int seen;
         unsigned kinds;
-        int differ = compare_cluster_lookup(&gbuffer, &s, voxels, &frame, &seen, &kinds);
+        int differ = compare_cluster_lookup(&f.gbuffer, &s, voxels, &f.frame, &seen, &kinds);
         CHECK(kinds == 0x1f, "GP: fragments in all four clusters, and some in none");
         printf("# GP: %d of %d fragments differ from the CPU lookup\n", differ, seen);
         CHECK(seen > W * H / 2 && differ <= seen / 200,
               "GP: the GPU's visibility cluster of each fragment is the CPU's (but at most "
               "0.5 %, on voxel borders)");
     }
-    gb_topo_cluster_pass_destroy(&pass);
-    gb_gbuffer_destroy(&gbuffer);
-    gb_gpu_scene_destroy(&gpu);
+    cluster_frame_destroy(&f);
     free(voxels);
     gb_scene_free(&scene);
     gb_context_destroy(&context);

@@ -10,31 +10,14 @@
  * Cornell box drawn into a G-buffer with four quadrant clusters and gates.
  * Headless GL; skipped without it. */
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#include "../../runtime/context.h"
-#include "../../runtime/gbuffer.h"
-#include "../../runtime/view.h"
-#include "../../runtime/topo/topo.h"
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wunused-function"   /* the builder's other scenes */
 #include "scene_builder.h"
-#pragma GCC diagnostic pop
 #include "tap.h"
-
-/* CHECK with a printf-formatted description. */
-static void checkf(int passed, int line, const char *format, ...)
-{
-    char what[256];
-    va_list args;
-    va_start(args, format);
-    vsnprintf(what, sizeof what, format, args);
-    va_end(args);
-    tap_check(passed, __FILE__, line, what);
-}
+#include "tap_printf.h"
+#include "topo_quadrants.h"
 
 static int near_enough(float a, float b)
 {
@@ -131,15 +114,14 @@ static void check_synthetic(const char *name, int W, int H, const float *depth,
     }
     if (result != GB_OK)
         printf("#   %s\n", error.message);
-    checkf(result == GB_OK, __LINE__, "IUGC GPU, %s: ran", name);
+    CHECKF(result == GB_OK, "IUGC GPU, %s: ran", name);
     comparison c;
     compare(cpu_ids, gpu_ids, W * H, &cpu, &gpu, &c);
     printf("# %s: CPU %u geometry clusters, GPU %u\n", name, c.cpu_count, c.gpu_count);
-    checkf(c.cpu_count >= min_count && c.gpu_count == c.cpu_count, __LINE__,
+    CHECKF(c.cpu_count >= min_count && c.gpu_count == c.cpu_count,
            "IUGC GPU, %s: as many geometry clusters as the CPU (at least %u)", name, min_count);
-    checkf(c.pixels_differ == 0, __LINE__, "IUGC GPU, %s: every pixel in the CPU's cluster",
-           name);
-    checkf(c.visibility_differ == 0 && c.bounds_differ == 0, __LINE__,
+    CHECKF(c.pixels_differ == 0, "IUGC GPU, %s: every pixel in the CPU's cluster", name);
+    CHECKF(c.visibility_differ == 0 && c.bounds_differ == 0,
            "IUGC GPU, %s: visibility cluster, box and sphere of each cluster the CPU's", name);
     gb_geometry_clusters_free(&cpu);
     gb_geometry_clusters_free(&gpu);
@@ -187,9 +169,8 @@ static void test_noise(void)
     check_synthetic("noise 96x64", W, H, depth, ids, 6 * 500);
 }
 
-/* The Cornell box's voxel grid cut into four quadrant clusters in x and z
- * (none in five layers under the ceiling), with a gate in the middle of
- * each inner wall. */
+/* The Cornell box's voxel grid cut into four quadrant clusters
+ * (topo_quadrants.h), the gates at 0.3 of its height. */
 typedef struct quadrants {
     gb_segmentation s;
     gb_visibility_gate gates[4];
@@ -199,41 +180,13 @@ typedef struct quadrants {
 static void make_quadrants(const gb_scene *scene, quadrants *q)
 {
     memset(q, 0, sizeof *q);
-    gb_segmentation *s = &q->s;
-    s->voxel_size = 20.0;
+    q->voxels = quadrant_voxels(scene, &q->s);
     float mid[3], size[3];
     for (int a = 0; a < 3; ++a) {
-        s->world_origin[a] = scene->bounds_min[a] - 2.0 * s->voxel_size;
-        s->grid_size[a] = (int32_t)ceil((scene->bounds_max[a] - scene->bounds_min[a]) /
-                                        s->voxel_size) + 4;
+        mid[a] = (float)(q->s.world_origin[a] + (q->s.grid_size[a] / 2) * q->s.voxel_size);
         size[a] = scene->bounds_max[a] - scene->bounds_min[a];
     }
-    const int32_t *n = s->grid_size;
-    for (int a = 0; a < 3; ++a)
-        mid[a] = (float)(s->world_origin[a] + (n[a] / 2) * s->voxel_size);
-    q->voxels = malloc((size_t)n[0] * n[1] * n[2] * sizeof *q->voxels);
-    for (int32_t k = 0; k < n[2]; ++k)
-        for (int32_t j = 0; j < n[1]; ++j)
-            for (int32_t i = 0; i < n[0]; ++i)
-                q->voxels[i + n[0] * (j + n[1] * k)] =
-                    j >= n[1] - 7 && j <= n[1] - 3 ? -1
-                                                   : (i >= n[0] / 2) + 2 * (k >= n[2] / 2);
-    const uint32_t pairs[4][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}};
-    for (int i = 0; i < 4; ++i) {
-        int along_x = i < 2;
-        float *c = q->gates[i].centre;
-        c[0] = mid[0] + (along_x ? 0.0f : (i == 2 ? -0.25f : 0.25f) * size[0]);
-        c[1] = scene->bounds_min[1] + 0.3f * size[1];
-        c[2] = mid[2] + (along_x ? (i == 0 ? -0.25f : 0.25f) * size[2] : 0.0f);
-        q->gates[i].normal[along_x ? 0 : 2] = 1.0f;
-        q->gates[i].radius = 0.1f * size[0];
-        q->gates[i].clusters[0] = pairs[i][0];
-        q->gates[i].clusters[1] = pairs[i][1];
-        q->gates[i].edge = (uint32_t)i;
-    }
-    s->cluster_count = 4;
-    s->gate_count = 4;
-    s->gates = q->gates;
+    quadrant_gates(q->gates, mid, size, scene->bounds_min[1] + 0.3f * size[1], &q->s);
 }
 
 /* LA from the CPU's clusters and from the GPU's (left on the GPU): the same
@@ -290,39 +243,22 @@ static void check_assignment(const gb_scene *scene, const quadrants *q,
 
 static void test_cornell(void)
 {
-    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
     enum { W = 200, H = 150 };
     gb_error error;
     gb_scene scene = {0};
     build_cornell_box(&scene, W, H);
     quadrants q;
     make_quadrants(&scene, &q);
-    gb_gpu_scene gpu_scene = {0};
-    gb_gbuffer gbuffer = {0};
-    gb_topo_cluster_pass pass = {0};
+    cluster_frame f;
     gb_topo_iugc_gpu iugc = {0};
-    gb_view view;
-    gb_result result = gb_gpu_scene_create(&scene, &gpu_scene, &error);
-    if (result == GB_OK)
-        result = gb_gbuffer_create(W, H, &gbuffer, &error);
-    if (result == GB_OK)
-        result = gb_topo_cluster_pass_create(&q.s, q.voxels, &pass, &error);
+    gb_result result = cluster_frame_draw(&f, &scene, &q.s, q.voxels, W, H, &error);
     if (result == GB_OK)
         result = gb_topo_iugc_gpu_create(&iugc, &error);
-    if (result == GB_OK)
-        result = gb_scene_view(&scene, 0, &view, &error);
     uint32_t *cpu_ids = malloc((size_t)W * H * 2 * sizeof *cpu_ids);
     uint32_t *gpu_ids = malloc((size_t)W * H * 2 * sizeof *gpu_ids);
     gb_geometry_clusters cpu = {0}, gpu = {0};
-    if (result == GB_OK) {
-        gb_mat4 world_to_view = gb_view_matrix(&view);
-        gb_mat4 projection = gb_view_projection(&view, W, H);
-        gb_gbuffer_draw(&gbuffer, &gpu_scene, &world_to_view, &projection);
-        gb_topo_frame_input frame = gb_topo_frame_input_of_view(&view, W, H);
-        gb_topo_cluster_pass_run(&pass, gbuffer.depth, gbuffer.normal, gbuffer.clusters, W, H,
-                                 frame.view_to_world, frame.tan_half_fov, frame.near);
-        result = run_both(&gbuffer, &frame, &iugc, &cpu, &gpu, cpu_ids, gpu_ids, &error);
-    }
+    if (result == GB_OK)
+        result = run_both(&f.gbuffer, &f.frame, &iugc, &cpu, &gpu, cpu_ids, gpu_ids, &error);
     if (result != GB_OK)
         printf("#   %s\n", error.message);
     CHECK(result == GB_OK, "IUGC GPU, Cornell box 200x150: ran");
@@ -342,21 +278,16 @@ static void test_cornell(void)
     free(cpu_ids);
     free(gpu_ids);
     gb_topo_iugc_gpu_destroy(&iugc);
-    gb_topo_cluster_pass_destroy(&pass);
-    gb_gbuffer_destroy(&gbuffer);
-    gb_gpu_scene_destroy(&gpu_scene);
+    cluster_frame_destroy(&f);
     free(q.voxels);
     gb_scene_free(&scene);
 }
 
 int main(void)
 {
-    gb_error error;
     gb_context context;
-    if (gb_context_create_headless(&context, &error) != GB_OK) {
-        printf("ok %d # skip IUGC on the GPU: %s\n", ++tap_count, error.message);
+    if (!gpu_or_skip(&context, "IUGC"))
         return tap_done();
-    }
     test_steps();
     test_noise();
     test_cornell();

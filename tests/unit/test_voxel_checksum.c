@@ -7,7 +7,7 @@
  */
 #include "scratch.h"
 #include "tap.h"
-#include "voxel_grid.h"
+#include "voxel_grids.h"
 
 #include <stdint.h>
 #include <stdio.h>
@@ -19,23 +19,20 @@ enum { UUID_OFFSET = 21, UUID_LENGTH = 36, HEADER_BYTES = 57 };
 
 static char path[512]; /* the file the checks write and read */
 
+/* A surface plane at k = 1, the distance to it elsewhere. */
+static float plane_distance(int i, int j, int k)
+{
+    (void)i, (void)j;
+    return k == 1 ? 0.0f : 0.25f * (float)abs(k - 1);
+}
+
 static void make_grid(gb_voxel_grid *grid)
 {
-    memset(grid, 0, sizeof *grid);
-    int32_t size[3] = {9, 5, 4};
-    gb_error error;
-    if (gb_voxel_grid_allocate(grid, size, &error) != GB_OK)
-        abort();
+    voxel_grid_make(grid, 9, 5, 4);
     grid->voxel_size = 0.25;
     grid->scene_hash = 0x0123456789abcdefull;
     grid->resolution = 9;
-    for (int k = 0; k < size[2]; ++k)
-        for (int j = 0; j < size[1]; ++j)
-            for (int i = 0; i < size[0]; ++i) {
-                size_t index = gb_voxel_index(grid, i, j, k);
-                grid->surface[index] = k == 1;
-                grid->distance[index] = grid->surface[index] ? 0.0f : 0.25f * (float)abs(k - 1);
-            }
+    voxel_grid_fill(grid, plane_distance);
 }
 
 /* The result of reading bytes as a voxel file; error gets the message. */

@@ -1,8 +1,9 @@
 /* test_voxel_grid.c — the voxel file (formats/voxel_grid.h): round trips of
  * the voxel grids and of int32 grids, metadata, clear errors on bad files,
  * atomic writes. */
+#include "scratch.h"
 #include "tap.h"
-#include "voxel_grid.h"
+#include "voxel_grids.h"
 
 #include <dirent.h>
 #include <stdio.h>
@@ -11,27 +12,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static char directory[] = "/tmp/gb_test_voxel_grid_XXXXXX";
-
-static const char *path_in_directory(const char *name)
-{
-    static char paths[8][512];
-    static int next;
-    char *path = paths[next++ % 8];
-    snprintf(path, sizeof paths[0], "%s/%s", directory, name);
-    return path;
-}
-
-static void write_text(const char *path, const char *text)
-{
-    FILE *file = fopen(path, "wb");
-    fputs(text, file);
-    fclose(file);
-}
-
+/* The files in the scratch folder (folders too). */
 static int count_files(void)
 {
-    DIR *dir = opendir(directory);
+    DIR *dir = opendir(scratch_folder);
     int count = 0;
     for (struct dirent *entry; (entry = readdir(dir));)
         count += entry->d_name[0] != '.';
@@ -45,45 +29,26 @@ static int file_exists(const char *path)
     return stat(path, &status) == 0;
 }
 
-static void remove_directory(void)
+/* A 13 x 7 x 5 grid (sides not multiples of the 8-voxel leaves) with a
+ * surface plane at k = 2 (and voxel (12, 6, k)) and a distance that depends
+ * on the voxel. */
+static float plane_distance(int i, int j, int k)
 {
-    DIR *dir = opendir(directory);
-    for (struct dirent *entry; (entry = readdir(dir));) {
-        if (entry->d_name[0] == '.')
-            continue;
-        const char *path = path_in_directory(entry->d_name);
-        struct stat status;
-        if (stat(path, &status) == 0 && S_ISDIR(status.st_mode))
-            rmdir(path);
-        else
-            unlink(path);
-    }
-    closedir(dir);
-    rmdir(directory);
+    if (k == 2 || (i == 12 && j == 6))
+        return 0.0f;
+    return 0.125f * (float)(abs(k - 2) + i * 0.001 + j);
 }
 
-/* A 13 x 7 x 5 grid (sides not multiples of the 8-voxel leaves) with a
- * surface plane at k = 2 and a distance that depends on the voxel. */
 static void make_grid(gb_voxel_grid *grid)
 {
-    memset(grid, 0, sizeof *grid);
-    int32_t size[3] = {13, 7, 5};
-    gb_error error;
-    if (gb_voxel_grid_allocate(grid, size, &error) != GB_OK)
-        abort();
+    voxel_grid_make(grid, 13, 7, 5);
     grid->voxel_size = 0.125;
     grid->world_origin[0] = 1e6;
     grid->world_origin[1] = -2.5;
     grid->world_origin[2] = 0.0078125;
     grid->scene_hash = 0xfedcba9876543210ull;
     grid->resolution = 11;
-    for (int k = 0; k < size[2]; ++k)
-        for (int j = 0; j < size[1]; ++j)
-            for (int i = 0; i < size[0]; ++i) {
-                size_t index = gb_voxel_index(grid, i, j, k);
-                grid->surface[index] = k == 2 || (i == 12 && j == 6);
-                grid->distance[index] = grid->surface[index] ? 0.0f : 0.125f * (float)(abs(k - 2) + i * 0.001 + j);
-            }
+    voxel_grid_fill(grid, plane_distance);
 }
 
 static int same_arrays(const gb_voxel_grid *a, const gb_voxel_grid *b)
@@ -116,7 +81,7 @@ static void test_round_trip(void)
     gb_voxel_grid grid, read = {0};
     gb_error error;
     make_grid(&grid);
-    const char *path = path_in_directory("round.vdb");
+    const char *path = scratch_path("round.vdb");
     CHECK_EQ_INT(gb_voxel_grid_write(path, &grid, &error), GB_OK, "write the voxel file");
     CHECK_EQ_INT(count_files(), 1, "no temporary file left after a write");
     gb_result result = gb_voxel_grid_read(path, &read, &error);
@@ -137,14 +102,14 @@ static void test_round_trip(void)
     if (system("command -v vdb_print >/dev/null 2>&1") == 0) {
         char command[1024];
         snprintf(command, sizeof command,
-                 "vdb_print -l -m '%s' > '%s/print.txt' 2>&1", path, directory);
+                 "vdb_print -l -m '%s' > '%s/print.txt' 2>&1", path, scratch_folder);
         CHECK(system(command) == 0, "vdb_print reads the file");
         snprintf(command, sizeof command,
                  "grep -q 'gibake-voxelize 0.1' '%s/print.txt' && grep -q distance '%s/print.txt'"
                  " && grep -q fedcba9876543210 '%s/print.txt'",
-                 directory, directory, directory);
+                 scratch_folder, scratch_folder, scratch_folder);
         CHECK(system(command) == 0, "vdb_print shows the creator, grids and hash");
-        unlink(path_in_directory("print.txt"));
+        unlink(scratch_path("print.txt"));
     } else {
         printf("ok - # SKIP vdb_print not installed\n");
     }
@@ -168,7 +133,7 @@ static void test_write_and_free(void)
     }
     memcpy(copy.surface, grid.surface, count);
     memcpy(copy.distance, grid.distance, count * sizeof(float));
-    const char *path = path_in_directory("released.vdb");
+    const char *path = scratch_path("released.vdb");
     CHECK_EQ_INT(gb_voxel_grid_write_and_free(path, &grid, &error), GB_OK,
                  "write a 70 x 65 x 41 grid while giving its memory back");
     CHECK(grid.surface == NULL && grid.distance == NULL, "... which frees the grid");
@@ -193,7 +158,7 @@ static void test_int32_round_trip(void)
         values[index] = index % 3 == 0 ? -1 : (int32_t)(index * 7919 % 100003);
     values[count - 1] = 2147483647;
     values[count - 2] = -5;
-    const char *path = path_in_directory("nearest.grid.vdb");
+    const char *path = scratch_path("nearest.grid.vdb");
     CHECK_EQ_INT(gb_voxel_grid_write_int32(path, &frame, "nearest_node", values, &error), GB_OK,
                  "write an int32 grid");
     int32_t *read_values = NULL;
@@ -226,43 +191,39 @@ static void test_bad_files(void)
 {
     gb_voxel_grid read = {0};
     gb_error error;
-    const char *text = path_in_directory("text.vdb");
-    write_text(text, "this is not a voxel file\n");
+    const char *text = scratch_path("text.vdb");
+    scratch_write_text(text, "this is not a voxel file\n");
     CHECK_EQ_INT(gb_voxel_grid_read(text, &read, &error), GB_ERROR_FORMAT, "text file refused");
     CHECK(strstr(error.message, "text.vdb: not an OpenVDB file") != NULL,
           "... as not an OpenVDB file");
-    const char *empty = path_in_directory("empty.vdb");
-    write_text(empty, "");
+    const char *empty = scratch_path("empty.vdb");
+    scratch_write_text(empty, "");
     CHECK_EQ_INT(gb_voxel_grid_read(empty, &read, &error), GB_ERROR_FORMAT, "empty file refused");
-    CHECK_EQ_INT(gb_voxel_grid_read(path_in_directory("missing.vdb"), &read, &error),
+    CHECK_EQ_INT(gb_voxel_grid_read(scratch_path("missing.vdb"), &read, &error),
                  GB_ERROR_IO, "missing file is an I/O error");
     CHECK(strstr(error.message, "missing.vdb: No such file") != NULL, "... saying so");
 
     /* A real file cut short. */
     gb_voxel_grid grid;
     make_grid(&grid);
-    const char *whole = path_in_directory("whole.vdb");
+    const char *whole = scratch_path("whole.vdb");
     gb_voxel_grid_write(whole, &grid, &error);
-    FILE *file = fopen(whole, "rb");
-    char buffer[65536];
-    size_t size = fread(buffer, 1, sizeof buffer, file);
-    fclose(file);
-    const char *cut = path_in_directory("cut.vdb");
-    int refused = 1;
-    for (size_t length = 8; length < size; length += size / 23 + 1) {
-        file = fopen(cut, "wb");
-        fwrite(buffer, 1, length, file);
-        fclose(file);
+    size_t size = 0;
+    unsigned char *buffer = scratch_read(whole, &size);
+    const char *cut = scratch_path("cut.vdb");
+    int refused = buffer != NULL;
+    for (size_t length = 8; buffer && length < size; length += size / 23 + 1) {
+        scratch_write(cut, buffer, length);
         gb_result result = gb_voxel_grid_read(cut, &read, &error);
         refused &= result != GB_OK;
         if (result == GB_OK)
             gb_voxel_grid_free(&read);
     }
     CHECK(refused, "every truncation of a voxel file is refused");
-    file = fopen(cut, "wb");
-    buffer[size / 2] ^= 0x10;
-    fwrite(buffer, 1, size, file);
-    fclose(file);
+    if (buffer) {
+        buffer[size / 2] ^= 0x10;
+        scratch_write(cut, buffer, size);
+    }
     CHECK_EQ_INT(gb_voxel_grid_read(cut, &read, &error), GB_ERROR_CHECKSUM,
                  "a voxel file with one bit flipped is refused");
     CHECK(strstr(error.message, "cut.vdb: checksum does not match") != NULL, "... by its checksum");
@@ -270,6 +231,7 @@ static void test_bad_files(void)
     unlink(empty);
     unlink(whole);
     unlink(cut);
+    free(buffer);
     gb_voxel_grid_free(&grid);
 }
 
@@ -278,7 +240,7 @@ static void test_atomic_write(void)
     gb_voxel_grid grid;
     gb_error error;
     make_grid(&grid);
-    const char *path = path_in_directory("kept.vdb");
+    const char *path = scratch_path("kept.vdb");
     gb_voxel_grid_write(path, &grid, &error);
     int files = count_files();
 
@@ -291,14 +253,14 @@ static void test_atomic_write(void)
                  "the older file is kept after a failed write");
     gb_voxel_grid_free(&read);
 
-    const char *folder = path_in_directory("a_folder");
+    const char *folder = scratch_path("a_folder");
     mkdir(folder, 0755);
     CHECK(gb_voxel_grid_write(folder, &grid, &error) != GB_OK,
           "writing over a folder fails (the rename fails)");
     CHECK_EQ_INT(count_files(), files + 1, "... and leaves no temporary file");
     rmdir(folder);
 
-    const char *nowhere = path_in_directory("no/such/folder.vdb");
+    const char *nowhere = scratch_path("no/such/folder.vdb");
     CHECK_EQ_INT(gb_voxel_grid_write(nowhere, &grid, &error), GB_ERROR_IO,
                  "writing into a missing folder fails");
     CHECK(!file_exists(nowhere), "... and creates nothing");
@@ -311,16 +273,13 @@ static void test_atomic_write(void)
 
 int main(void)
 {
-    if (!mkdtemp(directory)) {
-        perror("mkdtemp");
-        return 1;
-    }
+    scratch_create("voxel-grid");
     test_allocate();
     test_round_trip();
     test_write_and_free();
     test_int32_round_trip();
     test_bad_files();
     test_atomic_write();
-    remove_directory();
+    scratch_remove();
     return tap_done();
 }

@@ -6,6 +6,7 @@
 #include "../../tools/voxelize/distance.h"
 #include "../../tools/voxelize/triangle_box_overlap.h"
 #include "../../tools/voxelize/voxelize.h"
+#include "voxel_grids.h"
 
 #include <float.h>
 #include <math.h>
@@ -47,11 +48,7 @@ static size_t count_surface(const gb_voxel_grid *grid)
 /* A grid of size voxels of edge 1 with its corner at the world origin. */
 static void make_unit_grid(gb_voxel_grid *grid, int nx, int ny, int nz)
 {
-    memset(grid, 0, sizeof *grid);
-    int32_t size[3] = {nx, ny, nz};
-    gb_error error;
-    if (gb_voxel_grid_allocate(grid, size, &error) != GB_OK)
-        abort();
+    voxel_grid_make(grid, nx, ny, nz);
     grid->voxel_size = 1;
 }
 

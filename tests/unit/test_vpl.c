@@ -63,16 +63,19 @@ static void test_corruption(void)
     free(bytes);
 }
 
-/* A container of kind VPLS whose sections are given. */
-static void write_raw(const char *path, uint32_t version, const void *header,
-                      uint64_t header_size, const void *vpls, uint64_t vpls_size)
+/* gb_vpl_read of a container of kind VPLS written as scratch file name
+ * with the sections given. */
+static gb_result read_raw(const char *name, uint32_t version, const void *header,
+                          uint64_t header_size, const void *vpls, uint64_t vpls_size,
+                          gb_vpl_set *set)
 {
     gb_container_writer *w = gb_container_writer_create("VPLS", version);
     gb_error error;
     gb_container_add(w, "header", header, header_size, &error);
     gb_container_add(w, "vpls", vpls, vpls_size, &error);
-    gb_container_commit(w, path, &error);
+    gb_container_commit(w, scratch_path(name), &error);
     gb_container_writer_destroy(w);
+    return gb_vpl_read(scratch_path(name), set, &error);
 }
 
 static void test_inconsistent(void)
@@ -81,23 +84,18 @@ static void test_inconsistent(void)
     unsigned char payload[2 * 36] = {0};
     gb_vpl_set set;
     gb_error error;
-    write_raw(scratch_path("short.vpls"), 1, header, 16, payload, sizeof payload);
-    CHECK_EQ_INT(gb_vpl_read(scratch_path("short.vpls"), &set, &error), GB_ERROR_FORMAT,
-                 "a count that does not match the payload is refused");
+    CHECK_EQ_INT(read_raw("short.vpls", 1, header, 16, payload, sizeof payload, &set),
+                 GB_ERROR_FORMAT, "a count that does not match the payload is refused");
     header[0] = 2;
-    write_raw(scratch_path("zero-normal.vpls"), 1, header, 16, payload, sizeof payload);
-    CHECK_EQ_INT(gb_vpl_read(scratch_path("zero-normal.vpls"), &set, &error), GB_ERROR_INVALID,
-                 "a VPL whose normal is not unit is refused");
-    write_raw(scratch_path("newer.vpls"), 2, header, 16, payload, sizeof payload);
-    CHECK_EQ_INT(gb_vpl_read(scratch_path("newer.vpls"), &set, &error), GB_ERROR_UNSUPPORTED,
-                 "a newer format version is refused");
+    CHECK_EQ_INT(read_raw("zero-normal.vpls", 1, header, 16, payload, sizeof payload, &set),
+                 GB_ERROR_INVALID, "a VPL whose normal is not unit is refused");
+    CHECK_EQ_INT(read_raw("newer.vpls", 2, header, 16, payload, sizeof payload, &set),
+                 GB_ERROR_UNSUPPORTED, "a newer format version is refused");
     header[4] = 1;
-    write_raw(scratch_path("reserved.vpls"), 1, header, 16, payload, sizeof payload);
-    CHECK_EQ_INT(gb_vpl_read(scratch_path("reserved.vpls"), &set, &error), GB_ERROR_FORMAT,
-                 "a nonzero reserved field is refused");
-    write_raw(scratch_path("small-header.vpls"), 1, header, 8, payload, sizeof payload);
-    CHECK_EQ_INT(gb_vpl_read(scratch_path("small-header.vpls"), &set, &error), GB_ERROR_FORMAT,
-                 "a header of the wrong size is refused");
+    CHECK_EQ_INT(read_raw("reserved.vpls", 1, header, 16, payload, sizeof payload, &set),
+                 GB_ERROR_FORMAT, "a nonzero reserved field is refused");
+    CHECK_EQ_INT(read_raw("small-header.vpls", 1, header, 8, payload, sizeof payload, &set),
+                 GB_ERROR_FORMAT, "a header of the wrong size is refused");
     CHECK(set.count == 0 && set.vpls == NULL, "a failed read leaves an empty set");
     gb_container_writer *w = gb_container_writer_create("SKEL", 1);
     gb_container_add(w, "header", header, 16, &error);

@@ -51,6 +51,19 @@ static void volume_box(gb_voxel_grid *g, int x0, int y0, int z0, int x1, int y1,
                     g->surface[gb_voxel_index(g, i, j, k)] = value;
 }
 
+/* Boxes for volume_boxes: {x0, y0, z0, x1, y1, z1, VOLUME_EMPTY or
+ * VOLUME_SOLID}, the corners included; a zeroed one (VOLUME_END) ends the
+ * list. */
+enum { VOLUME_END, VOLUME_EMPTY, VOLUME_SOLID };
+
+/* volume_box of each box in turn, up to the first VOLUME_END. */
+static void volume_boxes(gb_voxel_grid *g, const int (*boxes)[7])
+{
+    for (; boxes[0][6] != VOLUME_END; ++boxes)
+        volume_box(g, boxes[0][0], boxes[0][1], boxes[0][2], boxes[0][3], boxes[0][4],
+                   boxes[0][5], boxes[0][6] == VOLUME_SOLID);
+}
+
 static int volume_empty(const gb_voxel_grid *g, int i, int j, int k)
 {
     return volume_inside(g, i, j, k) && !g->surface[gb_voxel_index(g, i, j, k)];
@@ -98,6 +111,15 @@ static void volume_finish(gb_voxel_grid *g)
         g->distance[v] = g->surface[v] ? 0.0f : 1e30f;
     volume_chamfer_pass(g, 1);
     volume_chamfer_pass(g, -1);
+}
+
+/* volume_solid, its boxes (volume_boxes), volume_finish. */
+static gb_voxel_grid volume_made(int nx, int ny, int nz, const int (*boxes)[7])
+{
+    gb_voxel_grid g = volume_solid(nx, ny, nz);
+    volume_boxes(&g, boxes);
+    volume_finish(&g);
+    return g;
 }
 
 /* ---- topology of the empty space, independently of thin ---- */
