@@ -52,6 +52,13 @@ static void draw(const gb_progress *progress, double fraction)
         fprintf(stderr, "\r%s [%s] %3d%%", progress->label, bar, (int)(fraction * 100.0));
 }
 
+int gb_progress_span_report(void *user, double fraction)
+{
+    const gb_progress_span *span = user;
+    return span->progress ? span->progress(span->user, span->start + span->length * fraction)
+                          : 0;
+}
+
 int gb_progress_report(void *user, double fraction)
 {
     gb_progress *progress = user;

@@ -28,6 +28,17 @@ void gb_progress_begin_for(gb_progress *progress, const char *label, int quiet,
 int gb_progress_report(void *progress, double fraction);
 void gb_progress_end(gb_progress *progress);
 
+/* One step's share [start, start + length] of a whole job's progress: give
+ * the step gb_progress_span_report and a span as its callback and user, and
+ * its fraction f reaches progress as start + length * f (a NULL progress
+ * never stops). The caller owns the span, which outlives the step. */
+typedef struct gb_progress_span {
+    gb_progress_callback progress;
+    void *user;
+    double start, length;
+} gb_progress_span;
+int gb_progress_span_report(void *span, double fraction);
+
 /* Seconds from an arbitrary start (monotonic clock). */
 double gb_seconds(void);
 /* CPU seconds the process has used, every thread counted. */

@@ -13,23 +13,10 @@
 #include "persistence.h"
 #include "skeleton_graph.h"
 
-/* Maps a step's own 0..1 progress into its share of the whole. */
-typedef struct stage {
-    gb_progress_callback progress;
-    void *user;
-    double start, length;
-} stage;
-
-static int report_stage(void *user, double fraction)
+/* The share [start, start + length] of thin's progress. */
+static gb_progress_span make_stage(const gb_thin_options *options, double start, double length)
 {
-    const stage *s = user;
-    return s->progress ? s->progress(s->user, s->start + s->length * fraction) : 0;
-}
-
-static stage make_stage(const gb_thin_options *options, double start, double length)
-{
-    stage s = {options->progress, options->progress_user, start, length};
-    return s;
+    return (gb_progress_span){options->progress, options->progress_user, start, length};
 }
 
 static gb_thin_options resolved_options(const gb_thin_options *given)
@@ -78,10 +65,10 @@ static gb_result thin_complex(gb_cubical_complex *complex, gb_persistence *persi
     gb_result result = gb_collapse_init(&collapse, complex, persistence, error);
     if (result)
         return result;
-    stage s = make_stage(options, 0.15, 0.45);
+    gb_progress_span s = make_stage(options, 0.15, 0.45);
     uint32_t opened = 1;
     while (!result && opened) {
-        result = gb_collapse_run(&collapse, report_stage, &s, error);
+        result = gb_collapse_run(&collapse, gb_progress_span_report, &s, error);
         if (!result)
             result = gb_open_cavities(complex, &collapse, &stats->squares_left, &opened, error);
         stats->cavities_opened += opened;
@@ -101,9 +88,9 @@ static gb_result build_maps(const gb_voxel_grid *grid, const gb_thin_options *op
     gb_result result = gb_cubical_complex_build(complex, grid, error);
     if (result)
         return result;
-    stage s = make_stage(options, 0.0, 0.15);
+    gb_progress_span s = make_stage(options, 0.0, 0.15);
     return gb_persistence_init(persistence, complex, options->persistence,
-                               options->min_lifespan, report_stage, &s, error);
+                               options->min_lifespan, gb_progress_span_report, &s, error);
 }
 
 static void describe(gb_skeleton *skeleton, const gb_voxel_grid *grid,
@@ -125,9 +112,9 @@ static gb_result compute_nearest(const gb_voxel_grid *grid, const gb_cubical_com
                                  const gb_thin_options *options, int32_t **nearest,
                                  gb_error *error)
 {
-    stage s = make_stage(options, 0.65, 0.35);
+    gb_progress_span s = make_stage(options, 0.65, 0.35);
     gb_nearest_options nearest_options = {GB_NEAREST_SWEEP_PAIRS, options->threads,
-                                          report_stage, &s};
+                                          gb_progress_span_report, &s};
     return gb_nearest_node(grid, complex, node_cells, node_count, &nearest_options, nearest,
                            error);
 }

@@ -335,28 +335,15 @@ gb_result gb_voxelize_surface(gb_voxel_grid *grid, const double reference[3],
 
 /* ------------------------------------------------------------- all steps */
 
-/* Maps the progress of one step onto its share [start, start + length] of
- * the whole. */
-typedef struct progress_span {
-    gb_progress_callback progress;
-    void *user;
-    double start, length;
-} progress_span;
-
-static int report_span(void *user, double fraction)
-{
-    const progress_span *span = user;
-    return span->progress(span->user, span->start + span->length * fraction);
-}
-
 /* Options whose progress reports into span (when there is a progress). */
 static gb_voxelize_options step_options(const gb_voxelize_options *options,
-                                        progress_span *span, double start, double length)
+                                        gb_progress_span *span, double start,
+                                        double length)
 {
     gb_voxelize_options step = *options;
-    *span = (progress_span){options->progress, options->progress_user, start, length};
+    *span = (gb_progress_span){options->progress, options->progress_user, start, length};
     if (options->progress) {
-        step.progress = report_span;
+        step.progress = gb_progress_span_report;
         step.progress_user = span;
     }
     return step;
@@ -401,7 +388,7 @@ gb_result gb_voxelize_triangles(const float *positions, uint32_t vertex_count,
     if (result != GB_OK)
         return result;
     double pad[3] = {options.pad, options.pad, options.pad};
-    progress_span span;
+    gb_progress_span span;
     gb_voxelize_options step = step_options(&options, &span, 0, SURFACE_SHARE);
     result = mark_surface(&frame, lower, pad, positions, vertex_count, indices,
                           triangle_count, &step, error);
