@@ -112,11 +112,6 @@ gb_result gb_container_check_version(const gb_container *container, const char *
                                      uint32_t newest, gb_error *error);
 /* NULL when the container has no section of that name. */
 const gb_section *gb_container_find(const gb_container *container, const char *name);
-/* The section's payload, or NULL for no section (a find that failed). */
-static inline const void *gb_section_data(const gb_section *section)
-{
-    return section ? section->data : NULL;
-}
 /* The section `name` as an array of count elements of element_size bytes,
  * in *out. Fails (GB_ERROR_FORMAT) with "path: no "name" section" or
  * "path: "name" section has N bytes, C x S = M expected"; with alignment
