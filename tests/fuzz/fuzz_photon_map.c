@@ -35,6 +35,6 @@ GB_FUZZ_READER(parse, gb_photon_map, gb_photon_map_parse, gb_photon_map_check,
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {
-    gb_fuzz_parse_aligned(data, size, parse, 0);
+    gb_fuzz_parse_twice(data, size, parse);
     return 0;
 }

@@ -15,7 +15,7 @@
  *       format's own checks instead of all stopping at the container's CRCs.
  *   gb_fuzz_parse_twice(data, size, parse)
  *       gb_fuzz_parse_aligned with fix: the whole test of a container-based
- *       format's target (.lot, .skel, .atlas).
+ *       format's target (.lot, .skel, .atlas, .phot).
  *   gb_fuzz_names(error, path)
  *       1 when the error's message starts with "PATH:", as every failure of
  *       a reader given a file name says.
