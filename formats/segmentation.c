@@ -11,6 +11,8 @@
 
 #include "container.h"
 #include "container_kind.h"
+#include "skeleton.h"
+#include "voxel_frame.h"
 
 enum {
     HEADER_SIZE = 88,
@@ -30,16 +32,10 @@ static int finite3(const float v[3])
 
 static gb_result check_header(const gb_segmentation *s, const char *path, gb_error *error)
 {
-    if (!isfinite(s->voxel_size) || !(s->voxel_size > 0.0))
-        return gb_fail(error, GB_ERROR_INVALID, "%s: voxel size %g is not positive", path,
-                       s->voxel_size);
-    for (int a = 0; a < 3; ++a) {
-        if (!isfinite(s->world_origin[a]))
-            return gb_fail(error, GB_ERROR_INVALID, "%s: world origin is not finite", path);
-        if (s->grid_size[a] <= 0)
-            return gb_fail(error, GB_ERROR_INVALID, "%s: grid size %d on axis %d is not positive",
-                           path, (int)s->grid_size[a], a);
-    }
+    gb_result result = gb_voxel_frame_check(s->voxel_size, s->world_origin, s->grid_size, path,
+                                            error);
+    if (result)
+        return result;
     if (!(s->alpha >= 0.0 && s->alpha <= 100.0))
         return gb_fail(error, GB_ERROR_INVALID, "%s: alpha %g is not in [0, 100]", path,
                        s->alpha);
@@ -74,24 +70,6 @@ static gb_result check_nodes(const gb_segmentation *s, const char *path, gb_erro
         if (!finite3(node->position) || !isfinite(node->radius) || node->radius < 0.0f)
             return gb_fail(error, GB_ERROR_INVALID,
                            "%s: node %u: position or radius is not valid", path, n);
-    }
-    return GB_OK;
-}
-
-static gb_result check_edges(const gb_segmentation *s, const char *path, gb_error *error)
-{
-    for (uint32_t e = 0; e < s->edge_count; ++e) {
-        uint32_t a = s->edges[2 * e], b = s->edges[2 * e + 1];
-        if (a >= b || b >= s->node_count)
-            return gb_fail(error, GB_ERROR_INVALID,
-                           "%s: edge %u (%u, %u) is not an ordered pair of the %u nodes", path,
-                           e, a, b, s->node_count);
-        if (e > 0) {
-            uint32_t pa = s->edges[2 * e - 2], pb = s->edges[2 * e - 1];
-            if (pa > a || (pa == a && pb >= b))
-                return gb_fail(error, GB_ERROR_INVALID,
-                               "%s: edge %u is out of order or repeated", path, e);
-        }
     }
     return GB_OK;
 }
@@ -310,7 +288,7 @@ gb_result gb_segmentation_validate(const gb_segmentation *s, const char *path, g
     if (!result)
         result = check_nodes(s, path, error);
     if (!result)
-        result = check_edges(s, path, error);
+        result = gb_skeleton_check_edges(s->edges, s->edge_count, s->node_count, path, error);
     if (!result)
         result = check_clusters(s, path, error);
     if (!result)
@@ -333,11 +311,7 @@ static void encode_header(const gb_segmentation *s, uint8_t header[HEADER_SIZE])
     gb_put_u32(header + 20, s->resolution);
     gb_put_f64(header + 24, s->alpha);
     gb_put_u64(header + 32, s->scene_hash);
-    gb_put_f64(header + 40, s->voxel_size);
-    for (int a = 0; a < 3; ++a)
-        gb_put_f64(header + 48 + 8 * a, s->world_origin[a]);
-    for (int a = 0; a < 3; ++a)
-        gb_put_u32(header + 72 + 4 * a, (uint32_t)s->grid_size[a]);
+    gb_voxel_frame_put(header + 40, s->voxel_size, s->world_origin, s->grid_size);
     gb_put_u32(header + 84, s->gates_fitted);
 }
 
@@ -351,11 +325,7 @@ static void decode_header(const uint8_t header[HEADER_SIZE], gb_segmentation *s)
     s->resolution = gb_get_u32(header + 20);
     s->alpha = gb_get_f64(header + 24);
     s->scene_hash = gb_get_u64(header + 32);
-    s->voxel_size = gb_get_f64(header + 40);
-    for (int a = 0; a < 3; ++a)
-        s->world_origin[a] = gb_get_f64(header + 48 + 8 * a);
-    for (int a = 0; a < 3; ++a)
-        s->grid_size[a] = (int32_t)gb_get_u32(header + 72 + 4 * a);
+    gb_voxel_frame_get(header + 40, &s->voxel_size, s->world_origin, s->grid_size);
     s->gates_fitted = gb_get_u32(header + 84);
 }
 

@@ -10,6 +10,7 @@
 #include "container.h"
 #include "container_kind.h"
 #include "little_endian.h"
+#include "voxel_frame.h"
 
 enum {
     HEADER_SIZE = 88,
@@ -22,11 +23,7 @@ static void encode_header(const gb_skeleton *s, unsigned char header[HEADER_SIZE
     memset(header, 0, HEADER_SIZE);
     gb_put_u32(header + 0, s->node_count);
     gb_put_u32(header + 4, s->edge_count);
-    gb_put_f64(header + 8, s->voxel_size);
-    for (int a = 0; a < 3; ++a)
-        gb_put_f64(header + 16 + 8 * a, s->world_origin[a]);
-    for (int a = 0; a < 3; ++a)
-        gb_put_u32(header + 40 + 4 * a, (uint32_t)s->grid_size[a]);
+    gb_voxel_frame_put(header + 8, s->voxel_size, s->world_origin, s->grid_size);
     gb_put_u32(header + 52, s->resolution);
     gb_put_u64(header + 56, s->scene_hash);
     gb_put_f64(header + 64, s->persistence);
@@ -39,11 +36,7 @@ static void decode_header(const unsigned char header[HEADER_SIZE], gb_skeleton *
 {
     s->node_count = gb_get_u32(header + 0);
     s->edge_count = gb_get_u32(header + 4);
-    s->voxel_size = gb_get_f64(header + 8);
-    for (int a = 0; a < 3; ++a)
-        s->world_origin[a] = gb_get_f64(header + 16 + 8 * a);
-    for (int a = 0; a < 3; ++a)
-        s->grid_size[a] = (int32_t)gb_get_u32(header + 40 + 4 * a);
+    gb_voxel_frame_get(header + 8, &s->voxel_size, s->world_origin, s->grid_size);
     s->resolution = gb_get_u32(header + 52);
     s->scene_hash = gb_get_u64(header + 56);
     s->persistence = gb_get_f64(header + 64);
@@ -54,20 +47,12 @@ static void decode_header(const unsigned char header[HEADER_SIZE], gb_skeleton *
 
 static gb_result check_header(const gb_skeleton *s, const char *path, gb_error *error)
 {
-    if (!isfinite(s->voxel_size) || !(s->voxel_size > 0.0))
-        return gb_fail(error, GB_ERROR_INVALID, "%s: voxel size %g is not positive", path,
-                       s->voxel_size);
-    for (int a = 0; a < 3; ++a) {
-        if (!isfinite(s->world_origin[a]))
-            return gb_fail(error, GB_ERROR_INVALID, "%s: world origin is not finite", path);
-        if (s->grid_size[a] <= 0)
-            return gb_fail(error, GB_ERROR_INVALID, "%s: grid size %d on axis %d is not positive",
-                           path, (int)s->grid_size[a], a);
-    }
-    if (!isfinite(s->persistence) || !isfinite(s->min_lifespan))
+    gb_result result = gb_voxel_frame_check(s->voxel_size, s->world_origin, s->grid_size, path,
+                                            error);
+    if (!result && (!isfinite(s->persistence) || !isfinite(s->min_lifespan)))
         return gb_fail(error, GB_ERROR_INVALID, "%s: persistence parameters are not finite",
                        path);
-    return GB_OK;
+    return result;
 }
 
 static gb_result check_nodes(const gb_skeleton *s, const char *path, gb_error *error)
@@ -85,19 +70,17 @@ static gb_result check_nodes(const gb_skeleton *s, const char *path, gb_error *e
     return GB_OK;
 }
 
-static gb_result check_edges(const gb_skeleton *s, const char *path, gb_error *error)
+gb_result gb_skeleton_check_edges(const uint32_t *edges, uint32_t edge_count, uint32_t node_count,
+                                  const char *path, gb_error *error)
 {
-    for (uint32_t e = 0; e < s->edge_count; ++e) {
-        uint32_t a = s->edges[2 * e], b = s->edges[2 * e + 1];
-        if (a >= s->node_count || b >= s->node_count)
+    for (uint32_t e = 0; e < edge_count; ++e) {
+        uint32_t a = edges[2 * e], b = edges[2 * e + 1];
+        if (a >= b || b >= node_count)
             return gb_fail(error, GB_ERROR_INVALID,
-                           "%s: edge %u joins node %u and %u, but there are %u nodes", path, e,
-                           a, b, s->node_count);
-        if (a >= b)
-            return gb_fail(error, GB_ERROR_INVALID, "%s: edge %u (%u, %u) is not ordered", path,
-                           e, a, b);
+                           "%s: edge %u (%u, %u) is not an ordered pair of the %u nodes", path,
+                           e, a, b, node_count);
         if (e > 0) {
-            uint32_t pa = s->edges[2 * e - 2], pb = s->edges[2 * e - 1];
+            uint32_t pa = edges[2 * e - 2], pb = edges[2 * e - 1];
             if (pa > a || (pa == a && pb >= b))
                 return gb_fail(error, GB_ERROR_INVALID,
                                "%s: edge %u is out of order or repeated", path, e);
@@ -114,7 +97,8 @@ gb_result gb_skeleton_validate(const gb_skeleton *skeleton, const char *path, gb
     if (!result)
         result = check_nodes(skeleton, path, error);
     if (!result)
-        result = check_edges(skeleton, path, error);
+        result = gb_skeleton_check_edges(skeleton->edges, skeleton->edge_count,
+                                         skeleton->node_count, path, error);
     return result;
 }
 

@@ -61,4 +61,10 @@ gb_result gb_skeleton_parse(const void *bytes, size_t size, const char *path,
 gb_result gb_skeleton_validate(const gb_skeleton *skeleton, const char *path, gb_error *error);
 void gb_skeleton_free(gb_skeleton *skeleton);
 
+/* The edge rule of a skeleton and of its segmentation: edge_count pairs
+ * (a, b) with a < b < node_count, sorted, none repeated; GB_ERROR_INVALID,
+ * naming path, for the first that is not. */
+gb_result gb_skeleton_check_edges(const uint32_t *edges, uint32_t edge_count, uint32_t node_count,
+                                  const char *path, gb_error *error);
+
 #endif
