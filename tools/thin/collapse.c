@@ -20,18 +20,14 @@ static const uint8_t kind_faces[GB_COLLAPSE_KINDS] = {GB_FACE_CUBE, GB_FACE_SQUA
 enum {
     MARK_BORDER = 1u << 0,      /* << kind: in border[kind] */
     MARK_PENDING = 1u << 3,     /* << kind: in pending[kind] */
-    MARK_BORN_X = 1u << 6,      /* its edge along x became a facet this iteration */
-    MARK_BORN = 7u << 6,        /* (born holds the cell) */
 };
-
-static uint16_t born_mark(int axis) { return (uint16_t)(MARK_BORN_X << axis); }
 
 /* ---- the lists ---- */
 
-HOT gb_result list_in(gb_collapse *collapse, gb_cell_list *list, uint16_t mark, size_t cell,
+HOT gb_result list_in(gb_collapse *collapse, gb_cell_list *list, uint8_t mark, size_t cell,
                       gb_error *error)
 {
-    uint16_t *marks = &collapse->marks[cell];
+    uint8_t *marks = &collapse->marks[cell];
     if (*marks & mark)
         return GB_OK;
     *marks |= mark;
@@ -43,10 +39,10 @@ HOT gb_result list_in(gb_collapse *collapse, gb_cell_list *list, uint16_t mark, 
  * before the one that freed it). */
 HOT gb_result list_candidate(gb_collapse *collapse, size_t cell, int kind, gb_error *error)
 {
-    if (list_in(collapse, &collapse->border[kind], (uint16_t)(MARK_BORDER << kind), cell,
+    if (list_in(collapse, &collapse->border[kind], (uint8_t)(MARK_BORDER << kind), cell,
                 error))
         return GB_ERROR_OUT_OF_MEMORY;
-    return list_in(collapse, &collapse->pending[kind], (uint16_t)(MARK_PENDING << kind), cell,
+    return list_in(collapse, &collapse->pending[kind], (uint8_t)(MARK_PENDING << kind), cell,
                    error);
 }
 
@@ -61,7 +57,7 @@ gb_result gb_collapse_reconsider(gb_collapse *collapse, size_t cell, gb_error *e
                 for (int kind = 0; kind < GB_COLLAPSE_KINDS; ++kind)
                     if ((collapse->complex->faces[neighbour] & kind_faces[kind]) &&
                         list_in(collapse, &collapse->pending[kind],
-                                (uint16_t)(MARK_PENDING << kind), neighbour, error))
+                                (uint8_t)(MARK_PENDING << kind), neighbour, error))
                         return GB_ERROR_OUT_OF_MEMORY;
             }
     return GB_OK;
@@ -101,7 +97,8 @@ void gb_collapse_free(gb_collapse *collapse)
         gb_cell_list_free(&collapse->border[kind]);
         gb_cell_list_free(&collapse->pending[kind]);
     }
-    gb_cell_list_free(&collapse->born);
+    for (int axis = 0; axis < 3; ++axis)
+        gb_cell_list_free(&collapse->born[axis]);
     free(collapse->pairs);
     free(collapse->marks);
     memset(collapse, 0, sizeof *collapse);
@@ -115,7 +112,7 @@ static void start_iteration(gb_collapse *collapse)
     for (int kind = 0; kind < GB_COLLAPSE_KINDS; ++kind) {
         gb_cell_list *border = &collapse->border[kind], *pending = &collapse->pending[kind];
         for (size_t n = 0; n < border->count; ++n)
-            collapse->marks[border->items[n]] &= (uint16_t)~(MARK_BORDER << kind);
+            collapse->marks[border->items[n]] &= (uint8_t)~(MARK_BORDER << kind);
         border->count = 0;
         /* swap: the pending cells become the border, the old border's
          * allocation takes the next iteration's pending cells */
@@ -125,10 +122,10 @@ static void start_iteration(gb_collapse *collapse)
         size_t kept = 0;
         for (size_t n = 0; n < border->count; ++n) {
             size_t cell = border->items[n];
-            uint16_t *marks = &collapse->marks[cell];
-            *marks &= (uint16_t)~(MARK_PENDING << kind);
+            uint8_t *marks = &collapse->marks[cell];
+            *marks &= (uint8_t)~(MARK_PENDING << kind);
             if (faces[cell] & kind_faces[kind]) {
-                *marks |= (uint16_t)(MARK_BORDER << kind);
+                *marks |= (uint8_t)(MARK_BORDER << kind);
                 border->items[kept++] = (uint32_t)cell;
             }
         }
@@ -142,15 +139,14 @@ static gb_result end_iteration(gb_collapse *collapse, gb_error *error)
 {
     const uint8_t *faces = collapse->complex->faces;
     gb_result result = GB_OK;
-    for (size_t n = 0; n < collapse->born.count; ++n) {
-        size_t cell = collapse->born.items[n];
-        for (int axis = 0; axis < 3 && !result; ++axis)
-            if ((collapse->marks[cell] & born_mark(axis)) && (faces[cell] & gb_edge_bit(axis)))
-                result = gb_persistence_record_birth(collapse->persistence, cell, axis,
-                                                     collapse->iteration, error);
-        collapse->marks[cell] &= (uint16_t)~MARK_BORN;
+    for (int axis = 0; axis < 3; ++axis) {
+        gb_cell_list *born = &collapse->born[axis];
+        for (size_t n = 0; n < born->count && !result; ++n)
+            if (faces[born->items[n]] & gb_edge_bit(axis))
+                result = gb_persistence_record_birth(collapse->persistence, born->items[n],
+                                                     axis, collapse->iteration, error);
+        born->count = 0;
     }
-    collapse->born.count = 0;
     return result;
 }
 
@@ -178,12 +174,10 @@ static size_t free_face_cell(const gb_cubical_complex *complex, size_t cell, sub
     return s.orientation < 0 ? cell : cell + complex->step[s.axis];
 }
 
-/* An isthmus edge is protected once old enough; one born this iteration
- * (lifespan 0) never is. */
+/* An isthmus edge is protected once old enough; one born this iteration has
+ * no recorded birth yet, so its lifespan is 0 and it never is. */
 static int is_protected(const gb_collapse *collapse, size_t cell, int axis)
 {
-    if (collapse->marks[cell] & born_mark(axis))
-        return 0;
     return gb_persistence_is_protected(collapse->persistence, collapse->complex, cell, axis,
                                        collapse->iteration);
 }
@@ -245,10 +239,7 @@ HOT gb_result square_lost_coface(gb_collapse *collapse, size_t cell, int normal,
 static gb_result edge_became_facet(gb_collapse *collapse, size_t cell, int axis,
                                    gb_error *error)
 {
-    uint16_t *marks = &collapse->marks[cell];
-    int born_before = (*marks & MARK_BORN) != 0;
-    *marks |= born_mark(axis);
-    return born_before ? GB_OK : gb_cell_list_push(&collapse->born, cell, error);
+    return gb_cell_list_push(&collapse->born[axis], cell, error);
 }
 
 HOT gb_result edge_lost_coface(gb_collapse *collapse, size_t cell, int axis, gb_error *error)

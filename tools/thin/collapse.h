@@ -42,10 +42,12 @@ typedef struct gb_collapse {
     gb_persistence *persistence;
     gb_cell_list border[GB_COLLAPSE_KINDS];  /* cells examined in this iteration */
     gb_cell_list pending[GB_COLLAPSE_KINDS]; /* cells to examine in the next one */
-    gb_cell_list born;          /* cells with an edge that became a facet this iteration */
+    gb_cell_list born[3];       /* per axis: cells whose edge along it became a facet
+                                   this iteration (an edge does so once) */
     uint64_t *pairs;            /* free pairs of one substep: cell << 8 | face bit of g */
     size_t pair_count, pair_capacity;
-    uint16_t *marks;            /* per cell: which lists hold it, cleared through them */
+    uint8_t *marks;             /* per cell: which border and pending lists hold it,
+                                   cleared through them */
     uint32_t iteration;         /* iterations done so far (persistence's clock) */
     uint64_t cubes, cubes_removed;
     uint64_t pairs_removed;
