@@ -97,7 +97,22 @@ gb_result gb_voxel_grid_write_and_free(const char *path, gb_voxel_grid *grid, gb
 gb_result gb_voxel_grid_read(const char *path, gb_voxel_grid *grid, gb_error *error)
 {
     const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
-    return adapter ? adapter->read(path, grid, error) : GB_ERROR_IO;
+    return adapter ? adapter->read(path, grid, 1, error) : GB_ERROR_IO;
+}
+
+gb_result gb_voxel_grid_read_surface(const char *path, gb_voxel_grid *grid, gb_error *error)
+{
+    const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
+    return adapter ? adapter->read(path, grid, 0, error) : GB_ERROR_IO;
+}
+
+gb_result gb_voxel_grid_read_distances(const char *path, const gb_voxel_grid *frame,
+                                       const size_t *voxels, size_t count, float *distances,
+                                       gb_error *error)
+{
+    const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
+    return adapter ? adapter->read_distances(path, frame, voxels, count, distances, error)
+                   : GB_ERROR_IO;
 }
 
 gb_result gb_voxel_grid_write_int32(const char *path, const gb_voxel_grid *frame,

@@ -43,6 +43,24 @@ void gb_voxel_grid_free(gb_voxel_grid *grid);
 gb_result gb_voxel_grid_write(const char *path, const gb_voxel_grid *grid, gb_error *error);
 gb_result gb_voxel_grid_read(const char *path, gb_voxel_grid *grid, gb_error *error);
 
+/* gb_voxel_grid_read, the file checked the same, but without the distance
+ * array (grid->distance is NULL): for a reader that needs the distances of
+ * a few voxels only, read later with gb_voxel_grid_read_distances (thin:
+ * those around its skeleton's nodes), so that the dense floats are never
+ * held. */
+gb_result gb_voxel_grid_read_surface(const char *path, gb_voxel_grid *grid, gb_error *error);
+/* The distances of count voxels of the file at path (dense indices, as
+ * gb_voxel_index gives them; 0 at a surface voxel) into distances. frame
+ * is the grid read before from the same file, whose frame it must still
+ * have. */
+/* A source of the distances of a few voxels (dense indices into distances),
+ * as gb_voxel_grid_read_distances reads them from a file. */
+typedef gb_result (*gb_voxel_distances_function)(void *user, const size_t *voxels, size_t count,
+                                                 float *distances, gb_error *error);
+gb_result gb_voxel_grid_read_distances(const char *path, const gb_voxel_grid *frame,
+                                       const size_t *voxels, size_t count, float *distances,
+                                       gb_error *error);
+
 /* gb_voxel_grid_write then gb_voxel_grid_free, giving the dense arrays'
  * memory back while the sparse grids are built: peak memory is about the
  * larger of the two instead of their sum. grid is freed whatever the

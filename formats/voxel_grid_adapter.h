@@ -34,7 +34,11 @@ typedef struct gb_voxel_grid_host {
 typedef struct gb_voxel_grid_adapter {
     gb_result (*write)(const char *path, const gb_voxel_grid *grid, gb_error *error);
     gb_result (*write_and_free)(const char *path, gb_voxel_grid *grid, gb_error *error);
-    gb_result (*read)(const char *path, gb_voxel_grid *grid, gb_error *error);
+    /* gb_voxel_grid_read, or gb_voxel_grid_read_surface when with_distance is 0 */
+    gb_result (*read)(const char *path, gb_voxel_grid *grid, int with_distance, gb_error *error);
+    gb_result (*read_distances)(const char *path, const gb_voxel_grid *frame,
+                                const size_t *voxels, size_t count, float *distances,
+                                gb_error *error);
     gb_result (*write_int32)(const char *path, const gb_voxel_grid *frame, const char *name,
                              const int32_t *values, gb_error *error);
     gb_result (*read_int32)(const char *path, const char *name, gb_voxel_grid *frame,

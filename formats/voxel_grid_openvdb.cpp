@@ -800,9 +800,10 @@ gb_result outside_frame(const char *path, const char *name, gb_error *error)
 
 // Fills grid->surface from the "surface" grid, then checks that "empty" is
 // its complement and that "distance" is active exactly on "empty", finite and
-// non-negative, and fills grid->distance from it.
-gb_result read_voxel_grids(const char *path, Reader &reader, gb_voxel_grid *grid,
-                           gb_error *error)
+// non-negative, and fills grid->distance from it (with_distance) or leaves
+// it NULL.
+gb_result read_voxel_grids(const char *path, Reader &reader, bool with_distance,
+                           gb_voxel_grid *grid, gb_error *error)
 {
     openvdb::BoolGrid::Ptr surface;
     openvdb::MaskGrid::Ptr empty;
@@ -828,6 +829,11 @@ gb_result read_voxel_grids(const char *path, Reader &reader, gb_voxel_grid *grid
     }
     if (result != GB_OK)
         return result;
+    if (!with_distance) {
+        // never touched, so never resident: calloc's pages stay unmapped
+        std::free(frame.distance);
+        frame.distance = nullptr;
+    }
 
     uint8_t *occupied = frame.surface;
     float *value = frame.distance;
@@ -848,7 +854,8 @@ gb_result read_voxel_grids(const char *path, Reader &reader, gb_voxel_grid *grid
     inside = inside && for_each_active_voxel(*distance, &frame, [&](size_t index, float d) {
         disjoint &= !occupied[index];
         finite &= std::isfinite(d) && d >= 0;
-        value[index] = d;
+        if (value)
+            value[index] = d;
         ++distance_count;
     });
     size_t total = frame_voxel_count(&frame);
@@ -909,7 +916,7 @@ gb_result write_and_free(const char *path, gb_voxel_grid *grid, gb_error *error)
     return result;
 }
 
-gb_result read(const char *path, gb_voxel_grid *grid, gb_error *error)
+gb_result read(const char *path, gb_voxel_grid *grid, int with_distance, gb_error *error)
 {
     if (!path || !grid)
         return host->fail(error, GB_ERROR_ARGUMENT, "voxel grid read: no path or no grid");
@@ -919,7 +926,49 @@ gb_result read(const char *path, gb_voxel_grid *grid, gb_error *error)
         gb_result result = reader.open(error);
         if (result != GB_OK)
             return result;
-        return read_voxel_grids(path, reader, grid, error);
+        return read_voxel_grids(path, reader, with_distance != 0, grid, error);
+    } catch (const std::bad_alloc &) {
+        return host->fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    } catch (const std::exception &e) {
+        return host->fail(error, GB_ERROR_FORMAT, "%s: %s", path, e.what());
+    }
+}
+
+// The values of grid "distance" at count dense indices of frame (0 where
+// the grid is inactive: a surface voxel), the file's frame checked against
+// frame's.
+gb_result read_distances(const char *path, const gb_voxel_grid *frame, const size_t *voxels,
+                         size_t count, float *distances, gb_error *error)
+{
+    if (!path || !frame || (count && (!voxels || !distances)))
+        return host->fail(error, GB_ERROR_ARGUMENT, "voxel distances read: missing argument");
+    try {
+        initialize_openvdb();
+        Reader reader(path);
+        openvdb::FloatGrid::Ptr grid;
+        gb_result result = reader.open(error);
+        if (result == GB_OK)
+            result = reader.read<openvdb::FloatGrid>("distance", "float", &grid, error);
+        if (result == GB_OK)
+            result = check_same_frame(path, *grid, frame, error);
+        if (result != GB_OK)
+            return result;
+        const size_t nx = (size_t)frame->size[0], ny = (size_t)frame->size[1];
+        const size_t total = frame_voxel_count(frame);
+        openvdb::FloatGrid::ConstAccessor accessor = grid->getConstAccessor();
+        for (size_t n = 0; n < count; ++n) {
+            size_t v = voxels[n];
+            if (v >= total)
+                return host->fail(error, GB_ERROR_ARGUMENT,
+                                  "%s: voxel %zu is outside the grid", path, v);
+            openvdb::Coord ijk((int)(v % nx), (int)(v / nx % ny), (int)(v / nx / ny));
+            float d = accessor.isValueOn(ijk) ? accessor.getValue(ijk) : 0.0f;
+            if (!std::isfinite(d) || d < 0)
+                return host->fail(error, GB_ERROR_FORMAT,
+                                  "%s: grid 'distance' has a negative or non-finite value", path);
+            distances[n] = d;
+        }
+        return GB_OK;
     } catch (const std::bad_alloc &) {
         return host->fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
     } catch (const std::exception &e) {
@@ -1006,8 +1055,8 @@ int file_checksum(const void *bytes, size_t size, char uuid[37])
     return 1;
 }
 
-const gb_voxel_grid_adapter adapter = {write, write_and_free, read, write_int32, read_int32,
-                                       file_checksum};
+const gb_voxel_grid_adapter adapter = {write,      write_and_free, read,         read_distances,
+                                       write_int32, read_int32,     file_checksum};
 
 } // namespace
 

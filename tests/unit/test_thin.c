@@ -609,6 +609,67 @@ static void test_determinism(void)
     gb_voxel_grid_free(&g);
 }
 
+/* ---- node radii from a distance source (thin's main: the file again) ---- */
+
+typedef struct served_distances {
+    const float *distance;      /* the dense distances the source answers from */
+    int calls;
+    size_t asked;
+} served_distances;
+
+static gb_result serve_distances(void *user, const size_t *voxels, size_t count,
+                                 float *distances, gb_error *error)
+{
+    (void)error;
+    served_distances *served = user;
+    ++served->calls;
+    served->asked += count;
+    for (size_t n = 0; n < count; ++n)
+        distances[n] = served->distance[voxels[n]];
+    return GB_OK;
+}
+
+static gb_result refuse_distances(void *user, const size_t *voxels, size_t count,
+                                  float *distances, gb_error *error)
+{
+    (void)user, (void)voxels, (void)count, (void)distances;
+    return gb_fail(error, GB_ERROR_IO, "refused by the test");
+}
+
+static void test_distance_source(void)
+{
+    gb_voxel_grid g = cluttered_room();
+    size_t voxels = (size_t)g.size[0] * g.size[1] * g.size[2];
+    outcome dense = run_thin(&g, NULL);
+    float *distance = g.distance;
+    g.distance = NULL;
+    served_distances served = {distance, 0, 0};
+    gb_thin_options options = {0};
+    options.distances = serve_distances;
+    options.distances_user = &served;
+    outcome sourced = run_thin(&g, &options);
+    CHECK_EQ_INT(sourced.result, GB_OK, "distance source: thin without the dense distance");
+    CHECK(same_outcome(&dense, &sourced, voxels),
+          "distance source: the same skeleton, radii and grid as with the dense distance");
+    CHECKF(served.calls == 1 && served.asked <= 8 * (size_t)sourced.skeleton.node_count &&
+               served.asked >= sourced.skeleton.node_count,
+           "distance source: asked once for %zu voxels, at most 8 a node (%u nodes)",
+           served.asked, sourced.skeleton.node_count);
+    options.distances = refuse_distances;
+    outcome refused = run_thin(&g, &options);
+    CHECK(refused.result == GB_ERROR_IO && refused.skeleton.node_count == 0 && !refused.nearest,
+          "distance source: its failure is thin's, nothing left");
+    gb_skeleton skeleton;
+    gb_error error;
+    CHECK_EQ_INT(gb_thin(&g, NULL, &skeleton, NULL, NULL, &error), GB_ERROR_ARGUMENT,
+                 "distance source: neither a distance nor a source is refused");
+    free_outcome(&dense);
+    free_outcome(&sourced);
+    free_outcome(&refused);
+    g.distance = distance;
+    gb_voxel_grid_free(&g);
+}
+
 static int count_progress(void *user, double fraction)
 {
     double *last = user;
@@ -723,6 +784,7 @@ int main(void)
     test_maps();
     test_nearest_ways();
     test_determinism();
+    test_distance_source();
     test_options();
     test_grid_file();
     test_bad_input();

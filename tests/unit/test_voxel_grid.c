@@ -117,6 +117,48 @@ static void test_round_trip(void)
     gb_voxel_grid_free(&grid);
 }
 
+/* The surface alone, then the distances of chosen voxels, against the
+ * distances the grid was made with. */
+static void test_surface_then_distances(void)
+{
+    gb_voxel_grid grid, read = {0};
+    gb_error error;
+    make_grid(&grid);
+    const char *path = scratch_path("surface.vdb");
+    CHECK_EQ_INT(gb_voxel_grid_write(path, &grid, &error), GB_OK, "surface read: write");
+    CHECK_EQ_INT(gb_voxel_grid_read_surface(path, &read, &error), GB_OK,
+                 "surface read: read without the distance");
+    size_t count = (size_t)grid.size[0] * grid.size[1] * grid.size[2];
+    CHECK(read.distance == NULL && read.surface &&
+              memcmp(read.surface, grid.surface, count) == 0 &&
+              memcmp(read.size, grid.size, sizeof grid.size) == 0,
+          "surface read: the surface and frame, no distance array");
+    size_t *voxels = malloc(count * sizeof *voxels);
+    float *distances = malloc(count * sizeof *distances);
+    for (size_t n = 0; n < count; ++n)
+        voxels[n] = count - 1 - n;
+    CHECK_EQ_INT(gb_voxel_grid_read_distances(path, &read, voxels, count, distances, &error),
+                 GB_OK, "surface read: the distances of every voxel, last first");
+    int same = 1;
+    for (int k = 0; k < grid.size[2]; ++k)
+        for (int j = 0; j < grid.size[1]; ++j)
+            for (int i = 0; i < grid.size[0]; ++i)
+                same &= distances[count - 1 - gb_voxel_index(&grid, i, j, k)] ==
+                        plane_distance(i, j, k);
+    CHECK(same, "surface read: each distance as made (0 on the surface)");
+    size_t outside = count;
+    CHECK_EQ_INT(gb_voxel_grid_read_distances(path, &read, &outside, 1, distances, &error),
+                 GB_ERROR_ARGUMENT, "surface read: a voxel past the grid is refused");
+    read.voxel_size *= 2.0;
+    CHECK_EQ_INT(gb_voxel_grid_read_distances(path, &read, voxels, 1, distances, &error),
+                 GB_ERROR_FORMAT, "surface read: a file of another frame is refused");
+    free(voxels);
+    free(distances);
+    unlink(path);
+    gb_voxel_grid_free(&read);
+    gb_voxel_grid_free(&grid);
+}
+
 /* A grid of many memory pages, written while its arrays are given back. */
 static void test_write_and_free(void)
 {
@@ -276,6 +318,7 @@ int main(void)
     scratch_create("voxel-grid");
     test_allocate();
     test_round_trip();
+    test_surface_then_distances();
     test_write_and_free();
     test_int32_round_trip();
     test_bad_files();

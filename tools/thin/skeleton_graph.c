@@ -43,10 +43,11 @@ static uint32_t node_of_cell(const uint32_t *cells, uint32_t count, size_t cell)
     return low;
 }
 
-/* The largest distance of the empty voxels around a corner (cell coordinates). */
-static float corner_radius(const gb_voxel_grid *grid, const int32_t corner[3])
+/* The empty voxels around a corner (cell coordinates), as dense indices
+ * into voxels (8 at most); returns how many. */
+static int corner_voxels(const gb_voxel_grid *grid, const int32_t corner[3], size_t voxels[8])
 {
-    float radius = 0.0f;
+    int count = 0;
     for (int d = 0; d < 8; ++d) {
         int32_t i = corner[0] - 1 - (d & 1), j = corner[1] - 1 - ((d >> 1) & 1),
                 k = corner[2] - 1 - ((d >> 2) & 1);
@@ -54,10 +55,55 @@ static float corner_radius(const gb_voxel_grid *grid, const int32_t corner[3])
             k >= grid->size[2])
             continue;
         size_t v = gb_voxel_index(grid, i, j, k);
-        if (!grid->surface[v] && grid->distance[v] > radius)
-            radius = grid->distance[v];
+        if (!grid->surface[v])
+            voxels[count++] = v;
     }
-    return radius;
+    return count;
+}
+
+static gb_result dense_distances(void *user, const size_t *voxels, size_t count,
+                                 float *distances, gb_error *error)
+{
+    (void)error;
+    const gb_voxel_grid *grid = user;
+    for (size_t n = 0; n < count; ++n)
+        distances[n] = grid->distance[voxels[n]];
+    return GB_OK;
+}
+
+/* Every node's radius: the largest distance of the empty voxels around its
+ * corner, all asked of distances_of at once. */
+static gb_result set_radii(const gb_cubical_complex *complex, const gb_voxel_grid *grid,
+                           const uint32_t *cells, gb_voxel_distances_function distances_of,
+                           void *distances_user, gb_skeleton *skeleton, gb_error *error)
+{
+    size_t most = 8 * (size_t)skeleton->node_count + 1;
+    size_t *voxels = malloc(most * sizeof *voxels);
+    float *distances = malloc(most * sizeof *distances);
+    uint8_t *counts = malloc(skeleton->node_count + 1);
+    gb_result result = GB_OK;
+    if (!voxels || !distances || !counts)
+        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "skeleton: out of memory for radii");
+    size_t total = 0;
+    for (uint32_t n = 0; !result && n < skeleton->node_count; ++n) {
+        int32_t corner[3];
+        gb_cell_coordinates(complex, cells[n], corner);
+        counts[n] = (uint8_t)corner_voxels(grid, corner, voxels + total);
+        total += counts[n];
+    }
+    if (!result)
+        result = distances_of(distances_user, voxels, total, distances, error);
+    for (uint32_t n = 0, at = 0; !result && n < skeleton->node_count; ++n) {
+        float radius = 0.0f;
+        for (int v = 0; v < counts[n]; ++v, ++at)
+            if (distances[at] > radius)
+                radius = distances[at];
+        skeleton->nodes[n].radius = radius;
+    }
+    free(voxels);
+    free(distances);
+    free(counts);
+    return result;
 }
 
 static void place_nodes(const gb_cubical_complex *complex, const gb_voxel_grid *grid,
@@ -69,7 +115,6 @@ static void place_nodes(const gb_cubical_complex *complex, const gb_voxel_grid *
         for (int a = 0; a < 3; ++a)
             skeleton->nodes[n].position[a] =
                 (float)(grid->world_origin[a] + grid->voxel_size * (double)(corner[a] - 1));
-        skeleton->nodes[n].radius = corner_radius(grid, corner);
     }
 }
 
@@ -91,8 +136,9 @@ static void join_edges(const gb_cubical_complex *complex, const uint32_t *cells,
 }
 
 gb_result gb_skeleton_graph_build(const gb_cubical_complex *complex, const gb_voxel_grid *grid,
-                                  gb_skeleton *skeleton, uint32_t **node_cells,
-                                  gb_error *error)
+                                  gb_voxel_distances_function distances_of,
+                                  void *distances_user, gb_skeleton *skeleton,
+                                  uint32_t **node_cells, gb_error *error)
 {
     uint32_t *cells = NULL, node_count = 0, edge_count = 0;
     gb_result result = collect_node_cells(complex, &cells, &node_count, &edge_count, error);
@@ -112,6 +158,15 @@ gb_result gb_skeleton_graph_build(const gb_cubical_complex *complex, const gb_vo
     skeleton->edge_count = edge_count;
     place_nodes(complex, grid, cells, skeleton);
     join_edges(complex, cells, skeleton);
+    if (grid->distance) {
+        distances_of = dense_distances;
+        distances_user = (void *)grid;
+    }
+    result = set_radii(complex, grid, cells, distances_of, distances_user, skeleton, error);
+    if (result) {
+        free(cells);
+        return result;
+    }
     *node_cells = cells;
     return GB_OK;
 }

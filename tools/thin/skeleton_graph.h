@@ -4,7 +4,8 @@
  *
  * A node sits at its point, a corner of the voxel grid: world_origin +
  * voxel_size * (x, y, z) for corner (x, y, z); its radius is the largest
- * distance (grid->distance) of the empty voxels around that corner. Nodes are
+ * distance of the empty voxels around that corner (from grid->distance, or
+ * when the grid holds none, from distances_of). Nodes are
  * numbered in the order of their cells (x fastest, then y, then z), edges are
  * sorted by their first then second node: the graph depends only on the
  * complex.
@@ -24,7 +25,8 @@
  * node_count entries, increasing) the cell of each node. Squares left in
  * the complex (none after a complete thinning) contribute their edges. */
 gb_result gb_skeleton_graph_build(const gb_cubical_complex *complex, const gb_voxel_grid *grid,
-                                  gb_skeleton *skeleton, uint32_t **node_cells,
-                                  gb_error *error);
+                                  gb_voxel_distances_function distances_of,
+                                  void *distances_user, gb_skeleton *skeleton,
+                                  uint32_t **node_cells, gb_error *error);
 
 #endif

@@ -42,8 +42,10 @@ static gb_thin_options resolved_options(const gb_thin_options *given)
 static gb_result check_input(const gb_voxel_grid *grid, const gb_thin_options *options,
                              gb_error *error)
 {
-    if (!grid || !grid->surface || !grid->distance)
+    if (!grid || !grid->surface)
         return gb_fail(error, GB_ERROR_ARGUMENT, "no voxel grid");
+    if (!grid->distance && !options->distances)
+        return gb_fail(error, GB_ERROR_ARGUMENT, "no distances: neither in the grid nor a source");
     for (int a = 0; a < 3; ++a)
         if (grid->size[a] <= 0 || !isfinite(grid->world_origin[a]))
             return gb_fail(error, GB_ERROR_ARGUMENT, "bad grid frame");
@@ -141,15 +143,17 @@ gb_result gb_thin(const gb_voxel_grid *grid, const gb_thin_options *given_option
         result = thin_complex(&complex, &persistence, &options, &stats, error);
     double collapse_done = gb_seconds();
     gb_persistence_free(&persistence);
-    /* the collapse's lists grew on the heap, which glibc keeps once freed:
-     * give it back before the nearest-node grid takes its 8 bytes a cell */
-    malloc_trim(0);
     if (!result)
-        result = gb_skeleton_graph_build(&complex, grid, skeleton, &node_cells, error);
+        result = gb_skeleton_graph_build(&complex, grid, options.distances,
+                                         options.distances_user, skeleton, &node_cells, error);
     double graph_done = gb_seconds();
     /* the faces are done with: only the lattice's frame is used from here */
     free(complex.faces);
     complex.faces = NULL;
+    /* the collapse's lists and the distance source's reading (an OpenVDB
+     * tree) grew on the heap, which glibc keeps once freed: give it back
+     * before the nearest-node grid takes its 8 bytes a cell */
+    malloc_trim(0);
     if (!result && nearest)
         result = compute_nearest(grid, &complex, node_cells, skeleton->node_count, &options,
                                  nearest, error);
