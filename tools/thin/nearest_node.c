@@ -28,20 +28,28 @@ enum {
     MAX_SLABS = 64,
 };
 
-/* A cell's state in one word: distance (thousandths of a voxel) in the high
- * 32 bits, node index in the low 32, so that comparing words compares
- * (distance, node) lexicographically. Non-empty cells hold BLOCKED, which
- * nothing improves; empty cells start at UNREACHED. */
-static const uint64_t BLOCKED = 0, UNREACHED = UINT64_MAX;
+/* A cell's state in 48 bits: distance (thousandths of a voxel) in the high
+ * 24, node index in the low 24, so that comparing states compares (distance,
+ * node) lexicographically. Non-empty cells hold BLOCKED, which nothing
+ * improves; empty cells start at UNREACHED. A path that would be longer
+ * than UNREACHED's distance (16 777 voxels) is never taken, and a voxel
+ * that far from every node stays unreached. The lattice keeps a state in 6
+ * bytes a cell (8 at 512^3 would be 1 GiB alone), read and written through
+ * state_at and set_state. */
+enum { STATE_BYTES = 6, NODE_BITS = 24 };
+static const uint64_t BLOCKED = 0, UNREACHED = (1ull << 48) - 1;
+
+/* Nodes are numbered below this (UNREACHED's node bits stay free). */
+#define MAX_NODES ((1u << NODE_BITS) - 1)
 
 static const uint32_t step_length[4] = {0, 1000, 1414, 1732};
 
-static uint32_t distance_of(uint64_t state) { return (uint32_t)(state >> 32); }
-static int32_t node_of(uint64_t state) { return (int32_t)(uint32_t)state; }
+static uint32_t distance_of(uint64_t state) { return (uint32_t)(state >> NODE_BITS); }
+static int32_t node_of(uint64_t state) { return (int32_t)(state & MAX_NODES); }
 
 static uint64_t state_of(uint32_t distance, uint32_t node)
 {
-    return (uint64_t)distance << 32 | node;
+    return (uint64_t)distance << NODE_BITS | node;
 }
 
 /* A cell reached with a state, from outside a slab or from a node. */
@@ -57,10 +65,31 @@ typedef struct arrivals {
 
 typedef struct geodesic {
     const gb_cubical_complex *complex;
-    uint64_t *state;            /* per cell */
+    unsigned char *state;       /* per cell, STATE_BYTES each */
     ptrdiff_t offsets[26];
     uint64_t lengths[26];       /* step lengths, shifted to the distance bits */
 } geodesic;
+
+/* A state as its low 32 bits and its high 16, each moved whole (one word
+ * assembled in memory from two smaller stores would stall the load). */
+static uint64_t state_at(const geodesic *g, size_t cell)
+{
+    const unsigned char *at = g->state + STATE_BYTES * cell;
+    uint32_t low;
+    uint16_t high;
+    memcpy(&low, at, sizeof low);
+    memcpy(&high, at + 4, sizeof high);
+    return (uint64_t)high << 32 | low;
+}
+
+static void set_state(geodesic *g, size_t cell, uint64_t state)
+{
+    unsigned char *at = g->state + STATE_BYTES * cell;
+    uint32_t low = (uint32_t)state;
+    uint16_t high = (uint16_t)(state >> 32);
+    memcpy(at, &low, sizeof low);
+    memcpy(at + 4, &high, sizeof high);
+}
 
 typedef struct slab {
     geodesic *g;
@@ -102,7 +131,8 @@ static void neighbour_steps(geodesic *g)
                     continue;
                 g->offsets[n] = dx + dy * (ptrdiff_t)g->complex->step[1] +
                                 dz * (ptrdiff_t)g->complex->step[2];
-                g->lengths[n] = (uint64_t)step_length[(dx != 0) + (dy != 0) + (dz != 0)] << 32;
+                g->lengths[n] = (uint64_t)step_length[(dx != 0) + (dy != 0) + (dz != 0)]
+                                << NODE_BITS;
                 ++n;
             }
 }
@@ -111,15 +141,14 @@ static void neighbour_steps(geodesic *g)
 static size_t mark_empty_cells(geodesic *g, const gb_voxel_grid *grid)
 {
     size_t empty = 0;
-    for (size_t cell = 0; cell < g->complex->cell_count; ++cell)
-        g->state[cell] = BLOCKED;
+    memset(g->state, 0, STATE_BYTES * g->complex->cell_count); /* BLOCKED */
     for (int32_t k = 0; k < grid->size[2]; ++k)
         for (int32_t j = 0; j < grid->size[1]; ++j) {
             const uint8_t *surface = grid->surface + gb_voxel_index(grid, 0, j, k);
-            uint64_t *state = g->state + gb_voxel_cell(g->complex, 0, j, k);
+            size_t row = gb_voxel_cell(g->complex, 0, j, k);
             for (int32_t i = 0; i < grid->size[0]; ++i)
                 if (!surface[i]) {
-                    state[i] = UNREACHED;
+                    set_state(g, row + (size_t)i, UNREACHED);
                     ++empty;
                 }
         }
@@ -162,20 +191,19 @@ static int sweep_row(geodesic *g, size_t first, size_t count, int backward)
 {
     const ptrdiff_t *offsets = g->offsets + (backward ? 13 : 0);
     const uint64_t *lengths = g->lengths + (backward ? 13 : 0);
-    uint64_t *state = g->state;
     int changed = 0;
     for (size_t n = 0; n < count; ++n) {
         size_t cell = backward ? first + count - 1 - n : first + n;
-        uint64_t best = state[cell];
+        uint64_t held = state_at(g, cell), best = held;
         if (best == BLOCKED)
             continue;
         for (int k = 0; k < 13; ++k) {
-            uint64_t from = state[(size_t)((ptrdiff_t)cell + offsets[k])];
+            uint64_t from = state_at(g, (size_t)((ptrdiff_t)cell + offsets[k]));
             if (from != BLOCKED && from != UNREACHED && from + lengths[k] < best)
                 best = from + lengths[k];
         }
-        if (best != state[cell]) {
-            state[cell] = best;
+        if (best != held) {
+            set_state(g, cell, best);
             changed = 1;
         }
     }
@@ -243,9 +271,9 @@ static void seed_states(geodesic *g, const uint32_t *node_cells, uint32_t node_c
         for (int d = 0; d < 8; ++d) {
             size_t cell = node_cells[n] - ((d & 1) ? step[0] : 0) -
                           ((d & 2) ? step[1] : 0) - ((d & 4) ? step[2] : 0);
-            uint64_t seed = state_of(SEED_LENGTH, n);
-            if (g->state[cell] != BLOCKED && seed < g->state[cell])
-                g->state[cell] = seed;
+            uint64_t seed = state_of(SEED_LENGTH, n), held = state_at(g, cell);
+            if (held != BLOCKED && seed < held)
+                set_state(g, cell, seed);
         }
 }
 
@@ -253,9 +281,9 @@ static void seed_states(geodesic *g, const uint32_t *node_cells, uint32_t node_c
 
 static gb_result reach(slab *s, size_t cell, uint64_t state)
 {
-    if (state >= s->g->state[cell])
+    if (state >= state_at(s->g, cell))
         return GB_OK;
-    s->g->state[cell] = state;
+    set_state(s->g, cell, state);
     ++s->queued;
     return gb_cell_list_push(&s->buckets[distance_of(state) % BUCKETS], cell, &s->error);
 }
@@ -263,7 +291,7 @@ static gb_result reach(slab *s, size_t cell, uint64_t state)
 static gb_result settle(slab *s, size_t cell)
 {
     const geodesic *g = s->g;
-    uint64_t state = g->state[cell];
+    uint64_t state = state_at(g, cell);
     for (int n = 0; n < 26; ++n) {
         size_t neighbour = (size_t)((ptrdiff_t)cell + g->offsets[n]);
         gb_result result = neighbour >= s->begin && neighbour < s->end
@@ -310,7 +338,7 @@ static gb_result propagate(slab *s)
         for (size_t n = 0; n < bucket->count; ++n) {
             size_t cell = bucket->items[n];
             --s->queued;
-            if (distance_of(s->g->state[cell]) != distance)
+            if (distance_of(state_at(s->g, cell)) != distance)
                 continue;
             gb_result result = settle(s, cell);
             if (!result)
@@ -344,7 +372,7 @@ static int cut_slabs(geodesic *g, slab *slabs, int count)
         count = 1;
     for (int32_t z = 0; empty && z < c->size[2]; ++z) {
         for (size_t cell = (size_t)z * layer; cell < (size_t)(z + 1) * layer; ++cell)
-            empty[z] += g->state[cell] != BLOCKED;
+            empty[z] += state_at(g, cell) != BLOCKED;
         total += empty[z];
     }
     int made = 0;
@@ -424,7 +452,7 @@ static int32_t node_from_neighbours(const geodesic *g, size_t cell)
 {
     uint64_t best = UNREACHED;
     for (int n = 0; n < 26; ++n) {
-        uint64_t state = g->state[(size_t)((ptrdiff_t)cell + g->offsets[n])];
+        uint64_t state = state_at(g, (size_t)((ptrdiff_t)cell + g->offsets[n]));
         if (state != BLOCKED && state != UNREACHED && state + g->lengths[n] < best)
             best = state + g->lengths[n];
     }
@@ -432,10 +460,11 @@ static int32_t node_from_neighbours(const geodesic *g, size_t cell)
 }
 
 /* Writes the node of every voxel, in grid order, over the state array
- * itself: voxel v's int32 goes to bytes 4v..4v+3, while the states still to
- * be read (of its cell and its neighbours, cells at least v) start at byte
- * 8v or later, so nothing is overwritten before it is read. Returns the
- * array shrunk to the voxels. */
+ * itself: voxel v's int32 goes to bytes 4v..4v+3 once its states are read,
+ * while the states still to be read (of later voxels' cells and their
+ * neighbours, cells above v) start at byte 6(v + 1) or later, so nothing
+ * is overwritten before it is read. Returns the array shrunk to the
+ * voxels. */
 static int32_t *write_nodes_in_place(geodesic *g, const gb_voxel_grid *grid)
 {
     int32_t *nearest = (int32_t *)(void *)g->state;
@@ -444,7 +473,7 @@ static int32_t *write_nodes_in_place(geodesic *g, const gb_voxel_grid *grid)
         for (int32_t j = 0; j < grid->size[1]; ++j)
             for (int32_t i = 0; i < grid->size[0]; ++i, ++v) {
                 size_t cell = gb_voxel_cell(g->complex, i, j, k);
-                uint64_t state = g->state[cell];
+                uint64_t state = state_at(g, cell);
                 nearest[v] = state == BLOCKED ? node_from_neighbours(g, cell)
                              : state == UNREACHED ? -1 : node_of(state);
             }
@@ -502,8 +531,12 @@ gb_result gb_nearest_node(const gb_voxel_grid *grid, const gb_cubical_complex *c
     gb_progress_callback progress = options->progress;
     void *progress_user = options->progress_user;
     *nearest = NULL;
+    if (node_count >= MAX_NODES)
+        return gb_fail(error, GB_ERROR_UNSUPPORTED,
+                       "nearest node: %u skeleton nodes, at most %u", node_count,
+                       MAX_NODES - 1);
     geodesic g = {.complex = complex};
-    g.state = malloc(complex->cell_count * sizeof *g.state);
+    g.state = malloc(STATE_BYTES * complex->cell_count);
     if (!g.state)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
                        "nearest node: out of memory for %zu cells", complex->cell_count);

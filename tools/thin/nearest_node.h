@@ -15,7 +15,9 @@
  * A non-empty voxel with an empty voxel among its 26 neighbours takes the
  * node of the one whose distance plus step is smallest (same ties), so that
  * a surface point looked up slightly inside a wall still finds its node;
- * other voxels get -1.
+ * other voxels get -1, and so does an empty voxel farther than 16 777
+ * voxels along the empty space from every node (a state is 6 bytes a cell:
+ * 24 bits of distance, 24 of node). At most 16 777 214 nodes.
  */
 #ifndef GB_NEAREST_NODE_H
 #define GB_NEAREST_NODE_H
