@@ -122,6 +122,16 @@ gb_result gb_voxel_grid_write_int32(const char *path, const gb_voxel_grid *frame
     return adapter ? adapter->write_int32(path, frame, name, values, error) : GB_ERROR_IO;
 }
 
+gb_result gb_voxel_grid_write_int32_and_free(const char *path, const gb_voxel_grid *frame,
+                                             const char *name, int32_t *values, gb_error *error)
+{
+    const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
+    if (adapter)
+        return adapter->write_int32_and_free(path, frame, name, values, error);
+    free(values);
+    return GB_ERROR_IO;
+}
+
 gb_result gb_voxel_grid_read_int32(const char *path, const char *name, gb_voxel_grid *frame,
                                    int32_t **values, gb_error *error)
 {

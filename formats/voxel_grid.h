@@ -75,6 +75,13 @@ gb_result gb_voxel_grid_write_and_free(const char *path, gb_voxel_grid *grid,
 gb_result gb_voxel_grid_write_int32(const char *path, const gb_voxel_grid *frame,
                                     const char *name, const int32_t *values,
                                     gb_error *error);
+/* gb_voxel_grid_write_int32, giving the pages of values back as the sparse
+ * grid takes them over (as gb_voxel_grid_write_and_free does): the peak is
+ * about the larger of the two instead of their sum. values (malloc'ed) is
+ * freed whatever the result. */
+gb_result gb_voxel_grid_write_int32_and_free(const char *path, const gb_voxel_grid *frame,
+                                             const char *name, int32_t *values,
+                                             gb_error *error);
 gb_result gb_voxel_grid_read_int32(const char *path, const char *name,
                                    gb_voxel_grid *frame, int32_t **values,
                                    gb_error *error);

@@ -41,6 +41,8 @@ typedef struct gb_voxel_grid_adapter {
                                 gb_error *error);
     gb_result (*write_int32)(const char *path, const gb_voxel_grid *frame, const char *name,
                              const int32_t *values, gb_error *error);
+    gb_result (*write_int32_and_free)(const char *path, const gb_voxel_grid *frame,
+                                      const char *name, int32_t *values, gb_error *error);
     gb_result (*read_int32)(const char *path, const char *name, gb_voxel_grid *frame,
                             int32_t **values, gb_error *error);
     int (*file_checksum)(const void *bytes, size_t size, char uuid[37]);

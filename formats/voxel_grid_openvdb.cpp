@@ -235,38 +235,43 @@ void for_each_block_voxel(const gb_voxel_grid *frame, const openvdb::Coord &bloc
 }
 
 // Builds a tree whose active voxels are those where active(index) holds,
-// with value(index); blocks with no active voxel get no leaf. Leaves are
-// filled in parallel, then added in order (the tree does not depend on it).
-template <typename GridType, typename Active, typename Value>
+// with value(index); blocks with no active voxel get no leaf. Slab of 8
+// layers by slab, leaves filled in parallel, then added in order (the tree
+// does not depend on it); after each slab, released(begin, end) is told
+// the dense indices it is done with.
+template <typename GridType, typename Active, typename Value, typename Released>
 typename GridType::Ptr dense_to_grid(const gb_voxel_grid *frame,
                                      typename GridType::ValueType background, Active active,
-                                     Value value)
+                                     Value value, Released released)
 {
     using LeafType = typename GridType::TreeType::LeafNodeType;
-    const int blocks[3] = {(frame->size[0] + 7) / 8, (frame->size[1] + 7) / 8,
-                           (frame->size[2] + 7) / 8};
-    size_t block_count = (size_t)blocks[0] * blocks[1] * blocks[2];
-    std::vector<LeafType *> leaves(block_count, nullptr);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, block_count), [&](const tbb::blocked_range<size_t> &range) {
-        for (size_t b = range.begin(); b != range.end(); ++b) {
-            openvdb::Coord origin((int)(b % blocks[0]) * 8, (int)(b / blocks[0] % blocks[1]) * 8,
-                                  (int)(b / blocks[0] / blocks[1]) * 8);
-            LeafType *leaf = nullptr;
-            for_each_block_voxel(frame, origin, [&](openvdb::Index offset, size_t index) {
-                if (active(index)) {
-                    if (!leaf)
-                        leaf = new LeafType(origin, background, false);
-                    leaf->setValueOn(offset, value(index));
-                }
-            });
-            leaves[b] = leaf;
-        }
-    });
+    const int blocks_x = (frame->size[0] + 7) / 8, blocks_y = (frame->size[1] + 7) / 8;
+    const size_t slab_blocks = (size_t)blocks_x * blocks_y;
+    const size_t layer = (size_t)frame->size[0] * frame->size[1];
+    std::vector<LeafType *> leaves(slab_blocks, nullptr);
     auto grid = GridType::create(background);
     auto &tree = grid->tree();
-    for (LeafType *leaf : leaves)
-        if (leaf)
-            tree.addLeaf(leaf);
+    for (int z = 0; z < frame->size[2]; z += 8) {
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, slab_blocks),
+                          [&](const tbb::blocked_range<size_t> &range) {
+            for (size_t b = range.begin(); b != range.end(); ++b) {
+                openvdb::Coord origin((int)(b % blocks_x) * 8, (int)(b / blocks_x) * 8, z);
+                LeafType *leaf = nullptr;
+                for_each_block_voxel(frame, origin, [&](openvdb::Index offset, size_t index) {
+                    if (active(index)) {
+                        if (!leaf)
+                            leaf = new LeafType(origin, background, false);
+                        leaf->setValueOn(offset, value(index));
+                    }
+                });
+                leaves[b] = leaf;
+            }
+        });
+        for (LeafType *leaf : leaves)
+            if (leaf)
+                tree.addLeaf(leaf);
+        released(layer * z, layer * std::min(z + 8, frame->size[2]));
+    }
     openvdb::tools::prune(tree);
     return grid;
 }
@@ -315,6 +320,7 @@ BlockLeaves make_block_leaves(const gb_voxel_grid *grid, const openvdb::Coord &o
     }
     return leaves;
 }
+
 
 // Gives the whole memory pages inside [begin, end) back to the system: they
 // read as zeros afterwards. Used only on arrays about to be freed, never on
@@ -976,8 +982,10 @@ gb_result read_distances(const char *path, const gb_voxel_grid *frame, const siz
     }
 }
 
-gb_result write_int32(const char *path, const gb_voxel_grid *frame, const char *name,
-                      const int32_t *values, gb_error *error)
+// With release, the pages of values are given back slab by slab as the
+// tree takes them over (values is then to be freed, not read).
+gb_result write_int32_grid(const char *path, const gb_voxel_grid *frame, const char *name,
+                           const int32_t *values, bool release, gb_error *error)
 {
     if (!path || !frame || !name || !*name || !values || !frame_is_valid(frame))
         return host->fail(error, GB_ERROR_ARGUMENT, "%s: int32 grid to write is not valid",
@@ -987,7 +995,11 @@ gb_result write_int32(const char *path, const gb_voxel_grid *frame, const char *
         return write_grids(path, [&] {
             auto grid = dense_to_grid<openvdb::Int32Grid>(
                 frame, -1, [=](size_t index) { return values[index] >= 0; },
-                [=](size_t index) { return values[index]; });
+                [=](size_t index) { return values[index]; },
+                [=](size_t begin, size_t end) {
+                    if (release)
+                        release_pages(values + begin, values + end);
+                });
             attach_frame(*grid, frame, name, INT32_CREATOR);
             return openvdb::GridPtrVec{grid};
         }, error);
@@ -996,6 +1008,20 @@ gb_result write_int32(const char *path, const gb_voxel_grid *frame, const char *
     } catch (const std::exception &e) {
         return host->fail(error, GB_ERROR_IO, "%s: %s", path, e.what());
     }
+}
+
+gb_result write_int32(const char *path, const gb_voxel_grid *frame, const char *name,
+                      const int32_t *values, gb_error *error)
+{
+    return write_int32_grid(path, frame, name, values, false, error);
+}
+
+gb_result write_int32_and_free(const char *path, const gb_voxel_grid *frame, const char *name,
+                               int32_t *values, gb_error *error)
+{
+    gb_result result = write_int32_grid(path, frame, name, values, true, error);
+    std::free(values);
+    return result;
 }
 
 gb_result read_int32(const char *path, const char *name, gb_voxel_grid *frame,
@@ -1055,8 +1081,9 @@ int file_checksum(const void *bytes, size_t size, char uuid[37])
     return 1;
 }
 
-const gb_voxel_grid_adapter adapter = {write,      write_and_free, read,         read_distances,
-                                       write_int32, read_int32,     file_checksum};
+const gb_voxel_grid_adapter adapter = {write,       write_and_free,       read,
+                                       read_distances, write_int32, write_int32_and_free,
+                                       read_int32,  file_checksum};
 
 } // namespace
 

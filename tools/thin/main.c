@@ -100,15 +100,15 @@ static void print_stats(const gb_skeleton *s, const gb_thin_stats *stats)
            stats->seconds_nearest);
 }
 
-/* The grid first: if the skeleton then fails, the new grid is removed so
- * that a failed run leaves no output. */
+/* The grid first (nearest is freed on the way): if the skeleton then fails,
+ * the new grid is removed so that a failed run leaves no output. */
 static gb_result write_outputs(const arguments *args, const gb_voxel_grid *grid,
-                               const gb_skeleton *skeleton, const int32_t *nearest,
-                               gb_error *error)
+                               const gb_skeleton *skeleton, int32_t *nearest, gb_error *error)
 {
     gb_result result = GB_OK;
     if (args->grid)
-        result = gb_voxel_grid_write_int32(args->grid, grid, "nearest_node", nearest, error);
+        result = gb_voxel_grid_write_int32_and_free(args->grid, grid, "nearest_node", nearest,
+                                                    error);
     if (result != GB_OK)
         return result;
     result = gb_skeleton_write(args->output, skeleton, error);
@@ -177,7 +177,6 @@ static gb_result run(void *context, gb_error *error)
     if (result == GB_OK && args->stats)
         print_stats(&skeleton, &stats);
     gb_skeleton_free(&skeleton);
-    free(nearest);
     gb_voxel_grid_free(&grid);
     return result;
 }
