@@ -6,28 +6,29 @@
 #include <string.h>
 
 
-enum { FAR = UINT16_MAX };
-
-/* The two maps share one array: distance in the low 16 bits of a cell's
- * word, opening in the high 16 bits. */
-static uint16_t distance_at(const uint32_t *maps, size_t cell)
+/* The maps of a cell (persistence.h: 12 bits each in 3 bytes). */
+static uint16_t distance_at(const unsigned char *maps, size_t cell)
 {
-    return (uint16_t)(maps[cell] & 0xffff);
+    return gb_map_distance(maps, cell);
 }
 
-static void set_distance(uint32_t *maps, size_t cell, uint16_t distance)
+static void set_distance(unsigned char *maps, size_t cell, uint16_t distance)
 {
-    maps[cell] = (maps[cell] & 0xffff0000u) | distance;
+    unsigned char *at = maps + GB_PERSISTENCE_MAP_BYTES * cell;
+    at[0] = (unsigned char)distance;
+    at[1] = (unsigned char)((at[1] & 0xf0) | (distance >> 8 & 0x0f));
 }
 
-static uint16_t opening_at(const uint32_t *maps, size_t cell)
+static uint16_t opening_at(const unsigned char *maps, size_t cell)
 {
-    return (uint16_t)(maps[cell] >> 16);
+    return gb_map_opening(maps, cell);
 }
 
-static void set_opening(uint32_t *maps, size_t cell, uint16_t opening)
+static void set_opening(unsigned char *maps, size_t cell, uint16_t opening)
 {
-    maps[cell] = (maps[cell] & 0xffffu) | (uint32_t)opening << 16;
+    unsigned char *at = maps + GB_PERSISTENCE_MAP_BYTES * cell;
+    at[1] = (unsigned char)((at[1] & 0x0f) | (opening & 0x0f) << 4);
+    at[2] = (unsigned char)(opening >> 4);
 }
 
 /* Index offsets of the 26 neighbours of a cell; the first 13 come before it
@@ -43,7 +44,7 @@ static void neighbour_offsets(const gb_cubical_complex *complex, ptrdiff_t offse
                                    dz * (ptrdiff_t)complex->step[2];
 }
 
-static uint16_t min_plus_one(const uint32_t *maps, size_t cell, const ptrdiff_t *offsets,
+static uint16_t min_plus_one(const unsigned char *maps, size_t cell, const ptrdiff_t *offsets,
                              uint16_t value)
 {
     for (int n = 0; n < 13; ++n) {
@@ -56,19 +57,21 @@ static uint16_t min_plus_one(const uint32_t *maps, size_t cell, const ptrdiff_t 
 
 /* Two raster passes of the 3x3x3 unit mask: exact for the chessboard metric.
  * Openings start at 0. */
-static void chessboard_distance(const gb_cubical_complex *complex, uint32_t *maps)
+static void chessboard_distance(const gb_cubical_complex *complex, unsigned char *maps)
 {
     ptrdiff_t offsets[26];
     neighbour_offsets(complex, offsets);
+    memset(maps, 0, GB_PERSISTENCE_MAP_BYTES * complex->cell_count);
     for (size_t cell = 0; cell < complex->cell_count; ++cell)
-        maps[cell] = (complex->faces[cell] & GB_FACE_CUBE) ? FAR : 0;
+        if (complex->faces[cell] & GB_FACE_CUBE)
+            set_distance(maps, cell, GB_PERSISTENCE_FAR);
     size_t first = complex->step[0] + complex->step[1] + complex->step[2];
     size_t last = complex->cell_count - first;
     for (size_t cell = first; cell < last; ++cell)
-        if (maps[cell])
+        if (distance_at(maps, cell))
             set_distance(maps, cell, min_plus_one(maps, cell, offsets, distance_at(maps, cell)));
     for (size_t cell = last; cell-- > first;)
-        if (maps[cell])
+        if (distance_at(maps, cell))
             set_distance(maps, cell,
                          min_plus_one(maps, cell, offsets + 13, distance_at(maps, cell)));
 }
@@ -123,7 +126,7 @@ static void sweep(const uint16_t *in, uint16_t *out, int n, int step, opening_li
 
 /* The opening pass along axis: reads the distances (first pass) or the
  * openings so far, writes the openings. */
-static void opening_pass(const gb_cubical_complex *complex, uint32_t *maps, int axis,
+static void opening_pass(const gb_cubical_complex *complex, unsigned char *maps, int axis,
                          opening_line *space)
 {
     int n = complex->size[axis];
@@ -155,7 +158,7 @@ static void opening_pass(const gb_cubical_complex *complex, uint32_t *maps, int 
 }
 
 /* Three passes, x then y then z, after the distance map. */
-static gb_result chessboard_opening(const gb_cubical_complex *complex, uint32_t *maps,
+static gb_result chessboard_opening(const gb_cubical_complex *complex, unsigned char *maps,
                                     gb_progress_callback progress, void *progress_user,
                                     gb_error *error)
 {
@@ -191,7 +194,7 @@ gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_comp
     persistence->persistence = scale;
     persistence->min_lifespan = min_lifespan;
     size_t cells = complex->cell_count;
-    persistence->maps = malloc(cells * sizeof *persistence->maps);
+    persistence->maps = malloc(GB_PERSISTENCE_MAP_BYTES * cells);
     gb_result result = GB_OK;
     if (!persistence->maps)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
