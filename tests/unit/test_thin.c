@@ -512,6 +512,7 @@ static void test_maps(void)
 static void check_nearest_ways(const char *name, const gb_voxel_grid *g, int sweep_pairs)
 {
     gb_cubical_complex complex;
+    gb_empty_voxels empty = {0};
     gb_error error;
     outcome o = run_thin(g, NULL);
     gb_cubical_complex_build(&complex, g, &error);
@@ -526,10 +527,12 @@ static void check_nearest_ways(const char *name, const gb_voxel_grid *g, int swe
     for (int threads = 1; threads <= 5; ++threads) {
         gb_nearest_options options = {sweep_pairs, threads, NULL, NULL};
         int32_t *nearest = NULL;
-        same &= !gb_nearest_node(g, &complex, cells, o.skeleton.node_count, &options, &nearest,
-                                 &error) &&
+        same &= !gb_empty_voxels_of(g, &empty, &error) &&
+                !gb_nearest_node(g, &empty, &complex, cells, o.skeleton.node_count, &options,
+                                 &nearest, &error) &&
                 !memcmp(nearest, o.nearest, voxels * sizeof *nearest);
         free(nearest);
+        gb_empty_voxels_free(&empty);
     }
     char what[160];
     snprintf(what, sizeof what,
@@ -670,6 +673,30 @@ static void test_distance_source(void)
     gb_voxel_grid_free(&g);
 }
 
+/* gb_thin_and_free gives the same skeleton and grid as gb_thin, and the
+ * surface back; the empty voxels' bits are the surface's zeros. */
+static void test_thin_and_free(void)
+{
+    gb_voxel_grid g = cluttered_room();
+    size_t voxels = (size_t)g.size[0] * g.size[1] * g.size[2];
+    gb_empty_voxels empty = {0};
+    gb_error error;
+    int same_bits = gb_empty_voxels_of(&g, &empty, &error) == GB_OK;
+    for (size_t v = 0; same_bits && v < voxels; ++v)
+        same_bits = gb_voxel_is_empty(&empty, v) == !g.surface[v];
+    CHECK(same_bits, "thin and free: the empty voxels' bits are the surface's zeros");
+    gb_empty_voxels_free(&empty);
+    outcome kept = run_thin(&g, NULL);
+    outcome freed = {0};
+    freed.result = gb_thin_and_free(&g, NULL, &freed.skeleton, &freed.nearest, &freed.stats,
+                                    &error);
+    CHECK(freed.result == GB_OK && same_outcome(&kept, &freed, voxels) && g.surface == NULL,
+          "thin and free: gb_thin's skeleton and grid, the surface given back");
+    free_outcome(&kept);
+    free_outcome(&freed);
+    gb_voxel_grid_free(&g);
+}
+
 static int count_progress(void *user, double fraction)
 {
     double *last = user;
@@ -785,6 +812,7 @@ int main(void)
     test_nearest_ways();
     test_determinism();
     test_distance_source();
+    test_thin_and_free();
     test_options();
     test_grid_file();
     test_bad_input();

@@ -165,11 +165,10 @@ static gb_result run(void *context, gb_error *error)
     gb_thin_stats stats;
     int32_t *nearest = NULL;
     gb_error reason;
-    result = gb_thin(&grid, &options, &skeleton, args->grid ? &nearest : NULL, &stats, &reason);
+    /* only the frame is kept from here: the surface is given back once read */
+    result = gb_thin_and_free(&grid, &options, &skeleton, args->grid ? &nearest : NULL, &stats,
+                              &reason);
     gb_progress_end(&progress);
-    /* only the frame is needed from here: give the memory back for writing */
-    free(grid.surface);
-    grid.surface = NULL;
     if (result != GB_OK)
         gb_fail(error, result, "%s: %s", args->input, reason.message);
     else

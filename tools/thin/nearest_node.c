@@ -138,16 +138,17 @@ static void neighbour_steps(geodesic *g)
 }
 
 /* Returns the number of empty voxels. */
-static size_t mark_empty_cells(geodesic *g, const gb_voxel_grid *grid)
+static size_t mark_empty_cells(geodesic *g, const gb_voxel_grid *grid,
+                               const gb_empty_voxels *empty_voxels)
 {
     size_t empty = 0;
     memset(g->state, 0, STATE_BYTES * g->complex->cell_count); /* BLOCKED */
     for (int32_t k = 0; k < grid->size[2]; ++k)
         for (int32_t j = 0; j < grid->size[1]; ++j) {
-            const uint8_t *surface = grid->surface + gb_voxel_index(grid, 0, j, k);
+            size_t voxel = gb_voxel_index(grid, 0, j, k);
             size_t row = gb_voxel_cell(g->complex, 0, j, k);
             for (int32_t i = 0; i < grid->size[0]; ++i)
-                if (!surface[i]) {
+                if (gb_voxel_is_empty(empty_voxels, voxel + (size_t)i)) {
                     set_state(g, row + (size_t)i, UNREACHED);
                     ++empty;
                 }
@@ -522,7 +523,8 @@ static gb_result dijkstra(geodesic *g, int threads, const uint32_t *node_cells,
     return result;
 }
 
-gb_result gb_nearest_node(const gb_voxel_grid *grid, const gb_cubical_complex *complex,
+gb_result gb_nearest_node(const gb_voxel_grid *grid, const gb_empty_voxels *empty,
+                          const gb_cubical_complex *complex,
                           const uint32_t *node_cells, uint32_t node_count,
                           const gb_nearest_options *options, int32_t **nearest,
                           gb_error *error)
@@ -541,13 +543,13 @@ gb_result gb_nearest_node(const gb_voxel_grid *grid, const gb_cubical_complex *c
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
                        "nearest node: out of memory for %zu cells", complex->cell_count);
     neighbour_steps(&g);
-    mark_empty_cells(&g, grid);
+    mark_empty_cells(&g, grid, empty);
     seed_states(&g, node_cells, node_count);
     int settled = 0;
     gb_result result = sweep_to_fixed_point(&g, options->sweep_pairs, &settled, progress,
                                             progress_user, error);
     if (!result && !settled) {
-        size_t empty_count = mark_empty_cells(&g, grid);
+        size_t empty_count = mark_empty_cells(&g, grid, empty);
         result = dijkstra(&g, threads, node_cells, node_count, empty_count, progress,
                           progress_user, error);
     }

@@ -25,6 +25,7 @@
 #include <stdint.h>
 
 #include "cubical_complex.h"
+#include "empty_voxels.h"
 #include "progress.h"
 #include "result.h"
 #include "voxel_grid.h"
@@ -39,12 +40,14 @@ typedef struct gb_nearest_options {
     void *progress_user;
 } gb_nearest_options;
 
-/* node_cells: the cell of each node in the lattice of complex (increasing).
+/* grid gives the frame, empty its empty voxels (grid's surface is not read).
+ * node_cells: the cell of each node in the lattice of complex (increasing).
  * On success *nearest is a malloc'ed array with one entry per voxel of grid
  * (x fastest), the caller's to free. The result does not depend on the
  * options (they only choose how it is computed). Only the frame of complex
  * is used (not its faces). */
-gb_result gb_nearest_node(const gb_voxel_grid *grid, const gb_cubical_complex *complex,
+gb_result gb_nearest_node(const gb_voxel_grid *grid, const gb_empty_voxels *empty,
+                          const gb_cubical_complex *complex,
                           const uint32_t *node_cells, uint32_t node_count,
                           const gb_nearest_options *options, int32_t **nearest,
                           gb_error *error);

@@ -45,7 +45,8 @@ static uint32_t node_of_cell(const uint32_t *cells, uint32_t count, size_t cell)
 
 /* The empty voxels around a corner (cell coordinates), as dense indices
  * into voxels (8 at most); returns how many. */
-static int corner_voxels(const gb_voxel_grid *grid, const int32_t corner[3], size_t voxels[8])
+static int corner_voxels(const gb_voxel_grid *grid, const gb_empty_voxels *empty,
+                         const int32_t corner[3], size_t voxels[8])
 {
     int count = 0;
     for (int d = 0; d < 8; ++d) {
@@ -55,7 +56,7 @@ static int corner_voxels(const gb_voxel_grid *grid, const int32_t corner[3], siz
             k >= grid->size[2])
             continue;
         size_t v = gb_voxel_index(grid, i, j, k);
-        if (!grid->surface[v])
+        if (gb_voxel_is_empty(empty, v))
             voxels[count++] = v;
     }
     return count;
@@ -74,7 +75,8 @@ static gb_result dense_distances(void *user, const size_t *voxels, size_t count,
 /* Every node's radius: the largest distance of the empty voxels around its
  * corner, all asked of distances_of at once. */
 static gb_result set_radii(const gb_cubical_complex *complex, const gb_voxel_grid *grid,
-                           const uint32_t *cells, gb_voxel_distances_function distances_of,
+                           const gb_empty_voxels *empty, const uint32_t *cells,
+                           gb_voxel_distances_function distances_of,
                            void *distances_user, gb_skeleton *skeleton, gb_error *error)
 {
     size_t most = 8 * (size_t)skeleton->node_count + 1;
@@ -88,7 +90,7 @@ static gb_result set_radii(const gb_cubical_complex *complex, const gb_voxel_gri
     for (uint32_t n = 0; !result && n < skeleton->node_count; ++n) {
         int32_t corner[3];
         gb_cell_coordinates(complex, cells[n], corner);
-        counts[n] = (uint8_t)corner_voxels(grid, corner, voxels + total);
+        counts[n] = (uint8_t)corner_voxels(grid, empty, corner, voxels + total);
         total += counts[n];
     }
     if (!result)
@@ -136,6 +138,7 @@ static void join_edges(const gb_cubical_complex *complex, const uint32_t *cells,
 }
 
 gb_result gb_skeleton_graph_build(const gb_cubical_complex *complex, const gb_voxel_grid *grid,
+                                  const gb_empty_voxels *empty,
                                   gb_voxel_distances_function distances_of,
                                   void *distances_user, gb_skeleton *skeleton,
                                   uint32_t **node_cells, gb_error *error)
@@ -162,7 +165,8 @@ gb_result gb_skeleton_graph_build(const gb_cubical_complex *complex, const gb_vo
         distances_of = dense_distances;
         distances_user = (void *)grid;
     }
-    result = set_radii(complex, grid, cells, distances_of, distances_user, skeleton, error);
+    result = set_radii(complex, grid, empty, cells, distances_of, distances_user, skeleton,
+                       error);
     if (result) {
         free(cells);
         return result;

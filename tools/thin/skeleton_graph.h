@@ -16,6 +16,7 @@
 #include <stdint.h>
 
 #include "cubical_complex.h"
+#include "empty_voxels.h"
 #include "result.h"
 #include "skeleton.h"
 #include "voxel_grid.h"
@@ -24,7 +25,9 @@
  * fields are left as they are) and returns in *node_cells (malloc'ed,
  * node_count entries, increasing) the cell of each node. Squares left in
  * the complex (none after a complete thinning) contribute their edges. */
+/* grid gives the frame (and distance, when it has one), empty its empty voxels. */
 gb_result gb_skeleton_graph_build(const gb_cubical_complex *complex, const gb_voxel_grid *grid,
+                                  const gb_empty_voxels *empty,
                                   gb_voxel_distances_function distances_of,
                                   void *distances_user, gb_skeleton *skeleton,
                                   uint32_t **node_cells, gb_error *error);

@@ -9,6 +9,7 @@
 #include "cavities.h"
 #include "collapse.h"
 #include "cubical_complex.h"
+#include "empty_voxels.h"
 #include "nearest_node.h"
 #include "persistence.h"
 #include "skeleton_graph.h"
@@ -83,11 +84,20 @@ static gb_result thin_complex(gb_cubical_complex *complex, gb_persistence *persi
     return result;
 }
 
-static gb_result build_maps(const gb_voxel_grid *grid, const gb_thin_options *options,
-                            gb_cubical_complex *complex, gb_persistence *persistence,
+/* The complex and the empty voxels, all thin reads of the surface: then
+ * the surface is given back if it is thin's to free, before the maps. */
+static gb_result build_maps(const gb_voxel_grid *grid, uint8_t **surface_to_free,
+                            const gb_thin_options *options, gb_cubical_complex *complex,
+                            gb_empty_voxels *empty, gb_persistence *persistence,
                             gb_error *error)
 {
     gb_result result = gb_cubical_complex_build(complex, grid, error);
+    if (!result)
+        result = gb_empty_voxels_of(grid, empty, error);
+    if (surface_to_free) {
+        free(*surface_to_free);
+        *surface_to_free = NULL;
+    }
     if (result)
         return result;
     gb_progress_span s = make_stage(options, 0.0, 0.15);
@@ -109,7 +119,8 @@ static void describe(gb_skeleton *skeleton, const gb_voxel_grid *grid,
     skeleton->cavities_broken = stats->cavities_opened;
 }
 
-static gb_result compute_nearest(const gb_voxel_grid *grid, const gb_cubical_complex *complex,
+static gb_result compute_nearest(const gb_voxel_grid *grid, const gb_empty_voxels *empty,
+                                 const gb_cubical_complex *complex,
                                  const uint32_t *node_cells, uint32_t node_count,
                                  const gb_thin_options *options, int32_t **nearest,
                                  gb_error *error)
@@ -117,13 +128,14 @@ static gb_result compute_nearest(const gb_voxel_grid *grid, const gb_cubical_com
     gb_progress_span s = make_stage(options, 0.65, 0.35);
     gb_nearest_options nearest_options = {GB_NEAREST_SWEEP_PAIRS, options->threads,
                                           gb_progress_span_report, &s};
-    return gb_nearest_node(grid, complex, node_cells, node_count, &nearest_options, nearest,
-                           error);
+    return gb_nearest_node(grid, empty, complex, node_cells, node_count, &nearest_options,
+                           nearest, error);
 }
 
-gb_result gb_thin(const gb_voxel_grid *grid, const gb_thin_options *given_options,
-                  gb_skeleton *skeleton, int32_t **nearest, gb_thin_stats *stats_out,
-                  gb_error *error)
+/* gb_thin; with surface_to_free (&grid->surface), that too once read. */
+static gb_result thin_grid(const gb_voxel_grid *grid, uint8_t **surface_to_free,
+                           const gb_thin_options *given_options, gb_skeleton *skeleton,
+                           int32_t **nearest, gb_thin_stats *stats_out, gb_error *error)
 {
     gb_thin_options options = resolved_options(given_options);
     memset(skeleton, 0, sizeof *skeleton);
@@ -134,17 +146,18 @@ gb_result gb_thin(const gb_voxel_grid *grid, const gb_thin_options *given_option
         return result;
     gb_thin_stats stats = {0};
     gb_cubical_complex complex = {0};
+    gb_empty_voxels empty = {0};
     gb_persistence persistence = {0};
     uint32_t *node_cells = NULL;
     double start = gb_seconds();
-    result = build_maps(grid, &options, &complex, &persistence, error);
+    result = build_maps(grid, surface_to_free, &options, &complex, &empty, &persistence, error);
     double maps_done = gb_seconds();
     if (!result)
         result = thin_complex(&complex, &persistence, &options, &stats, error);
     double collapse_done = gb_seconds();
     gb_persistence_free(&persistence);
     if (!result)
-        result = gb_skeleton_graph_build(&complex, grid, options.distances,
+        result = gb_skeleton_graph_build(&complex, grid, &empty, options.distances,
                                          options.distances_user, skeleton, &node_cells, error);
     double graph_done = gb_seconds();
     /* the faces are done with: only the lattice's frame is used from here */
@@ -155,10 +168,11 @@ gb_result gb_thin(const gb_voxel_grid *grid, const gb_thin_options *given_option
      * before the nearest-node grid takes its 8 bytes a cell */
     malloc_trim(0);
     if (!result && nearest)
-        result = compute_nearest(grid, &complex, node_cells, skeleton->node_count, &options,
-                                 nearest, error);
+        result = compute_nearest(grid, &empty, &complex, node_cells, skeleton->node_count,
+                                 &options, nearest, error);
     double nearest_done = gb_seconds();
     gb_cubical_complex_free(&complex);
+    gb_empty_voxels_free(&empty);
     free(node_cells);
     if (result) {
         gb_skeleton_free(skeleton);
@@ -172,4 +186,24 @@ gb_result gb_thin(const gb_voxel_grid *grid, const gb_thin_options *given_option
     if (stats_out)
         *stats_out = stats;
     return GB_OK;
+}
+
+gb_result gb_thin(const gb_voxel_grid *grid, const gb_thin_options *options,
+                  gb_skeleton *skeleton, int32_t **nearest, gb_thin_stats *stats,
+                  gb_error *error)
+{
+    return thin_grid(grid, NULL, options, skeleton, nearest, stats, error);
+}
+
+gb_result gb_thin_and_free(gb_voxel_grid *grid, const gb_thin_options *options,
+                           gb_skeleton *skeleton, int32_t **nearest, gb_thin_stats *stats,
+                           gb_error *error)
+{
+    gb_result result = thin_grid(grid, grid ? &grid->surface : NULL, options, skeleton,
+                                 nearest, stats, error);
+    if (grid) {
+        free(grid->surface);
+        grid->surface = NULL;
+    }
+    return result;
 }

@@ -87,5 +87,12 @@ typedef struct gb_thin_stats {
 gb_result gb_thin(const gb_voxel_grid *grid, const gb_thin_options *options,
                   gb_skeleton *skeleton, int32_t **nearest, gb_thin_stats *stats,
                   gb_error *error);
+/* gb_thin, which frees grid->surface (and sets it NULL) as soon as it has
+ * read it, before the collapse's maps are made, whatever the result: a
+ * caller that keeps nothing else of the grid (thin's main) then holds
+ * only its frame while it thins (the habit of gb_voxel_grid_write_and_free). */
+gb_result gb_thin_and_free(gb_voxel_grid *grid, const gb_thin_options *options,
+                           gb_skeleton *skeleton, int32_t **nearest, gb_thin_stats *stats,
+                           gb_error *error);
 
 #endif
