@@ -165,7 +165,7 @@ static gb_result thin_grid(const gb_voxel_grid *grid, uint8_t **surface_to_free,
     complex.faces = NULL;
     /* the collapse's lists and the distance source's reading (an OpenVDB
      * tree) grew on the heap, which glibc keeps once freed: give it back
-     * before the nearest-node grid takes its 8 bytes a cell */
+     * before the nearest-node grid takes its 6 bytes a cell */
     malloc_trim(0);
     if (!result && nearest)
         result = compute_nearest(grid, &empty, &complex, node_cells, skeleton->node_count,
