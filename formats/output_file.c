@@ -615,6 +615,15 @@ gb_result gb_output_file_check(const char *path, gb_error *error)
     return result;
 }
 
+gb_result gb_output_files_check(const char *const *paths, int count, gb_error *error)
+{
+    gb_result result = GB_OK;
+    for (int n = 0; n < count && result == GB_OK; ++n)
+        if (paths[n])
+            result = gb_output_file_check(paths[n], error);
+    return result;
+}
+
 const gb_output_file_functions gb_output_file_table = {
     .check = gb_output_file_check,
     .open = gb_output_file_open,

@@ -65,6 +65,10 @@ typedef enum gb_output_file_mode {
  * folder 'x': No such file or directory", "d: is a folder", ... Formats whose
  * name matters (images) check their extension on top (image.h). */
 gb_result gb_output_file_check(const char *path, gb_error *error);
+/* gb_output_file_check of each of the count paths that is not NULL (a
+ * tool's output and its optional ones, such as --depfile), in order, up to
+ * the first that cannot be written. */
+gb_result gb_output_files_check(const char *const *paths, int count, gb_error *error);
 
 /* Opens path for writing as the top comment says; *file is NULL on failure. */
 gb_result gb_output_file_open(const char *path, gb_output_file_mode mode,

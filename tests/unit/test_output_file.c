@@ -377,6 +377,15 @@ static void test_check(void)
     CHECK(strncmp(error.message, missing, strlen(missing)) == 0 &&
               strstr(error.message, "No such file"),
           "... naming the path and the reason");
+    char fine[600], second_missing[600];
+    snprintf(fine, sizeof fine, "%s", scratch_path("fine.bin"));
+    snprintf(second_missing, sizeof second_missing, "%s", scratch_path("missing/z.d"));
+    CHECK_EQ_INT(gb_output_files_check((const char *[]){fine, NULL, fine}, 3, &error), GB_OK,
+                 "several outputs: writable ones pass, a NULL one (not asked for) is skipped");
+    CHECK(gb_output_files_check((const char *[]){fine, second_missing, missing}, 3, &error) ==
+                  GB_ERROR_IO &&
+              strncmp(error.message, second_missing, strlen(second_missing)) == 0,
+          "several outputs: the first that cannot be written fails, by name");
     rmdir(scratch_path("a_folder"));
     unlink(scratch_path("plain"));
     unlink(scratch_path("dangling"));

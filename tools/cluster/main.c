@@ -200,9 +200,7 @@ static gb_result run(void *context, gb_error *error)
         gb_result checked = gb_output_file_check(a->output, error);
         return checked == GB_OK ? merge_parts(a, error) : checked;
     }
-    gb_result result = gb_output_file_check(a->output, error);
-    if (result == GB_OK && a->depfile)
-        result = gb_output_file_check(a->depfile, error);
+    gb_result result = gb_output_files_check((const char *[]){a->output, a->depfile}, 2, error);
     if (result != GB_OK)
         return result;
     gb_scene scene;

@@ -115,10 +115,8 @@ static void print_stats(const arguments *a, const gb_lightmap_stats *s,
 static gb_result check_outputs(const arguments *a, gb_error *error)
 {
     gb_result result = gb_image_check_output(a->output, error);
-    if (result == GB_OK && a->glb)
-        result = gb_output_file_check(a->glb, error);
-    if (result == GB_OK && a->depfile)
-        result = gb_output_file_check(a->depfile, error);
+    if (result == GB_OK)
+        result = gb_output_files_check((const char *[]){a->glb, a->depfile}, 2, error);
     return result;
 }
 

@@ -127,9 +127,7 @@ static gb_result write_hash(const arguments *a, gb_scene *scene, gb_error *error
 static gb_result run(void *context, gb_error *error)
 {
     const arguments *a = context;
-    gb_result result = a->hash ? gb_output_file_check(a->hash, error) : GB_OK;
-    if (result == GB_OK && a->depfile)
-        result = gb_output_file_check(a->depfile, error);
+    gb_result result = gb_output_files_check((const char *[]){a->hash, a->depfile}, 2, error);
     gb_scene scene;
     if (result == GB_OK)
         result = gb_scene_load(a->scene, NULL, &scene, error);

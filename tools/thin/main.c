@@ -119,15 +119,6 @@ static gb_result write_outputs(const arguments *args, const gb_voxel_grid *grid,
     return result;
 }
 
-/* Before the work: both outputs can be written. */
-static gb_result check_outputs(const arguments *args, gb_error *error)
-{
-    gb_result result = gb_output_file_check(args->output, error);
-    if (result == GB_OK && args->grid)
-        result = gb_output_file_check(args->grid, error);
-    return result;
-}
-
 /* The node radii's few distances, read again from the input file. */
 typedef struct distance_source {
     const char *path;
@@ -146,7 +137,8 @@ static gb_result run(void *context, gb_error *error)
 {
     const arguments *args = context;
     gb_voxel_grid grid = {0};
-    gb_result result = check_outputs(args, error);
+    /* before the work: both outputs can be written */
+    gb_result result = gb_output_files_check((const char *[]){args->output, args->grid}, 2, error);
     if (result == GB_OK)
         result = gb_voxel_grid_read_surface(args->input, &grid, error);
     if (result != GB_OK)

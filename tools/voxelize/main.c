@@ -129,9 +129,8 @@ static gb_result choose_resolution(const gb_scene *scene, int quiet, gb_voxelize
 static gb_result voxelize_file(void *context, gb_error *error)
 {
     const arguments *parsed = context;
-    gb_result result = gb_output_file_check(parsed->output, error);
-    if (result == GB_OK && parsed->depfile)
-        result = gb_output_file_check(parsed->depfile, error);
+    gb_result result =
+        gb_output_files_check((const char *[]){parsed->output, parsed->depfile}, 2, error);
     if (result != GB_OK)
         return result;
     gb_scene scene;
