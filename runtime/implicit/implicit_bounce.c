@@ -175,26 +175,21 @@ gb_result gb_implicit_solution_create(const gb_implicit_model *model,
 {
     size_t elements = 3 * (size_t)model->element_count + 1;
     size_t nodes = 3 * (size_t)model->node_count + 1;
-    s->direct = calloc(elements, sizeof(float));
-    s->display = calloc(elements, sizeof(float));
-    s->gathered = calloc(elements, sizeof(float));
-    s->sky = calloc(elements, sizeof(float));
-    s->radiance = calloc(nodes, sizeof(float));
-    s->emission = calloc(nodes, sizeof(float));
-    if (!s->direct || !s->display || !s->gathered || !s->sky || !s->radiance || !s->emission) {
-        gb_implicit_solution_free(s);
+    memset(s, 0, sizeof *s);
+    s->storage = calloc(4 * elements + 2 * nodes, sizeof(float));
+    if (!s->storage)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
-    }
+    s->direct = s->storage;
+    s->display = s->direct + elements;
+    s->gathered = s->display + elements;
+    s->sky = s->gathered + elements;
+    s->radiance = s->sky + elements;
+    s->emission = s->radiance + nodes;
     return GB_OK;
 }
 
 void gb_implicit_solution_free(gb_implicit_solution *s)
 {
-    free(s->direct);
-    free(s->display);
-    free(s->gathered);
-    free(s->sky);
-    free(s->radiance);
-    free(s->emission);
+    free(s->storage);
     memset(s, 0, sizeof *s);
 }

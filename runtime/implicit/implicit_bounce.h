@@ -20,6 +20,7 @@ typedef struct gb_implicit_solution {
     float *emission;            /* node_count * 3: Le pulled up */
     float *display;             /* element_count * 3 */
     float *gathered;            /* element_count * 3 scratch */
+    float *storage;             /* the one allocation the six arrays view */
 } gb_implicit_solution;
 
 gb_result gb_implicit_solution_create(const gb_implicit_model *model,

@@ -14,32 +14,26 @@ gb_result gb_vdl_workspace_create(gb_vdl_workspace *w, uint32_t capacity, uint32
     size_t n = capacity ? capacity : 1, scratch = n > 3 * (size_t)vdls_max ? n : 3 * (size_t)vdls_max;
     w->capacity = capacity;
     w->vdls_max = vdls_max;
-    w->directions = malloc(3 * n * sizeof *w->directions);
-    w->powers = malloc(3 * n * sizeof *w->powers);
-    w->weights = malloc(n * sizeof *w->weights);
-    w->assignment = malloc(n * sizeof *w->assignment);
-    w->centroids = malloc(3 * (size_t)vdls_max * sizeof *w->centroids);
-    w->scratch = malloc(scratch * sizeof *w->scratch);
-    w->kept_assignment = malloc(n * sizeof *w->kept_assignment);
-    w->kept_centroids = malloc(3 * (size_t)vdls_max * sizeof *w->kept_centroids);
-    if (!w->directions || !w->powers || !w->weights || !w->assignment || !w->centroids ||
-        !w->scratch || !w->kept_assignment || !w->kept_centroids) {
-        gb_vdl_workspace_free(w);
+    size_t k = 3 * (size_t)vdls_max;
+    /* the doubles first, then the 4-byte arrays (7 n + 2 k floats, 2 n
+     * indices): each stays aligned */
+    w->storage = malloc(scratch * sizeof(double) + (9 * n + 2 * k) * sizeof(float));
+    if (!w->storage)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cluster: out of memory");
-    }
+    w->scratch = w->storage;
+    w->directions = (float *)(w->scratch + scratch);
+    w->powers = w->directions + 3 * n;
+    w->weights = w->powers + 3 * n;
+    w->centroids = w->weights + n;
+    w->kept_centroids = w->centroids + k;
+    w->assignment = (uint32_t *)(void *)(w->kept_centroids + k);
+    w->kept_assignment = w->assignment + n;
     return GB_OK;
 }
 
 void gb_vdl_workspace_free(gb_vdl_workspace *w)
 {
-    free(w->directions);
-    free(w->powers);
-    free(w->weights);
-    free(w->assignment);
-    free(w->centroids);
-    free(w->scratch);
-    free(w->kept_assignment);
-    free(w->kept_centroids);
+    free(w->storage);
     memset(w, 0, sizeof *w);
 }
 

@@ -36,6 +36,7 @@ typedef struct gb_vdl_workspace {
     double *scratch;                /* max(capacity, 3 vdls_max) */
     uint32_t *kept_assignment;      /* capacity: the best clustering so far */
     float *kept_centroids;          /* vdls_max x 3 */
+    void *storage;                  /* the one allocation the arrays above view */
     gb_kmeans_options kmeans;       /* zeroed by create: the defaults */
 } gb_vdl_workspace;
 
