@@ -961,14 +961,16 @@ gb_result read_distances(const char *path, const gb_voxel_grid *frame, const siz
             return result;
         const size_t nx = (size_t)frame->size[0], ny = (size_t)frame->size[1];
         const size_t total = frame_voxel_count(frame);
-        openvdb::FloatGrid::ConstAccessor accessor = grid->getConstAccessor();
+        // the tree's own lookups, not an accessor: a handful of voxels, and
+        // an accessor registers in a TBB hash map that UBSan faults
+        const openvdb::FloatTree &tree = grid->tree();
         for (size_t n = 0; n < count; ++n) {
             size_t v = voxels[n];
             if (v >= total)
                 return host->fail(error, GB_ERROR_ARGUMENT,
                                   "%s: voxel %zu is outside the grid", path, v);
             openvdb::Coord ijk((int)(v % nx), (int)(v / nx % ny), (int)(v / nx / ny));
-            float d = accessor.isValueOn(ijk) ? accessor.getValue(ijk) : 0.0f;
+            float d = tree.isValueOn(ijk) ? tree.getValue(ijk) : 0.0f;
             if (!std::isfinite(d) || d < 0)
                 return host->fail(error, GB_ERROR_FORMAT,
                                   "%s: grid 'distance' has a negative or non-finite value", path);

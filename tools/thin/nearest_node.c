@@ -164,7 +164,7 @@ static size_t mark_empty_cells(geodesic *g, const gb_voxel_grid *grid,
 typedef struct sweeper {
     geodesic *g;
     size_t rows;                /* size[1] * size[2] */
-    uint64_t *changed;          /* per row */
+    uint64_t *changed;          /* per row; the one allocation of the three */
     uint64_t *swept[2];         /* per row, forward and backward */
     uint64_t tick;
 } sweeper;
@@ -243,11 +243,12 @@ static gb_result sweep_to_fixed_point(geodesic *g, int pairs, int *settled,
     *settled = 0;
     sweeper w = {.g = g};
     w.rows = (size_t)g->complex->size[1] * (size_t)g->complex->size[2];
-    w.changed = malloc(w.rows * sizeof *w.changed);
-    w.swept[0] = calloc(w.rows, sizeof *w.swept[0]);
-    w.swept[1] = calloc(w.rows, sizeof *w.swept[1]);
+    /* one allocation, zeroed: changed, then swept forward and backward */
+    w.changed = calloc(3 * w.rows, sizeof *w.changed);
+    w.swept[0] = w.changed ? w.changed + w.rows : NULL;
+    w.swept[1] = w.changed ? w.changed + 2 * w.rows : NULL;
     gb_result result = GB_OK;
-    if (!w.changed || !w.swept[0] || !w.swept[1])
+    if (!w.changed)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "nearest node: out of memory");
     for (size_t row = 0; !result && row < w.rows; ++row)
         w.changed[row] = 1; /* the seeds */
@@ -260,8 +261,6 @@ static gb_result sweep_to_fixed_point(geodesic *g, int pairs, int *settled,
             result = gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
     }
     free(w.changed);
-    free(w.swept[0]);
-    free(w.swept[1]);
     return result;
 }
 

@@ -165,24 +165,25 @@ static gb_result chessboard_opening(const gb_cubical_complex *complex, unsigned 
     int longest = complex->size[0];
     for (int axis = 1; axis < 3; ++axis)
         longest = complex->size[axis] > longest ? complex->size[axis] : longest;
-    opening_line space = {
-        malloc((size_t)BUNDLE * longest * sizeof *space.in),
-        malloc((size_t)BUNDLE * longest * sizeof *space.out),
-        malloc((size_t)longest * sizeof *space.value),
-        malloc((size_t)longest * sizeof *space.end),
-    };
+    /* one allocation: the 4-byte ends first, then the 2-byte lines and values */
+    size_t n = (size_t)longest;
+    int32_t *storage = malloc(n * (sizeof(int32_t) + (2 * BUNDLE + 1) * sizeof(uint16_t)));
+    opening_line space = {0};
     gb_result result = GB_OK;
-    if (!space.in || !space.out || !space.value || !space.end)
+    if (!storage) {
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "opening: out of memory");
+    } else {
+        space.end = storage;
+        space.in = (uint16_t *)(void *)(storage + n);
+        space.out = space.in + BUNDLE * n;
+        space.value = space.out + BUNDLE * n;
+    }
     for (int axis = 0; axis < 3 && !result; ++axis) {
         opening_pass(complex, maps, axis, &space);
         if (progress && progress(progress_user, 0.5 + (axis + 1) / 6.0))
             result = gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
     }
-    free(space.in);
-    free(space.out);
-    free(space.value);
-    free(space.end);
+    free(storage);
     return result;
 }
 gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_complex *complex,

@@ -28,26 +28,28 @@ typedef struct line_space {
     int32_t *site;     /* parabolas of the lower envelope: their sites, */
     int64_t *height;   /* their values at their sites, */
     int64_t *numerator, *denominator; /* where each begins: a fraction */
+    void *storage;     /* the one allocation they all view */
 } line_space;
 
 static int line_space_allocate(line_space *space, int length)
 {
-    space->values = malloc((size_t)BUNDLE * length * sizeof *space->values);
-    space->site = malloc((size_t)length * sizeof *space->site);
-    space->height = malloc((size_t)length * sizeof *space->height);
-    space->numerator = malloc((size_t)length * sizeof *space->numerator);
-    space->denominator = malloc((size_t)length * sizeof *space->denominator);
-    return space->values && space->site && space->height && space->numerator
-           && space->denominator;
+    size_t n = (size_t)length;
+    /* the 8-byte arrays first, so that each stays aligned */
+    space->storage = malloc(n * (3 * sizeof(int64_t) + (BUNDLE + 1) * sizeof(int32_t)));
+    if (!space->storage)
+        return 0;
+    space->height = space->storage;
+    space->numerator = space->height + n;
+    space->denominator = space->numerator + n;
+    space->values = (int32_t *)(void *)(space->denominator + n);
+    space->site = space->values + BUNDLE * n;
+    return 1;
 }
 
 static void line_space_free(line_space *space)
 {
-    free(space->values);
-    free(space->site);
-    free(space->height);
-    free(space->numerator);
-    free(space->denominator);
+    free(space->storage);
+    space->storage = NULL;
 }
 
 /* f[q] = min over sites p (f[p] != NO_SITE) of (q - p)^2 + f[p], in place:
