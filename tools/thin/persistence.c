@@ -6,22 +6,13 @@
 #include <string.h>
 
 
-/* The maps of a cell (persistence.h: 12 bits each in 3 bytes). */
-static uint16_t distance_at(const unsigned char *maps, size_t cell)
-{
-    return gb_map_distance(maps, cell);
-}
-
+/* Writing the maps of a cell (persistence.h: 12 bits each in 3 bytes;
+ * gb_map_distance and gb_map_opening read them). */
 static void set_distance(unsigned char *maps, size_t cell, uint16_t distance)
 {
     unsigned char *at = maps + GB_PERSISTENCE_MAP_BYTES * cell;
     at[0] = (unsigned char)distance;
     at[1] = (unsigned char)((at[1] & 0xf0) | (distance >> 8 & 0x0f));
-}
-
-static uint16_t opening_at(const unsigned char *maps, size_t cell)
-{
-    return gb_map_opening(maps, cell);
 }
 
 static void set_opening(unsigned char *maps, size_t cell, uint16_t opening)
@@ -48,7 +39,7 @@ static uint16_t min_plus_one(const unsigned char *maps, size_t cell, const ptrdi
                              uint16_t value)
 {
     for (int n = 0; n < 13; ++n) {
-        uint16_t neighbour = distance_at(maps, (size_t)((ptrdiff_t)cell + offsets[n]));
+        uint16_t neighbour = gb_map_distance(maps, (size_t)((ptrdiff_t)cell + offsets[n]));
         if (neighbour < value - 1)
             value = (uint16_t)(neighbour + 1);
     }
@@ -68,12 +59,12 @@ static void chessboard_distance(const gb_cubical_complex *complex, unsigned char
     size_t first = complex->step[0] + complex->step[1] + complex->step[2];
     size_t last = complex->cell_count - first;
     for (size_t cell = first; cell < last; ++cell)
-        if (distance_at(maps, cell))
-            set_distance(maps, cell, min_plus_one(maps, cell, offsets, distance_at(maps, cell)));
+        if (gb_map_distance(maps, cell))
+            set_distance(maps, cell, min_plus_one(maps, cell, offsets, gb_map_distance(maps, cell)));
     for (size_t cell = last; cell-- > first;)
-        if (distance_at(maps, cell))
+        if (gb_map_distance(maps, cell))
             set_distance(maps, cell,
-                         min_plus_one(maps, cell, offsets + 13, distance_at(maps, cell)));
+                         min_plus_one(maps, cell, offsets + 13, gb_map_distance(maps, cell)));
 }
 
 /* Chessboard balls are cubes, so opening(x) = max { distance(y) : |x - y|
@@ -142,8 +133,8 @@ static void opening_pass(const gb_cubical_complex *complex, unsigned char *maps,
             for (int p = 0; p < n; ++p)
                 for (int b = 0; b < width; ++b) {
                     size_t cell = base + p * stride + b * complex->step[width_axis];
-                    space->in[b * n + p] = axis == 0 ? distance_at(maps, cell)
-                                                     : opening_at(maps, cell);
+                    space->in[b * n + p] = axis == 0 ? gb_map_distance(maps, cell)
+                                                     : gb_map_opening(maps, cell);
                 }
             memset(space->out, 0, (size_t)width * n * sizeof *space->out);
             for (int b = 0; b < width; ++b) {
@@ -195,6 +186,15 @@ gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_comp
     persistence->persistence = scale;
     persistence->min_lifespan = min_lifespan;
     size_t cells = complex->cell_count;
+    /* A chessboard distance or opening above GB_PERSISTENCE_FAR - 1 needs a
+     * cube of that radius inside the lattice: refused, not saturated. */
+    int smallest = complex->size[0];
+    for (int axis = 1; axis < 3; ++axis)
+        smallest = complex->size[axis] < smallest ? complex->size[axis] : smallest;
+    if (smallest > 2 * (GB_PERSISTENCE_FAR - 1))
+        return gb_fail(error, GB_ERROR_UNSUPPORTED,
+                       "persistence: every side above %d voxels (the maps hold 12 bits)",
+                       2 * (GB_PERSISTENCE_FAR - 1));
     persistence->maps = malloc(GB_PERSISTENCE_MAP_BYTES * cells);
     gb_result result = GB_OK;
     if (!persistence->maps)

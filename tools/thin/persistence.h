@@ -36,8 +36,10 @@ typedef struct gb_persistence {
                                non-empty voxel (0: not empty), 12 bits of its opening,
                                the radius of the largest chessboard ball (cube of side
                                2r-1) of the empty space holding it; both in voxels,
-                               saturated at GB_PERSISTENCE_FAR (a grid of the largest
-                               resolution, 2048, has none above 1026) */
+                               below GB_PERSISTENCE_FAR: either is at most half the
+                               lattice's smallest side, and gb_persistence_init
+                               refuses a lattice whose smallest side is above
+                               2 (GB_PERSISTENCE_FAR - 1) */
     /* births of the isthmus edges that outlived their first iteration: an
      * open-addressing table, key 1 + 3 * cell + axis (0: free slot) */
     uint64_t *birth_keys;
