@@ -16,6 +16,12 @@ static inline gb_vec3 gb_vec3_make(float x, float y, float z)
     return v;
 }
 
+/* The dot product of two float[3] (the runtime's and the formats' vectors). */
+static inline float gb_dot3(const float a[3], const float b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
 static inline gb_vec3 gb_vec3_load(const float *p)
 {
     return gb_vec3_make(p[0], p[1], p[2]);

@@ -8,14 +8,6 @@
 
 #include "brdf.h"
 
-static int faces(const gb_implicit_node *receiver, const gb_implicit_node *source)
-{
-    float d = 0.0f;
-    for (int k = 0; k < 3; ++k)
-        d += (source->position[k] - receiver->position[k]) * receiver->normal[k];
-    return d > 0.0f;
-}
-
 typedef struct bin_link {
     uint32_t source, bin;
     float weight;
@@ -46,7 +38,7 @@ static uint32_t element_links(const gb_implicit_slots *l, uint32_t e, bin_link *
         float w = cosine * l->bins->solid_angles[b];
         total += w;
         uint32_t target = gb_implicit_slot_node(slot[b]);
-        if (target == GB_IMPLICIT_NO_NODE || !faces(node, &l->model->nodes[target])) {
+        if (target == GB_IMPLICIT_NO_NODE) {
             environment += w;
             for (int k = 0; l->environment && k < 3; ++k)
                 irradiance[k] += w * l->environment[3 * (size_t)b + k];
@@ -114,17 +106,16 @@ static void light_visibility(const gb_implicit_slots *l, const gb_scene *scene, 
 }
 
 /* The element's depth map: (bin, distance) of each bin that holds a link
- * toward a node it faces (the bins element_links counts), appended to
+ * (the bins element_links counts), appended to
  * links->depth_bin and depth from *used on. */
 static gb_result append_depths(const gb_implicit_slots *l, uint32_t e,
                                gb_implicit_links *links,
                                size_t *capacity, size_t *used, gb_error *error)
 {
-    const gb_implicit_node *node = &l->model->nodes[e];
     size_t row = (size_t)e * l->bins->count;
     for (uint32_t b = 0; b < l->bins->count; ++b) {
         uint32_t target = gb_implicit_slot_node(l->slot[row + b]);
-        if (target == GB_IMPLICIT_NO_NODE || !faces(node, &l->model->nodes[target]))
+        if (target == GB_IMPLICIT_NO_NODE)
             continue;
         if (*used == *capacity) {
             size_t grown = 2 * *capacity + 1024;
