@@ -93,6 +93,8 @@ static void print_stats(const gb_skeleton *s, const gb_thin_stats *stats)
     printf("nodes           %u\n", s->node_count);
     printf("edges           %u\n", s->edge_count);
     printf("iterations      %u\n", stats->iterations);
+    printf("pairs removed   %llu\n", (unsigned long long)stats->pairs_removed);
+    printf("cells examined  %llu\n", (unsigned long long)stats->cells_examined);
     printf("cavities opened %u\n", stats->cavities_opened);
     printf("squares left    %llu\n", (unsigned long long)stats->squares_left);
     printf("seconds         maps %.3f, collapse %.3f, graph %.3f, nearest %.3f\n",
