@@ -6,6 +6,7 @@
 #include <math.h>
 
 #include "photon_map.h"
+#include "vec3.h"
 
 /* find_leaf: the leaf of integer cell, or GB_LIGHT_OCTREE_NONE; depth node
  * fetches from the root. */
@@ -27,11 +28,6 @@ static uint32_t find_leaf(const gb_light_octree *octree, const int cell[3])
     return node;
 }
 
-static float dot3(const float a[3], const float b[3])
-{
-    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-}
-
 /* leaf_light: the sum of the leaf's VDLs, E max(0, n.w) / max(|nl.w|,
  * MIN_COS), those from behind ng dropped; 0 (and sum 0) for no leaf or a
  * leaf without VDLs, else 1. */
@@ -46,8 +42,8 @@ static int leaf_light(const gb_light_octree *octree, uint32_t index, const float
         const gb_light_octree_vdl *vdl = &octree->vdls[i];
         float w[3];
         gb_photon_unpack_direction(vdl->direction, w);
-        float c = dot3(n, w) / fmaxf(fabsf(dot3(leaf->normal, w)), GB_LIGHT_OCTREE_MIN_COS);
-        if (c > 0.0f && dot3(ng, w) > 0.0f)
+        float c = gb_dot3(n, w) / fmaxf(fabsf(gb_dot3(leaf->normal, w)), GB_LIGHT_OCTREE_MIN_COS);
+        if (c > 0.0f && gb_dot3(ng, w) > 0.0f)
             for (int k = 0; k < 3; ++k)
                 sum[k] += vdl->irradiance[k] * c;
     }
