@@ -43,8 +43,8 @@ void gb_implicit_disc_bins(const gb_implicit_bins *bins, const float from[3],
         extent[k] = radius * sqrtf(fmaxf(0.0f, 1.0f - normal[k] * normal[k]));
     }
     float height = gb_dot3(d, normal);
-    if (height == 0.0f)
-        return;
+    if (height == 0.0f || !(radius > 0.0f))
+        return;                     /* seen edge on, or a disc of no area */
     for (int face = 0; face < 6; ++face) {
         int axis = face / 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
         float sign = face % 2 ? -1.0f : 1.0f;
@@ -63,7 +63,10 @@ void gb_implicit_disc_bins(const gb_implicit_bins *bins, const float from[3],
             for (int column = column0; column <= column1; ++column) {
                 int bin = (face * n + row) * n + column;
                 const float *direction = &bins->directions[3 * bin];
-                float t = height / gb_dot3(direction, normal);
+                float facing = gb_dot3(direction, normal);
+                if (facing == 0.0f)
+                    continue;       /* the ray runs parallel to the disc */
+                float t = height / facing;
                 if (!(t > 0.0f) || !isfinite(t))
                     continue;
                 float q[3];         /* from the centre to where the ray meets the plane */

@@ -657,6 +657,7 @@ static void test_cornice(void)
     printf("# cornice 5 mm under a ceiling: sky E / pi %.4f (want 0.5)\n", sky);
     CHECK_NEAR(sky, 0.5, 0.02, "cornice: the ceiling hides the upper half of its sky");
     free_lit(&x);
+    gb_scene_free(&scene);
 }
 
 /* Section 4.4: a lone square under a constant environment has every bin

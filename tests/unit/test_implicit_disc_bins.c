@@ -159,10 +159,34 @@ static void test_point_under_wide_disc(void)
     gb_implicit_bins_free(&bins);
 }
 
+/* A zero-area element's disc (Sponza has them) straight along the centre
+ * ray of a bin (6x1x1: each face's one bin looks down its axis),
+ * where the ray meets the disc's centre exactly: no bin, and no division by
+ * the radius (the sanitized build traps one). */
+static void test_disc_of_no_area(void)
+{
+    gb_implicit_bins bins;
+    gb_error error;
+    if (!CHECK(gb_implicit_bins_create(1, &bins, &error) == GB_OK, "bins"))
+        return;
+    float f[3] = {0, 0, 0}, c[3] = {0, 1, 0}, n[3] = {0, -1, 0};
+    visited v = {0, 0, malloc(bins.count * sizeof(float))};
+    for (uint32_t b = 0; b < bins.count; ++b)
+        v.distance[b] = -1.0f;
+    gb_implicit_disc_bins(&bins, f, c, n, 1e-3f, note_bin, &v);
+    CHECK_EQ_INT(v.count, 1, "a small disc straight up is seen through the bin looking up");
+    v.count = 0;
+    gb_implicit_disc_bins(&bins, f, c, n, 0.0f, note_bin, &v);
+    CHECK_EQ_INT(v.count, 0, "a disc of radius 0 is seen through no bin");
+    free(v.distance);
+    gb_implicit_bins_free(&bins);
+}
+
 int main(void)
 {
     test_random_discs(8);
     test_random_discs(12);
     test_point_under_wide_disc();
+    test_disc_of_no_area();
     return tap_done();
 }
