@@ -83,14 +83,14 @@ photon_map() {
     scene=$(scene_file "$1")
     store=$(store_of "$1")
     if [ ! -f "$dir/$1.pilot" ]; then
-        "$GB_BIN/photons" -q --stats --store "$store" -n 200000 -t "$THREADS" "$scene" \
+        "$GB_BIN/photons" -q --stats --store "$store" -n 200000 -j "$THREADS" "$scene" \
             -o "$dir/pilot.phot" >"$dir/$1.pilot" 2>"$dir/err" || return 1
         rm -f "$dir/pilot.phot"
     fi
     pilot=$(field stored "$dir/$1.pilot")
     [ "${pilot:-0}" -gt 0 ] || return 1
     emitted=$(awk -v s="$2" -v p="$pilot" 'BEGIN { printf "%d", s * 200000 / p + 1 }')
-    "$GB_BIN/photons" -q --stats --store "$store" -n "$emitted" -t "$THREADS" "$scene" \
+    "$GB_BIN/photons" -q --stats --store "$store" -n "$emitted" -j "$THREADS" "$scene" \
         -o "$out" >"$dir/photons.stats" 2>"$dir/err" &&
         field stored "$dir/photons.stats" >"$out.stored"
 }
@@ -103,7 +103,7 @@ run() {
         return
     fi
     if ! /usr/bin/time -f '%e %U %S' -o "$dir/time" "$GB_BIN/cluster" -q --stats \
-        -t "$THREADS" -d "$3" -k "$4" "$(scene_file "$1")" "$dir/$1-$2.phot" \
+        -j "$THREADS" -d "$3" -k "$4" "$(scene_file "$1")" "$dir/$1-$2.phot" \
         -o "$dir/out.lot" >"$dir/stats" 2>"$dir/err"; then
         echo "failed: $(head -n 1 "$dir/err")"
         return
@@ -156,7 +156,7 @@ echo
 spread=$GB_BIN/../bench/cluster_spread
 if [ -x "$spread" ]; then
     cornell=$(scene_file cornell)
-    if "$GB_BIN/photons" -q -n "$SPREAD_EMITTED" -t "$THREADS" "$cornell" \
+    if "$GB_BIN/photons" -q -n "$SPREAD_EMITTED" -j "$THREADS" "$cornell" \
         -o "$dir/spread.phot" 2>"$dir/err"; then
         echo "Figure 17 spread column: Cornell box, $SPREAD_EMITTED photons emitted, delta 6," \
             "K 300, fixed k (degrees; paper: k 1 2 4 8 -> 30 25 20 10)"
@@ -166,7 +166,7 @@ if [ -x "$spread" ]; then
             "$spread" "$cornell" "$dir/spread.phot" 6 300 4 4 | tail -n 1
             echo "... keeping only photons whose surface normal is within 25 degrees of the leaf's:"
             SPREAD_NORMAL_COS=0.9 "$spread" "$cornell" "$dir/spread.phot" 6 300 1 4 | tail -n 1
-            if "$GB_BIN/photons" -q --store all -n "$SPREAD_EMITTED" -t "$THREADS" "$cornell" \
+            if "$GB_BIN/photons" -q --store all -n "$SPREAD_EMITTED" -j "$THREADS" "$cornell" \
                 -o "$dir/spread.phot" 2>"$dir/err"; then
                 echo "... every hit stored, direct light included (photons --store all):"
                 "$spread" "$cornell" "$dir/spread.phot" 6 300 1 1 4 8 | tail -n 3

@@ -2,7 +2,8 @@
 # cli.t — the command line every tool shares (common/cli.h), as a user types
 # it: a bad value is one line in one format and the Try line, exit 2; an
 # unknown option is one line naming it and the Try line (no help dumped, no
-# path of the binary), exit 2; --help and --version on stdout, exit 0.
+# path of the binary), exit 2; --help and --version on stdout, exit 0; a
+# short letter means the same option in every tool.
 # Prints TAP.
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
@@ -11,7 +12,7 @@
 tool=
 
 tools="voxelize thin segment photons cluster reference imgdiff scene-info gbview"
-needs $tools
+needs $tools atlas lightmap
 
 # usage_error WHAT TOOL LINE ARGS...: TOOL ARGS exits 2 with exactly LINE and
 # the Try line on stderr, nothing on stdout.
@@ -117,5 +118,20 @@ for name in $tools; do
     ok "$([ $status = 0 ] && [ "$(cat "$dir/out")" = "$name (gibake) 0.1" ] &&
         [ ! -s "$dir/err" ]; echo $?)" "$name --version: '$name (gibake) 0.1', exit 0 (got $status)"
 done
+
+# One letter, one option, across the toolchain: every "-X, --long" line of
+# every tool's --help, the letters gathered over all of them; a letter
+# naming two long options in two tools is a failure (threads were -j in
+# some and -t in others, -s was --stats here and --spp there).
+for name in $tools atlas lightmap; do
+    "$GB_BIN/$name" --help | sed -n "s/^ *-\([A-Za-z]\), --\([a-z-]*\).*/\1 \2 $name/p"
+done >"$dir/letters"
+clashes=$(sort -u -k1,2 "$dir/letters" | awk '{ if ($1 == last) print $1; last = $1 }' | sort -u |
+    tr '\n' ' ')
+ok "$([ -s "$dir/letters" ] && [ -z "$clashes" ]; echo $?)" \
+    "each short letter names one long option in every tool${clashes:+ (not: $clashes)}"
+ok "$(grep -q '^j threads photons$' "$dir/letters" && grep -q '^j threads thin$' "$dir/letters" &&
+    grep -q '^s stats reference$' "$dir/letters"; echo $?)" \
+    "threads are -j and --stats is -s (photons, thin, reference)"
 
 tap_done

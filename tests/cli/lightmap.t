@@ -34,7 +34,7 @@ ok "$([ $? = 0 ] && grep -q '^usage: lightmap' "$dir/out"; echo $?)" "--help: us
 ok "$([ $? = 0 ] && grep -q '^lightmap (gibake)' "$dir/out"; echo $?)" "--version"
 expect_failure "no operands" 2 "expected SCENE NAME.atlas NAME.lot and -o OUT.exr"
 expect_failure "no -o" 2 "expected SCENE" "$scene" a.atlas a.lot
-expect_failure "--threads 0" 2 "threads: '0' is not an integer" -t 0 "$scene" a.atlas a.lot \
+expect_failure "--threads 0" 2 "threads: '0' is not an integer" -j 0 "$scene" a.atlas a.lot \
     -o "$dir/x.exr"
 expect_failure "unknown option" 2 "unknown option '--frobnicate'" --frobnicate
 
@@ -47,7 +47,7 @@ status=$?
 [ $status = 0 ] || sed 's/^/# /' "$dir/err"
 ok $status "photons, cluster --depth 5 and atlas --size 128 bake the Cornell box"
 
-"$tool" --quiet --stats -t 2 "$scene" "$dir/cornell.atlas" "$dir/cornell.lot" \
+"$tool" --quiet --stats -j 2 "$scene" "$dir/cornell.atlas" "$dir/cornell.lot" \
     -o "$dir/a.exr" --glb "$dir/a.glb" --depfile "$dir/a.d" >"$dir/stats" 2>"$dir/err"
 status=$?
 [ $status = 0 ] || sed 's/^/# /' "$dir/err"
@@ -60,7 +60,7 @@ ok "$(below 0 "$(value covered_texels "$dir/stats")" &&
 ok "$(grep -q 'cornell.atlas' "$dir/a.d" && grep -q 'cornell.lot' "$dir/a.d" &&
     grep -q 'cornell.obj' "$dir/a.d"; echo $?)" "--depfile names the scene, the atlas and the octree"
 
-"$tool" --quiet -t 1 "$scene" "$dir/cornell.atlas" "$dir/cornell.lot" -o "$dir/b.exr" \
+"$tool" --quiet -j 1 "$scene" "$dir/cornell.atlas" "$dir/cornell.lot" -o "$dir/b.exr" \
     --glb "$dir/b.glb" 2>/dev/null
 ok "$(cmp -s "$dir/a.exr" "$dir/b.exr" && cmp -s "$dir/a.glb" "$dir/b.glb"; echo $?)" \
     "1 thread or 2: byte-identical EXR and glTF binary"

@@ -98,9 +98,9 @@ ok "$([ $? = 0 ] && grep -q "photons (gibake)" "$dir/out"; echo $?)" "--version"
 chosen() {
     sed -n 's/^photons //p' "$1"
 }
-"$tool" -q -n auto --tolerance 0.1 --stats -t 1 "$scene" -o "$dir/auto1.phot" >"$dir/auto1"
+"$tool" -q -n auto --tolerance 0.1 --stats -j 1 "$scene" -o "$dir/auto1.phot" >"$dir/auto1"
 ok $? "-n auto --tolerance 0.1: exit status 0"
-"$tool" -q -n auto --tolerance 0.1 -t 2 "$scene" -o "$dir/auto2.phot"
+"$tool" -q -n auto --tolerance 0.1 -j 2 "$scene" -o "$dir/auto2.phot"
 ok "$(cmp -s "$dir/auto1.phot" "$dir/auto2.phot"; echo $?)" "... the same bytes on 1 and 2 threads"
 "$tool" -q -n "$(chosen "$dir/auto1")" "$scene" -o "$dir/fixed.phot"
 ok "$(cmp -s "$dir/auto1.phot" "$dir/fixed.phot"; echo $?)" \

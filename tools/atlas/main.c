@@ -33,7 +33,7 @@ static const char usage[] =
     "      --padding P          texels of gutter around every chart (default 2)\n"
     "      --cone DEGREES       largest angle between a chart's normals and its\n"
     "                           first triangle's, 1..90 (default 70)\n"
-    "      --stats              print charts, fill ratio (the triangles' UV area\n"
+    "  -s, --stats              print charts, fill ratio (the triangles' UV area\n"
     "                           in texels over the atlas's width x height), max and\n"
     "                           mean angle distortion (degrees, per triangle corner:\n"
     "                           |UV angle - 3-D angle|) and seconds\n"
@@ -48,8 +48,7 @@ typedef struct arguments {
     int quiet, stats, size_given;
 } arguments;
 
-enum { OPTION_SIZE = 256, OPTION_TEXELS, OPTION_PADDING, OPTION_CONE, OPTION_STATS,
-       OPTION_DEPFILE };
+enum { OPTION_SIZE = 256, OPTION_TEXELS, OPTION_PADDING, OPTION_CONE, OPTION_DEPFILE };
 
 static const struct option long_options[] = {
     GB_CLI_VALUE("output", 'o'),
@@ -57,7 +56,7 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("texels-per-unit", OPTION_TEXELS),
     GB_CLI_VALUE("padding", OPTION_PADDING),
     GB_CLI_VALUE("cone", OPTION_CONE),
-    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_FLAG("stats", 's'),
     GB_CLI_VALUE("depfile", OPTION_DEPFILE),
     GB_CLI_OPTIONS_END,
 };
@@ -70,7 +69,7 @@ static int parse_option(int option, const char *text, void *context)
     switch (option) {
     case 'o': a->output = text; return 0;
     case 'q': a->quiet = 1; return 0;
-    case OPTION_STATS: a->stats = 1; return 0;
+    case 's': a->stats = 1; return 0;
     case OPTION_DEPFILE: a->depfile = text; return 0;
     case OPTION_SIZE:
         a->size_given = 1;

@@ -26,7 +26,7 @@ static const char usage[] =
     "  -d, --depth N           octree depth (delta), 1..10 (default 6: 64^3 leaves;\n"
     "                          the paper finds quality improving over delta 4..6)\n"
     "  -k, --knn K             most photons gathered per leaf (default 300)\n"
-    "  -r, --radius R          largest gathering radius, world units\n"
+    "      --radius R          largest gathering radius, world units\n"
     "                          (default 3 leaf edges)\n"
     "      --vdls K_MAX        most VDLs per leaf, 1..64 (default 8)\n"
     "      --max-spread DEG    fewest VDLs whose spread is at most DEG degrees\n"
@@ -34,13 +34,13 @@ static const char usage[] =
     "      --restarts N        k-means runs per leaf and k, the best kept, 1..64\n"
     "                          (default 1)\n"
     "      --seed N            k-means++ seed (default 0)\n"
-    "  -t, --threads N         threads (default: every core)\n"
+    "  -j, --threads N         threads (default: every core)\n"
     "      --shard I/N         cluster only part I of N of the leaves (a range of\n"
     "                          the leaf order; the others get no VDL), indexing\n"
     "                          only the photons they can gather\n"
     "      --merge             join the N parts given, in order 0/N .. N-1/N, into\n"
     "                          the octree of the whole run, byte for byte\n"
-    "      --stats             print leaves, VDLs, photons indexed and seconds\n"
+    "  -s, --stats             print leaves, VDLs, photons indexed and seconds\n"
     "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
     "  -q, --quiet             no progress bar, no warnings\n"
     "  -h, --help              this help\n"
@@ -54,20 +54,20 @@ typedef struct arguments {
     int quiet, stats, merge;
 } arguments;
 
-enum { OPTION_VDLS = 256, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED, OPTION_STATS,
+enum { OPTION_RADIUS = 256, OPTION_VDLS, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED,
        OPTION_DEPFILE, OPTION_SHARD, OPTION_MERGE };
 
 static const struct option long_options[] = {
     GB_CLI_VALUE("output", 'o'),
     GB_CLI_VALUE("depth", 'd'),
     GB_CLI_VALUE("knn", 'k'),
-    GB_CLI_VALUE("radius", 'r'),
+    GB_CLI_VALUE("radius", OPTION_RADIUS),
     GB_CLI_VALUE("vdls", OPTION_VDLS),
     GB_CLI_VALUE("max-spread", OPTION_SPREAD),
     GB_CLI_VALUE("restarts", OPTION_RESTARTS),
     GB_CLI_VALUE("seed", OPTION_SEED),
-    GB_CLI_VALUE("threads", 't'),
-    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_VALUE("threads", 'j'),
+    GB_CLI_FLAG("stats", 's'),
     GB_CLI_VALUE("depfile", OPTION_DEPFILE),
     GB_CLI_VALUE("shard", OPTION_SHARD),
     GB_CLI_FLAG("merge", OPTION_MERGE),
@@ -83,7 +83,7 @@ static int parse_option(int option, const char *text, void *context)
     switch (option) {
     case 'o': a->output = text; return 0;
     case 'q': a->quiet = 1; return 0;
-    case OPTION_STATS: a->stats = 1; return 0;
+    case 's': a->stats = 1; return 0;
     case OPTION_DEPFILE: a->depfile = text; return 0;
     case OPTION_MERGE: a->merge = 1; return 0;
     case OPTION_SHARD:
@@ -91,7 +91,7 @@ static int parse_option(int option, const char *text, void *context)
     case 'd':
         return gb_cli_uint("cluster", "depth", text, 1, GB_LIGHT_OCTREE_MAX_DEPTH, &o->depth);
     case 'k': return gb_cli_uint("cluster", "knn", text, 1, 100000, &o->knn);
-    case 'r': return gb_cli_float("cluster", "radius", text, 1e-30, 1e30, &o->radius);
+    case OPTION_RADIUS: return gb_cli_float("cluster", "radius", text, 1e-30, 1e30, &o->radius);
     case OPTION_VDLS:
         return gb_cli_uint("cluster", "vdls", text, 1, GB_LIGHT_OCTREE_MAX_VDLS, &o->vdls_max);
     case OPTION_SPREAD:

@@ -20,7 +20,7 @@ static const char usage[] =
     "  psnr          10 log10(255^2 / mse_srgb8) in dB (inf when equal)\n"
     "  max_error     the largest per-pixel RMS error, linear\n"
     "\n"
-    "  -m, --mask FILE           compare only where FILE is not black (< 0.5)\n"
+    "      --mask FILE           compare only where FILE is not black (< 0.5)\n"
     "      --heatmap OUT.png     write the per-pixel error as colours, black (none)\n"
     "                            to white (the 99th percentile, or --heatmap-scale)\n"
     "      --heatmap-scale E     the linear error shown white\n"
@@ -36,7 +36,7 @@ typedef struct arguments {
     int quiet;
 } arguments;
 
-enum { OPTION_HEATMAP = 256, OPTION_HEATMAP_SCALE, OPTION_FAIL_ABOVE };
+enum { OPTION_MASK = 256, OPTION_HEATMAP, OPTION_HEATMAP_SCALE, OPTION_FAIL_ABOVE };
 
 /* The largest --heatmap-scale and --fail-above: any error a test can meet. */
 #define MAX_ERROR 1e30
@@ -46,7 +46,7 @@ static int parse_option(int option, const char *text, void *context)
 {
     arguments *a = context;
     switch (option) {
-    case 'm': a->mask = text; return 0;
+    case OPTION_MASK: a->mask = text; return 0;
     case 'q': a->quiet = 1; return 0;
     case OPTION_HEATMAP: a->heatmap = text; return 0;
     case OPTION_HEATMAP_SCALE:  /* 0 would show every error white */
@@ -62,7 +62,7 @@ static int parse_option(int option, const char *text, void *context)
 static int parse_arguments(int argc, char **argv, arguments *a)
 {
     static const struct option options[] = {
-        GB_CLI_VALUE("mask", 'm'),
+        GB_CLI_VALUE("mask", OPTION_MASK),
         GB_CLI_VALUE("heatmap", OPTION_HEATMAP),
         GB_CLI_VALUE("heatmap-scale", OPTION_HEATMAP_SCALE),
         GB_CLI_VALUE("fail-above", OPTION_FAIL_ABOVE),

@@ -33,8 +33,8 @@ static const char usage[] =
     "\n"
     "  -o, --output FILE       the lightmap to write (.exr)\n"
     "      --glb FILE          also the scene as a glTF binary (.glb)\n"
-    "  -t, --threads N         threads (default: every core)\n"
-    "      --stats             print texels, seconds, bytes and the PNG's error\n"
+    "  -j, --threads N         threads (default: every core)\n"
+    "  -s, --stats             print texels, seconds, bytes and the PNG's error\n"
     "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
     "  -q, --quiet             no progress bar, no warnings\n"
     "  -h, --help              this help\n"
@@ -46,13 +46,13 @@ typedef struct arguments {
     int quiet, stats;
 } arguments;
 
-enum { OPTION_GLB = 256, OPTION_STATS, OPTION_DEPFILE };
+enum { OPTION_GLB = 256, OPTION_DEPFILE };
 
 static const struct option long_options[] = {
     GB_CLI_VALUE("output", 'o'),
     GB_CLI_VALUE("glb", OPTION_GLB),
-    GB_CLI_VALUE("threads", 't'),
-    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_VALUE("threads", 'j'),
+    GB_CLI_FLAG("stats", 's'),
     GB_CLI_VALUE("depfile", OPTION_DEPFILE),
     GB_CLI_OPTIONS_END,
 };
@@ -65,7 +65,7 @@ static int parse_option(int option, const char *text, void *context)
     case 'o': a->output = text; return 0;
     case 'q': a->quiet = 1; return 0;
     case OPTION_GLB: a->glb = text; return 0;
-    case OPTION_STATS: a->stats = 1; return 0;
+    case 's': a->stats = 1; return 0;
     case OPTION_DEPFILE: a->depfile = text; return 0;
     default: return gb_cli_int("lightmap", "threads", text, 1, 256, &a->lightmap.threads);
     }

@@ -35,19 +35,19 @@ static const char usage[] =
     "      --store WHAT        indirect (default): photons that were reflected at\n"
     "                          least once; all: every hit, direct light included\n"
     "      --seed N            random seed (default 0)\n"
-    "  -t, --threads N         threads (default: every core)\n"
+    "  -j, --threads N         threads (default: every core)\n"
     "      --shard I/N         trace only part I of N (from 0/N to N-1/N) of the\n"
     "                          photons; --merge joins the N parts into the map of\n"
     "                          the whole run, byte for byte\n"
     "      --merge             join the shards given as arguments\n"
-    "      --stats             print photons, rays and seconds on stdout\n"
+    "  -s, --stats             print photons, rays and seconds on stdout\n"
     "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
     "  -q, --quiet             no progress bar, no warnings\n"
     "  -h, --help              this help\n"
     "  -V, --version           the version\n";
 
 enum {
-    OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_STATS, OPTION_DEPFILE,
+    OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_DEPFILE,
     OPTION_TOLERANCE,
 };
 
@@ -66,10 +66,10 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("bounces", 'b'),
     GB_CLI_VALUE("store", OPTION_STORE),
     GB_CLI_VALUE("seed", OPTION_SEED),
-    GB_CLI_VALUE("threads", 't'),
+    GB_CLI_VALUE("threads", 'j'),
     GB_CLI_VALUE("shard", OPTION_SHARD),
     GB_CLI_FLAG("merge", OPTION_MERGE),
-    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_FLAG("stats", 's'),
     GB_CLI_VALUE("depfile", OPTION_DEPFILE),
     GB_CLI_VALUE("tolerance", OPTION_TOLERANCE),
     GB_CLI_OPTIONS_END,
@@ -92,7 +92,7 @@ static int parse_option(int option, const char *text, void *context)
     switch (option) {
     case 'o': a->output = text; return 0;
     case OPTION_MERGE: a->merge = 1; return 0;
-    case OPTION_STATS: a->stats = 1; return 0;
+    case 's': a->stats = 1; return 0;
     case OPTION_DEPFILE: a->depfile = text; return 0;
     case 'q': a->quiet = 1; return 0;
     case 'n':
@@ -104,7 +104,7 @@ static int parse_option(int option, const char *text, void *context)
     case 'b':
         return gb_cli_uint("photons", "bounces", text, 1, GB_PHOTON_MAX_BOUNCES,
                            &a->trace.bounces);
-    case 't': return gb_cli_int("photons", "threads", text, 1, 256, &a->trace.threads);
+    case 'j': return gb_cli_int("photons", "threads", text, 1, 256, &a->trace.threads);
     case OPTION_SEED:
         return gb_cli_unsigned("photons", "seed", text, 0, UINT64_MAX, &a->trace.seed);
     case OPTION_STORE: return parse_store(text, &a->trace);

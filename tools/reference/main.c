@@ -24,7 +24,7 @@ static const char usage[] =
     "real-time methods. The image depends on the seed, never on --threads.\n"
     "\n"
     "  -o, --output FILE       the image to write (.exr: linear; .png: sRGB)\n"
-    "  -m, --mode MODE         full (default), direct, indirect1,\n"
+    "      --mode MODE         full (default), direct, indirect1,\n"
     "                          indirect1-unshadowed, vpl\n"
     "                            direct     emitters seen and light reflected once\n"
     "                            indirect1  light reflected exactly twice\n"
@@ -34,12 +34,12 @@ static const char usage[] =
     "                            vpl        the light of the VPL set --vpl FILE,\n"
     "                                       reflected once, with shadow rays\n"
     "      --vpl FILE          the VPL set of vpl mode (implies --mode vpl)\n"
-    "  -s, --spp N             samples per pixel (default 64; 4 in vpl mode, where\n"
+    "      --spp N             samples per pixel (default 64; 4 in vpl mode, where\n"
     "                          each sample sums every VPL)\n"
     "      --seed N            random seed (default 0)\n"
     "  -c, --camera N          the scene's camera N, from 0 (default 0)\n"
     "  -r, --resolution WxH    image size (default: the camera's)\n"
-    "  -t, --threads N         threads (default: every core)\n"
+    "  -j, --threads N         threads (default: every core)\n"
     "  -b, --bounces N         full: most reflections per path (default 64;\n"
     "                          Russian roulette after 3)\n"
     "      --min-bounces N     full: fewest reflections (default 0; 3 gives what\n"
@@ -49,7 +49,7 @@ static const char usage[] =
     "      --merge             join the N parts given, in order 0/N .. N-1/N, into\n"
     "                          the image of the whole render, byte for byte\n"
     "      --png               also write OUT.png, sRGB, beside OUT.exr\n"
-    "      --stats             print rays, seconds (wall, CPU) and rays per second\n"
+    "  -s, --stats             print rays, seconds (wall, CPU) and rays per second\n"
     "                          on stdout\n"
     "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
     "  -q, --quiet             no progress bar, no warnings\n"
@@ -64,22 +64,22 @@ typedef struct arguments {
     int png, stats, quiet, mode_given, merge;
 } arguments;
 
-enum { OPTION_VPL = 256, OPTION_SEED, OPTION_MIN_BOUNCES, OPTION_PNG, OPTION_STATS, OPTION_DEPFILE,
-       OPTION_TILE, OPTION_MERGE };
+enum { OPTION_MODE = 256, OPTION_VPL, OPTION_SPP, OPTION_SEED, OPTION_MIN_BOUNCES, OPTION_PNG,
+       OPTION_DEPFILE, OPTION_TILE, OPTION_MERGE };
 
 static const struct option long_options[] = {
     GB_CLI_VALUE("output", 'o'),
-    GB_CLI_VALUE("mode", 'm'),
+    GB_CLI_VALUE("mode", OPTION_MODE),
     GB_CLI_VALUE("vpl", OPTION_VPL),
-    GB_CLI_VALUE("spp", 's'),
+    GB_CLI_VALUE("spp", OPTION_SPP),
     GB_CLI_VALUE("seed", OPTION_SEED),
     GB_CLI_VALUE("camera", 'c'),
     GB_CLI_VALUE("resolution", 'r'),
-    GB_CLI_VALUE("threads", 't'),
+    GB_CLI_VALUE("threads", 'j'),
     GB_CLI_VALUE("bounces", 'b'),
     GB_CLI_VALUE("min-bounces", OPTION_MIN_BOUNCES),
     GB_CLI_FLAG("png", OPTION_PNG),
-    GB_CLI_FLAG("stats", OPTION_STATS),
+    GB_CLI_FLAG("stats", 's'),
     GB_CLI_VALUE("depfile", OPTION_DEPFILE),
     GB_CLI_VALUE("tile", OPTION_TILE),
     GB_CLI_FLAG("merge", OPTION_MERGE),
@@ -93,8 +93,8 @@ static int parse_number(int option, const char *text, arguments *a)
     long camera;
     int status;
     switch (option) {
-    case 's': return gb_cli_int("reference", "spp", text, 1, 1 << 30, &r->spp);
-    case 't': return gb_cli_int("reference", "threads", text, 1, 256, &r->threads);
+    case OPTION_SPP: return gb_cli_int("reference", "spp", text, 1, 1 << 30, &r->spp);
+    case 'j': return gb_cli_int("reference", "threads", text, 1, 256, &r->threads);
     case 'b': return gb_cli_int("reference", "bounces", text, 1, 1 << 20, &r->bounces);
     case OPTION_MIN_BOUNCES:
         return gb_cli_int("reference", "min-bounces", text, 0, 1 << 20, &r->min_bounces);
@@ -120,11 +120,11 @@ static int parse_option(int option, const char *text, void *context)
     case 'o': a->output = text; return 0;
     case OPTION_VPL: a->vpl_path = text; return 0;
     case OPTION_PNG: a->png = 1; return 0;
-    case OPTION_STATS: a->stats = 1; return 0;
+    case 's': a->stats = 1; return 0;
     case OPTION_DEPFILE: a->depfile = text; return 0;
     case OPTION_MERGE: a->merge = 1; return 0;
     case 'q': a->quiet = 1; return 0;
-    case 'm':
+    case OPTION_MODE:
         a->mode_given = 1;
         if (gb_reference_mode_parse(text, &a->render.mode, &error) == GB_OK)
             return 0;

@@ -42,14 +42,14 @@ static const char usage[] =
     "  -a, --alpha PERCENT    how much a neighbour's maximal ball may differ from the\n"
     "                         cluster's largest to join it, 0 to 100 (default 20)\n"
     "  -e, --evaluate         evaluate IN.seg on SCENE instead of segmenting\n"
-    "  -n, --pairs N          point pairs to evaluate (default 100000)\n"
+    "      --pairs N          point pairs to evaluate (default 100000)\n"
     "      --seed S           random seed of the pairs (default 0)\n"
     "  -s, --stats            print counts and timings on stdout\n"
     "  -q, --quiet            no progress bar, no warnings\n"
     "  -h, --help             this help\n"
     "  -V, --version          the version\n";
 
-enum { OPTION_SEED = 256, OPTION_VOXELS };
+enum { OPTION_PAIRS = 256, OPTION_SEED, OPTION_VOXELS };
 
 typedef struct arguments {
     const char *input, *output, *scene, *grid, *voxels;
@@ -64,7 +64,7 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("grid", 'g'),
     GB_CLI_VALUE("alpha", 'a'),
     GB_CLI_FLAG("evaluate", 'e'),
-    GB_CLI_VALUE("pairs", 'n'),
+    GB_CLI_VALUE("pairs", OPTION_PAIRS),
     GB_CLI_VALUE("seed", OPTION_SEED),
     GB_CLI_FLAG("stats", 's'),
     GB_CLI_OPTIONS_END,
@@ -85,7 +85,7 @@ static int parse_option(int option, const char *text, void *context)
     case 'a':
         return gb_cli_number_keep_zero("segment", "alpha", text, 0.0, 100.0,
                                        &args->options.alpha);
-    case 'n': return gb_cli_uint("segment", "pairs", text, 1, UINT32_MAX, &e->pairs);
+    case OPTION_PAIRS: return gb_cli_uint("segment", "pairs", text, 1, UINT32_MAX, &e->pairs);
     default: return gb_cli_unsigned("segment", "seed", text, 0, UINT64_MAX, &e->seed);
     }
 }
