@@ -7,6 +7,7 @@
 #include <stdlib.h>
 
 #include "brdf.h"
+#include "vec3.h"
 
 typedef struct bin_link {
     uint32_t source, bin;
@@ -21,8 +22,18 @@ static int compare_bin_links(const void *x, const void *y)
     return p->bin < q->bin ? -1 : p->bin > q->bin;
 }
 
+/* Whether a surface node seen along direction d shows its back, which
+ * sends no light (a one-sided surface of a mesh wound the other way: the
+ * staircase's ceiling over the front room faces the attic); it still
+ * hides what lies behind it. A node of several segments has no side. */
+static int seen_from_behind(const gb_implicit_node *target, const float d[3])
+{
+    return target->segment != GB_IMPLICIT_SEVERAL_SEGMENTS && gb_dot3(d, target->normal) > 0.0f;
+}
+
 /* One element's filled bins into scratch (weights normalised), sorted by
- * source and merged: one link a source. Returns the links. */
+ * source and merged: one link a source (bins that see a source's back
+ * hold no link: they gather nothing). Returns the links. */
 static uint32_t element_links(const gb_implicit_slots *l, uint32_t e, bin_link *scratch,
                               float *environment_weight, float *environment_irradiance)
 {
@@ -42,7 +53,7 @@ static uint32_t element_links(const gb_implicit_slots *l, uint32_t e, bin_link *
             environment += w;
             for (int k = 0; l->environment && k < 3; ++k)
                 irradiance[k] += w * l->environment[3 * (size_t)b + k];
-        } else
+        } else if (!seen_from_behind(&l->model->nodes[target], d))
             scratch[count++] = (bin_link){target, b, w};
     }
     float scale = total > 0.0 ? (float)(GB_PI / total) : 0.0f;

@@ -12,6 +12,7 @@
 
 
 #include "../../runtime/implicit/implicit.h"
+#include "brdf.h"
 #include "progress.h"
 #include "scene_builder.h"
 #include "tap.h"
@@ -660,6 +661,42 @@ static void test_cornice(void)
     gb_scene_free(&scene);
 }
 
+/* A ceiling wound the wrong way: a 4 x 4 square 1 above a small floor
+ * patch, its normal up, away from the floor, under a white sky. Seen from
+ * below it shows its back, which sends no light but hides the sky: the
+ * patch's sky E / pi is the part of its hemisphere outside the square,
+ * 1 - F with F the form factor of the square from its centre's foot
+ * (four 2 x 2 rectangles, each (1 / 2 pi) (2 X / sqrt(1 + X^2)) atan(X /
+ * sqrt(1 + X^2)) at X = 2): 0.169. A link kept only at the end that sees
+ * the other's front left the patch seeing the sky through it (1.0). */
+static void test_ceiling_seen_from_behind(void)
+{
+    gb_scene scene = {0};
+    const float ceiling[4][3] = {{-2, 1, -2}, {2, 1, -2}, {2, 1, 2}, {-2, 1, 2}};
+    const float patch[4][3] = {{-0.1f, 0, -0.1f}, {0.1f, 0, -0.1f}, {0.1f, 0, 0.1f},
+                               {-0.1f, 0, 0.1f}};
+    const float above[3] = {0, 10, 0};
+    add_quad_facing(&scene, ceiling, above, add_grey(&scene, 0.0f, 0.0f));
+    add_quad_facing(&scene, patch, above, add_grey(&scene, 0.5f, 0.0f));
+    scene_done(&scene);
+    lit_model x;
+    if (!white_sky_model(&scene, 0.25f, 1, &x, "ceiling seen from behind: built"))
+        return;
+    double sky = 0.0, area = 0.0;
+    for (uint32_t e = 0; e < x.m.element_count; ++e)
+        if (x.m.nodes[e].position[1] < 0.5f) {
+            sky += x.m.nodes[e].area * x.s.sky[3 * e];
+            area += x.m.nodes[e].area;
+        }
+    sky = area > 0.0 ? sky / area : -1.0;
+    double X = 2.0, r = sqrt(1.0 + X * X), F = 4.0 * (2.0 * X / r) * atan(X / r) / (2.0 * GB_PI);
+    printf("# ceiling seen from behind: sky E / pi under it %.4f (want 1 - F = %.4f)\n", sky,
+           1.0 - F);
+    CHECK_NEAR(sky, 1.0 - F, 0.05, "a ceiling seen from behind hides the sky");
+    free_lit(&x);
+    gb_scene_free(&scene);
+}
+
 /* Section 4.4: a lone square under a constant environment has every bin
  * above it empty, so each element's sky E / pi is the environment's
  * radiance exactly; a box standing on it hides part of the sky from the
@@ -1084,6 +1121,7 @@ int main(void)
     test_implicit_shadow();
     test_sky();
     test_cornice();
+    test_ceiling_seen_from_behind();
     test_zero_area();
     test_one_vertex();
     test_dynamic_update();
