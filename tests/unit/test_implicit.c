@@ -628,6 +628,43 @@ static int all_finite(const float *values, size_t count)
     return 1;
 }
 
+static int faces_z(const gb_implicit_node *node)
+{
+    return node->normal[2] > 0.99f;
+}
+
+static int below_half(const gb_implicit_node *node)
+{
+    return node->position[1] < 0.5f;
+}
+
+/* A black 4 x 4 ceiling at y = 1 whose front faces ceiling_front, and a
+ * grey patch whose front faces patch_front, under a white sky: the
+ * area-weighted mean sky E / pi of the elements keep takes (-1 when none,
+ * or when the model is not built: checked as what). */
+static double sky_under_ceiling(const float ceiling_front[3], const float patch[4][3],
+                                const float patch_front[3],
+                                int (*keep)(const gb_implicit_node *), const char *what)
+{
+    gb_scene scene = {0};
+    const float ceiling[4][3] = {{-2, 1, -2}, {2, 1, -2}, {2, 1, 2}, {-2, 1, 2}};
+    add_quad_facing(&scene, ceiling, ceiling_front, add_grey(&scene, 0.0f, 0.0f));
+    add_quad_facing(&scene, patch, patch_front, add_grey(&scene, 0.5f, 0.0f));
+    scene_done(&scene);
+    lit_model x;
+    if (!white_sky_model(&scene, 0.25f, 1, &x, what))
+        return -1.0;
+    double sky = 0.0, area = 0.0;
+    for (uint32_t e = 0; e < x.m.element_count; ++e)
+        if (keep(&x.m.nodes[e])) {
+            sky += x.m.nodes[e].area * x.s.sky[3 * e];
+            area += x.m.nodes[e].area;
+        }
+    free_lit(&x);
+    gb_scene_free(&scene);
+    return area > 0.0 ? sky / area : -1.0;
+}
+
 /* A cornice: a strip 1 cm tall facing +z, its top 5 mm under a 4 x 4
  * ceiling, under a white sky. The ceiling hides the upper half of the
  * strip's hemisphere, almost all of it through the millimetres just above
@@ -637,28 +674,12 @@ static int all_finite(const float *values, size_t count)
  * those near bins empty: the strip saw the sky through them. */
 static void test_cornice(void)
 {
-    gb_scene scene = {0};
-    const float ceiling[4][3] = {{-2, 1, -2}, {2, 1, -2}, {2, 1, 2}, {-2, 1, 2}};
     const float strip[4][3] = {
         {-0.1f, 0.985f, 0}, {0.1f, 0.985f, 0}, {0.1f, 0.995f, 0}, {-0.1f, 0.995f, 0}};
     const float below[3] = {0, -10, 0}, front[3] = {0, 0.99f, 10};
-    add_quad_facing(&scene, ceiling, below, add_grey(&scene, 0.0f, 0.0f));
-    add_quad_facing(&scene, strip, front, add_grey(&scene, 0.5f, 0.0f));
-    scene_done(&scene);
-    lit_model x;
-    if (!white_sky_model(&scene, 0.25f, 1, &x, "cornice: built"))
-        return;
-    double sky = 0.0, area = 0.0;
-    for (uint32_t e = 0; e < x.m.element_count; ++e)
-        if (x.m.nodes[e].normal[2] > 0.99f) {
-            sky += x.m.nodes[e].area * x.s.sky[3 * e];
-            area += x.m.nodes[e].area;
-        }
-    sky = area > 0.0 ? sky / area : -1.0;
+    double sky = sky_under_ceiling(below, strip, front, faces_z, "cornice: built");
     printf("# cornice 5 mm under a ceiling: sky E / pi %.4f (want 0.5)\n", sky);
     CHECK_NEAR(sky, 0.5, 0.02, "cornice: the ceiling hides the upper half of its sky");
-    free_lit(&x);
-    gb_scene_free(&scene);
 }
 
 /* A ceiling wound the wrong way: a 4 x 4 square 1 above a small floor
@@ -671,30 +692,15 @@ static void test_cornice(void)
  * the other's front left the patch seeing the sky through it (1.0). */
 static void test_ceiling_seen_from_behind(void)
 {
-    gb_scene scene = {0};
-    const float ceiling[4][3] = {{-2, 1, -2}, {2, 1, -2}, {2, 1, 2}, {-2, 1, 2}};
     const float patch[4][3] = {{-0.1f, 0, -0.1f}, {0.1f, 0, -0.1f}, {0.1f, 0, 0.1f},
                                {-0.1f, 0, 0.1f}};
     const float above[3] = {0, 10, 0};
-    add_quad_facing(&scene, ceiling, above, add_grey(&scene, 0.0f, 0.0f));
-    add_quad_facing(&scene, patch, above, add_grey(&scene, 0.5f, 0.0f));
-    scene_done(&scene);
-    lit_model x;
-    if (!white_sky_model(&scene, 0.25f, 1, &x, "ceiling seen from behind: built"))
-        return;
-    double sky = 0.0, area = 0.0;
-    for (uint32_t e = 0; e < x.m.element_count; ++e)
-        if (x.m.nodes[e].position[1] < 0.5f) {
-            sky += x.m.nodes[e].area * x.s.sky[3 * e];
-            area += x.m.nodes[e].area;
-        }
-    sky = area > 0.0 ? sky / area : -1.0;
+    double sky = sky_under_ceiling(above, patch, above, below_half,
+                                   "ceiling seen from behind: built");
     double X = 2.0, r = sqrt(1.0 + X * X), F = 4.0 * (2.0 * X / r) * atan(X / r) / (2.0 * GB_PI);
     printf("# ceiling seen from behind: sky E / pi under it %.4f (want 1 - F = %.4f)\n", sky,
            1.0 - F);
     CHECK_NEAR(sky, 1.0 - F, 0.05, "a ceiling seen from behind hides the sky");
-    free_lit(&x);
-    gb_scene_free(&scene);
 }
 
 /* Section 4.4: a lone square under a constant environment has every bin
