@@ -28,7 +28,7 @@ static int compare_bin_links(const void *x, const void *y)
  * hides what lies behind it. A node of several segments has no side. */
 static int seen_from_behind(const gb_implicit_node *target, const float d[3])
 {
-    return target->segment != GB_IMPLICIT_SEVERAL_SEGMENTS && gb_dot3(d, target->normal) > 0.0f;
+    return gb_implicit_node_has_side(target) && gb_dot3(d, target->normal) > 0.0f;
 }
 
 /* One element's filled bins into scratch (weights normalised), sorted by

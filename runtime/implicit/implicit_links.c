@@ -151,17 +151,12 @@ static float disc_reach(const linker *l, uint32_t b, const float n[3])
     return l->discs[b].radius * sqrtf(fmaxf(0.0f, 1.0f - c * c));
 }
 
-static int has_side(const gb_implicit_node *node)
-{
-    return node->segment != GB_IMPLICIT_SEVERAL_SEGMENTS;
-}
-
 /* Whether some of node b (its box, widened by its disc) may lie in front
  * of node a. */
 static int may_see(const linker *l, uint32_t a, uint32_t b)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
-    if (!has_side(na) || !has_side(nb))
+    if (!gb_implicit_node_has_side(na) || !gb_implicit_node_has_side(nb))
         return 1;
     return box_extreme(nb, na->normal, 1) + disc_reach(l, b, na->normal) >
            box_extreme(na, na->normal, 0) + l->epsilon;
@@ -216,7 +211,8 @@ static void store_covered_bin(void *user, int bin, float distance)
 {
     covered_bin_link *c = user;
     const gb_implicit_node *na = &c->l->model->nodes[c->a];
-    if (has_side(na) && gb_dot3(&c->l->bins->directions[3 * bin], na->normal) <= 0.0f)
+    if (gb_implicit_node_has_side(na) &&
+        gb_dot3(&c->l->bins->directions[3 * bin], na->normal) <= 0.0f)
         return;
     store(c->l, c->a, bin, c->b, distance);
 }
@@ -248,7 +244,7 @@ static void spread_far_disc(linker *l, uint32_t a, uint32_t b, float radius, flo
         for (int k = 0; k < 3; ++k)
             d[k] = nb->position[k] + r * (l->spiral[i][0] * t[0][k] + l->spiral[i][1] * t[1][k]) -
                    na->position[k];
-        if (has_side(na) && gb_dot3(d, na->normal) <= 0.0f)
+        if (gb_implicit_node_has_side(na) && gb_dot3(d, na->normal) <= 0.0f)
             continue;
         store(l, a, gb_implicit_bin(l->bins->n, d), b, sqrtf(gb_dot3(d, d)));
     }
@@ -327,8 +323,8 @@ static void link_pair(linker *l, uint32_t a, uint32_t b, const pair_geometry *g)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
     float r = sqrtf(g->r2);
-    float height_b = has_side(na) ? gb_dot3(g->d, na->normal) : r;
-    float height_a = has_side(nb) ? gb_dot3(g->back, nb->normal) : r;
+    float height_b = gb_implicit_node_has_side(na) ? gb_dot3(g->d, na->normal) : r;
+    float height_a = gb_implicit_node_has_side(nb) ? gb_dot3(g->back, nb->normal) : r;
     if (g->bin_a < 0)
         return;
     if (height_b + disc_reach(l, b, na->normal) > 0.0f) {

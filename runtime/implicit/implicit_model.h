@@ -37,6 +37,14 @@ typedef struct gb_implicit_node {
     uint32_t segment;
 } gb_implicit_node;
 
+/* Whether the node faces one side: a node of several segments (a cluster
+ * of differently oriented surfaces) has none, and lights or hides from
+ * every direction. */
+static inline int gb_implicit_node_has_side(const gb_implicit_node *node)
+{
+    return node->segment != GB_IMPLICIT_SEVERAL_SEGMENTS;
+}
+
 typedef struct gb_implicit_model {
     uint32_t segment_count;
     uint32_t *triangle_segment; /* scene triangle -> segment */
