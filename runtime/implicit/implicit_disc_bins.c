@@ -43,8 +43,10 @@ void gb_implicit_disc_bins(const gb_implicit_bins *bins, const float from[3],
         extent[k] = radius * sqrtf(fmaxf(0.0f, 1.0f - normal[k] * normal[k]));
     }
     float height = gb_dot3(d, normal);
-    if (height == 0.0f || !(radius > 0.0f))
-        return;                     /* seen edge on, or a disc of no area */
+    float radius2 = radius * radius;
+    if (height == 0.0f || !(radius2 > 0.0f))
+        return;                     /* seen edge on, or a disc of no area (a radius
+                                       under 1e-19 squares to 0) */
     for (int face = 0; face < 6; ++face) {
         int axis = face / 2, u = (axis + 1) % 3, v = (axis + 2) % 3;
         float sign = face % 2 ? -1.0f : 1.0f;
@@ -73,8 +75,8 @@ void gb_implicit_disc_bins(const gb_implicit_bins *bins, const float from[3],
                 for (int k = 0; k < 3; ++k)
                     q[k] = t * direction[k] - d[k];
                 float r2 = gb_dot3(q, q);
-                if (r2 <= radius * radius)
-                    visit(user, bin, t * (1.0f + OFF_CENTRE_LENGTHENING * r2 / (radius * radius)));
+                if (r2 <= radius2)
+                    visit(user, bin, t * (1.0f + OFF_CENTRE_LENGTHENING * r2 / radius2));
             }
     }
 }

@@ -21,7 +21,7 @@ typedef void (*gb_implicit_disc_bin_visit)(void *user, int bin, float distance);
 
 /* Visits the bins of bins through which from sees the disc of the given
  * centre, unit normal and radius; none when from lies in the disc's plane
- * or the radius is not positive. */
+ * or the disc has no area (its radius squares to 0). */
 void gb_implicit_disc_bins(const gb_implicit_bins *bins, const float from[3],
                            const float centre[3], const float normal[3], float radius,
                            gb_implicit_disc_bin_visit visit, void *user);

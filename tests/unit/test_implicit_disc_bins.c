@@ -178,6 +178,8 @@ static void test_disc_of_no_area(void)
     v.count = 0;
     gb_implicit_disc_bins(&bins, f, c, n, 0.0f, note_bin, &v);
     CHECK_EQ_INT(v.count, 0, "a disc of radius 0 is seen through no bin");
+    gb_implicit_disc_bins(&bins, f, c, n, 1e-30f, note_bin, &v);
+    CHECK_EQ_INT(v.count, 0, "a disc whose radius squares to 0 is seen through no bin");
     free(v.distance);
     gb_implicit_bins_free(&bins);
 }
