@@ -13,12 +13,25 @@
  * the bin: the element whose cell the ray meets. */
 #define OFF_CENTRE_LENGTHENING 0x1p-10f
 
+/* The larger and the smaller of x and y, y when x is not a number (fmaxf
+ * and fminf for an y that is one: they are library calls at -O2, and link
+ * creation calls these millions of times). */
+static inline float larger(float x, float y)
+{
+    return x > y ? x : y;
+}
+
+static inline float smaller(float x, float y)
+{
+    return x < y ? x : y;
+}
+
 /* The cells [first, last] of a face's n that the interval [lowest, highest]
  * of u (or v) reaches. */
 static void cell_range(float lowest, float highest, int n, int *first, int *last)
 {
-    int i = (int)floorf(0.5f * (fmaxf(lowest, -1.0f) + 1.0f) * (float)n);
-    int j = (int)floorf(0.5f * (fminf(highest, 1.0f) + 1.0f) * (float)n);
+    int i = (int)floorf(0.5f * (larger(lowest, -1.0f) + 1.0f) * (float)n);
+    int j = (int)floorf(0.5f * (smaller(highest, 1.0f) + 1.0f) * (float)n);
     *first = i < 0 ? 0 : i >= n ? n - 1 : i;
     *last = j < 0 ? 0 : j >= n ? n - 1 : j;
 }
@@ -27,8 +40,8 @@ static void cell_range(float lowest, float highest, int n, int *first, int *last
 static void quotient_range(float x0, float x1, float a0, float a1, float *lowest,
                            float *highest)
 {
-    *lowest = fminf(x0 / a0, x0 / a1);
-    *highest = fmaxf(x1 / a0, x1 / a1);
+    *lowest = smaller(x0 / a0, x0 / a1);
+    *highest = larger(x1 / a0, x1 / a1);
 }
 
 void gb_implicit_disc_bins(const gb_implicit_bins *bins, const float from[3],
@@ -40,7 +53,7 @@ void gb_implicit_disc_bins(const gb_implicit_bins *bins, const float from[3],
     for (int k = 0; k < 3; ++k) {
         d[k] = centre[k] - from[k];
         /* how far the disc reaches from its centre along axis k */
-        extent[k] = radius * sqrtf(fmaxf(0.0f, 1.0f - normal[k] * normal[k]));
+        extent[k] = radius * sqrtf(larger(1.0f - normal[k] * normal[k], 0.0f));
     }
     float height = gb_dot3(d, normal);
     float radius2 = radius * radius;

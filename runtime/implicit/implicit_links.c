@@ -73,6 +73,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <time.h>
 
 /* A disc covering fewer bins than COVER_EXACTLY is spread at points, at
@@ -124,6 +125,8 @@ typedef struct linker {
                                    GB_IMPLICIT_EMPTY_SLOT */
     float epsilon;              /* a length far below the element size */
     float spiral[SPREAD_MAX][2];/* cos, sin of the golden angle times i */
+    float spiral_radius[SPREAD_MAX + 1][SPREAD_MAX];  /* [count][i]: sqrt((i + 1/2) / count),
+                                   the i-th of count points' radius over the disc's */
     disc_frame *discs;          /* node_count, made once (disc_frames) */
 } linker;
 
@@ -132,13 +135,14 @@ static int is_leaf(const gb_implicit_node *node)
     return node->child_count == 0;
 }
 
-/* max or min of dot(n, x) over the node's box. */
+/* max or min of dot(n, x) over the node's box (the comparisons written
+ * out: fmaxf and fminf are library calls at -O2, a few % of link time). */
 static float box_extreme(const gb_implicit_node *node, const float n[3], int highest)
 {
     float sum = 0.0f;
     for (int k = 0; k < 3; ++k) {
         float a = n[k] * node->box_min[k], b = n[k] * node->box_max[k];
-        sum += highest ? fmaxf(a, b) : fminf(a, b);
+        sum += highest == (a > b) ? a : b;
     }
     return sum;
 }
@@ -148,7 +152,8 @@ static float disc_reach(const linker *l, uint32_t b, const float n[3])
 {
     const float *normal = l->model->nodes[b].normal;
     float c = normal[0] * n[0] + normal[1] * n[1] + normal[2] * n[2];
-    return l->discs[b].radius * sqrtf(fmaxf(0.0f, 1.0f - c * c));
+    float sine2 = 1.0f - c * c;
+    return sine2 > 0.0f ? l->discs[b].radius * sqrtf(sine2) : 0.0f;
 }
 
 /* Whether some of node b (its box, widened by its disc) may lie in front
@@ -239,7 +244,7 @@ static void spread_far_disc(linker *l, uint32_t a, uint32_t b, float radius, flo
     int count = covered_bins < 1.0f ? 3 : (int)ceilf(3.0f * covered_bins + 1.0f);
     const float(*t)[3] = disc->tangent;
     for (int i = 0; i < count; ++i) {
-        float r = radius * sqrtf(((float)i + 0.5f) / (float)count);
+        float r = radius * l->spiral_radius[count][i];
         float d[3];
         for (int k = 0; k < 3; ++k)
             d[k] = nb->position[k] + r * (l->spiral[i][0] * t[0][k] + l->spiral[i][1] * t[1][k]) -
@@ -512,6 +517,24 @@ static gb_result slot_nodes(const uint64_t *slot, size_t count, uint32_t **nodes
     return GB_OK;
 }
 
+/* The slot array, in huge pages where the kernel gives them on request
+ * (Linux's transparent huge pages in "madvise" mode): a 4 KiB page a few
+ * hundred nodes' worth of bins is a page fault each, and Table 1's
+ * CreateHierarchicalLinks spent 10-15 % of its time in them and the fill
+ * (bench/implicit_steps.c, GLIBC_TUNABLES=glibc.malloc.hugetlb=1 against
+ * without, alternating). Freed with free. */
+static uint64_t *allocate_slots(size_t count)
+{
+    enum { HUGE_PAGE = 2u << 20 };
+    size_t bytes = (count * sizeof(uint64_t) / HUGE_PAGE + 1) * HUGE_PAGE;
+    uint64_t *slots = aligned_alloc(HUGE_PAGE, bytes);
+#ifdef MADV_HUGEPAGE
+    if (slots)
+        madvise(slots, bytes, MADV_HUGEPAGE);   /* advice: without it, small pages */
+#endif
+    return slots;
+}
+
 static float smallest_extent(const gb_implicit_model *m)
 {
     float size = 0.0f;
@@ -539,8 +562,10 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
         double angle = 2.39996322972865332 * i;     /* the golden angle */
         l.spiral[i][0] = (float)cos(angle);
         l.spiral[i][1] = (float)sin(angle);
+        for (int count = i + 1; count <= SPREAD_MAX; ++count)
+            l.spiral_radius[count][i] = sqrtf(((float)i + 0.5f) / (float)count);
     }
-    l.slot = malloc(slots * sizeof *l.slot + 1);
+    l.slot = allocate_slots(slots);
     l.discs = disc_frames(model);
     gb_result result = GB_OK;
     if (!l.slot || !l.discs)
