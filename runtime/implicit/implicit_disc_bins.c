@@ -13,9 +13,9 @@
  * the bin: the element whose cell the ray meets. */
 #define OFF_CENTRE_LENGTHENING 0x1p-10f
 
-/* The larger and the smaller of x and y, y when x is not a number (fmaxf
- * and fminf for an y that is one: they are library calls at -O2, and link
- * creation calls these millions of times). */
+/* The larger and the smaller of x and y; y when x is not a number. For a
+ * y that is a number, fmaxf and fminf, which are library calls at -O2 (and
+ * link creation calls these millions of times). */
 static inline float larger(float x, float y)
 {
     return x > y ? x : y;
