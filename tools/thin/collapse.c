@@ -16,34 +16,24 @@ enum { KIND_CUBE, KIND_SQUARE, KIND_EDGE };
 static const uint8_t kind_faces[GB_COLLAPSE_KINDS] = {GB_FACE_CUBE, GB_FACE_SQUARES,
                                                       GB_FACE_EDGES};
 
-/* Per-cell marks, each set for as long as the cell is in the matching list. */
-enum {
-    MARK_BORDER = 1u << 0,      /* << kind: in border[kind] */
-    MARK_PENDING = 1u << 3,     /* << kind: in pending[kind] */
-};
+/* The direction-orientation of an axis and orientation (collapse.h). */
+static int direction_of(int axis, int orientation)
+{
+    return 2 * axis + (orientation > 0);
+}
 
 /* ---- the lists ---- */
 
-HOT gb_result list_in(gb_collapse *collapse, gb_cell_list *list, uint8_t mark, size_t cell,
-                      gb_error *error)
+/* The cell may hold the g (of that kind) of a pair the substep of that
+ * kind and direction removes: examined there, in this iteration if that
+ * substep is still to come, else in the next. */
+HOT gb_result list_candidate(gb_collapse *collapse, size_t cell, int kind, int direction,
+                             gb_error *error)
 {
-    uint8_t *marks = &collapse->marks[cell];
-    if (*marks & mark)
-        return GB_OK;
-    *marks |= mark;
+    int substep = GB_COLLAPSE_KINDS * direction + kind;
+    gb_cell_list *list = substep > collapse->substep ? &collapse->border[substep]
+                                                     : &collapse->pending[substep];
     return gb_cell_list_push(list, cell, error);
-}
-
-/* The cell may hold the g (of that kind) of a new free pair: examine it in
- * the rest of this iteration and in the next (for the substeps that come
- * before the one that freed it). */
-HOT gb_result list_candidate(gb_collapse *collapse, size_t cell, int kind, gb_error *error)
-{
-    if (list_in(collapse, &collapse->border[kind], (uint8_t)(MARK_BORDER << kind), cell,
-                error))
-        return GB_ERROR_OUT_OF_MEMORY;
-    return list_in(collapse, &collapse->pending[kind], (uint8_t)(MARK_PENDING << kind), cell,
-                   error);
 }
 
 gb_result gb_collapse_reconsider(gb_collapse *collapse, size_t cell, gb_error *error)
@@ -54,11 +44,13 @@ gb_result gb_collapse_reconsider(gb_collapse *collapse, size_t cell, gb_error *e
             for (int dx = -1; dx <= 1; ++dx) {
                 size_t neighbour = (size_t)((ptrdiff_t)cell + dx + dy * (ptrdiff_t)step[1] +
                                             dz * (ptrdiff_t)step[2]);
-                for (int kind = 0; kind < GB_COLLAPSE_KINDS; ++kind)
-                    if ((collapse->complex->faces[neighbour] & kind_faces[kind]) &&
-                        list_in(collapse, &collapse->pending[kind],
-                                (uint8_t)(MARK_PENDING << kind), neighbour, error))
-                        return GB_ERROR_OUT_OF_MEMORY;
+                for (int kind = 0; kind < GB_COLLAPSE_KINDS; ++kind) {
+                    if (!(collapse->complex->faces[neighbour] & kind_faces[kind]))
+                        continue;
+                    for (int direction = 0; direction < GB_COLLAPSE_DIRECTIONS; ++direction)
+                        if (list_candidate(collapse, neighbour, kind, direction, error))
+                            return GB_ERROR_OUT_OF_MEMORY;
+                }
             }
     return GB_OK;
 }
@@ -69,22 +61,24 @@ gb_result gb_collapse_init(gb_collapse *collapse, gb_cubical_complex *complex,
     memset(collapse, 0, sizeof *collapse);
     collapse->complex = complex;
     collapse->persistence = persistence;
-    collapse->marks = calloc(complex->cell_count, sizeof *collapse->marks);
-    if (!collapse->marks)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "collapse: out of memory for %zu cells",
-                       complex->cell_count);
-    /* Every face is in a cube: the only free pairs are (square, cube) next to
-     * a non-empty voxel, at distance 1. */
+    collapse->substep = GB_COLLAPSE_SUBSTEPS;
+    /* Every face is in a cube: the only free pairs are (square, cube) where
+     * the cube's neighbour across the square is not empty. */
     for (size_t cell = 0; cell < complex->cell_count; ++cell) {
         if (!(complex->faces[cell] & GB_FACE_CUBE))
             continue;
         ++collapse->cubes;
-        if (gb_persistence_distance(persistence, cell) == 1 &&
-            list_in(collapse, &collapse->pending[KIND_CUBE], MARK_PENDING << KIND_CUBE, cell,
-                    error)) {
-            gb_collapse_free(collapse);
-            return GB_ERROR_OUT_OF_MEMORY;
-        }
+        for (int axis = 0; axis < 3; ++axis)
+            for (int orientation = -1; orientation <= 1; orientation += 2) {
+                size_t beyond = orientation < 0 ? cell - complex->step[axis]
+                                                : cell + complex->step[axis];
+                if (!(complex->faces[beyond] & GB_FACE_CUBE) &&
+                    list_candidate(collapse, cell, KIND_CUBE, direction_of(axis, orientation),
+                                   error)) {
+                    gb_collapse_free(collapse);
+                    return GB_ERROR_OUT_OF_MEMORY;
+                }
+            }
     }
     return GB_OK;
 }
@@ -93,44 +87,35 @@ void gb_collapse_free(gb_collapse *collapse)
 {
     if (!collapse)
         return;
-    for (int kind = 0; kind < GB_COLLAPSE_KINDS; ++kind) {
-        gb_cell_list_free(&collapse->border[kind]);
-        gb_cell_list_free(&collapse->pending[kind]);
+    for (int substep = 0; substep < GB_COLLAPSE_SUBSTEPS; ++substep) {
+        gb_cell_list_free(&collapse->border[substep]);
+        gb_cell_list_free(&collapse->pending[substep]);
     }
     for (int axis = 0; axis < 3; ++axis)
         gb_cell_list_free(&collapse->born[axis]);
     free(collapse->pairs);
-    free(collapse->marks);
     memset(collapse, 0, sizeof *collapse);
 }
 
-/* The border of a new iteration: the cells pending from the last one that
- * still hold a face of the kind they were listed for. */
+/* The border of a new iteration: the cells pending from the last one (the
+ * old border's allocation takes the next iteration's pending cells). */
 static void start_iteration(gb_collapse *collapse)
 {
-    const uint8_t *faces = collapse->complex->faces;
-    for (int kind = 0; kind < GB_COLLAPSE_KINDS; ++kind) {
-        gb_cell_list *border = &collapse->border[kind], *pending = &collapse->pending[kind];
-        for (size_t n = 0; n < border->count; ++n)
-            collapse->marks[border->items[n]] &= (uint8_t)~(MARK_BORDER << kind);
+    for (int substep = 0; substep < GB_COLLAPSE_SUBSTEPS; ++substep) {
+        gb_cell_list *border = &collapse->border[substep];
+        gb_cell_list candidates = collapse->pending[substep];
         border->count = 0;
-        /* swap: the pending cells become the border, the old border's
-         * allocation takes the next iteration's pending cells */
-        gb_cell_list candidates = *pending;
-        *pending = *border;
+        collapse->pending[substep] = *border;
         *border = candidates;
-        size_t kept = 0;
-        for (size_t n = 0; n < border->count; ++n) {
-            size_t cell = border->items[n];
-            uint8_t *marks = &collapse->marks[cell];
-            *marks &= (uint8_t)~(MARK_PENDING << kind);
-            if (faces[cell] & kind_faces[kind]) {
-                *marks |= (uint8_t)(MARK_BORDER << kind);
-                border->items[kept++] = (uint32_t)cell;
-            }
-        }
-        border->count = kept;
     }
+}
+
+static int any_pending(const gb_collapse *collapse)
+{
+    for (int substep = 0; substep < GB_COLLAPSE_SUBSTEPS; ++substep)
+        if (collapse->pending[substep].count)
+            return 1;
+    return 0;
 }
 
 /* Facets born this iteration and still there get their birth recorded; the
@@ -232,8 +217,11 @@ HOT gb_result square_lost_coface(gb_collapse *collapse, size_t cell, int normal,
         return GB_OK;
     size_t behind = cell - collapse->complex->step[normal];
     int here = (faces[cell] & GB_FACE_CUBE) != 0, back = (faces[behind] & GB_FACE_CUBE) != 0;
-    return here + back == 1 ? list_candidate(collapse, here ? cell : behind, KIND_CUBE, error)
-                            : GB_OK;
+    /* the cube left has the square on its low side (here) or high side */
+    if (here + back != 1)
+        return GB_OK;
+    return here ? list_candidate(collapse, cell, KIND_CUBE, direction_of(normal, -1), error)
+                : list_candidate(collapse, behind, KIND_CUBE, direction_of(normal, +1), error);
 }
 
 static gb_result edge_became_facet(gb_collapse *collapse, size_t cell, int axis,
@@ -249,9 +237,13 @@ HOT gb_result edge_lost_coface(gb_collapse *collapse, size_t cell, int axis, gb_
     if (!(faces[cell] & gb_edge_bit(axis)))
         return GB_OK;
     int b = (axis + 1) % 3, c = (axis + 2) % 3;
-    /* its squares: normal to b at cell and cell - c; normal to c at cell and cell - b */
+    /* its squares: normal to b at cell and cell - c; normal to c at cell and
+     * cell - b; the edge is on the square's low side along c, high along c,
+     * low along b, high along b */
     size_t cells[4] = {cell, cell - complex->step[c], cell, cell - complex->step[b]};
     uint8_t bits[4] = {gb_square_bit(b), gb_square_bit(b), gb_square_bit(c), gb_square_bit(c)};
+    int directions[4] = {direction_of(c, -1), direction_of(c, +1), direction_of(b, -1),
+                         direction_of(b, +1)};
     int count = 0, last = 0;
     for (int n = 0; n < 4; ++n)
         if (faces[cells[n]] & bits[n]) {
@@ -259,7 +251,7 @@ HOT gb_result edge_lost_coface(gb_collapse *collapse, size_t cell, int axis, gb_
             last = n;
         }
     if (count == 1)
-        return list_candidate(collapse, cells[last], KIND_SQUARE, error);
+        return list_candidate(collapse, cells[last], KIND_SQUARE, directions[last], error);
     if (count == 0)
         return edge_became_facet(collapse, cell, axis, error);
     return GB_OK;
@@ -271,20 +263,25 @@ HOT gb_result point_lost_coface(gb_collapse *collapse, size_t cell, gb_error *er
     const uint8_t *faces = complex->faces;
     if (!(faces[cell] & GB_FACE_POINT))
         return GB_OK;
-    int count = 0;
+    /* its edges: along each axis, starting at the point (low end) or ending
+     * at it (high end) */
+    int count = 0, last_direction = 0;
     size_t last = cell;
     for (int axis = 0; axis < 3; ++axis) {
         if (faces[cell] & gb_edge_bit(axis)) {
             ++count;
             last = cell;
+            last_direction = direction_of(axis, -1);
         }
         size_t before = cell - complex->step[axis];
         if (faces[before] & gb_edge_bit(axis)) {
             ++count;
             last = before;
+            last_direction = direction_of(axis, +1);
         }
     }
-    return count == 1 ? list_candidate(collapse, last, KIND_EDGE, error) : GB_OK;
+    return count == 1 ? list_candidate(collapse, last, KIND_EDGE, last_direction, error)
+                      : GB_OK;
 }
 
 /* Removed: the cube of cell and its square normal to axis at square_cell.
@@ -343,8 +340,11 @@ static gb_result remove_pair(gb_collapse *collapse, uint64_t pair, substep s, gb
     uint8_t *faces = collapse->complex->faces;
     size_t cell = (size_t)(pair >> 8);
     uint8_t g = (uint8_t)(pair & 0xff);
+    if (!(faces[cell] & g))
+        return GB_OK;       /* found twice (its cell was listed twice): removed */
     size_t f = free_face_cell(collapse->complex, cell, s);
     faces[cell] &= (uint8_t)~g;
+    ++collapse->pairs_removed;
     if (s.dimension == 3) {
         faces[f] &= (uint8_t)~gb_square_bit(s.axis);
         ++collapse->cubes_removed;
@@ -366,7 +366,8 @@ static gb_result remove_pair(gb_collapse *collapse, uint64_t pair, substep s, gb
 HOT gb_result collapse_substep(gb_collapse *collapse, substep s, gb_error *error)
 {
     collapse->pair_count = 0;
-    const gb_cell_list *border = &collapse->border[3 - s.dimension];
+    collapse->substep = GB_COLLAPSE_KINDS * direction_of(s.axis, s.orientation) + 3 - s.dimension;
+    const gb_cell_list *border = &collapse->border[collapse->substep];
     size_t count = border->count;
     collapse->cells_examined += count;
     for (size_t n = 0; n < count; ++n)
@@ -375,7 +376,6 @@ HOT gb_result collapse_substep(gb_collapse *collapse, substep s, gb_error *error
     for (size_t n = 0; n < collapse->pair_count; ++n)
         if (remove_pair(collapse, collapse->pairs[n], s, error))
             return GB_ERROR_OUT_OF_MEMORY;
-    collapse->pairs_removed += collapse->pair_count;
     return GB_OK;
 }
 
@@ -391,14 +391,14 @@ static gb_result collapse_iteration(gb_collapse *collapse, gb_error *error)
     if (SUBSTEPS_OF(0, -1) || SUBSTEPS_OF(0, 1) || SUBSTEPS_OF(1, -1) || SUBSTEPS_OF(1, 1) ||
         SUBSTEPS_OF(2, -1) || SUBSTEPS_OF(2, 1))
         return GB_ERROR_OUT_OF_MEMORY;
+    collapse->substep = GB_COLLAPSE_SUBSTEPS;
     return end_iteration(collapse, error);
 }
 
 gb_result gb_collapse_run(gb_collapse *collapse, gb_progress_callback progress,
                           void *progress_user, gb_error *error)
 {
-    while (collapse->pending[KIND_CUBE].count || collapse->pending[KIND_SQUARE].count ||
-           collapse->pending[KIND_EDGE].count) {
+    while (any_pending(collapse)) {
         start_iteration(collapse);
         if (collapse_iteration(collapse, error))
             return GB_ERROR_OUT_OF_MEMORY;

@@ -14,10 +14,12 @@
  * An edge g that persistence (persistence.h) protects is never removed.
  *
  * Cost: a removal can only free the pairs (h, k) where h is a face of the
- * removed pair left with a single coface k; the cells of those k are the
- * border the following substeps and the next iteration examine. Nothing
- * else is ever looked at: the work follows the removals, never the whole
- * complex.
+ * removed pair left with a single coface k. That happens once to a pair,
+ * and the geometry of h and k gives the pair's direction, orientation and
+ * dimension: k's cell goes to the list of the one substep that can remove
+ * it, later in this iteration or else in the next. Nothing else is ever
+ * looked at: the work follows the removals, never the whole complex, and a
+ * listed cell is examined once, not in every substep.
  *
  * The caller owns the gb_collapse and frees it with gb_collapse_free; it
  * borrows the complex and the persistence maps it was given.
@@ -34,28 +36,37 @@
 #include "result.h"
 
 /* What a listed cell may hold the g of: a cube, a square or an edge (the
- * pairs of dimension 3, 2, 1). */
-enum { GB_COLLAPSE_KINDS = 3 };
+ * pairs of dimension 3, 2, 1); and the direction-orientations -x, +x, -y,
+ * +y, -z, +z (2 axis + (orientation > 0)). An iteration runs the substeps
+ * in the order direction, then kind: substep 3 direction + kind. */
+enum {
+    GB_COLLAPSE_KINDS = 3,
+    GB_COLLAPSE_DIRECTIONS = 6,
+    GB_COLLAPSE_SUBSTEPS = GB_COLLAPSE_DIRECTIONS * GB_COLLAPSE_KINDS
+};
 
 typedef struct gb_collapse {
     gb_cubical_complex *complex;
     gb_persistence *persistence;
-    gb_cell_list border[GB_COLLAPSE_KINDS];  /* cells examined in this iteration */
-    gb_cell_list pending[GB_COLLAPSE_KINDS]; /* cells to examine in the next one */
+    /* per substep: cells that may hold the g of a pair it removes, examined in
+     * this iteration (border) or the next (pending); a cell may be listed
+     * twice */
+    gb_cell_list border[GB_COLLAPSE_SUBSTEPS];
+    gb_cell_list pending[GB_COLLAPSE_SUBSTEPS];
+    int substep;                /* the one running, GB_COLLAPSE_SUBSTEPS between
+                                   iterations */
     gb_cell_list born[3];       /* per axis: cells whose edge along it became a facet
                                    this iteration (an edge does so once) */
     uint64_t *pairs;            /* free pairs of one substep: cell << 8 | face bit of g */
     size_t pair_count, pair_capacity;
-    uint8_t *marks;             /* per cell: which border and pending lists hold it,
-                                   cleared through them */
     uint32_t iteration;         /* iterations done so far (persistence's clock) */
     uint64_t cubes, cubes_removed;
     uint64_t pairs_removed;
     uint64_t cells_examined;    /* border cells looked at, all substeps summed */
 } gb_collapse;
 
-/* Prepares the collapse of complex (freshly built) with the distance map of
- * persistence to find the first border. */
+/* Prepares the collapse of complex (freshly built: its first border is the
+ * cubes beside a non-empty voxel), with persistence for the isthmuses. */
 gb_result gb_collapse_init(gb_collapse *collapse, gb_cubical_complex *complex,
                            gb_persistence *persistence, gb_error *error);
 void gb_collapse_free(gb_collapse *collapse);
