@@ -363,6 +363,25 @@ static gb_result remove_pair(gb_collapse *collapse, uint64_t pair, substep s, gb
 
 /* All free pairs of one direction, orientation and dimension, found on the
  * complex as it is, then removed together. */
+/* The cells a removal at cell reads are its neighbours across rows and
+ * planes, far apart in memory: on a large complex each is a cache miss, and
+ * asking for them a few cells ahead hides the wait. On the Cornell box at
+ * 512 the loads of those neighbours were most of remove_pair, itself 40 %
+ * of thin (perf); with the prefetch the collapse took 26.9 and 30.0 s
+ * against 37.2 and 35.5 s without (thin --stats, runs alternated, the same
+ * bytes). At 256 it makes no difference. */
+enum { PREFETCH_AHEAD = 8 };
+
+HOT void prefetch_around(const gb_cubical_complex *complex, size_t cell)
+{
+    const uint8_t *faces = complex->faces;
+    size_t row = complex->step[1], plane = complex->step[2];
+    for (int dz = -1; dz <= 1; ++dz)
+        for (int dy = -1; dy <= 1; ++dy)
+            __builtin_prefetch(faces + cell + (ptrdiff_t)dz * (ptrdiff_t)plane +
+                               (ptrdiff_t)dy * (ptrdiff_t)row, 1);
+}
+
 HOT gb_result collapse_substep(gb_collapse *collapse, substep s, gb_error *error)
 {
     collapse->pair_count = 0;
@@ -370,12 +389,19 @@ HOT gb_result collapse_substep(gb_collapse *collapse, substep s, gb_error *error
     const gb_cell_list *border = &collapse->border[collapse->substep];
     size_t count = border->count;
     collapse->cells_examined += count;
-    for (size_t n = 0; n < count; ++n)
+    for (size_t n = 0; n < count; ++n) {
+        if (n + PREFETCH_AHEAD < count)
+            prefetch_around(collapse->complex, border->items[n + PREFETCH_AHEAD]);
         if (find_pairs_in_cell(collapse, border->items[n], s, error))
             return GB_ERROR_OUT_OF_MEMORY;
-    for (size_t n = 0; n < collapse->pair_count; ++n)
+    }
+    for (size_t n = 0; n < collapse->pair_count; ++n) {
+        if (n + PREFETCH_AHEAD < collapse->pair_count)
+            prefetch_around(collapse->complex,
+                            (size_t)(collapse->pairs[n + PREFETCH_AHEAD] >> 8));
         if (remove_pair(collapse, collapse->pairs[n], s, error))
             return GB_ERROR_OUT_OF_MEMORY;
+    }
     return GB_OK;
 }
 
