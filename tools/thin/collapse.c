@@ -361,8 +361,6 @@ static gb_result remove_pair(gb_collapse *collapse, uint64_t pair, substep s, gb
 
 /* ---- iterations ---- */
 
-/* All free pairs of one direction, orientation and dimension, found on the
- * complex as it is, then removed together. */
 /* The cells a removal at cell reads are its neighbours across rows and
  * planes, far apart in memory: on a large complex each is a cache miss, and
  * asking for them a few cells ahead hides the wait. On the Cornell box at
@@ -382,10 +380,13 @@ HOT void prefetch_around(const gb_cubical_complex *complex, size_t cell)
                                (ptrdiff_t)dy * (ptrdiff_t)row, 1);
 }
 
+/* All free pairs of one direction, orientation and dimension, found on the
+ * complex as it is, then removed together. */
 HOT gb_result collapse_substep(gb_collapse *collapse, substep s, gb_error *error)
 {
     collapse->pair_count = 0;
-    collapse->substep = GB_COLLAPSE_KINDS * direction_of(s.axis, s.orientation) + 3 - s.dimension;
+    collapse->substep =
+        GB_COLLAPSE_KINDS * direction_of(s.axis, s.orientation) + 3 - s.dimension;
     const gb_cell_list *border = &collapse->border[collapse->substep];
     size_t count = border->count;
     collapse->cells_examined += count;

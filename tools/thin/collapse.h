@@ -19,7 +19,8 @@
  * dimension: k's cell goes to the list of the one substep that can remove
  * it, later in this iteration or else in the next. Nothing else is ever
  * looked at: the work follows the removals, never the whole complex, and a
- * listed cell is examined once, not in every substep.
+ * listed cell is examined once, not in every substep. Iterations end when
+ * no substep has a candidate left for the next one.
  *
  * The caller owns the gb_collapse and frees it with gb_collapse_free; it
  * borrows the complex and the persistence maps it was given.
