@@ -142,7 +142,7 @@ static float box_extreme(const gb_implicit_node *node, const float n[3], int hig
     float sum = 0.0f;
     for (int k = 0; k < 3; ++k) {
         float a = n[k] * node->box_min[k], b = n[k] * node->box_max[k];
-        sum += highest == (a > b) ? a : b;
+        sum += highest ? (a > b ? a : b) : (a < b ? a : b);
     }
     return sum;
 }

@@ -22,6 +22,14 @@ static int direction_of(int axis, int orientation)
     return 2 * axis + (orientation > 0);
 }
 
+/* The next cell along axis in the orientation: the cube beyond the square
+ * a cube's pair of that direction frees. */
+static size_t cell_beyond(const gb_cubical_complex *complex, size_t cell, int axis,
+                          int orientation)
+{
+    return orientation < 0 ? cell - complex->step[axis] : cell + complex->step[axis];
+}
+
 /* ---- the lists ---- */
 
 /* The cell may hold the g (of that kind) of a pair the substep of that
@@ -70,8 +78,7 @@ gb_result gb_collapse_init(gb_collapse *collapse, gb_cubical_complex *complex,
         ++collapse->cubes;
         for (int axis = 0; axis < 3; ++axis)
             for (int orientation = -1; orientation <= 1; orientation += 2) {
-                size_t beyond = orientation < 0 ? cell - complex->step[axis]
-                                                : cell + complex->step[axis];
+                size_t beyond = cell_beyond(complex, cell, axis, orientation);
                 if (!(complex->faces[beyond] & GB_FACE_CUBE) &&
                     list_candidate(collapse, cell, KIND_CUBE, direction_of(axis, orientation),
                                    error)) {
@@ -177,8 +184,7 @@ HOT gb_result find_pairs_in_cell(gb_collapse *collapse, size_t cell, substep s, 
     uint8_t here = faces[cell];
     size_t f = free_face_cell(complex, cell, s);
     if (s.dimension == 3) {
-        size_t beyond = s.orientation < 0 ? cell - complex->step[s.axis]
-                                          : cell + complex->step[s.axis];
+        size_t beyond = cell_beyond(complex, cell, s.axis, s.orientation);
         if ((here & GB_FACE_CUBE) && !(faces[beyond] & GB_FACE_CUBE))
             return add_pair(collapse, cell, GB_FACE_CUBE, error);
         return GB_OK;
