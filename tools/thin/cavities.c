@@ -1,7 +1,7 @@
 /* cavities.c — opening the 2-cycles left by collapse (see cavities.h).
  *
  * The regions of the complement are flooded one at a time from the outside
- * (cell 0, on the padding), a bit per cell: a square with one side flooded
+ * (cell 0, on the padding), a bit per cell, a row span at a time: a square with one side flooded
  * and the other not separates the flooded region from a cavity; it is
  * removed and the cavity flooded in turn, until no square separates a
  * flooded cell from an unflooded one. */
@@ -11,12 +11,11 @@
 #include <string.h>
 
 #include "cell_list.h"
-#include "index_queue.h"
 
 typedef struct flood {
     const gb_cubical_complex *complex;
     uint8_t *flooded;           /* a bit per cell */
-    gb_index_queue queue;       /* the breadth-first front */
+    gb_cell_list seeds;         /* cells whose row span is still to fill */
 } flood;
 
 static int is_flooded(const flood *f, size_t cell)
@@ -24,39 +23,72 @@ static int is_flooded(const flood *f, size_t cell)
     return (f->flooded[cell >> 3] >> (cell & 7)) & 1;
 }
 
-static gb_result enqueue(flood *f, size_t cell, gb_error *error)
+/* Can the flood enter cell from its neighbour one step along axis below it
+ * (from_below) or above it: the square between them is not in the complex,
+ * and cell is neither a cube nor flooded? The square between cell and cell
+ * - step is the one at cell. */
+static int can_enter(const flood *f, size_t cell, int axis, int from_below)
 {
-    if (!gb_index_queue_push(&f->queue, cell))
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cavities: out of memory");
-    f->flooded[cell >> 3] |= (uint8_t)(1u << (cell & 7));
+    const uint8_t *faces = f->complex->faces;
+    size_t square_cell = from_below ? cell : cell + f->complex->step[axis];
+    return !(faces[square_cell] & gb_square_bit(axis)) && !(faces[cell] & GB_FACE_CUBE) &&
+           !is_flooded(f, cell);
+}
+
+/* Seeds the first cell of each run of cells the span [first, last] can
+ * enter in the row one step along axis (direction -1 or +1). */
+static gb_result seed_row(flood *f, size_t first, size_t last, int axis, int direction,
+                          gb_error *error)
+{
+    size_t step = f->complex->step[axis], count = f->complex->cell_count;
+    if (direction < 0 && first < step)
+        first = step;       /* a span across rows may start in the first plane */
+    if (direction > 0 && last + step >= count)
+        last = count - 1 - step;
+    int in_run = 0;
+    for (size_t cell = first; cell <= last; ++cell) {
+        size_t next = direction < 0 ? cell - step : cell + step;
+        int enters = can_enter(f, next, axis, direction > 0);
+        if (enters && !in_run && gb_cell_list_push(&f->seeds, next, error))
+            return GB_ERROR_OUT_OF_MEMORY;
+        in_run = enters;
+    }
+    return GB_OK;
+}
+
+/* Fills the span of seed's row it reaches along x, then seeds the rows
+ * beside the span along y and z. */
+static gb_result fill_span(flood *f, size_t seed, gb_error *error)
+{
+    if (is_flooded(f, seed))
+        return GB_OK;       /* seeded twice: filled from the other seed */
+    size_t first = seed, last = seed;
+    while (first > 0 && can_enter(f, first - 1, 0, 0))
+        --first;
+    while (last + 1 < f->complex->cell_count && can_enter(f, last + 1, 0, 1))
+        ++last;
+    for (size_t cell = first; cell <= last; ++cell)
+        f->flooded[cell >> 3] |= (uint8_t)(1u << (cell & 7));
+    for (int axis = 1; axis < 3; ++axis)
+        if (seed_row(f, first, last, axis, -1, error) ||
+            seed_row(f, first, last, axis, +1, error))
+            return GB_ERROR_OUT_OF_MEMORY;
     return GB_OK;
 }
 
 /* The region of start: cells joined through faces of the lattice whose
- * square is not in the complex, cubes excepted. A step off either end of a
- * row lands on a padding cell of the next or previous row, which is outside
+ * square is not in the complex, cubes excepted, filled a row span at a time
+ * (memory read in order). A span running off either end of a row goes on
+ * into the padding cells of the next or previous row, which are outside
  * anyway. */
 static gb_result flood_region(flood *f, size_t start, gb_error *error)
 {
-    const uint8_t *faces = f->complex->faces;
-    const size_t *step = f->complex->step;
-    if (is_flooded(f, start) || (faces[start] & GB_FACE_CUBE))
+    if (is_flooded(f, start) || (f->complex->faces[start] & GB_FACE_CUBE))
         return GB_OK;
-    gb_result result = enqueue(f, start, error);
-    while (!result && f->queue.count) {
-        size_t cell = gb_index_queue_pop(&f->queue);
-        for (int axis = 0; axis < 3 && !result; ++axis) {
-            uint8_t square = gb_square_bit(axis);
-            /* the square between cell and cell - step is the one at cell */
-            size_t below = cell - step[axis], above = cell + step[axis];
-            if (cell >= step[axis] && !(faces[cell] & square) && !is_flooded(f, below) &&
-                !(faces[below] & GB_FACE_CUBE))
-                result = enqueue(f, below, error);
-            if (!result && above < f->complex->cell_count && !(faces[above] & square) &&
-                !is_flooded(f, above) && !(faces[above] & GB_FACE_CUBE))
-                result = enqueue(f, above, error);
-        }
-    }
+    f->seeds.count = 0;
+    gb_result result = gb_cell_list_push(&f->seeds, start, error);
+    while (!result && f->seeds.count)
+        result = fill_span(f, f->seeds.items[--f->seeds.count], error);
     return result;
 }
 
@@ -145,7 +177,7 @@ gb_result gb_open_cavities(gb_cubical_complex *complex, gb_collapse *collapse,
         result = open_separating_squares(&f, collapse, &cells, opened, error);
     }
     free(f.flooded);
-    gb_index_queue_free(&f.queue);
+    gb_cell_list_free(&f.seeds);
     gb_cell_list_free(&cells);
     return result;
 }
