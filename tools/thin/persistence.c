@@ -8,13 +8,6 @@
 
 /* Writing the maps of a cell (persistence.h: 12 bits each in 3 bytes;
  * gb_map_distance and gb_map_opening read them). */
-static void set_distance(unsigned char *maps, size_t cell, uint16_t distance)
-{
-    unsigned char *at = maps + GB_PERSISTENCE_MAP_BYTES * cell;
-    at[0] = (unsigned char)distance;
-    at[1] = (unsigned char)((at[1] & 0xf0) | (distance >> 8 & 0x0f));
-}
-
 static void set_opening(unsigned char *maps, size_t cell, uint16_t opening)
 {
     unsigned char *at = maps + GB_PERSISTENCE_MAP_BYTES * cell;
@@ -22,49 +15,99 @@ static void set_opening(unsigned char *maps, size_t cell, uint16_t opening)
     at[2] = (unsigned char)(opening >> 4);
 }
 
-/* Index offsets of the 26 neighbours of a cell; the first 13 come before it
- * in index order, the last 13 after, in mirror order. */
-static void neighbour_offsets(const gb_cubical_complex *complex, ptrdiff_t offsets[26])
-{
-    int n = 0;
-    for (int dz = -1; dz <= 1; ++dz)
-        for (int dy = -1; dy <= 1; ++dy)
-            for (int dx = -1; dx <= 1; ++dx)
-                if (dx || dy || dz)
-                    offsets[n++] = dx + dy * (ptrdiff_t)complex->step[1] +
-                                   dz * (ptrdiff_t)complex->step[2];
-}
+/* The chessboard distance (persistence.h), by the two raster passes of the
+ * 3x3x3 unit mask, exact for that metric: forward, a cube takes the least
+ * of its 13 earlier neighbours plus one (the 9 of the plane before, the 3
+ * of the row before, the cell before); backward, the same with the 13
+ * later ones. Other cells are 0. The passes run a plane at a time in
+ * 16-bit buffers: the 12 neighbours of the rows beside a row are taken for
+ * the whole row at once (the least of 4 rows, then of 3 columns), only the
+ * cell before it in the row in order. Cubes lie at least a cell inside the
+ * lattice on every axis, so the edge rows and columns stay 0. */
+typedef struct distance_planes {
+    int32_t width, height;      /* of a plane: the lattice's x and y sizes */
+    uint16_t *done;             /* the plane the pass left: before (forward) or after */
+    uint16_t *plane;            /* the plane of the pass */
+    uint16_t *least;            /* a row: the least of the 4 rows beside it */
+} distance_planes;
 
-static uint16_t min_plus_one(const unsigned char *maps, size_t cell, const ptrdiff_t *offsets,
-                             uint16_t value)
+/* The row's cells from the least of the 12 neighbours beside it and the
+ * cell before it in the pass's order (direction +1 or -1 along x). */
+static void distance_row(distance_planes *p, int32_t y, int direction)
 {
-    for (int n = 0; n < 13; ++n) {
-        uint16_t neighbour = gb_map_distance(maps, (size_t)((ptrdiff_t)cell + offsets[n]));
-        if (neighbour < value - 1)
-            value = (uint16_t)(neighbour + 1);
+    int32_t w = p->width;
+    const uint16_t *done = p->done + (size_t)y * w, *beside = p->plane + (size_t)(y - direction) * w;
+    uint16_t *row = p->plane + (size_t)y * w, *least = p->least;
+    for (int32_t x = 0; x < w; ++x) {
+        uint16_t a = done[x - w] < done[x] ? done[x - w] : done[x];
+        uint16_t b = done[x + w] < beside[x] ? done[x + w] : beside[x];
+        least[x] = a < b ? a : b;
     }
-    return value;
+    int32_t first = direction > 0 ? 1 : w - 2, end = direction > 0 ? w - 1 : 0;
+    for (int32_t x = first; x != end; x += direction) {
+        if (!row[x])
+            continue;
+        uint16_t value = row[x];
+        uint16_t around = least[x - 1] < least[x] ? least[x - 1] : least[x];
+        around = least[x + 1] < around ? least[x + 1] : around;
+        around = row[x - direction] < around ? row[x - direction] : around;
+        row[x] = (uint16_t)(around + 1) < value ? (uint16_t)(around + 1) : value;
+    }
 }
 
-/* Two raster passes of the 3x3x3 unit mask: exact for the chessboard metric.
- * Openings start at 0. */
-static void chessboard_distance(const gb_cubical_complex *complex, unsigned char *maps)
+static void distance_plane(distance_planes *p, int direction)
 {
-    ptrdiff_t offsets[26];
-    neighbour_offsets(complex, offsets);
-    memset(maps, 0, GB_PERSISTENCE_MAP_BYTES * complex->cell_count);
-    for (size_t cell = 0; cell < complex->cell_count; ++cell)
-        if (complex->faces[cell] & GB_FACE_CUBE)
-            set_distance(maps, cell, GB_PERSISTENCE_FAR);
-    size_t first = complex->step[0] + complex->step[1] + complex->step[2];
-    size_t last = complex->cell_count - first;
-    for (size_t cell = first; cell < last; ++cell)
-        if (gb_map_distance(maps, cell))
-            set_distance(maps, cell, min_plus_one(maps, cell, offsets, gb_map_distance(maps, cell)));
-    for (size_t cell = last; cell-- > first;)
-        if (gb_map_distance(maps, cell))
-            set_distance(maps, cell,
-                         min_plus_one(maps, cell, offsets + 13, gb_map_distance(maps, cell)));
+    int32_t first = direction > 0 ? 1 : p->height - 2, end = direction > 0 ? p->height - 1 : 0;
+    for (int32_t y = first; y != end; y += direction)
+        distance_row(p, y, direction);
+}
+
+/* A plane's distances written with openings 0 (all 3 bytes of each cell). */
+static void write_distances(unsigned char *maps, size_t first_cell, const uint16_t *plane,
+                            size_t count)
+{
+    unsigned char *at = maps + GB_PERSISTENCE_MAP_BYTES * first_cell;
+    for (size_t n = 0; n < count; ++n, at += GB_PERSISTENCE_MAP_BYTES) {
+        at[0] = (unsigned char)plane[n];
+        at[1] = (unsigned char)(plane[n] >> 8);
+        at[2] = 0;
+    }
+}
+
+static gb_result chessboard_distance(const gb_cubical_complex *complex, unsigned char *maps,
+                                     gb_error *error)
+{
+    distance_planes p = {.width = complex->size[0], .height = complex->size[1]};
+    size_t plane_cells = complex->step[2];
+    uint16_t *storage = calloc(2 * plane_cells + (size_t)p.width, sizeof *storage);
+    if (!storage)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "persistence: out of memory");
+    p.done = storage;
+    p.plane = storage + plane_cells;
+    p.least = storage + 2 * plane_cells;
+    for (int32_t z = 0; z < complex->size[2]; ++z) {
+        const uint8_t *faces = complex->faces + plane_cells * (size_t)z;
+        for (size_t n = 0; n < plane_cells; ++n)
+            p.plane[n] = faces[n] & GB_FACE_CUBE ? GB_PERSISTENCE_FAR : 0;
+        distance_plane(&p, +1);
+        write_distances(maps, plane_cells * (size_t)z, p.plane, plane_cells);
+        uint16_t *swap = p.done;
+        p.done = p.plane;
+        p.plane = swap;
+    }
+    memset(p.done, 0, plane_cells * sizeof *p.done);
+    for (int32_t z = complex->size[2]; z-- > 0;) {
+        size_t first_cell = plane_cells * (size_t)z;
+        for (size_t n = 0; n < plane_cells; ++n)
+            p.plane[n] = gb_map_distance(maps, first_cell + n);
+        distance_plane(&p, -1);
+        write_distances(maps, first_cell, p.plane, plane_cells);
+        uint16_t *swap = p.done;
+        p.done = p.plane;
+        p.plane = swap;
+    }
+    free(storage);
+    return GB_OK;
 }
 
 /* Chessboard balls are cubes, so opening(x) = max { distance(y) : |x - y|
@@ -200,8 +243,9 @@ gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_comp
     if (!persistence->maps)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
                          "persistence: out of memory for %zu cells", cells);
+    if (!result)
+        result = chessboard_distance(complex, persistence->maps, error);
     if (!result) {
-        chessboard_distance(complex, persistence->maps);
         if (progress && progress(progress_user, 0.5))
             result = gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
     }
