@@ -167,6 +167,11 @@ typedef struct sweeper {
     uint64_t *changed;          /* per row; the one allocation of the three */
     uint64_t *swept[2];         /* per row, forward and backward */
     uint64_t tick;
+    /* a row's work space, size[0] states each: the least of its two face
+     * neighbours beside the row (the layer before, the row before), of its
+     * two diagonal ones (the layer before, rows before and after), and what
+     * those 12 offer each cell */
+    uint64_t *face, *diagonal, *offered, *read;
 } sweeper;
 
 /* Does row (y, z) read from a row changed since it was last swept? It reads
@@ -186,27 +191,71 @@ static int row_is_stale(const sweeper *w, int32_t y, int32_t z, int backward)
     return 0;
 }
 
-/* Each empty cell of the row takes the best of itself and its 13 neighbours
- * on the side already swept plus the step. Returns whether anything changed. */
-static int sweep_row(geodesic *g, size_t first, size_t count, int backward)
+/* A state nothing is reached from: BLOCKED and UNREACHED read as this, so
+ * that a plain minimum of the offers never takes them (it stays above
+ * UNREACHED with the longest step added, and does not overflow). */
+static const uint64_t NO_SOURCE = UINT64_MAX >> 2;
+
+static uint64_t source_at(const geodesic *g, size_t cell)
 {
-    const ptrdiff_t *offsets = g->offsets + (backward ? 13 : 0);
-    const uint64_t *lengths = g->lengths + (backward ? 13 : 0);
-    int changed = 0;
+    uint64_t state = state_at(g, cell);
+    return state == BLOCKED || state == UNREACHED ? NO_SOURCE : state;
+}
+
+static uint64_t least(uint64_t a, uint64_t b) { return a < b ? a : b; }
+
+/* The least over the cells first .. first + count - 1 of two rows (cell
+ * offsets a and b) as sources, into least_of. */
+static void least_of_rows(const geodesic *g, size_t first, size_t count, ptrdiff_t a,
+                          ptrdiff_t b, uint64_t *read, uint64_t *least_of)
+{
+    for (size_t n = 0; n < count; ++n)
+        read[n] = source_at(g, (size_t)((ptrdiff_t)(first + n) + a));
+    for (size_t n = 0; n < count; ++n)
+        least_of[n] = least(read[n], source_at(g, (size_t)((ptrdiff_t)(first + n) + b)));
+}
+
+/* Each empty cell of the row takes the best of itself and its 13 neighbours
+ * on the side already swept plus the step. The 12 beside the row are taken
+ * for the whole row first: a face neighbour offers its state plus a step of
+ * 1 straight across, sqrt 2 one cell along the row; a diagonal one sqrt 2
+ * and sqrt 3. Then the cells in order, each with the one before it in the
+ * row. Returns whether anything changed. */
+static int sweep_row(sweeper *w, size_t first, size_t count, int backward)
+{
+    geodesic *g = w->g;
+    const size_t *step = g->complex->step;
+    ptrdiff_t layer = backward ? (ptrdiff_t)step[2] : -(ptrdiff_t)step[2];
+    ptrdiff_t row = backward ? (ptrdiff_t)step[1] : -(ptrdiff_t)step[1];
+    const uint64_t one = (uint64_t)step_length[1] << NODE_BITS,
+                   two = (uint64_t)step_length[2] << NODE_BITS,
+                   three = (uint64_t)step_length[3] << NODE_BITS;
+    /* the work rows hold the cells first - 1 .. first + count */
+    least_of_rows(g, first - 1, count + 2, layer, row, w->read, w->face);
+    least_of_rows(g, first - 1, count + 2, layer - (ptrdiff_t)step[1],
+                  layer + (ptrdiff_t)step[1], w->read, w->diagonal);
+    const uint64_t *face = w->face + 1, *diagonal = w->diagonal + 1;
     for (size_t n = 0; n < count; ++n) {
-        size_t cell = backward ? first + count - 1 - n : first + n;
-        uint64_t held = state_at(g, cell), best = held;
-        if (best == BLOCKED)
+        uint64_t across = least(least(face[n - 1], face[n + 1]), diagonal[n]);
+        w->offered[n] = least(least(face[n] + one, across + two),
+                              least(diagonal[n - 1], diagonal[n + 1]) + three);
+    }
+    int changed = 0;
+    size_t before_first = backward ? first + count : first - 1;
+    uint64_t before = source_at(g, before_first);
+    for (size_t m = 0; m < count; ++m) {
+        size_t n = backward ? count - 1 - m : m;
+        uint64_t held = state_at(g, first + n);
+        if (held == BLOCKED) {
+            before = NO_SOURCE;
             continue;
-        for (int k = 0; k < 13; ++k) {
-            uint64_t from = state_at(g, (size_t)((ptrdiff_t)cell + offsets[k]));
-            if (from != BLOCKED && from != UNREACHED && from + lengths[k] < best)
-                best = from + lengths[k];
         }
+        uint64_t best = least(held, least(w->offered[n], before + one));
         if (best != held) {
-            set_state(g, cell, best);
+            set_state(g, first + n, best);
             changed = 1;
         }
+        before = best == UNREACHED ? NO_SOURCE : best;
     }
     return changed;
 }
@@ -226,7 +275,7 @@ static int sweep(sweeper *w, int backward)
             continue;
         size_t row = (size_t)y + (size_t)ny * (size_t)z;
         w->swept[backward][row] = ++w->tick;
-        if (sweep_row(w->g, gb_cell_index(c, 1, y, z), length, backward)) {
+        if (sweep_row(w, gb_cell_index(c, 1, y, z), length, backward)) {
             w->changed[row] = w->tick; /* stale for the rows reading it, not itself */
             changed = 1;
         }
@@ -243,13 +292,21 @@ static gb_result sweep_to_fixed_point(geodesic *g, int pairs, int *settled,
     *settled = 0;
     sweeper w = {.g = g};
     w.rows = (size_t)g->complex->size[1] * (size_t)g->complex->size[2];
-    /* one allocation, zeroed: changed, then swept forward and backward */
-    w.changed = calloc(3 * w.rows, sizeof *w.changed);
-    w.swept[0] = w.changed ? w.changed + w.rows : NULL;
-    w.swept[1] = w.changed ? w.changed + 2 * w.rows : NULL;
+    size_t width = (size_t)g->complex->size[0];
+    /* one allocation, zeroed: changed, then swept forward and backward, then
+     * the row's work space */
+    w.changed = calloc(3 * w.rows + 4 * width, sizeof *w.changed);
     gb_result result = GB_OK;
-    if (!w.changed)
+    if (!w.changed) {
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "nearest node: out of memory");
+    } else {
+        w.swept[0] = w.changed + w.rows;
+        w.swept[1] = w.changed + 2 * w.rows;
+        w.face = w.changed + 3 * w.rows;
+        w.diagonal = w.face + width;
+        w.offered = w.diagonal + width;
+        w.read = w.offered + width;
+    }
     for (size_t row = 0; !result && row < w.rows; ++row)
         w.changed[row] = 1; /* the seeds */
     w.tick = 1;
