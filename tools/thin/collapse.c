@@ -30,6 +30,23 @@ static size_t cell_beyond(const gb_cubical_complex *complex, size_t cell, int ax
     return orientation < 0 ? cell - complex->step[axis] : cell + complex->step[axis];
 }
 
+/* ---- the cubes found in the running substep ---- */
+
+/* A cube substep removes every pair it found; a cube beside one it removes
+ * that was found too goes in the same substep, so the removal lists it
+ * nowhere (it would only be examined again, gone). */
+HOT int cube_is_found(const gb_collapse *collapse, size_t cell)
+{
+    return (collapse->cube_found[cell >> 3] >> (cell & 7)) & 1;
+}
+
+HOT void set_cube_found(gb_collapse *collapse, size_t cell, int found)
+{
+    uint8_t bit = (uint8_t)(1u << (cell & 7));
+    collapse->cube_found[cell >> 3] = found ? collapse->cube_found[cell >> 3] | bit
+                                            : collapse->cube_found[cell >> 3] & (uint8_t)~bit;
+}
+
 /* ---- the lists ---- */
 
 /* The cell may hold the g (of that kind) of a pair the substep of that
@@ -70,6 +87,10 @@ gb_result gb_collapse_init(gb_collapse *collapse, gb_cubical_complex *complex,
     collapse->complex = complex;
     collapse->persistence = persistence;
     collapse->substep = GB_COLLAPSE_SUBSTEPS;
+    collapse->cube_found = calloc(complex->cell_count / 8 + 1, 1);
+    if (!collapse->cube_found)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "collapse: out of memory for %zu cells",
+                       complex->cell_count);
     /* Every face is in a cube: the only free pairs are (square, cube) where
      * the cube's neighbour across the square is not empty. */
     for (size_t cell = 0; cell < complex->cell_count; ++cell) {
@@ -101,6 +122,7 @@ void gb_collapse_free(gb_collapse *collapse)
     for (int axis = 0; axis < 3; ++axis)
         gb_cell_list_free(&collapse->born[axis]);
     free(collapse->pairs);
+    free(collapse->cube_found);
     memset(collapse, 0, sizeof *collapse);
 }
 
@@ -185,9 +207,10 @@ HOT gb_result find_pairs_in_cell(gb_collapse *collapse, size_t cell, substep s, 
     size_t f = free_face_cell(complex, cell, s);
     if (s.dimension == 3) {
         size_t beyond = cell_beyond(complex, cell, s.axis, s.orientation);
-        if ((here & GB_FACE_CUBE) && !(faces[beyond] & GB_FACE_CUBE))
-            return add_pair(collapse, cell, GB_FACE_CUBE, error);
-        return GB_OK;
+        if (!(here & GB_FACE_CUBE) || (faces[beyond] & GB_FACE_CUBE))
+            return GB_OK;
+        set_cube_found(collapse, cell, 1);
+        return add_pair(collapse, cell, GB_FACE_CUBE, error);
     }
     if (here & GB_FACE_CUBE)
         return GB_OK;
@@ -224,7 +247,7 @@ HOT gb_result square_lost_coface(gb_collapse *collapse, size_t cell, int normal,
     size_t behind = cell - collapse->complex->step[normal];
     int here = (faces[cell] & GB_FACE_CUBE) != 0, back = (faces[behind] & GB_FACE_CUBE) != 0;
     /* the cube left has the square on its low side (here) or high side */
-    if (here + back != 1)
+    if (here + back != 1 || cube_is_found(collapse, here ? cell : behind))
         return GB_OK;
     return here ? list_candidate(collapse, cell, KIND_CUBE, direction_of(normal, -1), error)
                 : list_candidate(collapse, behind, KIND_CUBE, direction_of(normal, +1), error);
@@ -353,6 +376,7 @@ static gb_result remove_pair(gb_collapse *collapse, uint64_t pair, substep s, gb
     ++collapse->pairs_removed;
     if (s.dimension == 3) {
         faces[f] &= (uint8_t)~gb_square_bit(s.axis);
+        set_cube_found(collapse, cell, 0);
         ++collapse->cubes_removed;
         return after_cube(collapse, cell, s.axis, f, error);
     }

@@ -59,6 +59,8 @@ typedef struct gb_collapse {
     gb_cell_list born[3];       /* per axis: cells whose edge along it became a facet
                                    this iteration (an edge does so once) */
     uint64_t *pairs;            /* free pairs of one substep: cell << 8 | face bit of g */
+    uint8_t *cube_found;        /* a bit per cell: its cube is in the pairs of the
+                                   running cube substep */
     size_t pair_count, pair_capacity;
     uint32_t iteration;         /* iterations done so far (persistence's clock) */
     uint64_t cubes, cubes_removed;
