@@ -1,6 +1,6 @@
 /* index_queue.h — a first-in first-out queue of indices that grows as it
  * fills: the front of a breadth-first flood over a grid (voxelize's empty
- * space, thin's cavities), which holds a few slices of the grid rather than
+ * space), which holds a few slices of the grid rather than
  * the region. The caller owns the queue: zeroed, it is empty; release it
  * with gb_index_queue_free. */
 #ifndef GB_INDEX_QUEUE_H

@@ -6,6 +6,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "huge_pages.h"
+
 /* The faces of a cell when the cubes around its point are those of mask:
  * bit dx + 2 dy + 4 dz set when the cube of cell (x-dx, y-dy, z-dz) exists.
  * A face exists when one of the cubes containing it exists. */
@@ -85,6 +87,7 @@ gb_result gb_cubical_complex_build(gb_cubical_complex *complex, const gb_voxel_g
                        "cubical complex: %zu cells, more than 2^32", count);
     complex->cell_count = count;
     complex->faces = calloc(count, 1);
+    gb_advise_huge_pages(complex->faces, count);
     if (!complex->faces)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
                        "cubical complex: out of memory for %zu cells", count);

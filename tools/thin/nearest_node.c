@@ -19,6 +19,7 @@
 
 #include "array_reserve.h"
 #include "cell_list.h"
+#include "huge_pages.h"
 #include "threads.h"
 
 enum {
@@ -595,6 +596,7 @@ gb_result gb_nearest_node(const gb_voxel_grid *grid, const gb_empty_voxels *empt
                        MAX_NODES - 1);
     geodesic g = {.complex = complex};
     g.state = malloc(STATE_BYTES * complex->cell_count);
+    gb_advise_huge_pages(g.state, STATE_BYTES * complex->cell_count);
     if (!g.state)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
                        "nearest node: out of memory for %zu cells", complex->cell_count);

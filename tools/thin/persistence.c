@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "chessboard_maps.h"
+#include "huge_pages.h"
 
 gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_complex *complex,
                               double scale, double min_lifespan,
@@ -26,6 +27,7 @@ gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_comp
                        "persistence: every side above %d voxels (the maps hold 12 bits)",
                        2 * (GB_PERSISTENCE_FAR - 1));
     persistence->maps = malloc(GB_PERSISTENCE_MAP_BYTES * cells);
+    gb_advise_huge_pages(persistence->maps, GB_PERSISTENCE_MAP_BYTES * cells);
     gb_result result = GB_OK;
     if (!persistence->maps)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
