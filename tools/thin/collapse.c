@@ -253,7 +253,7 @@ HOT gb_result square_lost_coface(gb_collapse *collapse, size_t cell, int normal,
                 : list_candidate(collapse, behind, KIND_CUBE, direction_of(normal, +1), error);
 }
 
-static gb_result edge_became_facet(gb_collapse *collapse, size_t cell, int axis,
+HOT gb_result edge_became_facet(gb_collapse *collapse, size_t cell, int axis,
                                    gb_error *error)
 {
     return gb_cell_list_push(&collapse->born[axis], cell, error);
@@ -315,7 +315,7 @@ HOT gb_result point_lost_coface(gb_collapse *collapse, size_t cell, gb_error *er
 
 /* Removed: the cube of cell and its square normal to axis at square_cell.
  * Lost a coface: the cube's 5 other squares and the square's 4 edges. */
-static gb_result after_cube(gb_collapse *collapse, size_t cell, int axis, size_t square_cell,
+HOT gb_result after_cube(gb_collapse *collapse, size_t cell, int axis, size_t square_cell,
                             gb_error *error)
 {
     const size_t *step = collapse->complex->step;
@@ -336,7 +336,7 @@ static gb_result after_cube(gb_collapse *collapse, size_t cell, int axis, size_t
 /* Removed: the square normal to normal at cell (spanning the direction axis
  * and edge_axis) and its edge along edge_axis at edge_cell. Lost a coface:
  * the square's 3 other edges and the edge's 2 points. */
-static gb_result after_square(gb_collapse *collapse, size_t cell, int axis, int edge_axis,
+HOT gb_result after_square(gb_collapse *collapse, size_t cell, int axis, int edge_axis,
                               size_t edge_cell, gb_error *error)
 {
     const size_t *step = collapse->complex->step;
@@ -352,19 +352,19 @@ static gb_result after_square(gb_collapse *collapse, size_t cell, int axis, int 
 
 /* Removed: the edge along axis at cell and its point at point_cell. Lost a
  * coface: the edge's other point. */
-static gb_result after_edge(gb_collapse *collapse, size_t cell, int axis, size_t point_cell,
+HOT gb_result after_edge(gb_collapse *collapse, size_t cell, int axis, size_t point_cell,
                             gb_error *error)
 {
     size_t other = point_cell == cell ? cell + collapse->complex->step[axis] : cell;
     return point_lost_coface(collapse, other, error);
 }
 
-static int axis_of_square(uint8_t square)
+HOT int axis_of_square(uint8_t square)
 {
     return square == GB_FACE_SQUARE_YZ ? 0 : square == GB_FACE_SQUARE_XZ ? 1 : 2;
 }
 
-static gb_result remove_pair(gb_collapse *collapse, uint64_t pair, substep s, gb_error *error)
+HOT gb_result remove_pair(gb_collapse *collapse, uint64_t pair, substep s, gb_error *error)
 {
     uint8_t *faces = collapse->complex->faces;
     size_t cell = (size_t)(pair >> 8);
