@@ -45,6 +45,15 @@ static inline int gb_implicit_node_has_side(const gb_implicit_node *node)
     return node->segment != GB_IMPLICIT_SEVERAL_SEGMENTS;
 }
 
+/* The two sides of a surface. Surfaces reflect on both sides
+ * (common/brdf.h), as in the reference: each element gathers on each side
+ * from the bins of that hemisphere and shows, seen from a side, what it
+ * gathered there. Values a side are stored side after side: value v of
+ * node n (element e) on side s at [s * node_count + n] ([s * element_count
+ * + e]). A node of several segments has no side: both its values are the
+ * mean of its children's fronts (implicit_bounce.c). */
+enum { GB_IMPLICIT_FRONT = 0, GB_IMPLICIT_BACK = 1, GB_IMPLICIT_SIDES = 2 };
+
 typedef struct gb_implicit_model {
     uint32_t segment_count;
     uint32_t *triangle_segment; /* scene triangle -> segment */
