@@ -208,16 +208,20 @@ static gb_result implicit_create(const gb_indirect_setup *setup, void **state, g
     return GB_OK;
 }
 
-/* Each vertex's element's display, front and back, to the GPU. */
+/* Each vertex's element's display, front and back, to the GPU; an element
+ * of a closed part shows its front on both (gb_implicit_node_two_sided). */
 static void upload_incident(implicit_state *s)
 {
     const gb_implicit_model *m = &s->model;
     const float *display = s->solution.display;
     for (uint32_t v = 0; v < m->vertex_count; ++v) {
         size_t e = m->vertex_element[v];
+        int back = gb_implicit_node_two_sided(m, &m->nodes[e]) ? GB_IMPLICIT_BACK
+                                                                : GB_IMPLICIT_FRONT;
         for (int side = 0; side < GB_IMPLICIT_SIDES; ++side)
             memcpy(&s->vertex_incident[6 * (size_t)v + 3 * side],
-                   &display[3 * (side * (size_t)m->element_count + e)], 3 * sizeof(float));
+                   &display[3 * ((side ? back : side) * (size_t)m->element_count + e)],
+                   3 * sizeof(float));
     }
     glNamedBufferSubData(s->incident_buffer, 0, 6 * (GLsizeiptr)m->vertex_count * sizeof(float),
                          s->vertex_incident);

@@ -24,7 +24,11 @@
  * side; it sends the mean of its children's fronts whichever way it is
  * seen, as it did when elements had one side: on a closed model those are
  * the faces seen from outside.
- * The gathering runs on two threads (receivers split in halves).
+ * Elements of a closed part (gb_implicit_node_two_sided) have no back:
+ * no links there, no light, nothing reflected (0), as when elements had
+ * one side.
+ * The gathering runs on two threads (elements split in halves, both
+ * sides of each).
  */
 #include "implicit_bounce.h"
 
@@ -72,7 +76,7 @@ void gb_implicit_pullup(const gb_implicit_model *model, float *values)
 /* Irradiance from the scene's point, spot and directional lights, unless
  * visible says shadowed, on each side of the node: E[side]. */
 static void light_irradiance(const gb_scene *scene, const gb_implicit_node *node,
-                             const uint8_t *visible, float E[GB_IMPLICIT_SIDES][3])
+                             int two_sided, const uint8_t *visible, float E[GB_IMPLICIT_SIDES][3])
 {
     memset(E, 0, GB_IMPLICIT_SIDES * sizeof E[0]);
     for (uint32_t i = 0; i < scene->light_count; ++i) {
@@ -103,6 +107,8 @@ static void light_irradiance(const gb_scene *scene, const gb_implicit_node *node
         }
         float cosine = wi[0] * node->normal[0] + wi[1] * node->normal[1] + wi[2] * node->normal[2];
         int side = cosine > 0.0f ? GB_IMPLICIT_FRONT : GB_IMPLICIT_BACK;
+        if (side == GB_IMPLICIT_BACK && !two_sided)
+            continue;
         for (int k = 0; k < 3; ++k)
             E[side][k] += light->intensity[k] * factor * fabsf(cosine);
     }
@@ -112,19 +118,22 @@ typedef struct gather_job {
     const gb_implicit_links *links;
     const float *source;
     float *gathered;
-    uint32_t receiver_count;
+    uint32_t element_count;
 } gather_job;
 
-/* Thread t of thread_count: its share of the receivers (element sides). */
+/* Thread t of thread_count: both sides of its share of the elements (an
+ * element of a closed part has no back links: halves of the receivers
+ * would leave one thread the fronts). */
 static void gather(void *context, int t, int thread_count)
 {
     const gather_job *job = context;
     const gb_implicit_links *links = job->links;
     const float *source = job->source;
     float *gathered = job->gathered;
-    uint32_t begin = (uint32_t)((uint64_t)job->receiver_count * t / thread_count);
-    uint32_t end = (uint32_t)((uint64_t)job->receiver_count * (t + 1) / thread_count);
-    for (uint32_t e = begin; e < end; ++e) {
+    uint32_t begin = (uint32_t)((uint64_t)job->element_count * t / thread_count);
+    uint32_t end = (uint32_t)((uint64_t)job->element_count * (t + 1) / thread_count);
+    for (uint32_t r = 0; r < GB_IMPLICIT_SIDES * (end - begin); ++r) {
+        uint32_t e = begin + r % (end - begin) + r / (end - begin) * job->element_count;
         float sum[3] = {0, 0, 0};
         for (uint32_t i = links->first[e]; i < links->first[e + 1]; ++i) {
             const float *L = &source[3 * (size_t)links->source[i]];
@@ -138,13 +147,13 @@ static void gather(void *context, int t, int thread_count)
 }
 
 /* ComputeIlluminateLeafNodes: gathered[r] = sum of w L(source) / pi for
- * each side r of each element, on two threads over halves of them (each
+ * each side r of each element, on two threads over halves of the elements (each
  * sum is the same whichever thread makes it: deterministic). */
 static void compute_illuminate_leaf_nodes(const gb_implicit_model *model,
                                           const gb_implicit_links *links, const float *source,
                                           float *gathered)
 {
-    gather_job job = {links, source, gathered, GB_IMPLICIT_SIDES * model->element_count};
+    gather_job job = {links, source, gathered, model->element_count};
     gb_run_threads(gather, &job, model->element_count >= 2048 ? 2 : 1);
 }
 
@@ -167,7 +176,8 @@ static void direct_light(const gb_scene *scene, const gb_implicit_model *model,
         const uint8_t *visible = links->light_visible && links->light_count == scene->light_count
                                      ? &links->light_visible[(size_t)e * links->light_count]
                                      : NULL;
-        light_irradiance(scene, &model->nodes[e], visible, E);
+        light_irradiance(scene, &model->nodes[e], gb_implicit_node_two_sided(model, &model->nodes[e]),
+                         visible, E);
         for (int side = 0; side < GB_IMPLICIT_SIDES; ++side) {
             size_t r = side * elements + e;
             for (int k = 0; k < 3; ++k) {

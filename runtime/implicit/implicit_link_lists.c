@@ -36,7 +36,8 @@ static int side_seen(const gb_implicit_node *target, const float d[3])
 
 /* One side of element e: the filled bins of that hemisphere into scratch
  * (weights normalised), sorted by source and merged, one link a source
- * and side seen. Returns the links. */
+ * and side seen. Returns the links: none on the back of an element of a
+ * closed part (gb_implicit_node_two_sided), which gathers nothing. */
 static uint32_t side_links(const gb_implicit_slots *l, uint32_t e, int side, bin_link *scratch,
                            float *environment_weight, float *environment_irradiance)
 {
@@ -44,6 +45,12 @@ static uint32_t side_links(const gb_implicit_slots *l, uint32_t e, int side, bin
     const gb_implicit_node *node = &m->nodes[e];
     const uint64_t *slot = &l->slot[(size_t)e * l->bins->count];
     float facing = side == GB_IMPLICIT_FRONT ? 1.0f : -1.0f;
+    if (side == GB_IMPLICIT_BACK && !gb_implicit_node_two_sided(m, node)) {
+        *environment_weight = 0.0f;
+        for (int k = 0; environment_irradiance && k < 3; ++k)
+            environment_irradiance[k] = 0.0f;
+        return 0;
+    }
     double total = 0.0, environment = 0.0, irradiance[3] = {0, 0, 0};
     uint32_t count = 0;
     for (uint32_t b = 0; b < l->bins->count; ++b) {
@@ -59,8 +66,10 @@ static uint32_t side_links(const gb_implicit_slots *l, uint32_t e, int side, bin
             for (int k = 0; l->environment && k < 3; ++k)
                 irradiance[k] += w * l->environment[3 * (size_t)b + k];
         } else {
-            uint32_t seen = (uint32_t)side_seen(&m->nodes[target], d) * m->node_count;
-            scratch[count++] = (bin_link){seen + target, b, w};
+            int seen = side_seen(&m->nodes[target], d);
+            /* a closed part's back faces its inside: it hides, sends nothing */
+            if (seen == GB_IMPLICIT_FRONT || gb_implicit_node_two_sided(m, &m->nodes[target]))
+                scratch[count++] = (bin_link){(uint32_t)seen * m->node_count + target, b, w};
         }
     }
     float scale = total > 0.0 ? (float)(GB_PI / total) : 0.0f;

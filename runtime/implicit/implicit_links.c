@@ -22,7 +22,10 @@
  * makes a list of each), and a link may see the other node's front or its
  * back. The paper's models are closed and consistently wound, many scenes
  * are not: the staircase's far wall faces out of the scene, and its room
- * sees it, and gathers through it, from behind. Pairs that cannot see each
+ * sees it, and gathers through it, from behind. Only the elements of an
+ * open part of the mesh have a back (implicit_closed_parts.h): a closed
+ * part's back faces into the volume it closes, and its bins are those
+ * above its plane alone, as in the paper. Pairs that cannot see each
  * other (all of B's box and disc within A's plane, the lowest and highest
  * points of A's box along A's normal, nor A's within B's) are not linked,
  * which keeps a planar segment from linking with itself; a disc that
@@ -30,7 +33,8 @@
  * not (an element on the edge of a wall).
  * Decided here: a pair is "mixed" where the side of A that has B and the
  * side of B that A sees differ (A's front sees B's back, or A's back B's
- * front). On a closed model wound consistently that happens only past a
+ * front; A in B's plane sees neither). On a closed model wound
+ * consistently that happens only past a
  * convex edge, where a disc reaching over A's plane stands for no surface
  * (the box's neighbouring face): there B's disc covers half its radius
  * (BACK_SHRINK), and the pair is split by rule 1 at 0.3 of a bin
@@ -163,7 +167,8 @@ static float disc_reach(const linker *l, uint32_t b, const float n[3])
 
 /* The sides of node a that some of node b (its box, widened by its disc)
  * may lie on: bit GB_IMPLICIT_FRONT set when b reaches in front of a's
- * plane, bit GB_IMPLICIT_BACK behind it; both for nodes of no side. */
+ * plane, bit GB_IMPLICIT_BACK behind it when a has a back
+ * (gb_implicit_node_two_sided); both for nodes of no side. */
 enum { SEES_FRONT = 1 << GB_IMPLICIT_FRONT, SEES_BACK = 1 << GB_IMPLICIT_BACK };
 
 static int sides_seen(const linker *l, uint32_t a, uint32_t b)
@@ -173,7 +178,8 @@ static int sides_seen(const linker *l, uint32_t a, uint32_t b)
         return SEES_FRONT | SEES_BACK;
     float reach = disc_reach(l, b, na->normal);
     int front = box_extreme(nb, na->normal, 1) + reach > box_extreme(na, na->normal, 0) + l->epsilon;
-    int back = box_extreme(nb, na->normal, 0) - reach < box_extreme(na, na->normal, 1) - l->epsilon;
+    int back = gb_implicit_node_two_sided(l->model, na) &&
+               box_extreme(nb, na->normal, 0) - reach < box_extreme(na, na->normal, 1) - l->epsilon;
     return (front ? SEES_FRONT : 0) | (back ? SEES_BACK : 0);
 }
 
@@ -342,23 +348,24 @@ static pair_step pair_step_of(const linker *l, uint32_t a, uint32_t b, pair_geom
 
 /* b linked at a on a's side facing (1 front, -1 back), when some of b's
  * disc lies on that side: height_b is b's centre's height over a's plane,
- * b_front whether a sees b's front. */
+ * height_a a's over b's (positive: a sees b's front). */
 static void link_side(linker *l, uint32_t a, uint32_t b, const pair_geometry *g, int bin,
-                      float omega, float height_b, int b_front, float facing)
+                      float omega, float height_b, float height_a, float facing)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
     if (facing * height_b + disc_reach(l, b, na->normal) <= 0.0f)
         return;
     if (facing * height_b > 0.0f)
         store(l, a, bin, b, sqrtf(g->r2));
-    int mixed = (facing > 0.0f) != b_front;
+    int mixed = facing * height_a < 0.0f;
     store_disc(l, a, b, l->discs[b].radius * (mixed ? BACK_SHRINK : 1.0f),
                nb->area / (omega * g->r2), gb_implicit_node_has_side(na) ? facing : 0.0f);
 }
 
 /* The link between a and b in the bins their discs cover, at each end on
  * each side that has the other (some of its disc) out of its plane. A
- * node of no side has one, facing every way. */
+ * node of no side has one, facing every way; a node of a closed part one,
+ * its front (gb_implicit_node_two_sided). */
 static void link_pair(linker *l, uint32_t a, uint32_t b, const pair_geometry *g)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
@@ -369,10 +376,10 @@ static void link_pair(linker *l, uint32_t a, uint32_t b, const pair_geometry *g)
         return;
     for (int side = 0; side < GB_IMPLICIT_SIDES; ++side) {
         float facing = side == GB_IMPLICIT_FRONT ? 1.0f : -1.0f;
-        if (side == GB_IMPLICIT_FRONT || gb_implicit_node_has_side(na))
-            link_side(l, a, b, g, g->bin_a, g->omega_a, height_b, height_a > 0.0f, facing);
-        if (side == GB_IMPLICIT_FRONT || gb_implicit_node_has_side(nb))
-            link_side(l, b, a, g, g->bin_b, g->omega_b, height_a, height_b > 0.0f, facing);
+        if (side == GB_IMPLICIT_FRONT || gb_implicit_node_two_sided(l->model, na))
+            link_side(l, a, b, g, g->bin_a, g->omega_a, height_b, height_a, facing);
+        if (side == GB_IMPLICIT_FRONT || gb_implicit_node_two_sided(l->model, nb))
+            link_side(l, b, a, g, g->bin_b, g->omega_b, height_a, height_b, facing);
     }
 }
 
