@@ -8,10 +8,11 @@
  *         GB_IMPLICIT_FRAME_SECONDS — gbview's scenes do not move, so above
  *         that the last links, which a rebuild would give again, are kept —
  *         then steps 8-11 (the light). The elements' incident radiance
- *         E / pi (environment and bounces) is uploaded as a vertex
- *         attribute and interpolated over the finer mesh's triangles (the
- *         paper's display, 4.3.1) into the method's own target with its own
- *         depth test; then a full-screen pass adds Kd (the G-buffer's,
+ *         E / pi (environment and bounces) on each side is uploaded as two
+ *         vertex attributes and interpolated over the finer mesh's
+ *         triangles (the paper's display, 4.3.1) into the method's own
+ *         target with its own depth test, a fragment taking the side it
+ *         shows (a back face its element's back); then a full-screen pass adds Kd (the G-buffer's,
  *         texture included) times it onto the output.
  */
 #include "implicit.h"
@@ -31,7 +32,8 @@ typedef struct implicit_state {
     gb_implicit_bins bins;
     gb_implicit_links links;
     gb_implicit_solution solution;
-    float *vertex_incident;     /* model.vertex_count * 3: its element's display */
+    float *vertex_incident;     /* model.vertex_count * 6: its element's display,
+                                   front then back */
     float *environment;         /* bins.count * 3 from the scene's map, or NULL */
     int bounces;
     double build_seconds;       /* the last Update + links */
@@ -60,18 +62,20 @@ static void make_mesh(implicit_state *s)
     glNamedBufferStorage(s->position_buffer, 3 * (GLsizeiptr)m->vertex_count * sizeof(float),
                          m->vertices, 0);
     glCreateBuffers(1, &s->incident_buffer);
-    glNamedBufferStorage(s->incident_buffer, 3 * (GLsizeiptr)m->vertex_count * sizeof(float),
+    glNamedBufferStorage(s->incident_buffer, 6 * (GLsizeiptr)m->vertex_count * sizeof(float),
                          NULL, GL_DYNAMIC_STORAGE_BIT);
     glCreateBuffers(1, &s->index_buffer);
     glNamedBufferStorage(s->index_buffer, 3 * (GLsizeiptr)m->triangle_count * sizeof(uint32_t),
                          m->triangles, 0);
     glCreateVertexArrays(1, &s->vertex_array);
-    GLuint buffers[2] = {s->position_buffer, s->incident_buffer};
-    for (GLuint i = 0; i < 2; ++i) {
-        glVertexArrayVertexBuffer(s->vertex_array, i, buffers[i], 0, 3 * sizeof(float));
+    glVertexArrayVertexBuffer(s->vertex_array, 0, s->position_buffer, 0, 3 * sizeof(float));
+    glVertexArrayVertexBuffer(s->vertex_array, 1, s->incident_buffer, 0, 6 * sizeof(float));
+    /* attributes: 0 position, 1 the front's incident radiance, 2 the back's */
+    for (GLuint i = 0; i < 3; ++i) {
         glEnableVertexArrayAttrib(s->vertex_array, i);
-        glVertexArrayAttribFormat(s->vertex_array, i, 3, GL_FLOAT, GL_FALSE, 0);
-        glVertexArrayAttribBinding(s->vertex_array, i, i);
+        glVertexArrayAttribFormat(s->vertex_array, i, 3, GL_FLOAT, GL_FALSE,
+                                  i == 2 ? 3 * sizeof(float) : 0);
+        glVertexArrayAttribBinding(s->vertex_array, i, i == 0 ? 0 : 1);
     }
     glVertexArrayElementBuffer(s->vertex_array, s->index_buffer);
 }
@@ -183,7 +187,7 @@ static gb_result implicit_create(const gb_indirect_setup *setup, void **state, g
     s->bounces = bounces;
     result = build(s, bins, error);
     if (result == GB_OK) {
-        s->vertex_incident = malloc(3 * (size_t)s->model.vertex_count * sizeof(float) + 1);
+        s->vertex_incident = malloc(6 * (size_t)s->model.vertex_count * sizeof(float) + 1);
         if (!s->vertex_incident)
             result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
     }
@@ -202,6 +206,25 @@ static gb_result implicit_create(const gb_indirect_setup *setup, void **state, g
     gb_gl_target_resize(&s->incident, GL_RGBA32F, setup->width, setup->height);
     *state = s;
     return GB_OK;
+}
+
+/* Each vertex's element's display, front and back, to the GPU; an element
+ * of a closed part shows its front on both (gb_implicit_node_two_sided). */
+static void upload_incident(implicit_state *s)
+{
+    const gb_implicit_model *m = &s->model;
+    const float *display = s->solution.display;
+    for (uint32_t v = 0; v < m->vertex_count; ++v) {
+        size_t e = m->vertex_element[v];
+        int back = gb_implicit_node_two_sided(m, &m->nodes[e]) ? GB_IMPLICIT_BACK
+                                                                : GB_IMPLICIT_FRONT;
+        for (int side = 0; side < GB_IMPLICIT_SIDES; ++side)
+            memcpy(&s->vertex_incident[6 * (size_t)v + 3 * side],
+                   &display[3 * ((side ? back : side) * (size_t)m->element_count + e)],
+                   3 * sizeof(float));
+    }
+    glNamedBufferSubData(s->incident_buffer, 0, 6 * (GLsizeiptr)m->vertex_count * sizeof(float),
+                         s->vertex_incident);
 }
 
 /* The finer mesh, its incident radiance interpolated, into the own target. */
@@ -232,12 +255,7 @@ static void implicit_draw(void *state, const gb_indirect_frame *frame)
     gb_implicit_illuminate(s->scene, &s->model, &s->links, s->bounces, &s->solution);
     s->times.illuminate_ms += 1e3 * (gb_seconds() - start);
     ++s->times.frames;
-    for (uint32_t v = 0; v < s->model.vertex_count; ++v)
-        memcpy(&s->vertex_incident[3 * (size_t)v],
-               &s->solution.display[3 * (size_t)s->model.vertex_element[v]], 3 * sizeof(float));
-    glNamedBufferSubData(s->incident_buffer, 0,
-                         3 * (GLsizeiptr)s->model.vertex_count * sizeof(float),
-                         s->vertex_incident);
+    upload_incident(s);
     draw_incident(s, frame);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
     glViewport(0, 0, frame->width, frame->height);

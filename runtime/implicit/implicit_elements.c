@@ -8,6 +8,7 @@
  * its size needs; a coarse one, cut to the element size, keeps one element
  * a vertex. Also the model's create and free. */
 #include "implicit_elements.h"
+#include "implicit_closed_parts.h"
 #include "implicit_hierarchy.h"
 #include "implicit_update.h"
 
@@ -243,6 +244,8 @@ gb_result gb_implicit_model_create(const gb_scene *scene, float element_size, fl
     model->element_cell = element_cell > 0.0f ? element_cell * model->element_size : 0.0f;
     gb_result result = gb_implicit_segment_faces(scene, model, error);
     if (result == GB_OK)
+        result = gb_implicit_open_segments(scene, model, error);
+    if (result == GB_OK)
         result = gb_implicit_create_surfels(scene, model, error);
     if (result == GB_OK)
         result = gb_implicit_create_geometric_hierarchy(model, error);
@@ -254,6 +257,7 @@ gb_result gb_implicit_model_create(const gb_scene *scene, float element_size, fl
 void gb_implicit_model_free(gb_implicit_model *model)
 {
     free(model->triangle_segment);
+    free(model->segment_open);
     free(model->nodes);
     free(model->children);
     free(model->roots);

@@ -1,6 +1,6 @@
-/* implicit_link_lists.c — the per-element lists of the links, the lights'
- * visibility and the depth maps, from the filled bins
- * (implicit_link_lists.h). */
+/* implicit_link_lists.c — the per-element lists of the links (one list a
+ * side of an element), the lights' visibility and the depth maps, from
+ * the filled bins (implicit_link_lists.h). */
 #include "implicit_link_lists.h"
 
 #include <math.h>
@@ -22,28 +22,40 @@ static int compare_bin_links(const void *x, const void *y)
     return p->bin < q->bin ? -1 : p->bin > q->bin;
 }
 
-/* Whether a surface node seen along direction d shows its back, which
- * sends no light (a one-sided surface of a mesh wound the other way: the
- * staircase's ceiling over the front room faces the attic); it still
- * hides what lies behind it. A node of several segments has no side. */
-static int seen_from_behind(const gb_implicit_node *target, const float d[3])
+/* The side of the node seen along direction d: its back when d runs along
+ * its normal (a one-sided surface of a mesh wound away from the receiver:
+ * the staircase's ceiling over the front room faces the attic; it
+ * reflects there as on its front, common/brdf.h). A node of several
+ * segments has no side: its front, both its values being the same. */
+static int side_seen(const gb_implicit_node *target, const float d[3])
 {
-    return gb_implicit_node_has_side(target) && gb_dot3(d, target->normal) > 0.0f;
+    return gb_implicit_node_has_side(target) && gb_dot3(d, target->normal) > 0.0f
+               ? GB_IMPLICIT_BACK
+               : GB_IMPLICIT_FRONT;
 }
 
-/* One element's filled bins into scratch (weights normalised), sorted by
- * source and merged: one link a source (bins that see a source's back
- * hold no link: they gather nothing). Returns the links. */
-static uint32_t element_links(const gb_implicit_slots *l, uint32_t e, bin_link *scratch,
-                              float *environment_weight, float *environment_irradiance)
+/* One side of element e: the filled bins of that hemisphere into scratch
+ * (weights normalised), sorted by source and merged, one link a source
+ * and side seen. Returns the links: none on the back of an element of a
+ * closed part (gb_implicit_node_two_sided), which gathers nothing. */
+static uint32_t side_links(const gb_implicit_slots *l, uint32_t e, int side, bin_link *scratch,
+                           float *environment_weight, float *environment_irradiance)
 {
-    const gb_implicit_node *node = &l->model->nodes[e];
+    const gb_implicit_model *m = l->model;
+    const gb_implicit_node *node = &m->nodes[e];
     const uint64_t *slot = &l->slot[(size_t)e * l->bins->count];
+    float facing = side == GB_IMPLICIT_FRONT ? 1.0f : -1.0f;
+    if (side == GB_IMPLICIT_BACK && !gb_implicit_node_two_sided(m, node)) {
+        *environment_weight = 0.0f;
+        for (int k = 0; environment_irradiance && k < 3; ++k)
+            environment_irradiance[k] = 0.0f;
+        return 0;
+    }
     double total = 0.0, environment = 0.0, irradiance[3] = {0, 0, 0};
     uint32_t count = 0;
     for (uint32_t b = 0; b < l->bins->count; ++b) {
         const float *d = &l->bins->directions[3 * b];
-        float cosine = d[0] * node->normal[0] + d[1] * node->normal[1] + d[2] * node->normal[2];
+        float cosine = facing * gb_dot3(d, node->normal);
         if (cosine <= 0.0f)
             continue;
         float w = cosine * l->bins->solid_angles[b];
@@ -53,8 +65,12 @@ static uint32_t element_links(const gb_implicit_slots *l, uint32_t e, bin_link *
             environment += w;
             for (int k = 0; l->environment && k < 3; ++k)
                 irradiance[k] += w * l->environment[3 * (size_t)b + k];
-        } else if (!seen_from_behind(&l->model->nodes[target], d))
-            scratch[count++] = (bin_link){target, b, w};
+        } else {
+            int seen = side_seen(&m->nodes[target], d);
+            /* a closed part's back faces its inside: it hides, sends nothing */
+            if (seen == GB_IMPLICIT_FRONT || gb_implicit_node_two_sided(m, &m->nodes[target]))
+                scratch[count++] = (bin_link){(uint32_t)seen * m->node_count + target, b, w};
+        }
     }
     float scale = total > 0.0 ? (float)(GB_PI / total) : 0.0f;
     *environment_weight = (float)environment * scale;
@@ -117,7 +133,7 @@ static void light_visibility(const gb_implicit_slots *l, const gb_scene *scene, 
 }
 
 /* The element's depth map: (bin, distance) of each bin that holds a link
- * (the bins element_links counts), appended to
+ * (the bins side_links counts on either side), appended to
  * links->depth_bin and depth from *used on. */
 static gb_result append_depths(const gb_implicit_slots *l, uint32_t e,
                                gb_implicit_links *links,
@@ -170,10 +186,11 @@ static gb_result compact(const gb_implicit_slots *l, gb_implicit_links *links,
                          gb_error *error)
 {
     uint32_t elements = l->model->element_count;
-    links->first = malloc(((size_t)elements + 1) * sizeof *links->first);
-    links->environment_weight = malloc(((size_t)elements + 1) * sizeof(float));
+    size_t receivers = (size_t)GB_IMPLICIT_SIDES * elements;
+    links->first = malloc((receivers + 1) * sizeof *links->first);
+    links->environment_weight = malloc((receivers + 1) * sizeof(float));
     if (l->environment)
-        links->environment_irradiance = malloc(3 * ((size_t)elements + 1) * sizeof(float));
+        links->environment_irradiance = malloc(3 * (receivers + 1) * sizeof(float));
     bin_link *scratch = malloc(l->bins->count * sizeof *scratch);
     const gb_scene *scene = l->lights;
     links->light_count = scene ? scene->light_count : 0;
@@ -185,13 +202,15 @@ static gb_result compact(const gb_implicit_slots *l, gb_implicit_links *links,
         (links->light_count && !links->light_visible))
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
     size_t used = 0, capacity = 0;
-    for (uint32_t e = 0; result == GB_OK && e < elements; ++e) {
-        links->first[e] = (uint32_t)used;
-        uint32_t count = element_links(l, e, scratch, &links->environment_weight[e],
-                                       links->environment_irradiance
-                                           ? &links->environment_irradiance[3 * (size_t)e]
-                                           : NULL);
-        if (links->light_count)
+    for (size_t r = 0; result == GB_OK && r < receivers; ++r) {
+        uint32_t e = (uint32_t)(r % elements);
+        int side = r < elements ? GB_IMPLICIT_FRONT : GB_IMPLICIT_BACK;
+        links->first[r] = (uint32_t)used;
+        uint32_t count = side_links(l, e, side, scratch, &links->environment_weight[r],
+                                    links->environment_irradiance
+                                        ? &links->environment_irradiance[3 * r]
+                                        : NULL);
+        if (links->light_count && side == GB_IMPLICIT_FRONT)
             light_visibility(l, scene, e, &links->light_visible[(size_t)e * links->light_count]);
         result = append_links(links, &capacity, used, scratch, count, error);
         used += count;
@@ -199,7 +218,7 @@ static gb_result compact(const gb_implicit_slots *l, gb_implicit_links *links,
             result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: too many links");
     }
     if (result == GB_OK)
-        links->first[elements] = (uint32_t)used;
+        links->first[receivers] = (uint32_t)used;
     free(scratch);
     return result;
 }

@@ -1,7 +1,8 @@
 /* implicit_link_lists.h — the bins after PushdownLinks (one word a node
  * and bin: the link kept there) made into what the illumination reads
- * (implicit_links.h's gb_implicit_links): each element's receiving links,
- * one a source node, the empty bins' share, the lights' implicit shadows
+ * (implicit_links.h's gb_implicit_links): the receiving links of each
+ * side of each element, one a source node and side seen, the empty bins'
+ * share, the lights' implicit shadows
  * and, on request, the depth maps. implicit_links.c fills the words; the
  * caller owns them and the links made. */
 #ifndef GB_IMPLICIT_LINK_LISTS_H

@@ -15,17 +15,31 @@
  *      ceiling clusters (hierarchical against brute force: relative RMS
  *      0.42 at 1, 0.22 at 0.25, 0.085 at 0.1, element size 40 mm);
  *   2. each bin keeps only its shortest link: a longer one is not stored.
- * Links are stored at both ends, each in its own bin. Pairs that cannot see
- * each other (no point of B's box or disc above the lowest point of A's box
- * along A's normal, nor of A's above B's) are not linked, which keeps a
- * planar segment from linking with itself; a disc that reaches above the
- * other's plane is linked even when its centre does not (an element on the
- * edge of a wall). Where only A has B in front of it, A sees B's back: the
- * link is stored at A alone, where it hides what lies behind B and sends
- * no light (a one-sided surface wound away from A: the paper's models are
- * closed and consistently wound, many scenes are not; the staircase's
- * front-room ceiling faces the attic, and the room saw the lit attic
- * through it). Such a pair is split by rule 1 at 0.3 of a bin (ONE_WAY_SPLIT).
+ * Links are stored at both ends, each in its own bin. Surfaces reflect on
+ * both sides (common/brdf.h, as the reference renders them), so an
+ * element's bins cover the whole sphere of directions: those above its
+ * plane are its front's, those below its back's (implicit_link_lists.c
+ * makes a list of each), and a link may see the other node's front or its
+ * back. The paper's models are closed and consistently wound, many scenes
+ * are not: the staircase's far wall faces out of the scene, and its room
+ * sees it, and gathers through it, from behind. Only the elements of an
+ * open part of the mesh have a back (implicit_closed_parts.h): a closed
+ * part's back faces into the volume it closes, and its bins are those
+ * above its plane alone, as in the paper. Pairs that cannot see each
+ * other (all of B's box and disc within A's plane, the lowest and highest
+ * points of A's box along A's normal, nor A's within B's) are not linked,
+ * which keeps a planar segment from linking with itself; a disc that
+ * reaches out of the other's plane is linked even when its centre does
+ * not (an element on the edge of a wall).
+ * Decided here: a pair is "mixed" where the side of A that has B and the
+ * side of B that A sees differ (A's front sees B's back, or A's back B's
+ * front; A in B's plane sees neither). On a closed model wound
+ * consistently that happens only past a
+ * convex edge, where a disc reaching over A's plane stands for no surface
+ * (the box's neighbouring face): there B's disc covers half its radius
+ * (BACK_SHRINK), and the pair is split by rule 1 at 0.3 of a bin
+ * (ONE_WAY_SPLIT). Both rules are symmetric: a model with every normal
+ * flipped (a room wound outward) links as the model does.
  *
  * One addition to the paper: a link stored in the one bin of its centre
  * leaves holes: a leaf element wider than a bin, or a node that straddles
@@ -82,15 +96,13 @@ enum { COVER_EXACTLY = 4, SPREAD_MAX = 3 * COVER_EXACTLY + 1 };
 /* sqrt(pi / 2): the circle through the corners of a square of the disc's
  * area, over the disc's radius. */
 #define DISC_WIDENING 1.2533141f
-/* A disc seen from behind only hides (implicit_link_lists.c): it is
- * stored over this fraction of its radius, so that it does not hide the
- * sky past its surface's edge. Measured (6x12x12, against reference --mode
- * full; one-way pairs then split at 0.1 of a bin, as two-way pairs are):
- * the staircase 0.145 (such links not kept) / 0.055 (whole disc) /
- * 0.051 (half) / 0.050 (centre only); the box under the sky 0.0012 /
- * 0.0016 / 0.0011 / 0.0011; and a floor under a ceiling wound away from it,
- * whose sky E / pi is 0.169: 1.0 / 0.107 / 0.130 / 0.148. Half keeps the
- * disc's middle, where a near surface is seen through most bins. */
+/* A disc of a mixed pair (see the top) is stored over this fraction of its
+ * radius, so that past a convex edge it does not hide the sky beyond its
+ * surface. Measured when a link to a back only hid (6x12x12, against
+ * reference --mode full): the staircase 0.055 (whole disc) / 0.051 (half)
+ * / 0.050 (centre only); the box under the sky 0.0016 / 0.0011 / 0.0011.
+ * Half keeps the disc's middle, where a near surface is seen through most
+ * bins. */
 #define BACK_SHRINK 0.5f
 
 /* On several threads, unfolding stops at this many tasks: enough for two
@@ -100,15 +112,12 @@ enum { TASKS_WANTED = 4096 };
 
 /* Rule 1's threshold: B is subdivided when it covers more than this
  * fraction of a bin (see the top). */
-#define GB_IMPLICIT_SPLIT 0.1
-/* The same for a pair of which only one end sees the other (its back):
- * the link only hides, and need not be as fine. Measured on Table 1's
- * closed model (links its front faces hide) and the Cornell box's
- * hierarchical links against brute force (test_implicit, bound 2 %):
- * at 0.1 the link time is about 1.2-1.6x that at 0.3, RMS 0.28 %; at 0.3,
- * 0.46 %; at 0.5, 0.84 %; at a whole bin (the paper's rule 1), 1.0-1.1x
- * faster than 0.3 but 2.5 %: coarse occluders win bins that the blocks'
- * own faces should. */
+#define GB_IMPLICIT_SPLIT 0.1f
+/* The same for a mixed pair (see the top), which past a convex edge sees
+ * little of the other. Measured on Table 1's closed model and the Cornell
+ * box's hierarchical links against brute force (test_implicit, bound 2 %),
+ * when such links only hid: at 0.1 the link time is about 1.2-1.6x that at
+ * 0.3, RMS 0.28 %; at 0.3, 0.46 %; at 0.5, 0.84 %; at a whole bin, 2.5 %. */
 #define ONE_WAY_SPLIT 0.3f
 
 /* A node's disc: its radius (sqrt(area / pi)) and two unit tangents, which
@@ -156,15 +165,22 @@ static float disc_reach(const linker *l, uint32_t b, const float n[3])
     return sine2 > 0.0f ? l->discs[b].radius * sqrtf(sine2) : 0.0f;
 }
 
-/* Whether some of node b (its box, widened by its disc) may lie in front
- * of node a. */
-static int may_see(const linker *l, uint32_t a, uint32_t b)
+/* The sides of node a that some of node b (its box, widened by its disc)
+ * may lie on: bit GB_IMPLICIT_FRONT set when b reaches in front of a's
+ * plane, bit GB_IMPLICIT_BACK behind it when a has a back
+ * (gb_implicit_node_two_sided); both for nodes of no side. */
+enum { SEES_FRONT = 1 << GB_IMPLICIT_FRONT, SEES_BACK = 1 << GB_IMPLICIT_BACK };
+
+static int sides_seen(const linker *l, uint32_t a, uint32_t b)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
     if (!gb_implicit_node_has_side(na) || !gb_implicit_node_has_side(nb))
-        return 1;
-    return box_extreme(nb, na->normal, 1) + disc_reach(l, b, na->normal) >
-           box_extreme(na, na->normal, 0) + l->epsilon;
+        return SEES_FRONT | SEES_BACK;
+    float reach = disc_reach(l, b, na->normal);
+    int front = box_extreme(nb, na->normal, 1) + reach > box_extreme(na, na->normal, 0) + l->epsilon;
+    int back = gb_implicit_node_two_sided(l->model, na) &&
+               box_extreme(nb, na->normal, 0) - reach < box_extreme(na, na->normal, 1) - l->epsilon;
+    return (front ? SEES_FRONT : 0) | (back ? SEES_BACK : 0);
 }
 
 /* Rule 2: x keeps the link to y in bin when no shorter one is there (an
@@ -206,38 +222,46 @@ static disc_frame *disc_frames(const gb_implicit_model *model)
     return discs;
 }
 
+/* Whether direction d from a lies on the side of a's plane facing
+ * (1 front, -1 back; 0: either). */
+static int on_side(const gb_implicit_node *na, const float d[3], float facing)
+{
+    return facing == 0.0f || !gb_implicit_node_has_side(na) ||
+           facing * gb_dot3(d, na->normal) > 0.0f;
+}
+
 /* A bin of a's through which a sees b's disc (gb_implicit_disc_bins). */
 typedef struct covered_bin_link {
     linker *l;
     uint32_t a, b;
+    float facing;
 } covered_bin_link;
 
 static void store_covered_bin(void *user, int bin, float distance)
 {
     covered_bin_link *c = user;
-    const gb_implicit_node *na = &c->l->model->nodes[c->a];
-    if (gb_implicit_node_has_side(na) &&
-        gb_dot3(&c->l->bins->directions[3 * bin], na->normal) <= 0.0f)
-        return;
-    store(c->l, c->a, bin, c->b, distance);
+    if (on_side(&c->l->model->nodes[c->a], &c->l->bins->directions[3 * bin], c->facing))
+        store(c->l, c->a, bin, c->b, distance);
 }
 
-/* b stored in every bin of a's whose centre direction meets b's disc, none
- * when a lies in its plane (it is seen edge on). */
-static void cover_near_disc(linker *l, uint32_t a, uint32_t b, float radius)
+/* b stored in every bin of a's side facing whose centre direction meets
+ * b's disc, none when a lies in its plane (it is seen edge on). */
+static void cover_near_disc(linker *l, uint32_t a, uint32_t b, float radius, float facing)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
     float offset[3] = {na->position[0] - nb->position[0], na->position[1] - nb->position[1],
                        na->position[2] - nb->position[2]};
     if (fabsf(gb_dot3(offset, nb->normal)) <= l->epsilon)
         return;
-    covered_bin_link c = {l, a, b};
+    covered_bin_link c = {l, a, b, facing};
     gb_implicit_disc_bins(l->bins, na->position, nb->position, nb->normal,
                           DISC_WIDENING * radius, store_covered_bin, &c);
 }
 
-/* b stored in the bins of points spread over its disc, as seen from a. */
-static void spread_far_disc(linker *l, uint32_t a, uint32_t b, float radius, float covered_bins)
+/* b stored in the bins of points spread over its disc, as seen from a, on
+ * its side facing. */
+static void spread_far_disc(linker *l, uint32_t a, uint32_t b, float radius, float covered_bins,
+                            float facing)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
     const disc_frame *disc = &l->discs[b];
@@ -249,19 +273,20 @@ static void spread_far_disc(linker *l, uint32_t a, uint32_t b, float radius, flo
         for (int k = 0; k < 3; ++k)
             d[k] = nb->position[k] + r * (l->spiral[i][0] * t[0][k] + l->spiral[i][1] * t[1][k]) -
                    na->position[k];
-        if (gb_implicit_node_has_side(na) && gb_dot3(d, na->normal) <= 0.0f)
-            continue;
-        store(l, a, gb_implicit_bin(l->bins->n, d), b, sqrtf(gb_dot3(d, d)));
+        if (on_side(na, d, facing))
+            store(l, a, gb_implicit_bin(l->bins->n, d), b, sqrtf(gb_dot3(d, d)));
     }
 }
 
-/* b stored in the bins its disc covers as seen from a (see the top). */
-static void store_disc(linker *l, uint32_t a, uint32_t b, float radius, float covered_bins)
+/* b stored in the bins its disc covers as seen from a (see the top), on
+ * a's side facing (1 front, -1 back, 0 both). */
+static void store_disc(linker *l, uint32_t a, uint32_t b, float radius, float covered_bins,
+                       float facing)
 {
     if (covered_bins >= COVER_EXACTLY)
-        cover_near_disc(l, a, b, radius);
+        cover_near_disc(l, a, b, radius, facing);
     else
-        spread_far_disc(l, a, b, radius, covered_bins);
+        spread_far_disc(l, a, b, radius, covered_bins, facing);
 }
 
 static void link_nodes(linker *l, uint32_t a, uint32_t b);
@@ -298,11 +323,12 @@ static pair_step pair_step_of(const linker *l, uint32_t a, uint32_t b, pair_geom
     /* A node of no area (degenerate triangles only) neither sends nor hides. */
     if (!(na->area > 0.0f) || !(nb->area > 0.0f))
         return PAIR_UNSEEN;
-    int a_sees_b = may_see(l, a, b), b_sees_a = may_see(l, b, a);
-    if (!a_sees_b && !b_sees_a)
+    int at_a = sides_seen(l, a, b), at_b = sides_seen(l, b, a);
+    if (!at_a && !at_b)
         return PAIR_UNSEEN;
-    /* a link that only hides is split more coarsely */
-    float split = a_sees_b && b_sees_a ? GB_IMPLICIT_SPLIT : ONE_WAY_SPLIT;
+    /* front to front or back to back: a pair that is not mixed (see the top) */
+    int matched = at_a & at_b;
+    float split = matched ? GB_IMPLICIT_SPLIT : ONE_WAY_SPLIT;
     g->r2 = 0.0f;
     for (int k = 0; k < 3; ++k) {
         g->d[k] = nb->position[k] - na->position[k];
@@ -320,10 +346,26 @@ static pair_step pair_step_of(const linker *l, uint32_t a, uint32_t b, pair_geom
     return split_b ? PAIR_SPLIT_B : PAIR_LINKED;
 }
 
-/* The link between a and b in the bins their discs cover, at each end
- * that has the other (some of its disc) in front of it. One end may see
- * the other's back: that link only hides what lies behind it
- * (implicit_link_lists.c gathers no light through it). */
+/* b linked at a on a's side facing (1 front, -1 back), when some of b's
+ * disc lies on that side: height_b is b's centre's height over a's plane,
+ * height_a a's over b's (positive: a sees b's front). */
+static void link_side(linker *l, uint32_t a, uint32_t b, const pair_geometry *g, int bin,
+                      float omega, float height_b, float height_a, float facing)
+{
+    const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
+    if (facing * height_b + disc_reach(l, b, na->normal) <= 0.0f)
+        return;
+    if (facing * height_b > 0.0f)
+        store(l, a, bin, b, sqrtf(g->r2));
+    int mixed = facing * height_a < 0.0f;
+    store_disc(l, a, b, l->discs[b].radius * (mixed ? BACK_SHRINK : 1.0f),
+               nb->area / (omega * g->r2), gb_implicit_node_has_side(na) ? facing : 0.0f);
+}
+
+/* The link between a and b in the bins their discs cover, at each end on
+ * each side that has the other (some of its disc) out of its plane. A
+ * node of no side has one, facing every way; a node of a closed part one,
+ * its front (gb_implicit_node_two_sided). */
 static void link_pair(linker *l, uint32_t a, uint32_t b, const pair_geometry *g)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
@@ -332,17 +374,12 @@ static void link_pair(linker *l, uint32_t a, uint32_t b, const pair_geometry *g)
     float height_a = gb_implicit_node_has_side(nb) ? gb_dot3(g->back, nb->normal) : r;
     if (g->bin_a < 0)
         return;
-    if (height_b + disc_reach(l, b, na->normal) > 0.0f) {
-        if (height_b > 0.0f)
-            store(l, a, g->bin_a, b, r);
-        store_disc(l, a, b, l->discs[b].radius * (height_a < 0.0f ? BACK_SHRINK : 1.0f),
-                   nb->area / (g->omega_a * g->r2));
-    }
-    if (height_a + disc_reach(l, a, nb->normal) > 0.0f) {
-        if (height_a > 0.0f)
-            store(l, b, g->bin_b, a, r);
-        store_disc(l, b, a, l->discs[a].radius * (height_b < 0.0f ? BACK_SHRINK : 1.0f),
-                   na->area / (g->omega_b * g->r2));
+    for (int side = 0; side < GB_IMPLICIT_SIDES; ++side) {
+        float facing = side == GB_IMPLICIT_FRONT ? 1.0f : -1.0f;
+        if (side == GB_IMPLICIT_FRONT || gb_implicit_node_two_sided(l->model, na))
+            link_side(l, a, b, g, g->bin_a, g->omega_a, height_b, height_a, facing);
+        if (side == GB_IMPLICIT_FRONT || gb_implicit_node_two_sided(l->model, nb))
+            link_side(l, b, a, g, g->bin_b, g->omega_b, height_a, height_b, facing);
     }
 }
 

@@ -18,15 +18,18 @@ typedef struct gb_implicit_link_seconds {
     double create, refine, compact;
 } gb_implicit_link_seconds;
 
-/* Links after PushdownLinks: each element's receiving links, one per
- * filled bin, weighted by the bin's max(0, cos) solid angle, normalised so
- * that the weights of all bins above the element sum to pi. */
+/* Links after PushdownLinks: the receiving links of each side of each
+ * element (receiver r = side * element_count + e, implicit_model.h), one
+ * per source node and side seen, weighted by its bins' |cos| solid angle
+ * on that side, normalised so that the weights of all bins of a side's
+ * hemisphere sum to pi. */
 typedef struct gb_implicit_links {
-    uint32_t *first;            /* element_count + 1 */
-    uint32_t *source;           /* first[element_count]: the node seen */
+    uint32_t *first;            /* 2 element_count + 1: receiver r's links */
+    uint32_t *source;           /* first[2 element_count]: side seen x node_count
+                                   + the node seen (gb_implicit_source_node) */
     float *weight;
-    float *environment_weight;  /* element_count: the empty bins' share */
-    float *environment_irradiance;  /* element_count * 3 when the links were
+    float *environment_weight;  /* 2 element_count: the empty bins' share */
+    float *environment_irradiance;  /* 2 element_count * 3 when the links were
                                    made with an environment map: sum over the
                                    empty bins of weight x its radiance; else NULL */
     uint8_t *light_visible;     /* element_count * light_count, or NULL: 1 when
@@ -55,6 +58,17 @@ typedef struct gb_implicit_link_options {
 } gb_implicit_link_options;
 
 enum { GB_IMPLICIT_LINK_THREADS = 2 };
+
+/* The node of a link's source (links->source), and the side of it seen. */
+static inline uint32_t gb_implicit_source_node(const gb_implicit_model *model, uint32_t source)
+{
+    return source >= model->node_count ? source - model->node_count : source;
+}
+
+static inline int gb_implicit_source_side(const gb_implicit_model *model, uint32_t source)
+{
+    return source >= model->node_count ? GB_IMPLICIT_BACK : GB_IMPLICIT_FRONT;
+}
 
 /* Steps 5-7 for a static scene. bin_targets, when not NULL, receives the
  * node_count * bins->count bins before compaction (tests), the caller frees. */

@@ -45,9 +45,21 @@ static inline int gb_implicit_node_has_side(const gb_implicit_node *node)
     return node->segment != GB_IMPLICIT_SEVERAL_SEGMENTS;
 }
 
+/* The two sides of a surface. Surfaces reflect on both sides
+ * (common/brdf.h), as in the reference: each element gathers on each side
+ * from the bins of that hemisphere and shows, seen from a side, what it
+ * gathered there (only elements of an open part of the mesh have a back:
+ * gb_implicit_node_two_sided below). Values a side are stored side after side: value v of
+ * node n (element e) on side s at [s * node_count + n] ([s * element_count
+ * + e]). A node of several segments has no side: both its values are the
+ * mean of its children's fronts (implicit_bounce.c). */
+enum { GB_IMPLICIT_FRONT = 0, GB_IMPLICIT_BACK = 1, GB_IMPLICIT_SIDES = 2 };
+
 typedef struct gb_implicit_model {
     uint32_t segment_count;
     uint32_t *triangle_segment; /* scene triangle -> segment */
+    uint8_t *segment_open;      /* segment_count: 1 when its part of the mesh
+                                   is open (implicit_closed_parts.h) */
     uint32_t element_count, node_count;
     gb_implicit_node *nodes;
     uint32_t *children;
@@ -65,6 +77,18 @@ typedef struct gb_implicit_model {
     float element_size;         /* target edge of the finer mesh */
     float element_cell;         /* the grid cell of one element; 0: one a vertex */
 } gb_implicit_model;
+
+/* Whether the node has a back that can be seen: it is of one segment, in
+ * an open part of the mesh (implicit_closed_parts.h). The back of a closed
+ * part faces into the volume it closes: its elements are one-sided, they
+ * gather, reflect and show on their front only (shown from behind, their
+ * front's light), and a link seeing such a back hides and sends nothing.
+ * A node of several segments has no side. */
+static inline int gb_implicit_node_two_sided(const gb_implicit_model *model,
+                                             const gb_implicit_node *node)
+{
+    return gb_implicit_node_has_side(node) && model->segment_open[node->segment];
+}
 
 /* Element size as a fraction of the scene's bounding diagonal, by default. */
 #define GB_IMPLICIT_ELEMENTS_PER_DIAGONAL 28.0f
