@@ -12,6 +12,8 @@
 
 #include <stddef.h>
 
+enum { GB_HUGE_PAGE_BYTES = 2u << 20 };
+
 /* Advises huge pages for the whole 4 KiB pages of [memory, memory + bytes)
  * not yet touched (call it right after malloc or calloc). */
 void gb_advise_huge_pages(void *memory, size_t bytes);

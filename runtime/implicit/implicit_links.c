@@ -78,6 +78,7 @@
 
 #include "array_reserve.h"
 #include "brdf.h"
+#include "huge_pages.h"
 #include "implicit_disc_bins.h"
 #include "implicit_link_lists.h"
 #include "progress.h"
@@ -87,7 +88,6 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
 #include <time.h>
 
 /* A disc covering fewer bins than COVER_EXACTLY is spread at points, at
@@ -555,21 +555,17 @@ static gb_result slot_nodes(const uint64_t *slot, size_t count, uint32_t **nodes
 }
 
 /* The slot array, in huge pages where the kernel gives them on request
- * (Linux's transparent huge pages in "madvise" mode). It is nodes x bins x
- * 8 bytes (65 MB for Table 1's model at 6x12x12), filled and then written
- * all over: in 4 KiB pages, a page fault and a TLB entry each. Table 1's
- * CreateHierarchicalLinks takes 0.83-0.88x the time with it
+ * (huge_pages.h), aligned to them so that all of it can be. It is nodes x
+ * bins x 8 bytes (65 MB for Table 1's model at 6x12x12), filled and then
+ * written all over: in 4 KiB pages, a page fault and a TLB entry each.
+ * Table 1's CreateHierarchicalLinks takes 0.83-0.88x the time with it
  * (bench/implicit_steps.c built with and without, alternating). Freed with
  * free. */
 static uint64_t *allocate_slots(size_t count)
 {
-    enum { HUGE_PAGE = 2u << 20 };
-    size_t bytes = (count * sizeof(uint64_t) / HUGE_PAGE + 1) * HUGE_PAGE;
-    uint64_t *slots = aligned_alloc(HUGE_PAGE, bytes);
-#ifdef MADV_HUGEPAGE
-    if (slots)
-        madvise(slots, bytes, MADV_HUGEPAGE);   /* advice: without it, small pages */
-#endif
+    size_t bytes = (count * sizeof(uint64_t) / GB_HUGE_PAGE_BYTES + 1) * GB_HUGE_PAGE_BYTES;
+    uint64_t *slots = aligned_alloc(GB_HUGE_PAGE_BYTES, bytes);
+    gb_advise_huge_pages(slots, bytes);
     return slots;
 }
 
