@@ -176,8 +176,8 @@ static void direct_light(const gb_scene *scene, const gb_implicit_model *model,
         const uint8_t *visible = links->light_visible && links->light_count == scene->light_count
                                      ? &links->light_visible[(size_t)e * links->light_count]
                                      : NULL;
-        light_irradiance(scene, &model->nodes[e], gb_implicit_node_two_sided(model, &model->nodes[e]),
-                         visible, E);
+        const gb_implicit_node *node = &model->nodes[e];
+        light_irradiance(scene, node, gb_implicit_node_two_sided(model, node), visible, E);
         for (int side = 0; side < GB_IMPLICIT_SIDES; ++side) {
             size_t r = side * elements + e;
             for (int k = 0; k < 3; ++k) {

@@ -258,7 +258,8 @@ gb_result gb_implicit_open_segments(const gb_scene *scene, gb_implicit_model *mo
     }
     /* the places an eye or a light may be: the cameras, the point and spot lights */
     uint32_t count = 0;
-    float *points = malloc(3 * ((size_t)scene->camera_count + scene->light_count) * sizeof(float) + 1);
+    size_t most = (size_t)scene->camera_count + scene->light_count;
+    float *points = malloc(3 * most * sizeof(float) + 1);
     for (uint32_t i = 0; points && i < scene->camera_count; ++i, ++count)
         memcpy(&points[3 * (size_t)count], scene->cameras[i].position, 3 * sizeof(float));
     for (uint32_t i = 0; points && i < scene->light_count; ++i)

@@ -177,7 +177,8 @@ static int sides_seen(const linker *l, uint32_t a, uint32_t b)
     if (!gb_implicit_node_has_side(na) || !gb_implicit_node_has_side(nb))
         return SEES_FRONT | SEES_BACK;
     float reach = disc_reach(l, b, na->normal);
-    int front = box_extreme(nb, na->normal, 1) + reach > box_extreme(na, na->normal, 0) + l->epsilon;
+    int front =
+        box_extreme(nb, na->normal, 1) + reach > box_extreme(na, na->normal, 0) + l->epsilon;
     int back = gb_implicit_node_two_sided(l->model, na) &&
                box_extreme(nb, na->normal, 0) - reach < box_extreme(na, na->normal, 1) - l->epsilon;
     return (front ? SEES_FRONT : 0) | (back ? SEES_BACK : 0);

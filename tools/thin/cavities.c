@@ -1,10 +1,10 @@
 /* cavities.c — opening the 2-cycles left by collapse (see cavities.h).
  *
  * The regions of the complement are flooded one at a time from the outside
- * (cell 0, on the padding), a bit per cell, a row span at a time: a square with one side flooded
- * and the other not separates the flooded region from a cavity; it is
- * removed and the cavity flooded in turn, until no square separates a
- * flooded cell from an unflooded one. */
+ * (cell 0, on the padding), a bit per cell, a row span at a time: a square
+ * with one side flooded and the other not separates the flooded region
+ * from a cavity; it is removed and the cavity flooded in turn, until no
+ * square separates a flooded cell from an unflooded one. */
 #include "cavities.h"
 
 #include <stdlib.h>

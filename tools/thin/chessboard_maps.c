@@ -23,8 +23,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "persistence.h"
-
 /* Lines of the z pass are taken BUNDLE at a time, adjacent in x, so that
  * each read of the maps uses whole cache lines. */
 enum { BUNDLE = 16 };
@@ -146,8 +144,8 @@ static void plane_openings(planes *p)
 static void write_cells(unsigned char *maps, size_t first_cell, const uint16_t *distance,
                         const uint16_t *opening, size_t count)
 {
-    unsigned char *at = maps + GB_PERSISTENCE_MAP_BYTES * first_cell;
-    for (size_t n = 0; n < count; ++n, at += GB_PERSISTENCE_MAP_BYTES) {
+    unsigned char *at = maps + GB_CHESSBOARD_MAP_BYTES * first_cell;
+    for (size_t n = 0; n < count; ++n, at += GB_CHESSBOARD_MAP_BYTES) {
         uint16_t o = opening ? opening[n] : 0;
         at[0] = (unsigned char)distance[n];
         at[1] = (unsigned char)((distance[n] >> 8 & 0x0f) | (o & 0x0f) << 4);
@@ -157,7 +155,7 @@ static void write_cells(unsigned char *maps, size_t first_cell, const uint16_t *
 
 static void set_opening(unsigned char *maps, size_t cell, uint16_t opening)
 {
-    unsigned char *at = maps + GB_PERSISTENCE_MAP_BYTES * cell;
+    unsigned char *at = maps + GB_CHESSBOARD_MAP_BYTES * cell;
     at[1] = (unsigned char)((at[1] & 0x0f) | (opening & 0x0f) << 4);
     at[2] = (unsigned char)(opening >> 4);
 }
@@ -226,7 +224,7 @@ gb_result gb_chessboard_maps(const gb_cubical_complex *complex, unsigned char *m
     for (int32_t z = 0; z < complex->size[2]; ++z) {
         const uint8_t *faces = complex->faces + plane * (size_t)z;
         for (size_t n = 0; n < plane; ++n)
-            p.plane[n] = faces[n] & GB_FACE_CUBE ? GB_PERSISTENCE_FAR : 0;
+            p.plane[n] = faces[n] & GB_FACE_CUBE ? GB_CHESSBOARD_FAR : 0;
         distance_plane(&p, +1);
         write_cells(maps, plane * (size_t)z, p.plane, NULL, plane);
         next_plane(&p);

@@ -17,17 +17,17 @@ gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_comp
     persistence->persistence = scale;
     persistence->min_lifespan = min_lifespan;
     size_t cells = complex->cell_count;
-    /* A chessboard distance or opening above GB_PERSISTENCE_FAR - 1 needs a
+    /* A chessboard distance or opening above GB_CHESSBOARD_FAR - 1 needs a
      * cube of that radius inside the lattice: refused, not saturated. */
     int smallest = complex->size[0];
     for (int axis = 1; axis < 3; ++axis)
         smallest = complex->size[axis] < smallest ? complex->size[axis] : smallest;
-    if (smallest > 2 * (GB_PERSISTENCE_FAR - 1))
+    if (smallest > 2 * (GB_CHESSBOARD_FAR - 1))
         return gb_fail(error, GB_ERROR_UNSUPPORTED,
                        "persistence: every side above %d voxels (the maps hold 12 bits)",
-                       2 * (GB_PERSISTENCE_FAR - 1));
-    persistence->maps = malloc(GB_PERSISTENCE_MAP_BYTES * cells);
-    gb_advise_huge_pages(persistence->maps, GB_PERSISTENCE_MAP_BYTES * cells);
+                       2 * (GB_CHESSBOARD_FAR - 1));
+    persistence->maps = malloc(GB_CHESSBOARD_MAP_BYTES * cells);
+    gb_advise_huge_pages(persistence->maps, GB_CHESSBOARD_MAP_BYTES * cells);
     gb_result result = GB_OK;
     if (!persistence->maps)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY,

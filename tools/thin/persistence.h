@@ -24,22 +24,16 @@
 
 #include <stdint.h>
 
+#include "chessboard_maps.h"
 #include "cubical_complex.h"
 #include "progress.h"
 #include "result.h"
 
-enum { GB_PERSISTENCE_MAP_BYTES = 3, GB_PERSISTENCE_FAR = 4095 };
-
 typedef struct gb_persistence {
-    unsigned char *maps;    /* per cell, GB_PERSISTENCE_MAP_BYTES: 12 bits of the
-                               chessboard distance of its voxel to the nearest
-                               non-empty voxel (0: not empty), 12 bits of its opening,
-                               the radius of the largest chessboard ball (cube of side
-                               2r-1) of the empty space holding it; both in voxels,
-                               below GB_PERSISTENCE_FAR: either is at most half the
-                               lattice's smallest side, and gb_persistence_init
-                               refuses a lattice whose smallest side is above
-                               2 (GB_PERSISTENCE_FAR - 1) */
+    unsigned char *maps;    /* the chessboard distance and opening of each cell
+                               (chessboard_maps.h); gb_persistence_init refuses a
+                               lattice whose smallest side is above
+                               2 (GB_CHESSBOARD_FAR - 1) */
     /* births of the isthmus edges that outlived their first iteration: an
      * open-addressing table, key 1 + 3 * cell + axis (0: free slot) */
     uint64_t *birth_keys;
@@ -57,20 +51,6 @@ gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_comp
                               gb_progress_callback progress, void *progress_user,
                               gb_error *error);
 void gb_persistence_free(gb_persistence *persistence);
-
-/* The two maps of a cell, packed in 3 bytes: distance in byte 0 and the low
- * half of byte 1, opening in the high half of byte 1 and byte 2. */
-static inline uint16_t gb_map_distance(const unsigned char *maps, size_t cell)
-{
-    const unsigned char *at = maps + GB_PERSISTENCE_MAP_BYTES * cell;
-    return (uint16_t)(at[0] | (at[1] & 0x0f) << 8);
-}
-
-static inline uint16_t gb_map_opening(const unsigned char *maps, size_t cell)
-{
-    const unsigned char *at = maps + GB_PERSISTENCE_MAP_BYTES * cell;
-    return (uint16_t)(at[1] >> 4 | at[2] << 4);
-}
 
 static inline uint16_t gb_persistence_distance(const gb_persistence *persistence, size_t cell)
 {
