@@ -111,10 +111,17 @@ static gb_result read_ply_element(reader *r, ply_header *h, gb_error *error)
     if (!count_token(count, &e->count))
         return gb_fail(error, GB_ERROR_PARSE, "%s:%d: element %s: count '%s' is not a count",
                        r->path, count.line, e->name, quoted(count, shown));
-    if (!strcmp(e->name, "vertex"))
-        h->vertices = (long long)e->count;
-    else if (!strcmp(e->name, "face"))
-        h->faces = (long long)e->count;
+    /* OpenMesh loops over its last vertex and face counts, whichever
+     * element it reads: a second declaration would make it read the first
+     * element with the second's count (past the body's end, a list of 2^32
+     * corners) */
+    long long *declared = !strcmp(e->name, "vertex") ? &h->vertices
+                          : !strcmp(e->name, "face") ? &h->faces : NULL;
+    if (declared && *declared >= 0)
+        return gb_fail(error, GB_ERROR_UNSUPPORTED, "%s:%d: a second element %s", r->path,
+                       name.line, e->name);
+    if (declared)
+        *declared = (long long)e->count;
     return GB_OK;
 }
 

@@ -219,6 +219,14 @@ static void test_guards(void)
          "property float x\nproperty float y\nproperty float z\nend_header\n0 0 0\n",
          GB_ERROR_FORMAT, "element vertex declares 4000000000 items, more than the 7 bytes",
          "PLY vertex count beyond the file (OpenMesh reserves it)"},
+        {"a.ply", "",
+         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+         "property float z\nelement face 1\nproperty list uchar int vertex_indices\n"
+         "element face 2\nproperty float q\nend_header\n"
+         "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n-1\n",
+         GB_ERROR_UNSUPPORTED, "a.ply:9: a second element face",
+         "PLY face element declared twice (OpenMesh reads the first with the second's count: "
+         "-1 corners, 2^32 of them, out of memory; found by fuzz_mesh)"},
         {"a.ply", ply_head, "0 0 0\n1 0 0\n0 1 0\n3 0 1 3\n", GB_ERROR_INVALID,
          "a.ply:13: face 0: vertex index 3 out of range (3 vertices)",
          "PLY vertex index out of range, named"},

@@ -231,15 +231,16 @@ static int sweep_row(sweeper *w, size_t first, size_t count, int backward)
     const uint64_t one = (uint64_t)step_length[1] << NODE_BITS,
                    two = (uint64_t)step_length[2] << NODE_BITS,
                    three = (uint64_t)step_length[3] << NODE_BITS;
-    /* the work rows hold the cells first - 1 .. first + count */
+    /* the work rows hold the cells first - 1 .. first + count: cell first
+     * + n and its neighbours along the row at n, n + 1, n + 2 */
     least_of_rows(g, first - 1, count + 2, layer, row, w->read, w->face);
     least_of_rows(g, first - 1, count + 2, layer - (ptrdiff_t)step[1],
                   layer + (ptrdiff_t)step[1], w->read, w->diagonal);
-    const uint64_t *face = w->face + 1, *diagonal = w->diagonal + 1;
+    const uint64_t *face = w->face, *diagonal = w->diagonal;
     for (size_t n = 0; n < count; ++n) {
-        uint64_t across = least(least(face[n - 1], face[n + 1]), diagonal[n]);
-        w->offered[n] = least(least(face[n] + one, across + two),
-                              least(diagonal[n - 1], diagonal[n + 1]) + three);
+        uint64_t across = least(least(face[n], face[n + 2]), diagonal[n + 1]);
+        w->offered[n] = least(least(face[n + 1] + one, across + two),
+                              least(diagonal[n], diagonal[n + 2]) + three);
     }
     int changed = 0;
     size_t before_first = backward ? first + count : first - 1;
