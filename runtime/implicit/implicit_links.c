@@ -137,6 +137,7 @@ typedef struct linker {
     float spiral_radius[SPREAD_MAX + 1][SPREAD_MAX];  /* [count][i]: sqrt((i + 1/2) / count),
                                    the i-th of count points' radius over the disc's */
     disc_frame *discs;          /* node_count, made once (disc_frames) */
+    int depths;                 /* depth maps wanted (flc-iv): they only hide */
 } linker;
 
 static int is_leaf(const gb_implicit_node *node)
@@ -316,6 +317,7 @@ typedef struct pair_geometry {
     float d[3], back[3], r2;    /* a to b, b to a, squared distance */
     int bin_a, bin_b;           /* the bins of d at a and of back at b */
     float omega_a, omega_b;     /* their solid angles */
+    int matched;                /* the boxes see the same side both ways */
 } pair_geometry;
 
 static pair_step pair_step_of(const linker *l, uint32_t a, uint32_t b, pair_geometry *g)
@@ -329,6 +331,7 @@ static pair_step pair_step_of(const linker *l, uint32_t a, uint32_t b, pair_geom
         return PAIR_UNSEEN;
     /* front to front or back to back: a pair that is not mixed (see the top) */
     int matched = at_a & at_b;
+    g->matched = matched;
     float split = matched ? GB_IMPLICIT_SPLIT : ONE_WAY_SPLIT;
     g->r2 = 0.0f;
     for (int k = 0; k < 3; ++k) {
@@ -358,7 +361,11 @@ static void link_side(linker *l, uint32_t a, uint32_t b, const pair_geometry *g,
         return;
     if (facing * height_b > 0.0f)
         store(l, a, bin, b, sqrtf(g->r2));
-    int mixed = facing * height_a < 0.0f;
+    /* B's centre in front of A with A's box reaching in front of B: A is
+     * an element of a surface that runs on past B (under a wall), not
+     * past a convex edge; B's whole disc hides, as before the shrink */
+    int mixed = facing * height_a < 0.0f &&
+                !(l->depths && g->matched && facing * height_b > 0.0f);
     store_disc(l, a, b, l->discs[b].radius * (mixed ? BACK_SHRINK : 1.0f),
                nb->area / (omega * g->r2), gb_implicit_node_has_side(na) ? facing : 0.0f);
 }
@@ -602,6 +609,7 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
     }
     l.slot = allocate_slots(slots);
     l.discs = disc_frames(model);
+    l.depths = options && options->depths;
     gb_result result = GB_OK;
     if (!l.slot || !l.discs)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");

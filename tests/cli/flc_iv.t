@@ -50,11 +50,13 @@ iv_hidden=$(value rmse "$dir/flc-iv.hidden")
 echo "# two rooms, relative MSE to indirect1: flc $flc_all, flc-iv $iv_all"
 echo "# hidden region ($pixels pixels), RMSE: flc $flc_hidden, flc-iv $iv_hidden"
 ok "$([ "${pixels:-0}" -ge 200 ]; echo $?)" "the hidden region has at least 200 of 4096 pixels"
-# Measured: 0.0228 against 0.0027 (whole); RMSE 0.028 against 0.0061 (hidden).
+# Measured: 0.0228 against 0.0022 (whole); RMSE 0.028 against 0.0027
+# (hidden; 0.0061 while the depth maps had gaps where a floor runs under a
+# wall: implicit_links.c's depths).
 ok "$(below "$iv_all" "$(awk -v e="$flc_all" 'BEGIN { print e / 4 }')"; echo $?)" \
     "two rooms: flc-iv's relative MSE below a quarter of FLC's"
-ok "$(below "$iv_hidden" "$(awk -v e="$flc_hidden" 'BEGIN { print e / 4 }')"; echo $?)" \
-    "hidden region: flc-iv's RMSE below a quarter of FLC's (the wall shadows)"
+ok "$(below "$iv_hidden" "$(awk -v e="$flc_hidden" 'BEGIN { print e / 6 }')"; echo $?)" \
+    "hidden region: flc-iv's RMSE below a sixth of FLC's (the wall shadows)"
 
 "$reference" --mode indirect1 --resolution 64x64 --spp 1024 --quiet "$cornell" -o "$dir/cornell.exr"
 for m in flc flc-iv; do
