@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "union_find.h"
+
 /* splitmix64's finaliser: the hash of both tables. */
 static uint64_t mix(uint64_t x)
 {
@@ -77,23 +79,6 @@ typedef struct edge_uses {
     uint8_t forward, backward;
 } edge_uses;
 
-static uint32_t find(uint32_t *parent, uint32_t t)
-{
-    while (parent[t] != t) {
-        parent[t] = parent[parent[t]];
-        t = parent[t];
-    }
-    return t;
-}
-
-static void join(uint32_t *parent, uint32_t a, uint32_t b)
-{
-    a = find(parent, a);
-    b = find(parent, b);
-    if (a != b)
-        parent[a > b ? a : b] = a < b ? a : b;
-}
-
 /* Counts triangle t's directed edge u -> v and joins t with the edge's
  * first triangle. */
 static void use_edge(edge_uses *edges, size_t size, uint32_t *parent, uint32_t t, uint32_t u,
@@ -107,7 +92,7 @@ static void use_edge(edge_uses *edges, size_t size, uint32_t *parent, uint32_t t
     if (e->key == UINT64_MAX)
         *e = (edge_uses){key, t, 0, 0};
     else
-        join(parent, e->triangle, t);
+        gb_union_find_join(parent, e->triangle, t);
     uint8_t *count = u < v ? &e->forward : &e->backward;
     if (*count < 2)
         ++*count;
@@ -232,9 +217,9 @@ gb_result gb_implicit_open_triangles(const float *positions, const uint32_t *ind
         memset(open, 0, triangle_count);
         for (size_t i = 0; i < size; ++i)
             if (edges[i].key != UINT64_MAX && (edges[i].forward != 1 || edges[i].backward != 1))
-                open[find(parent, edges[i].triangle)] = 1;
+                open[gb_union_find_root(parent, edges[i].triangle)] = 1;
         for (uint32_t t = 0; t < triangle_count; ++t)
-            parent[t] = find(parent, t);
+            parent[t] = gb_union_find_root(parent, t);
         ok = open_closed_parts(positions, indices, triangle_count, parent, skip, points,
                                point_count, open);
         for (uint32_t t = 0; ok && t < triangle_count; ++t)

@@ -5,25 +5,9 @@
 #include <string.h>
 
 #include "triangle_geometry.h"
+#include "union_find.h"
 
-/* ---- union-find over corners ---- */
-
-static uint32_t find(uint32_t *parent, uint32_t i)
-{
-    while (parent[i] != i) {
-        parent[i] = parent[parent[i]];
-        i = parent[i];
-    }
-    return i;
-}
-
-static void unite(uint32_t *parent, uint32_t a, uint32_t b)
-{
-    a = find(parent, a);
-    b = find(parent, b);
-    if (a != b)
-        parent[a < b ? b : a] = a < b ? a : b;
-}
+/* ---- corners glued across edges (a union-find) ---- */
 
 /* The chart neighbours over glued edges, and the corners glued across them
  * (corner 3i+e of triangle i: vertex e). Counts the edges: a glued edge
@@ -45,8 +29,8 @@ static int64_t glue(const gb_mesh_adjacency *adjacency, gb_chart_mesh *m,
             ++glued;
             int f = gb_mesh_adjacency_edge_to(adjacency, n, t);
             /* t's edge e runs a -> b, n's edge f runs b -> a */
-            unite(parent, 3 * i + e, 3 * j + (f + 1) % 3);
-            unite(parent, 3 * i + (e + 1) % 3, 3 * j + f);
+            gb_union_find_join(parent, 3 * i + e, 3 * j + (f + 1) % 3);
+            gb_union_find_join(parent, 3 * i + (e + 1) % 3, 3 * j + f);
         }
     }
     return border + glued / 2;
@@ -60,7 +44,7 @@ static int label_vertices(const gb_scene *scene, gb_chart_mesh *m, uint32_t *par
         return 0;
     m->vertex_count = 0;
     for (uint32_t c = 0; c < corner_count; ++c) {
-        uint32_t root = find(parent, c);
+        uint32_t root = gb_union_find_root(parent, c);
         label[c] = root == c ? m->vertex_count++ : label[root];
         m->corners[c] = label[c];
     }
