@@ -13,7 +13,10 @@
 # "thin / skimage" is thin's "cpu s" (user + system of the whole thin
 # command: reading the .vdb, cavities, collapse, graph, nearest-node grid,
 # writing both files) divided by that "skimage cpu s". Below 1, thin is the
-# faster. The peer's empty voxel count must equal thin's, else the ratio is
+# faster. "skeleton / skimage" compares the thinning alone: thin's own CPU
+# seconds (every thread) for the skeleton, from its maps to its graph (the
+# "cpu seconds skeleton" of --stats: no file read or written, no
+# nearest-node grid), over the same "skimage cpu s". The peer's empty voxel count must equal thin's, else the ratio is
 # "-". Rows above THIN_PEER_MAX have "-" there; a missing peer (no
 # python3-skimage or python3-openvdb) gives "-" and one line on stderr.
 # Context only, not a ratio (../shared/ANCHORS.md, measured on another
@@ -74,9 +77,9 @@ field() {
 
 echo "thin, default options, --stats and /usr/bin/time;" \
     "load average at start: $(cut -d ' ' -f 1-3 /proc/loadavg 2>/dev/null)"
-printf '%-18s %5s %15s %10s %8s %8s %8s %9s %8s %8s %9s %13s %14s\n' scene res voxels \
-    empty "wall s" "cpu s" "MiB" "ns/empty" nodes edges cavities "skimage cpu s" \
-    "thin / skimage"
+printf '%-18s %5s %15s %10s %8s %8s %8s %9s %8s %8s %9s %13s %14s %18s\n' scene res \
+    voxels empty "wall s" "cpu s" "MiB" "ns/empty" nodes edges cavities "skimage cpu s" \
+    "thin / skimage" "skeleton / skimage"
 for scene in $THIN_SCENES; do
     name=$(basename "$scene" .scene)
     for res in $THIN_RESOLUTIONS; do
@@ -101,7 +104,8 @@ for scene in $THIN_SCENES; do
         empty=$(field "empty voxels" "$dir/stats")
         per=$(echo "$wall $empty" | awk '{ printf "%.0f", ($2 > 0) ? 1e9 * $1 / $2 : 0 }')
         # The peer on the same .vdb, right after thin.
-        peer_cpu=- ratio=-
+        peer_cpu=- ratio=- skeleton_ratio=-
+        skeleton_cpu=$(field "cpu seconds" "$dir/stats" | sed -n 's/^skeleton \([0-9.]*\),.*/\1/p')
         if [ -n "$peer_on" ] && [ "$res" -le "$THIN_PEER_MAX" ]; then
             if "$THIN_PYTHON" "$peer" "$dir/in.vdb" >"$dir/peer" 2>"$dir/err"; then
                 peer_empty=$(awk '{ print $2 }' "$dir/peer")
@@ -113,14 +117,18 @@ for scene in $THIN_SCENES; do
                     ratio=$(awk -v t="$cpu" '{ if ($8 > 0) printf "%.2f", t / $8; else print "-" }' \
                         "$dir/peer")
                 fi
+                if [ "$peer_empty" = "$empty" ] && [ -n "$skeleton_cpu" ]; then
+                    skeleton_ratio=$(awk -v t="$skeleton_cpu" \
+                        '{ if ($8 > 0) printf "%.2f", t / $8; else print "-" }' "$dir/peer")
+                fi
             else
                 echo "thin.sh: $name $res: skeletonize_3d.py failed: $(head -n 1 "$dir/err")" >&2
             fi
         fi
-        printf '%-18s %5s %15s %10s %8s %8s %8s %9s %8s %8s %9s %13s %14s\n' "$name" "$res" \
-            "$(field voxels "$dir/stats" | tr -d ' ')" "$empty" "$wall" "$cpu" "$mib" "$per" \
-            "$(field nodes "$dir/stats")" "$(field edges "$dir/stats")" \
-            "$(field "cavities opened" "$dir/stats")" "$peer_cpu" "$ratio"
+        printf '%-18s %5s %15s %10s %8s %8s %8s %9s %8s %8s %9s %13s %14s %18s\n' "$name" \
+            "$res" "$(field voxels "$dir/stats" | tr -d ' ')" "$empty" "$wall" "$cpu" "$mib" \
+            "$per" "$(field nodes "$dir/stats")" "$(field edges "$dir/stats")" \
+            "$(field "cavities opened" "$dir/stats")" "$peer_cpu" "$ratio" "$skeleton_ratio"
     done
 done
 echo "load average at end: $(cut -d ' ' -f 1-3 /proc/loadavg 2>/dev/null)"

@@ -3,6 +3,8 @@
  * thin's code), is a graph with no 2-D patch, is centred in corridors, and
  * the nearest-node grid only maps voxels to nodes reachable through empty
  * space; same input, same bytes. */
+#include "../../tools/thin/cavities.h"
+#include "../../tools/thin/collapse.h"
 #include "../../tools/thin/cubical_complex.h"
 #include "../../tools/thin/nearest_node.h"
 #include "../../tools/thin/persistence.h"
@@ -612,6 +614,89 @@ static void test_determinism(void)
     gb_voxel_grid_free(&g);
 }
 
+/* The collapse alone (with its cavity rounds, as thin runs it) on threads,
+ * every iteration shared however few cells it lists, or only those listing
+ * 1 000 cells or more (the others on one thread): the complex left, the
+ * pairs removed and the iterations that removed them are those of one
+ * thread. */
+typedef struct collapsed {
+    uint8_t *faces;
+    size_t cell_count;
+    uint64_t pairs_removed;
+    uint32_t iterations, shared_iterations;
+} collapsed;
+
+static collapsed collapse_on(const gb_voxel_grid *g, int threads, size_t parallel_cells)
+{
+    collapsed out = {0};
+    gb_cubical_complex complex = {0};
+    gb_persistence persistence = {0};
+    gb_collapse collapse = {0};
+    gb_error error;
+    uint64_t squares_left = 0;
+    uint32_t opened = 1;
+    if (gb_cubical_complex_build(&complex, g, &error) ||
+        gb_persistence_init(&persistence, &complex, 1.0, 0.0, NULL, NULL, &error) ||
+        gb_collapse_init(&collapse, &complex, &persistence, threads, &error)) {
+        printf("Bail out! collapse_on: %s\n", error.message);
+        exit(1);
+    }
+    collapse.parallel_cells = parallel_cells;
+    while (opened)
+        if (gb_collapse_run(&collapse, NULL, NULL, &error) ||
+            gb_open_cavities(&complex, &collapse, &squares_left, &opened, &error)) {
+            printf("Bail out! collapse_on: %s\n", error.message);
+            exit(1);
+        }
+    out.faces = complex.faces;
+    out.cell_count = complex.cell_count;
+    complex.faces = NULL;
+    out.pairs_removed = collapse.pairs_removed;
+    out.iterations = collapse.iteration;
+    out.shared_iterations = collapse.shared_iterations;
+    gb_collapse_free(&collapse);
+    gb_persistence_free(&persistence);
+    gb_cubical_complex_free(&complex);
+    return out;
+}
+
+static void test_collapse_threads(void)
+{
+    /* tall enough for several chunks of 8 planes or more; boxes across the
+     * chunks' bounds, and one floating (a cavity to open) */
+    gb_voxel_grid g = volume_made(26, 22, 90,
+                                  (const int[][7]){{1, 1, 1, 24, 20, 88, VOLUME_EMPTY},
+                                                   {8, 6, 1, 9, 7, 88, VOLUME_SOLID},
+                                                   {12, 3, 14, 16, 8, 30, VOLUME_SOLID},
+                                                   {3, 12, 28, 10, 16, 45, VOLUME_SOLID},
+                                                   {15, 12, 40, 19, 15, 44, VOLUME_SOLID},
+                                                   {4, 2, 60, 22, 5, 62, VOLUME_SOLID},
+                                                   {2, 2, 70, 23, 19, 71, VOLUME_SOLID},
+                                                   {0}});
+    collapsed one = collapse_on(&g, 1, 1);
+    CHECK(one.shared_iterations == 0, "collapse on 1 thread shares no iteration");
+    int threads[] = {2, 4, 3, 2};
+    size_t parallel_cells[] = {1, 1, 1, 1000};
+    for (int t = 0; t < 4; ++t) {
+        collapsed many = collapse_on(&g, threads[t], parallel_cells[t]);
+        int all = parallel_cells[t] == 1;
+        CHECKF(all ? many.shared_iterations >= many.iterations
+                   : many.shared_iterations > 0 && many.shared_iterations < many.iterations,
+               "collapse on %d threads from %zu cells shares %s iterations (%u of %u)",
+               threads[t], parallel_cells[t], all ? "all" : "some", many.shared_iterations,
+               many.iterations);
+        CHECKF(!memcmp(one.faces, many.faces, one.cell_count) &&
+                   one.pairs_removed == many.pairs_removed && one.iterations == many.iterations,
+               "collapse on %d threads from %zu cells leaves the complex of 1 (%llu pairs, "
+               "%u iterations)",
+               threads[t], parallel_cells[t], (unsigned long long)many.pairs_removed,
+               many.iterations);
+        free(many.faces);
+    }
+    free(one.faces);
+    gb_voxel_grid_free(&g);
+}
+
 /* ---- node radii from a distance source (thin's main: the file again) ---- */
 
 typedef struct served_distances {
@@ -811,6 +896,7 @@ int main(void)
     test_maps();
     test_nearest_ways();
     test_determinism();
+    test_collapse_threads();
     test_distance_source();
     test_thin_and_free();
     test_options();

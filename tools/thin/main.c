@@ -30,7 +30,8 @@ static const char usage[] =
     "  -p, --persistence S      scale of opening - distance (default 1; 0 keeps\n"
     "                           every line as soon as it appears)\n"
     "  -l, --min-lifespan N     iterations added to the threshold (default 0)\n"
-    "  -j, --threads N          threads for the nearest-node grid when it needs\n"
+    "  -j, --threads N          threads for the collapse (a power of two, up to 8)\n"
+    "                           and for the nearest-node grid when it needs\n"
     "                           Dijkstra (default 2; the output does not depend on it)\n"
     "  -s, --stats              print counts and timings on stdout\n"
     "  -q, --quiet              no progress bar\n"
@@ -92,7 +93,8 @@ static void print_stats(const gb_skeleton *s, const gb_thin_stats *stats)
     printf("empty voxels    %llu\n", (unsigned long long)stats->empty_voxels);
     printf("nodes           %u\n", s->node_count);
     printf("edges           %u\n", s->edge_count);
-    printf("iterations      %u\n", stats->iterations);
+    printf("iterations      %u (%u on all threads)\n", stats->iterations,
+           stats->shared_iterations);
     printf("pairs removed   %llu\n", (unsigned long long)stats->pairs_removed);
     printf("cells examined  %llu\n", (unsigned long long)stats->cells_examined);
     printf("cavities opened %u\n", stats->cavities_opened);
@@ -100,6 +102,8 @@ static void print_stats(const gb_skeleton *s, const gb_thin_stats *stats)
     printf("seconds         maps %.3f, collapse %.3f, graph %.3f, nearest %.3f\n",
            stats->seconds_maps, stats->seconds_collapse, stats->seconds_graph,
            stats->seconds_nearest);
+    printf("cpu seconds     skeleton %.3f, nearest %.3f\n", stats->cpu_seconds_skeleton,
+           stats->cpu_seconds_nearest);
 }
 
 /* The grid first (nearest is freed on the way): if the skeleton then fails,

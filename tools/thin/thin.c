@@ -65,7 +65,7 @@ static gb_result thin_complex(gb_cubical_complex *complex, gb_persistence *persi
                               gb_error *error)
 {
     gb_collapse collapse;
-    gb_result result = gb_collapse_init(&collapse, complex, persistence, error);
+    gb_result result = gb_collapse_init(&collapse, complex, persistence, options->threads, error);
     if (result)
         return result;
     gb_progress_span s = make_stage(options, 0.15, 0.45);
@@ -77,6 +77,7 @@ static gb_result thin_complex(gb_cubical_complex *complex, gb_persistence *persi
         stats->cavities_opened += opened;
     }
     stats->iterations = collapse.iteration;
+    stats->shared_iterations = collapse.shared_iterations;
     stats->empty_voxels = collapse.cubes;
     stats->cells_examined = collapse.cells_examined;
     stats->pairs_removed = collapse.pairs_removed;
@@ -149,7 +150,7 @@ static gb_result thin_grid(const gb_voxel_grid *grid, uint8_t **surface_to_free,
     gb_empty_voxels empty = {0};
     gb_persistence persistence = {0};
     uint32_t *node_cells = NULL;
-    double start = gb_seconds();
+    double start = gb_seconds(), cpu_start = gb_cpu_seconds();
     result = build_maps(grid, surface_to_free, &options, &complex, &empty, &persistence, error);
     double maps_done = gb_seconds();
     if (!result)
@@ -159,7 +160,7 @@ static gb_result thin_grid(const gb_voxel_grid *grid, uint8_t **surface_to_free,
     if (!result)
         result = gb_skeleton_graph_build(&complex, grid, &empty, options.distances,
                                          options.distances_user, skeleton, &node_cells, error);
-    double graph_done = gb_seconds();
+    double graph_done = gb_seconds(), cpu_graph_done = gb_cpu_seconds();
     /* the faces are done with: only the lattice's frame is used from here */
     free(complex.faces);
     complex.faces = NULL;
@@ -170,7 +171,7 @@ static gb_result thin_grid(const gb_voxel_grid *grid, uint8_t **surface_to_free,
     if (!result && nearest)
         result = compute_nearest(grid, &empty, &complex, node_cells, skeleton->node_count,
                                  &options, nearest, error);
-    double nearest_done = gb_seconds();
+    double nearest_done = gb_seconds(), cpu_nearest_done = gb_cpu_seconds();
     gb_cubical_complex_free(&complex);
     gb_empty_voxels_free(&empty);
     free(node_cells);
@@ -182,6 +183,8 @@ static gb_result thin_grid(const gb_voxel_grid *grid, uint8_t **surface_to_free,
     stats.seconds_collapse = collapse_done - maps_done;
     stats.seconds_graph = graph_done - collapse_done;
     stats.seconds_nearest = nearest_done - graph_done;
+    stats.cpu_seconds_skeleton = cpu_graph_done - cpu_start;
+    stats.cpu_seconds_nearest = cpu_nearest_done - cpu_graph_done;
     describe(skeleton, grid, &options, &stats);
     if (stats_out)
         *stats_out = stats;

@@ -54,8 +54,9 @@ typedef struct gb_thin_options {
      * isthmus at once), a negative min_lifespan means 0. */
     double persistence;         /* default GB_THIN_DEFAULT_PERSISTENCE */
     double min_lifespan;        /* iterations, default GB_THIN_DEFAULT_MIN_LIFESPAN */
-    /* Threads for the nearest-node grid when it needs Dijkstra's algorithm
-     * (a maze; the raster sweeps and the collapse run on one thread); 0
+    /* Threads for the collapse (a power of two, at most 8: collapse.h) and
+     * for the nearest-node grid when it needs Dijkstra's algorithm (a maze;
+     * the maps' and nearest-node grid's raster sweeps run on one thread); 0
      * means GB_THIN_DEFAULT_THREADS, at most GB_THIN_MAX_THREADS. The
      * result does not depend on it. */
     int threads;
@@ -72,15 +73,22 @@ typedef struct gb_thin_options {
 
 typedef struct gb_thin_stats {
     uint64_t empty_voxels;
-    uint32_t iterations;        /* collapse iterations, cavity rounds included */
+    uint32_t iterations;        /* collapse iterations that removed a pair, cavity
+                                   rounds included */
+    uint32_t shared_iterations; /* iterations (those that removed nothing too)
+                                   the threads shared */
     uint32_t cavities_opened;   /* squares removed to open 2-cycles */
     uint64_t squares_left;      /* 2-faces left in the result: 0 when thin */
-    uint64_t cells_examined;    /* border cells the collapse looked at (its cost) */
+    uint64_t cells_examined;    /* border cells the collapse looked at (its cost; a
+                                   little more on several threads) */
     uint64_t pairs_removed;     /* elementary collapses */
     double seconds_maps;        /* complex, distance and opening maps */
     double seconds_collapse;    /* collapse and cavities */
     double seconds_graph;
     double seconds_nearest;
+    /* CPU seconds, every thread counted: the skeleton (maps, collapse and
+     * graph: what a thinning alone does) and the nearest-node grid */
+    double cpu_seconds_skeleton, cpu_seconds_nearest;
 } gb_thin_stats;
 
 /* options and stats may be NULL; nearest may be NULL (no grid computed). */
