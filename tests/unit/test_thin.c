@@ -436,14 +436,15 @@ static int brute_distance(const gb_voxel_grid *g, int i, int j, int k)
                         return r;
 }
 
-/* Both maps of g against brute force, every voxel. */
+/* Both maps of g against brute force, every voxel (their openings taken on
+ * 3 threads). */
 static void check_maps(gb_voxel_grid g, const char *what)
 {
     gb_cubical_complex complex;
     gb_persistence maps;
     gb_error error;
     CHECK(!gb_cubical_complex_build(&complex, &g, &error) &&
-              !gb_persistence_init(&maps, &complex, 1.0, 0.0, NULL, NULL, &error),
+              !gb_persistence_init(&maps, &complex, 1.0, 0.0, 3, NULL, NULL, &error),
           "maps: computed");
     int nx = g.size[0], ny = g.size[1], nz = g.size[2];
     int *d = malloc(sizeof *d * (size_t)nx * ny * nz);
@@ -636,7 +637,7 @@ static collapsed collapse_on(const gb_voxel_grid *g, int threads, size_t paralle
     uint64_t squares_left = 0;
     uint32_t opened = 1;
     if (gb_cubical_complex_build(&complex, g, &error) ||
-        gb_persistence_init(&persistence, &complex, 1.0, 0.0, NULL, NULL, &error) ||
+        gb_persistence_init(&persistence, &complex, 1.0, 0.0, threads, NULL, NULL, &error) ||
         gb_collapse_init(&collapse, &complex, &persistence, threads, &error)) {
         printf("Bail out! collapse_on: %s\n", error.message);
         exit(1);

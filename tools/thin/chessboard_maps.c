@@ -16,12 +16,15 @@
  *
  * The work goes a plane at a time in 16-bit buffers: the forward pass
  * writes each plane's distances to the maps; the backward pass reads them
- * back, finishes them and takes the openings along x and y of the plane
- * before writing it; a last pass over the maps takes them along z. */
+ * back and finishes them. Then, on threads (the planes and rows shared
+ * out, each thread with its own buffers), a pass takes the openings along
+ * x and y of each plane, and a last one takes them along z. */
 #include "chessboard_maps.h"
 
 #include <stdlib.h>
 #include <string.h>
+
+#include "threads.h"
 
 /* Lines of the z pass are taken BUNDLE at a time, adjacent in x, so that
  * each read of the maps uses whole cache lines. */
@@ -161,12 +164,13 @@ static void set_opening(unsigned char *maps, size_t cell, uint16_t opening)
 }
 
 /* The openings along z of the maps' openings so far, BUNDLE lines at a
- * time. */
-static void opening_along_z(const gb_cubical_complex *complex, unsigned char *maps, planes *p)
+ * time, in the rows y = first, first + every, ... */
+static void opening_along_z(const gb_cubical_complex *complex, unsigned char *maps, planes *p,
+                            int32_t first_row, int32_t every)
 {
     int n = complex->size[2];
     size_t plane = complex->step[2];
-    for (int32_t y = 0; y < complex->size[1]; ++y)
+    for (int32_t y = first_row; y < complex->size[1]; y += every)
         for (int32_t first = 0; first < complex->size[0]; first += BUNDLE) {
             int width = complex->size[0] - first < BUNDLE ? complex->size[0] - first : BUNDLE;
             size_t base = complex->step[1] * (size_t)y + (size_t)first;
@@ -205,6 +209,35 @@ static gb_result allocate_planes(planes *p, const gb_cubical_complex *complex, g
     return GB_OK;
 }
 
+/* ---- the openings, on threads ---- */
+
+typedef struct openings_job {
+    const gb_cubical_complex *complex;
+    unsigned char *maps;
+    planes *buffers;            /* a thread's own */
+} openings_job;
+
+/* Thread's planes (every thread_count-th): their openings along x and y. */
+static void openings_along_x_and_y(void *context, int thread, int thread_count)
+{
+    const openings_job *job = context;
+    planes *p = &job->buffers[thread];
+    size_t plane = job->complex->step[2];
+    for (int32_t z = thread; z < job->complex->size[2]; z += thread_count) {
+        size_t first_cell = plane * (size_t)z;
+        for (size_t n = 0; n < plane; ++n)
+            p->plane[n] = gb_map_distance(job->maps, first_cell + n);
+        plane_openings(p);
+        write_cells(job->maps, first_cell, p->plane, p->openings, plane);
+    }
+}
+
+static void openings_along_z(void *context, int thread, int thread_count)
+{
+    const openings_job *job = context;
+    opening_along_z(job->complex, job->maps, &job->buffers[thread], thread, thread_count);
+}
+
 static gb_result report(gb_progress_callback progress, void *progress_user, double done,
                         gb_error *error)
 {
@@ -214,38 +247,53 @@ static gb_result report(gb_progress_callback progress, void *progress_user, doub
 }
 
 gb_result gb_chessboard_maps(const gb_cubical_complex *complex, unsigned char *maps,
-                             gb_progress_callback progress, void *progress_user,
-                             gb_error *error)
+                             int thread_count, gb_progress_callback progress,
+                             void *progress_user, gb_error *error)
 {
-    planes p;
-    if (allocate_planes(&p, complex, error))
-        return GB_ERROR_OUT_OF_MEMORY;
+    thread_count = thread_count < 1 ? 1 : thread_count > GB_CHESSBOARD_MAX_THREADS
+                                              ? GB_CHESSBOARD_MAX_THREADS
+                                              : thread_count;
+    planes buffers[GB_CHESSBOARD_MAX_THREADS];
+    int allocated = 0;
+    gb_result result = GB_OK;
+    while (!result && allocated < thread_count)
+        result = allocate_planes(&buffers[allocated++], complex, error);
+    if (result)
+        --allocated;
+    planes *p = &buffers[0];
     size_t plane = complex->step[2];
-    for (int32_t z = 0; z < complex->size[2]; ++z) {
+    for (int32_t z = 0; !result && z < complex->size[2]; ++z) {
         const uint8_t *faces = complex->faces + plane * (size_t)z;
         for (size_t n = 0; n < plane; ++n)
-            p.plane[n] = faces[n] & GB_FACE_CUBE ? GB_CHESSBOARD_FAR : 0;
-        distance_plane(&p, +1);
-        write_cells(maps, plane * (size_t)z, p.plane, NULL, plane);
-        next_plane(&p);
+            p->plane[n] = faces[n] & GB_FACE_CUBE ? GB_CHESSBOARD_FAR : 0;
+        distance_plane(p, +1);
+        write_cells(maps, plane * (size_t)z, p->plane, NULL, plane);
+        next_plane(p);
     }
-    gb_result result = report(progress, progress_user, 1 / 3.0, error);
-    memset(p.done, 0, plane * sizeof *p.done);
+    if (!result) {
+        result = report(progress, progress_user, 1 / 4.0, error);
+        memset(p->done, 0, plane * sizeof *p->done);
+    }
     for (int32_t z = complex->size[2]; !result && z-- > 0;) {
         size_t first_cell = plane * (size_t)z;
         for (size_t n = 0; n < plane; ++n)
-            p.plane[n] = gb_map_distance(maps, first_cell + n);
-        distance_plane(&p, -1);
-        plane_openings(&p);
-        write_cells(maps, first_cell, p.plane, p.openings, plane);
-        next_plane(&p);
+            p->plane[n] = gb_map_distance(maps, first_cell + n);
+        distance_plane(p, -1);
+        write_cells(maps, first_cell, p->plane, NULL, plane);
+        next_plane(p);
     }
+    openings_job job = {complex, maps, buffers};
     if (!result)
-        result = report(progress, progress_user, 2 / 3.0, error);
+        result = report(progress, progress_user, 2 / 4.0, error);
     if (!result) {
-        opening_along_z(complex, maps, &p);
+        gb_run_threads(openings_along_x_and_y, &job, thread_count);
+        result = report(progress, progress_user, 3 / 4.0, error);
+    }
+    if (!result) {
+        gb_run_threads(openings_along_z, &job, thread_count);
         result = report(progress, progress_user, 1.0, error);
     }
-    free(p.end);
+    for (int t = 0; t < allocated; ++t)
+        free(buffers[t].end);
     return result;
 }

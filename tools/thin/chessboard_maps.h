@@ -20,14 +20,15 @@
 #include "progress.h"
 #include "result.h"
 
-enum { GB_CHESSBOARD_MAP_BYTES = 3, GB_CHESSBOARD_FAR = 4095 };
+enum { GB_CHESSBOARD_MAP_BYTES = 3, GB_CHESSBOARD_FAR = 4095, GB_CHESSBOARD_MAX_THREADS = 8 };
 
 /* Fills maps for the cubes of complex (a freshly built complex: every cube
- * is an empty voxel). progress may be NULL; a nonzero return from it
+ * is an empty voxel), the openings on up to thread_count threads (the maps
+ * do not depend on it). progress may be NULL; a nonzero return from it
  * cancels with GB_ERROR_INTERRUPTED. */
 gb_result gb_chessboard_maps(const gb_cubical_complex *complex, unsigned char *maps,
-                             gb_progress_callback progress, void *progress_user,
-                             gb_error *error);
+                             int thread_count, gb_progress_callback progress,
+                             void *progress_user, gb_error *error);
 
 /* The two maps of a cell, packed in 3 bytes: distance in byte 0 and the low
  * half of byte 1, opening in the high half of byte 1 and byte 2. */

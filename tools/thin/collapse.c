@@ -184,10 +184,14 @@ gb_result gb_collapse_init(gb_collapse *collapse, gb_cubical_complex *complex,
 
 /* Whether another iteration is needed, and its border: the cells pending
  * from the last one (the old border's allocation takes the next
- * iteration's pending cells). It is shared if it is large and every worker
- * has its thread (team_complete). */
+ * iteration's pending cells). It is shared if every worker has its thread
+ * (team_complete) and it looks large: as many cells listed, or examined by
+ * the last iteration (most of an iteration's cells are listed during it),
+ * as parallel_cells. */
 static void begin_iteration(gb_collapse *collapse, int team_complete)
 {
+    uint64_t last_examined = collapse->cells_examined - collapse->cells_examined_before;
+    collapse->cells_examined_before = collapse->cells_examined;
     size_t listed = 0;
     for (int t = 0; t < collapse->thread_count; ++t)
         for (size_t list = 0; list < list_count(collapse); ++list) {
@@ -201,7 +205,8 @@ static void begin_iteration(gb_collapse *collapse, int team_complete)
         }
     collapse->running = listed && !collapse->failed;
     collapse->parallel = collapse->running && collapse->thread_count > 1 && team_complete &&
-                         listed >= collapse->parallel_cells;
+                         (listed >= collapse->parallel_cells ||
+                          last_examined >= collapse->parallel_cells);
     collapse->shared_iterations += (uint32_t)collapse->parallel;
 }
 
@@ -524,6 +529,20 @@ HOT gb_result remove_pairs(gb_collapse_worker *worker, substep s, const gb_pair_
     return GB_OK;
 }
 
+/* Whether any thread listed a cell for the substep: every thread sees the
+ * same lists here (the last barrier ended all changes to them), so all
+ * skip an empty substep and its barriers alike. */
+static int any_listed(const gb_collapse *collapse, int substep)
+{
+    for (int t = 0; t < collapse->thread_count; ++t)
+        for (int bucket = 0; bucket < collapse->bucket_count; ++bucket)
+            if (collapse->workers[t]
+                    .border[(size_t)substep * (size_t)collapse->bucket_count + (size_t)bucket]
+                    .count)
+                return 1;
+    return 0;
+}
+
 static int has_failed(gb_collapse *collapse)
 {
     return __atomic_load_n(&collapse->failed, __ATOMIC_RELAXED);
@@ -538,6 +557,8 @@ HOT void collapse_substep(gb_collapse_worker *worker, gb_thread_team *team, subs
 {
     gb_collapse *collapse = worker->collapse;
     worker->substep = GB_COLLAPSE_KINDS * direction_of(s.axis, s.orientation) + 3 - s.dimension;
+    if (!any_listed(collapse, worker->substep))
+        return;
     int first = team ? thread : 0, count = team ? 1 : collapse->thread_count;
     if (!has_failed(collapse) && find_pairs(worker, s, first, count))
         fail(collapse, worker, GB_ERROR_OUT_OF_MEMORY);

@@ -34,7 +34,8 @@
  * count. Which cells a removal lists does (a cell freed by two removals is
  * listed by the first), so only the iterations that removed a pair count for
  * persistence: a last iteration that found nothing changes nothing. An
- * iteration with fewer cells listed than parallel_cells runs on one thread.
+ * iteration that looks small (fewer than parallel_cells cells listed at its
+ * start and examined by the iteration before) runs on one thread.
  *
  * The caller owns the gb_collapse and frees it with gb_collapse_free; it
  * borrows the complex and the persistence maps it was given.
@@ -64,7 +65,7 @@ enum {
     GB_COLLAPSE_KINDS = 3,
     GB_COLLAPSE_DIRECTIONS = 6,
     GB_COLLAPSE_SUBSTEPS = GB_COLLAPSE_DIRECTIONS * GB_COLLAPSE_KINDS,
-    GB_COLLAPSE_PARALLEL_CELLS = 1024,
+    GB_COLLAPSE_PARALLEL_CELLS = 32768,
     GB_COLLAPSE_MAX_THREADS = 8
 };
 
@@ -108,6 +109,7 @@ typedef struct gb_collapse {
     uint64_t cubes;
     /* sums over the workers, at the end of each iteration */
     uint64_t cubes_removed, pairs_removed, cells_examined;
+    uint64_t cells_examined_before; /* by the iterations before the last one */
 } gb_collapse;
 
 /* Prepares the collapse of complex (freshly built: its first border is the

@@ -9,7 +9,7 @@
 #include "huge_pages.h"
 
 gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_complex *complex,
-                              double scale, double min_lifespan,
+                              double scale, double min_lifespan, int thread_count,
                               gb_progress_callback progress, void *progress_user,
                               gb_error *error)
 {
@@ -33,7 +33,8 @@ gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_comp
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
                          "persistence: out of memory for %zu cells", cells);
     if (!result)
-        result = gb_chessboard_maps(complex, persistence->maps, progress, progress_user, error);
+        result = gb_chessboard_maps(complex, persistence->maps, thread_count, progress,
+                                    progress_user, error);
     if (result)
         gb_persistence_free(persistence);
     return result;

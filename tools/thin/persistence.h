@@ -44,10 +44,11 @@ typedef struct gb_persistence {
 } gb_persistence;
 
 /* Computes the distance and opening maps of the empty cubes of complex (a
- * freshly built complex: every cube there is an empty voxel). progress may
- * be NULL; a nonzero return from it cancels with GB_ERROR_IO. */
+ * freshly built complex: every cube there is an empty voxel), on up to
+ * thread_count threads. progress may be NULL; a nonzero return from it
+ * cancels with GB_ERROR_IO. */
 gb_result gb_persistence_init(gb_persistence *persistence, const gb_cubical_complex *complex,
-                              double scale, double min_lifespan,
+                              double scale, double min_lifespan, int thread_count,
                               gb_progress_callback progress, void *progress_user,
                               gb_error *error);
 void gb_persistence_free(gb_persistence *persistence);

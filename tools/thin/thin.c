@@ -103,7 +103,8 @@ static gb_result build_maps(const gb_voxel_grid *grid, uint8_t **surface_to_free
         return result;
     gb_progress_span s = make_stage(options, 0.0, 0.15);
     return gb_persistence_init(persistence, complex, options->persistence,
-                               options->min_lifespan, gb_progress_span_report, &s, error);
+                               options->min_lifespan, options->threads,
+                               gb_progress_span_report, &s, error);
 }
 
 static void describe(gb_skeleton *skeleton, const gb_voxel_grid *grid,
