@@ -8,12 +8,13 @@
 
 enum { MAX_THREADS = 64 };
 
-/* How long a thread at a barrier spins before it sleeps: longer than the
- * imbalance of most of a collapse's phases, far shorter than a phase one
- * thread does alone. Waking a sleeping thread costs tens of microseconds
- * in a virtual machine (an interrupt between processors); with 10 µs of
- * spinning, the collapse on 2 threads took longer than on 1. */
-static const double SPIN_SECONDS = 200e-6;
+/* How long a thread at a barrier spins before it sleeps: about the
+ * imbalance of a collapse's phases, far shorter than a phase one thread
+ * does alone. Waking a sleeping thread costs tens of microseconds in a
+ * virtual machine (an interrupt between processors). The spin yields the
+ * processor at each turn, so that on a loaded machine it does not keep a
+ * thread of its own team waiting. */
+static const double SPIN_SECONDS = 50e-6;
 
 struct gb_thread_team {
     pthread_mutex_t mutex;
