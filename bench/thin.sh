@@ -9,15 +9,16 @@
 # bench/skeletonize_3d.py runs scikit-image's skeletonize_3d (Lee 1994) on
 # the same empty voxels (a dense boolean array of grid_size). Column
 # "skimage cpu s" is the process CPU time of the skeletonize_3d call alone
-# (time.process_time; reading the file and building the array not counted);
-# "thin / skimage" is thin's "cpu s" (user + system of the whole thin
-# command: reading the .vdb, cavities, collapse, graph, nearest-node grid,
-# writing both files) divided by that "skimage cpu s". Below 1, thin is the
-# faster. "skeleton / skimage" compares the thinning alone: thin's own CPU
-# seconds (every thread) for the skeleton, from its maps to its graph (the
-# "cpu seconds skeleton" of --stats: no file read or written, no
-# nearest-node grid), over the same "skimage cpu s". The peer's empty voxel count must equal thin's, else the ratio is
-# "-". Rows above THIN_PEER_MAX have "-" there; a missing peer (no
+# (time.process_time; reading the file and building the array not counted).
+# The peer runs on one thread, so the ratios compare it with thin on one
+# thread, run again with -j 1 for them: "thin / skimage" is the CPU time
+# (user + system) of that whole thin command (reading the .vdb, cavities,
+# collapse, graph, nearest-node grid, writing both files) over "skimage cpu
+# s"; "skeleton / skimage" compares the thinning alone: the "cpu seconds
+# skeleton" of its --stats (from the maps to the graph: no file read or
+# written, no nearest-node grid) over the same. Below 1, thin is the faster.
+# The other columns are thin's default run (2 threads). The peer's empty
+# voxel count must equal thin's, else the ratio is "-". Rows above THIN_PEER_MAX have "-" there; a missing peer (no
 # python3-skimage or python3-openvdb) gives "-" and one line on stderr.
 # Context only, not a ratio (../shared/ANCHORS.md, measured on another
 # day): the DGCI 2013 authors' thinning took 6.1 s on Sponza at 256; the
@@ -105,16 +106,21 @@ for scene in $THIN_SCENES; do
         per=$(echo "$wall $empty" | awk '{ printf "%.0f", ($2 > 0) ? 1e9 * $1 / $2 : 0 }')
         # The peer on the same .vdb, right after thin.
         peer_cpu=- ratio=- skeleton_ratio=-
-        skeleton_cpu=$(field "cpu seconds" "$dir/stats" | sed -n 's/^skeleton \([0-9.]*\),.*/\1/p')
-        if [ -n "$peer_on" ] && [ "$res" -le "$THIN_PEER_MAX" ]; then
+        if [ -n "$peer_on" ] && [ "$res" -le "$THIN_PEER_MAX" ] && [ -n "$timer" ] &&
+            # shellcheck disable=SC2086
+            $timer "$GB_BIN/thin" -q --stats -j 1 $THIN_OPTIONS "$dir/in.vdb" \
+                -o "$dir/out.skel" --grid "$dir/out.grid.vdb" >"$dir/stats1" 2>"$dir/err"; then
+            cpu1=$(awk '/User time|System time/ { s += $NF } END { printf "%.2f", s }' "$dir/time")
+            skeleton_cpu=$(field "cpu seconds" "$dir/stats1" |
+                sed -n 's/^skeleton \([0-9.]*\),.*/\1/p')
             if "$THIN_PYTHON" "$peer" "$dir/in.vdb" >"$dir/peer" 2>"$dir/err"; then
                 peer_empty=$(awk '{ print $2 }' "$dir/peer")
                 peer_cpu=$(awk '{ printf "%.2f", $8 }' "$dir/peer")
                 if [ "$peer_empty" != "$empty" ]; then
                     echo "thin.sh: $name $res: skeletonize_3d saw $peer_empty empty voxels," \
                         "thin $empty: no ratio" >&2
-                elif [ "$cpu" != - ]; then
-                    ratio=$(awk -v t="$cpu" '{ if ($8 > 0) printf "%.2f", t / $8; else print "-" }' \
+                else
+                    ratio=$(awk -v t="$cpu1" '{ if ($8 > 0) printf "%.2f", t / $8; else print "-" }' \
                         "$dir/peer")
                 fi
                 if [ "$peer_empty" = "$empty" ] && [ -n "$skeleton_cpu" ]; then

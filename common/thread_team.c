@@ -75,7 +75,7 @@ void gb_thread_team_run(gb_team_function function, void *context, int thread_cou
     pthread_mutex_destroy(&team.mutex);
 }
 
-void gb_thread_team_wait(gb_thread_team *team)
+static void wait_at_barrier(gb_thread_team *team, double spin_seconds)
 {
     if (team->thread_count == 1)
         return;
@@ -92,14 +92,14 @@ void gb_thread_team_wait(gb_thread_team *team)
         return;
     }
     double give_up = 0.0;
-    for (unsigned spin = 0;; ++spin) {
+    for (unsigned spin = 0; spin_seconds > 0.0; ++spin) {
         if (__atomic_load_n(&team->generation, __ATOMIC_ACQUIRE) != generation)
             return;
         sched_yield();
         if (spin % 16 == 0) {
             double now = gb_seconds();
             if (!give_up)
-                give_up = now + SPIN_SECONDS;
+                give_up = now + spin_seconds;
             else if (now > give_up)
                 break;
         }
@@ -108,4 +108,14 @@ void gb_thread_team_wait(gb_thread_team *team)
     while (__atomic_load_n(&team->generation, __ATOMIC_ACQUIRE) == generation)
         pthread_cond_wait(&team->changed, &team->mutex);
     pthread_mutex_unlock(&team->mutex);
+}
+
+void gb_thread_team_wait(gb_thread_team *team)
+{
+    wait_at_barrier(team, SPIN_SECONDS);
+}
+
+void gb_thread_team_wait_long(gb_thread_team *team)
+{
+    wait_at_barrier(team, 0.0);
 }

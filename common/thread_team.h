@@ -31,5 +31,8 @@ void gb_thread_team_run(gb_team_function function, void *context, int thread_cou
 /* Returns once every thread of the team has called it: what any thread
  * wrote before it is visible to every thread after it. */
 void gb_thread_team_wait(gb_thread_team *team);
+/* The same barrier, for a thread that knows another has long work left
+ * (one thread working alone): it sleeps at once, not spinning. */
+void gb_thread_team_wait_long(gb_thread_team *team);
 
 #endif

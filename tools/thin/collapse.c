@@ -613,11 +613,15 @@ static void run_on_team(void *context, gb_thread_team *team, int thread, int thr
         gb_thread_team_wait(team);
         if (!collapse->running)
             break;
-        if (collapse->parallel)
+        if (collapse->parallel) {
             collapse_iteration(worker, team, thread);
-        else if (thread == 0)
+            gb_thread_team_wait(team);
+        } else if (thread == 0) {
             collapse_iteration(worker, NULL, 0);
-        gb_thread_team_wait(team);
+            gb_thread_team_wait(team);
+        } else {
+            gb_thread_team_wait_long(team);
+        }
         if (thread != 0)
             continue;
         end_iteration(collapse);
