@@ -79,8 +79,8 @@ typedef struct gb_thin_stats {
                                    the threads shared */
     uint32_t cavities_opened;   /* squares removed to open 2-cycles */
     uint64_t squares_left;      /* 2-faces left in the result: 0 when thin */
-    uint64_t cells_examined;    /* border cells the collapse looked at (its cost; a
-                                   little more on several threads) */
+    uint64_t cells_examined;    /* border cells the collapse looked at (its cost; it
+                                   can differ a little with the thread count) */
     uint64_t pairs_removed;     /* elementary collapses */
     double seconds_maps;        /* complex, distance and opening maps */
     double seconds_collapse;    /* collapse and cavities */
