@@ -32,7 +32,6 @@ typedef struct member {
     int thread;
 } member;
 
-
 /* A started thread waits until the team's size is known. */
 static void *run_member(void *argument)
 {
