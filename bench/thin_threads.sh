@@ -8,30 +8,18 @@
 # iterations shared by the threads. The output bytes are the same for
 # both (test_thin checks it); only the time differs.
 #
-# GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the
-# repository; THIN_THREADS_CASES: "scene:resolution" pairs (default the
-# Cornell box and Sponza at 256); THIN_ROUNDS (default 3).
+# GB_BIN: the folder of the tools (default build/bin); THIN_THREADS_CASES:
+# "scene:resolution" pairs (default the Cornell box and Sponza at 256);
+# THIN_ROUNDS (default 3).
 
-GB_ROOT=${GB_ROOT:-.}
-GB_BIN=${GB_BIN:-$GB_ROOT/build/bin}
-THIN_THREADS_CASES=${THIN_THREADS_CASES:-"$GB_ROOT/scenes/shared/cornell-original.scene:256 $GB_ROOT/scenes/shared/sponza.scene:256"}
+. "$(dirname "$0")/common.sh"
+needs thin voxelize
+THIN_THREADS_CASES=${THIN_THREADS_CASES:-"$root/scenes/shared/cornell-original.scene:256 $root/scenes/shared/sponza.scene:256"}
 THIN_ROUNDS=${THIN_ROUNDS:-3}
-dir=$(mktemp -d "${TMPDIR:-/tmp}/gibake-bench-thin-threads.XXXXXX") || exit 1
-trap 'rm -rf "$dir"' EXIT INT TERM
-
-if [ ! -x "$GB_BIN/thin" ] || [ ! -x "$GB_BIN/voxelize" ]; then
-    echo "thin_threads.sh: thin or voxelize not built in $GB_BIN"
-    exit 1
-fi
 if ! /usr/bin/time -v true >/dev/null 2>&1; then
     echo "thin_threads.sh: needs GNU time (/usr/bin/time -v)"
     exit 1
 fi
-
-# field NAME FILE: the value after "NAME" in thin --stats or time -v output.
-field() {
-    sed -n "s/^[[:space:]]*$1[[:space:]:]*//p" "$2" | head -n 1
-}
 
 echo "thin -j 1 against -j 2, alternated; load average at start:" \
     "$(cut -d ' ' -f 1-3 /proc/loadavg 2>/dev/null)"
@@ -59,10 +47,10 @@ for case in $THIN_THREADS_CASES; do
             wall=$(echo "$start $end" | awk '{ printf "%.2f", $2 - $1 }')
             cpu=$(awk '/User time|System time/ { s += $NF } END { printf "%.2f", s }' "$dir/time")
             # "maps A, collapse B, graph C, nearest D" and "skeleton E, nearest F"
-            phases=$(field seconds "$dir/stats" | tr -d ',' |
-                awk '{ print $2, $4, $6, $8 }')
-            skeleton=$(field "cpu seconds" "$dir/stats" | sed -n 's/^skeleton \([0-9.]*\),.*/\1/p')
-            shared=$(field iterations "$dir/stats" | sed -n 's/.*(\([0-9]*\) on all threads).*/\1/p')
+            phases=$(value seconds "$dir/stats" | tr -d ',' | awk '{ print $2, $4, $6, $8 }')
+            skeleton=$(value "cpu seconds" "$dir/stats" |
+                sed -n 's/^ *skeleton \([0-9.]*\),.*/\1/p')
+            shared=$(value iterations "$dir/stats" | sed -n 's/.*(\([0-9]*\) on all threads).*/\1/p')
             # shellcheck disable=SC2086
             printf '%-18s %5s %3s %8s %8s %8s %9s %8s %8s %13s %8s\n' "$name" "$res" "$j" \
                 "$wall" "$cpu" $phases "$skeleton" "$shared"

@@ -64,6 +64,13 @@ HOT size_t bucket_of(const gb_collapse *collapse, size_t cell)
            ((chunk >> 1) & (size_t)(collapse->thread_count - 1));
 }
 
+/* A worker's list of a substep and bucket: 2 * thread_count buckets a
+ * substep. */
+HOT size_t list_index(const gb_collapse *collapse, int substep, size_t bucket)
+{
+    return (size_t)substep * 2 * (size_t)collapse->thread_count + bucket;
+}
+
 /* The cell may hold the g (of that kind) of a pair the substep of that
  * kind and direction removes: examined there, in this iteration if that
  * substep is still to come, else in the next. */
@@ -71,7 +78,7 @@ HOT gb_result list_candidate(gb_collapse_worker *worker, size_t cell, int kind, 
 {
     const gb_collapse *collapse = worker->collapse;
     int substep = GB_COLLAPSE_KINDS * direction + kind;
-    size_t list = (size_t)substep * (size_t)collapse->bucket_count + bucket_of(collapse, cell);
+    size_t list = list_index(collapse, substep, bucket_of(collapse, cell));
     return gb_cell_list_push(substep > worker->substep ? &worker->border[list]
                                                        : &worker->pending[list],
                              cell, &worker->error);
@@ -101,7 +108,7 @@ gb_result gb_collapse_reconsider(gb_collapse *collapse, size_t cell, gb_error *e
 
 static size_t list_count(const gb_collapse *collapse)
 {
-    return (size_t)GB_COLLAPSE_SUBSTEPS * (size_t)collapse->bucket_count;
+    return list_index(collapse, GB_COLLAPSE_SUBSTEPS, 0);
 }
 
 static void free_worker(const gb_collapse *collapse, gb_collapse_worker *worker)
@@ -139,7 +146,6 @@ gb_result gb_collapse_init(gb_collapse *collapse, gb_cubical_complex *complex,
     while (2 * collapse->thread_count <= thread_count &&
            2 * collapse->thread_count <= GB_COLLAPSE_MAX_THREADS)
         collapse->thread_count *= 2;
-    collapse->bucket_count = 2 * collapse->thread_count;
     collapse->parallel_cells = GB_COLLAPSE_PARALLEL_CELLS;
     while (((size_t)1 << collapse->chunk_shift) < CHUNK_PLANES * complex->step[2])
         ++collapse->chunk_shift;
@@ -500,8 +506,8 @@ HOT gb_result find_pairs(gb_collapse_worker *worker, substep s, int first, int c
     for (int parity = 0; parity < 2; ++parity) {
         worker->pairs[parity].count = 0;
         for (int owner = first; owner < first + count; ++owner) {
-            size_t list = (size_t)worker->substep * (size_t)collapse->bucket_count +
-                          (size_t)(parity * collapse->thread_count + owner);
+            size_t list = list_index(collapse, worker->substep,
+                                     (size_t)(parity * collapse->thread_count + owner));
             for (int t = 0; t < collapse->thread_count; ++t) {
                 const gb_cell_list *cells = &collapse->workers[t].border[list];
                 worker->cells_examined += cells->count;
@@ -535,10 +541,8 @@ HOT gb_result remove_pairs(gb_collapse_worker *worker, substep s, const gb_pair_
 static int any_listed(const gb_collapse *collapse, int substep)
 {
     for (int t = 0; t < collapse->thread_count; ++t)
-        for (int bucket = 0; bucket < collapse->bucket_count; ++bucket)
-            if (collapse->workers[t]
-                    .border[(size_t)substep * (size_t)collapse->bucket_count + (size_t)bucket]
-                    .count)
+        for (size_t bucket = 0; bucket < 2 * (size_t)collapse->thread_count; ++bucket)
+            if (collapse->workers[t].border[list_index(collapse, substep, bucket)].count)
                 return 1;
     return 0;
 }

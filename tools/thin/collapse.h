@@ -72,7 +72,8 @@ enum {
 /* What one thread of the collapse owns. */
 typedef struct gb_collapse_worker {
     struct gb_collapse *collapse; /* the one it works for */
-    /* per substep and bucket (substep * bucket_count + bucket): cells that
+    /* per substep and bucket (a chunk's parity, then its thread: 2 *
+     * thread_count buckets a substep; collapse.c's list_index): cells that
      * may hold the g of a pair the substep removes, examined in this
      * iteration (border) or the next (pending); a cell may be listed twice,
      * and by two threads */
@@ -94,7 +95,6 @@ typedef struct gb_collapse {
     gb_collapse_worker *workers;
     int thread_count;           /* workers: a power of two, at most
                                    GB_COLLAPSE_MAX_THREADS */
-    int bucket_count;           /* 2 * thread_count: a chunk's parity and thread */
     int chunk_shift;            /* a cell's chunk is cell >> chunk_shift */
     size_t parallel_cells;      /* cells listed from which an iteration is shared
                                    (GB_COLLAPSE_PARALLEL_CELLS; tests lower it) */
