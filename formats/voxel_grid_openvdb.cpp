@@ -378,22 +378,40 @@ VoxelGrids build_voxel_grids(const gb_voxel_grid *grid, bool release)
 
 // Calls visit(index, value) for every active voxel and every voxel of every
 // active tile; returns false (without visiting further) at the first one
-// outside the frame.
+// outside the frame. The tiles above the leaves are walked by the tree's
+// value iterator, the leaves one by one, each voxel found by its offset in
+// the leaf (x * 64 + y * 8 + z): the value iterator over 132 M voxels (the
+// Cornell box at 512) took 1.3 s of thin's 4.4 s read, a box and a bounds
+// test per voxel.
 template <typename GridType, typename Visit>
 bool for_each_active_voxel(const GridType &grid, const gb_voxel_grid *frame, Visit visit)
 {
     openvdb::CoordBBox frame_box(openvdb::Coord(0, 0, 0),
                                  openvdb::Coord(frame->size[0] - 1, frame->size[1] - 1,
                                                 frame->size[2] - 1));
-    for (auto it = grid.cbeginValueOn(); it; ++it) {
+    auto tile = grid.cbeginValueOn();
+    tile.setMaxDepth(decltype(tile)::LEAF_DEPTH - 1);
+    for (; tile; ++tile) {
         openvdb::CoordBBox box;
-        it.getBoundingBox(box);
+        tile.getBoundingBox(box);
         if (!frame_box.isInside(box))
             return false;
         for (int k = box.min().z(); k <= box.max().z(); ++k)
             for (int j = box.min().y(); j <= box.max().y(); ++j)
                 for (int i = box.min().x(); i <= box.max().x(); ++i)
-                    visit(gb_voxel_index(frame, i, j, k), *it);
+                    visit(gb_voxel_index(frame, i, j, k), *tile);
+    }
+    for (auto leaf = grid.tree().cbeginLeaf(); leaf; ++leaf) {
+        const openvdb::Coord origin = leaf->origin();
+        bool whole = frame_box.isInside(leaf->getNodeBoundingBox());
+        for (auto voxel = leaf->cbeginValueOn(); voxel; ++voxel) {
+            openvdb::Index n = voxel.pos();
+            int i = origin.x() + (int)(n >> 6), j = origin.y() + (int)((n >> 3) & 7),
+                k = origin.z() + (int)(n & 7);
+            if (!whole && !frame_box.isInside(openvdb::Coord(i, j, k)))
+                return false;
+            visit(gb_voxel_index(frame, i, j, k), *voxel);
+        }
     }
     return true;
 }

@@ -309,6 +309,62 @@ static void test_bad_files(void)
     gb_voxel_grid_free(&grid);
 }
 
+/* The x of every grid's grid_size (a vec3i after its name) set to nx, and
+ * the checksum made again: the grids then hold voxels past their frame.
+ * Returns the grids changed. */
+static int shrink_grid_size_x(unsigned char *bytes, size_t size, int32_t nx)
+{
+    static const char name[] = "grid_size", type[] = "vec3i";
+    int changed = 0;
+    for (size_t at = 0; at + sizeof name + 4 + 5 + 4 + 4 <= size; ++at) {
+        if (memcmp(bytes + at, name, sizeof name - 1) != 0)
+            continue;
+        unsigned char *value = bytes + at + sizeof name - 1;
+        if (memcmp(value + 4, type, sizeof type - 1) != 0)
+            continue;
+        value += 4 + (sizeof type - 1) + 4;    /* the type, the value's size */
+        for (int b = 0; b < 4; ++b)
+            value[b] = (unsigned char)((uint32_t)nx >> (8 * b));
+        ++changed;
+    }
+    char uuid[37];
+    if (gb_voxel_file_checksum(bytes, size, uuid))
+        memcpy(bytes + 21, uuid, 36);
+    return changed;
+}
+
+/* Voxels past grid_size: in a leaf that the frame cuts (x 12..15 of the
+ * leaf at 8), and in a leaf wholly outside (x 16..19), in the surface and
+ * in the empty and distance grids. */
+static void test_voxels_outside(void)
+{
+    gb_voxel_grid grid, read = {0};
+    gb_error error;
+    voxel_grid_make(&grid, 20, 9, 3);
+    grid.voxel_size = 0.125;
+    voxel_grid_fill(&grid, plane_distance);
+    const char *whole = scratch_path("outside.vdb");
+    CHECK_EQ_INT(gb_voxel_grid_write(whole, &grid, &error), GB_OK, "a 20 x 9 x 3 grid is written");
+    size_t size = 0;
+    unsigned char *bytes = scratch_read(whole, &size);
+    static const int32_t widths[2] = {12, 16};
+    for (int w = 0; bytes && w < 2; ++w) {
+        unsigned char *copy = malloc(size);
+        memcpy(copy, bytes, size);
+        CHECK_EQ_INT(shrink_grid_size_x(copy, size, widths[w]), 3,
+                     "the grid_size of the three grids is found");
+        scratch_write(whole, copy, size);
+        char label[96];
+        snprintf(label, sizeof label, "grid_size x %d < the voxels' 20: refused", widths[w]);
+        CHECK_EQ_INT(gb_voxel_grid_read_surface(whole, &read, &error), GB_ERROR_FORMAT, label);
+        CHECK(strstr(error.message, "has voxels outside its grid_size") != NULL, "... saying so");
+        free(copy);
+    }
+    unlink(whole);
+    free(bytes);
+    gb_voxel_grid_free(&grid);
+}
+
 static void test_atomic_write(void)
 {
     gb_voxel_grid grid;
@@ -355,6 +411,7 @@ int main(void)
     test_int32_round_trip();
     test_int32_write_and_free();
     test_bad_files();
+    test_voxels_outside();
     test_atomic_write();
     scratch_remove();
     return tap_done();
