@@ -526,22 +526,39 @@ static void check_nearest_ways(const char *name, const gb_voxel_grid *g, int swe
         cells[n] = (uint32_t)gb_cell_index(&complex, c[0] + 1, c[1] + 1, c[2] + 1);
     }
     size_t voxels = (size_t)g->size[0] * g->size[1] * g->size[2];
-    int same = 1;
-    for (int threads = 1; threads <= 5; ++threads) {
-        gb_nearest_options options = {sweep_pairs, threads, NULL, NULL};
-        int32_t *nearest = NULL;
-        same &= !gb_empty_voxels_of(g, &empty, &error) &&
-                !gb_nearest_node(g, &empty, &complex, cells, o.skeleton.node_count, &options,
-                                 &nearest, &error) &&
-                !memcmp(nearest, o.nearest, voxels * sizeof *nearest);
-        free(nearest);
-        gb_empty_voxels_free(&empty);
-    }
+    /* Dijkstra alone on one slab: the sweeps' own answer is not the reference */
+    gb_nearest_options alone = {0, 1, NULL, NULL};
+    int32_t *dijkstra = NULL;
+    int same = !gb_empty_voxels_of(g, &empty, &error) &&
+               !gb_nearest_node(g, &empty, &complex, cells, o.skeleton.node_count, &alone,
+                                &dijkstra, &error) &&
+               !memcmp(dijkstra, o.nearest, voxels * sizeof *dijkstra);
+    gb_empty_voxels_free(&empty);
+    int swept = 1;
+    const int pair_counts[2] = {sweep_pairs, GB_NEAREST_SWEEP_PAIRS};
+    for (int threads = 1; threads <= 5; ++threads)
+        for (int p = 0; p < 2; ++p) {
+            int pairs = pair_counts[p];
+            gb_nearest_options options = {pairs, threads, NULL, NULL};
+            int32_t *nearest = NULL;
+            int equal = dijkstra && !gb_empty_voxels_of(g, &empty, &error) &&
+                        !gb_nearest_node(g, &empty, &complex, cells, o.skeleton.node_count,
+                                         &options, &nearest, &error) &&
+                        !memcmp(nearest, dijkstra, voxels * sizeof *nearest);
+            (p == 0 ? &same : &swept)[0] &= equal;
+            free(nearest);
+            gb_empty_voxels_free(&empty);
+        }
     char what[160];
     snprintf(what, sizeof what,
-             "%s: Dijkstra on 1..5 slabs (after %d sweep pairs) gives the sweeps' grid", name,
-             sweep_pairs);
+             "%s: Dijkstra on 1..5 slabs (after %d sweep pairs) and thin give one-slab Dijkstra's grid",
+             name, sweep_pairs);
     CHECK(same, what);
+    snprintf(what, sizeof what,
+             "%s: up to %d sweep pairs on 1..5 threads give one-slab Dijkstra's grid", name,
+             GB_NEAREST_SWEEP_PAIRS);
+    CHECK(swept, what);
+    free(dijkstra);
     free(cells);
     gb_cubical_complex_free(&complex);
     free_outcome(&o);

@@ -14,12 +14,14 @@
  * improves anything. A thread writes and reads only cells of its slab. */
 #include "nearest_node.h"
 
+#include <sched.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "array_reserve.h"
 #include "cell_list.h"
 #include "huge_pages.h"
+#include "thread_team.h"
 #include "threads.h"
 
 enum {
@@ -27,6 +29,7 @@ enum {
     LONGEST_STEP = 1732,
     SEED_LENGTH = 866,          /* corner to voxel centre: sqrt(3)/2 voxel */
     MAX_SLABS = 64,
+    SWEEP_THREADS_MAX = 8,      /* a sweep's planes go to at most this many */
 };
 
 /* A cell's state in 48 bits: distance (thousandths of a voxel) in the high
@@ -160,18 +163,26 @@ static size_t mark_empty_cells(geodesic *g, const gb_voxel_grid *grid,
 /* ---- raster sweeps ---- */
 
 /* Sweeps look at a row of cells (fixed y and z) only when a row it reads
- * from changed since it was last swept in that direction: ticks count the
- * rows swept, changed[row] and swept[direction][row] hold ticks. */
+ * from changed since it was last swept in that direction: changed[row] and
+ * swept[direction][row] hold ticks, a row's place in the order of all the
+ * rows of all the sweeps (first_tick of its sweep + its place in it).
+ *
+ * The threads of a team share a sweep: thread t takes the planes (fixed z)
+ * t, t + T, ... of the sweep's order, and before each row waits for the
+ * plane before it to have swept the rows this one reads (the layer before:
+ * the row beside it and the next in the sweep's order). Each cell then
+ * reads what it would read in one thread's sweep, so every sweep writes the
+ * same states as on one thread, and the ticks are the same. */
 typedef struct sweeper {
     geodesic *g;
-    size_t rows;                /* size[1] * size[2] */
-    uint64_t *changed;          /* per row; the one allocation of the three */
-    uint64_t *swept[2];         /* per row, forward and backward */
-    uint64_t tick;
-    /* a row's work space, size[0] states each: the least of its two face
-     * neighbours beside the row (the layer before, the row before), of its
-     * two diagonal ones (the layer before, rows before and after), and what
-     * those 12 offer each cell */
+    uint64_t *changed;          /* per row, shared */
+    uint64_t *swept[2];         /* per row, forward and backward, shared */
+    uint64_t *plane_done;       /* per plane of a sweep's order: (sweep number
+                                   + 1) << 32 | its rows swept, shared */
+    /* the thread's work space for a row, size[0] states each: the least of
+     * its two face neighbours beside the row (the layer before, the row
+     * before), of its two diagonal ones (the layer before, rows before and
+     * after), and what those 12 offer each cell */
     uint64_t *face, *diagonal, *offered, *read;
 } sweeper;
 
@@ -222,7 +233,7 @@ static void least_of_rows(const geodesic *g, size_t first, size_t count, ptrdiff
  * 1 straight across, sqrt 2 one cell along the row; a diagonal one sqrt 2
  * and sqrt 3. Then the cells in order, each with the one before it in the
  * row. Returns whether anything changed. */
-static int sweep_row(sweeper *w, size_t first, size_t count, int backward)
+static int sweep_row(const sweeper *w, size_t first, size_t count, int backward)
 {
     geodesic *g = w->g;
     const size_t *step = g->complex->step;
@@ -262,65 +273,122 @@ static int sweep_row(sweeper *w, size_t first, size_t count, int backward)
     return changed;
 }
 
-/* One sweep over the rows holding voxels (y, z in 1 .. size-2), forward or
- * backward. Returns whether anything changed. */
-static int sweep(sweeper *w, int backward)
+/* Waits until the plane's word says rows of sweep number have been swept
+ * (the other thread runs a few microseconds a row: yield, do not sleep). */
+static void wait_for_rows(const uint64_t *done, uint64_t number, uint32_t rows)
+{
+    uint64_t wanted = (number + 1) << 32 | rows;
+    while (__atomic_load_n(done, __ATOMIC_ACQUIRE) < wanted)
+        sched_yield();
+}
+
+/* Sweep number (forward when even) over the thread's planes of the rows
+ * holding voxels (y, z in 1 .. size-2). Returns whether it changed
+ * anything. */
+static int sweep_planes(const sweeper *w, uint64_t number, int thread, int thread_count)
 {
     const gb_cubical_complex *c = w->g->complex;
-    int32_t ny = c->size[1], nz = c->size[2], rows_y = ny - 3, rows_z = nz - 3;
-    size_t length = (size_t)c->size[0] - 3;
+    int backward = (int)(number & 1);
+    int32_t ny = c->size[1], rows_y = ny - 3, rows_z = c->size[2] - 3;
+    if (rows_y <= 0 || rows_z <= 0)
+        return 0;
+    size_t length = (size_t)c->size[0] - 3, rows = (size_t)rows_y * (size_t)rows_z;
+    uint64_t first_tick = 2 + number * rows;    /* above the seeds' 1 */
     int changed = 0;
-    for (int32_t n = 0; n < rows_y * rows_z; ++n) {
-        int32_t m = backward ? rows_y * rows_z - 1 - n : n;
-        int32_t y = 1 + m % rows_y, z = 1 + m / rows_y;
-        if (!row_is_stale(w, y, z, backward))
-            continue;
-        size_t row = (size_t)y + (size_t)ny * (size_t)z;
-        w->swept[backward][row] = ++w->tick;
-        if (sweep_row(w, gb_cell_index(c, 1, y, z), length, backward)) {
-            w->changed[row] = w->tick; /* stale for the rows reading it, not itself */
-            changed = 1;
+    for (int32_t p = thread; p < rows_z; p += thread_count)
+        for (int32_t i = 0; i < rows_y; ++i) {
+            if (p > 0)
+                wait_for_rows(&w->plane_done[p - 1], number,
+                              (uint32_t)(i + 2 < rows_y ? i + 2 : rows_y));
+            size_t n = (size_t)p * (size_t)rows_y + (size_t)i;
+            size_t m = backward ? rows - 1 - n : n;
+            int32_t y = 1 + (int32_t)(m % (size_t)rows_y), z = 1 + (int32_t)(m / (size_t)rows_y);
+            size_t row = (size_t)y + (size_t)ny * (size_t)z;
+            if (row_is_stale(w, y, z, backward)) {
+                w->swept[backward][row] = first_tick + n;
+                if (sweep_row(w, gb_cell_index(c, 1, y, z), length, backward)) {
+                    w->changed[row] = first_tick + n; /* stale for the rows reading it */
+                    changed = 1;
+                }
+            }
+            __atomic_store_n(&w->plane_done[p], (number + 1) << 32 | (uint64_t)(i + 1),
+                             __ATOMIC_RELEASE);
         }
-    }
     return changed;
 }
 
+/* The sweeps of a team (sweep_on_team), and what thread 0 tells the others. */
+typedef struct sweep_run {
+    sweeper shared;             /* its work space is each thread's own */
+    uint64_t *work;             /* 4 rows of states a thread */
+    size_t width;
+    int pairs;
+    int changed[SWEEP_THREADS_MAX];
+    int settled, stop;
+    gb_progress_callback progress;
+    void *progress_user;
+} sweep_run;
+
+/* Pairs of sweeps until a pair changes nothing (settled) or pairs are done. */
+static void sweep_on_team(void *context, gb_thread_team *team, int thread, int thread_count)
+{
+    sweep_run *run = context;
+    sweeper w = run->shared;
+    w.face = run->work + 4 * run->width * (size_t)thread;
+    w.diagonal = w.face + run->width;
+    w.offered = w.diagonal + run->width;
+    w.read = w.offered + run->width;
+    for (int pair = 0; pair < run->pairs && !run->stop; ++pair) {
+        int changed = sweep_planes(&w, 2 * (uint64_t)pair, thread, thread_count);
+        gb_thread_team_wait(team);
+        changed |= sweep_planes(&w, 2 * (uint64_t)pair + 1, thread, thread_count);
+        run->changed[thread] = changed;
+        gb_thread_team_wait(team);
+        if (thread == 0) {
+            int any = 0;
+            for (int t = 0; t < thread_count; ++t)
+                any |= run->changed[t];
+            run->settled = !any;
+            run->stop = run->settled ||
+                        (run->progress && run->progress(run->progress_user,
+                                                        (pair + 1.0) / (run->pairs + 1.0)));
+        }
+        gb_thread_team_wait(team);
+    }
+}
+
 /* Sweeps until a forward and backward pair changes nothing (*settled = 1),
- * or gives up after pairs pairs (*settled = 0). */
-static gb_result sweep_to_fixed_point(geodesic *g, int pairs, int *settled,
+ * or gives up after pairs pairs (*settled = 0), on threads. */
+static gb_result sweep_to_fixed_point(geodesic *g, int pairs, int threads, int *settled,
                                       gb_progress_callback progress, void *progress_user,
                                       gb_error *error)
 {
     *settled = 0;
-    sweeper w = {.g = g};
-    w.rows = (size_t)g->complex->size[1] * (size_t)g->complex->size[2];
-    size_t width = (size_t)g->complex->size[0];
-    /* one allocation, zeroed: changed, then swept forward and backward, then
-     * the row's work space */
-    w.changed = calloc(3 * w.rows + 4 * width, sizeof *w.changed);
-    gb_result result = GB_OK;
-    if (!w.changed) {
-        result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "nearest node: out of memory");
-    } else {
-        w.swept[0] = w.changed + w.rows;
-        w.swept[1] = w.changed + 2 * w.rows;
-        w.face = w.changed + 3 * w.rows;
-        w.diagonal = w.face + width;
-        w.offered = w.diagonal + width;
-        w.read = w.offered + width;
-    }
-    for (size_t row = 0; !result && row < w.rows; ++row)
-        w.changed[row] = 1; /* the seeds */
-    w.tick = 1;
-    for (int pair = 0; !result && pair < pairs && !*settled; ++pair) {
-        int changed = sweep(&w, 0);
-        changed |= sweep(&w, 1);
-        *settled = !changed;
-        if (progress && progress(progress_user, (pair + 1.0) / (pairs + 1.0)))
-            result = gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
-    }
-    free(w.changed);
-    return result;
+    const gb_cubical_complex *c = g->complex;
+    size_t rows = (size_t)c->size[1] * (size_t)c->size[2];
+    int32_t planes = c->size[2] > 3 ? c->size[2] - 3 : 0;
+    threads = threads < 1 ? 1 : threads > SWEEP_THREADS_MAX ? SWEEP_THREADS_MAX : threads;
+    threads = threads > planes ? (planes > 1 ? planes : 1) : threads;
+    sweep_run run = {.shared.g = g, .width = (size_t)c->size[0], .pairs = pairs,
+                     .progress = progress, .progress_user = progress_user};
+    /* one allocation, zeroed: changed, swept forward and backward, the
+     * planes' words, then the threads' work rows */
+    run.shared.changed = calloc(3 * rows + (size_t)planes + 4 * run.width * (size_t)threads,
+                                sizeof *run.shared.changed);
+    if (!run.shared.changed)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "nearest node: out of memory");
+    run.shared.swept[0] = run.shared.changed + rows;
+    run.shared.swept[1] = run.shared.changed + 2 * rows;
+    run.shared.plane_done = run.shared.changed + 3 * rows;
+    run.work = run.shared.plane_done + planes;
+    for (size_t row = 0; row < rows; ++row)
+        run.shared.changed[row] = 1; /* the seeds */
+    gb_thread_team_run(sweep_on_team, &run, threads);
+    free(run.shared.changed);
+    *settled = run.settled;
+    if (run.stop && !run.settled)
+        return gb_fail(error, GB_ERROR_INTERRUPTED, "interrupted");
+    return GB_OK;
 }
 
 static void seed_states(geodesic *g, const uint32_t *node_cells, uint32_t node_count)
@@ -605,8 +673,8 @@ gb_result gb_nearest_node(const gb_voxel_grid *grid, const gb_empty_voxels *empt
     mark_empty_cells(&g, grid, empty);
     seed_states(&g, node_cells, node_count);
     int settled = 0;
-    gb_result result = sweep_to_fixed_point(&g, options->sweep_pairs, &settled, progress,
-                                            progress_user, error);
+    gb_result result = sweep_to_fixed_point(&g, options->sweep_pairs, threads, &settled,
+                                            progress, progress_user, error);
     if (!result && !settled) {
         size_t empty_count = mark_empty_cells(&g, grid, empty);
         result = dijkstra(&g, threads, node_cells, node_count, empty_count, progress,

@@ -35,7 +35,8 @@ enum { GB_NEAREST_SWEEP_PAIRS = 8 };
 typedef struct gb_nearest_options {
     int sweep_pairs;            /* raster sweep pairs before Dijkstra takes over
                                    (GB_NEAREST_SWEEP_PAIRS; 0: Dijkstra only) */
-    int threads;                /* for Dijkstra: slabs along z, 1..64 */
+    int threads;                /* the sweeps' planes go to up to 8, Dijkstra's
+                                   slabs along z to up to 64 */
     gb_progress_callback progress;  /* may be NULL */
     void *progress_user;
 } gb_nearest_options;
