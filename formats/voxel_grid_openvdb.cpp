@@ -380,9 +380,9 @@ VoxelGrids build_voxel_grids(const gb_voxel_grid *grid, bool release)
 // active tile; returns false (without visiting further) at the first one
 // outside the frame. The tiles above the leaves are walked by the tree's
 // value iterator, the leaves one by one, each voxel found by its offset in
-// the leaf (x * 64 + y * 8 + z): the value iterator over 132 M voxels (the
-// Cornell box at 512) took 1.3 s of thin's 4.4 s read, a box and a bounds
-// test per voxel.
+// the leaf (x * 64 + y * 8 + z). The value iterator alone made a box and a
+// bounds test per voxel: gb_voxel_grid_read_surface of the Cornell box at
+// 512 (132 M empty voxels) took 4.5-4.7 s with it, 3.6 s without.
 template <typename GridType, typename Visit>
 bool for_each_active_voxel(const GridType &grid, const gb_voxel_grid *frame, Visit visit)
 {

@@ -7,7 +7,8 @@
  * sweeps (forward over the cells with their 13 earlier neighbours, then
  * backward with the 13 later ones, as a chamfer distance transform) until a
  * pair of sweeps changes nothing: memory is read in order, and indoor
- * scenes settle in 3 or 4 pairs. A volume that needs more (a maze) is done
+ * scenes settle in 3 or 4 pairs; the threads share each sweep, a plane
+ * each in turn (see "raster sweeps" below). A volume that needs more (a maze) is done
  * again by Dijkstra's algorithm, on several threads: the lattice is cut into
  * slabs along z, each thread runs Dijkstra in its own slab and sends the
  * steps that leave it to the slab they enter; rounds go on until no step
