@@ -6,6 +6,7 @@
 #            frame, for a bumpy sphere on a ground plane (IMPLICIT_VERTICES,
 #            default 3400, the paper's monster has 3378) under a white
 #            environment, deformed each frame, at 6x8x8, 6x12x12, 6x16x16;
+#            then the same with the paper's rules alone (IMPLICIT_PAPER_RULES);
 #   scaling: the frame against the vertex count (IMPLICIT_SIZES, 1k-50k) at
 #            6x8x8, and the exponent p of a least-squares fit t ~ N^p (the
 #            paper: about O(N log N); over the same range N log N has the
@@ -58,6 +59,17 @@ echo "| bins | vertices | elements | update | create links | refine & push | ill
 echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 "$helper" table "$IMPLICIT_VERTICES" "$IMPLICIT_FRAMES" 1 8 12 16 >"$out" 2>"$err" || { cat "$err" >&2; exit 1; }
 percent_table "$out"
+
+echo
+echo "The same model with the paper's rules alone (IMPLICIT_PAPER_RULES=1: subdivide at a whole bin," \
+    "a link stored in the bin of the other's centre only), same run: what the runtime's additions cost"
+echo
+echo "| bins | vertices | elements | update | create links | refine & push | illumination | total | wall | once: steps 1-2 |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+IMPLICIT_PAPER_RULES=1 "$helper" table "$IMPLICIT_VERTICES" "$IMPLICIT_FRAMES" 1 8 12 16 \
+    >"$out.paper" 2>"$err" || { cat "$err" >&2; exit 1; }
+percent_table "$out.paper"
+rm -f "$out.paper"
 
 echo
 echo "CreateHierarchicalLinks on 1 and 2 threads (IMPLICIT_LINK_THREADS), same model, same run:" \

@@ -25,7 +25,8 @@
  *
  * The gathering runs on 2 threads (implicit_bounce.c), the rest on one
  * (CreateHierarchicalLinks on IMPLICIT_LINK_THREADS, default 1: the
- * paper's one CPU): on a loaded machine the CPU times are the steadier
+ * paper's one CPU; IMPLICIT_PAPER_RULES=1: the paper's rules alone, see
+ * paper_rules below): on a loaded machine the CPU times are the steadier
  * figures; on an idle 2-core one the gathering's wall time is about half
  * its CPU time. The last column is CreateHierarchicalLinks' wall ms.
  * The seconds of the whole run go to stderr.
@@ -204,6 +205,15 @@ static int link_threads(void)
     return text && atoi(text) > 0 ? atoi(text) : 1;
 }
 
+/* IMPLICIT_PAPER_RULES=1: the links by 4.2.2's rules alone
+ * (gb_implicit_link_options.paper_rules), to measure what the runtime's
+ * additions cost. */
+static int paper_rules(void)
+{
+    const char *text = getenv("IMPLICIT_PAPER_RULES");
+    return text && atoi(text) == 1;
+}
+
 static gb_result run(const gb_scene *scene, float element_size, float element_cell, int bins_n,
                      int frames, int bounces, int deforming, gb_error *error)
 {
@@ -225,7 +235,8 @@ static gb_result run(const gb_scene *scene, float element_size, float element_ce
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit_steps: out of memory");
     step_times sum = {0};
     gb_implicit_link_options options = {.hierarchical = 1, .lights = scene,
-                                        .thread_count = link_threads()};
+                                        .thread_count = link_threads(),
+                                        .paper_rules = paper_rules()};
     for (int f = 0; f < frames && result == GB_OK; ++f) {
         if (deforming)
             deform(&m, rest, f);

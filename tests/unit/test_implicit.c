@@ -303,6 +303,56 @@ static int same_links(const gb_implicit_links *a, const gb_implicit_links *b, ui
            !memcmp(a->depth, b->depth, depths * sizeof *a->depth);
 }
 
+/* The paper's rules alone (options.paper_rules, for bench/implicit_steps):
+ * every pair of elements of a closed box (brute force, so each element's
+ * bins hold only its own links) is stored in the bin of the other's centre
+ * alone, so each filled bin holds a node whose centre direction falls in
+ * it; the runtime's discs also fill bins around that one. */
+static int bins_hold_centres(const gb_implicit_model *m, const gb_implicit_bins *bins,
+                             const uint32_t *targets)
+{
+    for (uint32_t e = 0; e < m->element_count; ++e)
+        for (uint32_t b = 0; b < bins->count; ++b) {
+            uint32_t n = targets[(size_t)e * bins->count + b];
+            if (n == GB_IMPLICIT_NO_NODE)
+                continue;
+            float d[3];
+            for (int k = 0; k < 3; ++k)
+                d[k] = m->nodes[n].position[k] - m->nodes[e].position[k];
+            if (gb_implicit_bin(bins->n, d) != (int)b)
+                return 0;
+        }
+    return 1;
+}
+
+static void test_paper_rules(void)
+{
+    gb_scene scene;
+    closed_box(&scene);
+    gb_implicit_model m;
+    gb_implicit_bins bins;
+    gb_error error;
+    int ok = gb_implicit_model_create(&scene, 0.1f, RUNTIME_CELL, &m, &error) == GB_OK &&
+             gb_implicit_bins_create(8, &bins, &error) == GB_OK;
+    int held[2] = {0, 0};
+    for (int paper = 0; paper < 2 && ok; ++paper) {
+        gb_implicit_link_options options = {.hierarchical = 0, .paper_rules = paper};
+        gb_implicit_links links;
+        uint32_t *targets = NULL;
+        ok = gb_implicit_create_links(&m, &bins, &options, &links, &targets, &error) == GB_OK;
+        held[paper] = ok && bins_hold_centres(&m, &bins, targets);
+        free(targets);
+        if (ok)
+            gb_implicit_links_free(&links);
+    }
+    CHECK(ok, "paper's rules: links made both ways");
+    CHECK(held[1], "paper's rules: a bin holds only a node whose centre lies in it");
+    CHECK(!held[0], "... the runtime's discs also fill bins beside it");
+    gb_implicit_bins_free(&bins);
+    gb_implicit_model_free(&m);
+    gb_scene_free(&scene);
+}
+
 static void test_threads_give_same_links(void)
 {
     gb_scene scene;
@@ -1132,6 +1182,7 @@ int main(void)
     test_furnace(8);
     test_furnace(12);
     test_threads_give_same_links();
+    test_paper_rules();
     test_point_light();
     test_implicit_shadow();
     test_sky();
