@@ -9,7 +9,10 @@
 #   the error (imgdiff relative_mse) of gbview --method implicit and of
 #   gbview --method direct (direct light only) against reference --mode
 #   full (IMPLICIT_SPP samples a pixel, default 256) at IMPLICIT_SIZE
-#   (default 128x128).
+#   (default 128x128);
+#   with the paper's rules alone (gbview --paper-rules,
+#   IMPLICIT_PAPER_RULES=1): the links' wall seconds on 2 threads and the
+#   error against the same reference.
 # IMPLICIT_SCENES: the scene files (default scenes/shared/{sponza,
 # staircase,living-room}.scene). Prints a Markdown table on stdout.
 #
@@ -25,14 +28,19 @@ echo "implicit visibility on large scenes; $(nproc) cores, load $(cut -d' ' -f1-
     "$(date -u +%Y-%m-%d)"
 echo
 echo "| scene | vertices | elements | create links (s) | on 2 threads (wall s) | refine & push (s) | gbview peak memory (MiB) |" \
-    "implicit: relative MSE | direct only: relative MSE |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+    "implicit: relative MSE | direct only: relative MSE | paper's rules: on 2 threads (wall s) | paper's rules: relative MSE |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for scene in $IMPLICIT_SCENES; do
     name=$(basename "$scene" .scene)
     "$helper" scene "$scene" 1 1 12 >"$dir/steps" 2>"$dir/err" || { cat "$dir/err" >&2; exit 1; }
     IMPLICIT_LINK_THREADS=2 "$helper" scene "$scene" 1 1 12 >"$dir/steps2" 2>"$dir/err" ||
         { cat "$dir/err" >&2; exit 1; }
     threaded=$(awk 'NR == 2 { print $NF / 1000 }' "$dir/steps2")
+    IMPLICIT_PAPER_RULES=1 IMPLICIT_LINK_THREADS=2 "$helper" scene "$scene" 1 1 12 \
+        >"$dir/steps_paper" 2>"$dir/err" || { cat "$dir/err" >&2; exit 1; }
+    paper_threaded=$(awk 'NR == 2 { print $NF / 1000 }' "$dir/steps_paper")
+    "$GB_BIN/gbview" --headless --quiet -m implicit --paper-rules -r "$IMPLICIT_SIZE" \
+        -o "$dir/paper.exr" "$scene" || exit 1
     /usr/bin/time -f "%M" -o "$dir/memory" "$GB_BIN/gbview" --headless --quiet -m implicit \
         -r "$IMPLICIT_SIZE" -o "$dir/implicit.exr" "$scene" || exit 1
     "$GB_BIN/gbview" --headless --quiet -m direct -r "$IMPLICIT_SIZE" -o "$dir/direct.exr" \
@@ -41,9 +49,12 @@ for scene in $IMPLICIT_SCENES; do
         -o "$dir/reference.exr" "$scene" || exit 1
     implicit=$(relative_mse "$dir/implicit.exr" "$dir/reference.exr")
     direct=$(relative_mse "$dir/direct.exr" "$dir/reference.exr")
+    paper=$(relative_mse "$dir/paper.exr" "$dir/reference.exr")
     awk -v name="$name" -v memory="$(cat "$dir/memory")" -v implicit="$implicit" \
-        -v direct="$direct" -v threaded="$threaded" 'NR == 2 {
-        printf "| %s | %s | %s | %.1f | %.1f | %.1f | %.0f | %.3f | %.3f |\n",
-            name, $2, $3, $5 / 1000, threaded, $6 / 1000, memory / 1024, implicit, direct
+        -v direct="$direct" -v threaded="$threaded" -v paper="$paper" \
+        -v paper_threaded="$paper_threaded" 'NR == 2 {
+        printf "| %s | %s | %s | %.1f | %.1f | %.1f | %.0f | %.3f | %.3f | %.1f | %.3f |\n",
+            name, $2, $3, $5 / 1000, threaded, $6 / 1000, memory / 1024, implicit, direct,
+            paper_threaded, paper
     }' "$dir/steps"
 done

@@ -36,6 +36,8 @@ typedef struct gb_method_parameters {
     int bins;                   /* implicit, flc-iv: cube-map bins per face edge (--bins) */
     int visibility_filter;      /* flc-iv: GB_FLC_IV_BILINEAR (0) or _NEAREST (--bin-filter) */
     int bounces;                /* implicit: 1 or 2 (--bounces) */
+    int paper_rules;            /* implicit: 1 for the links by the paper's rules
+                                   alone, faster and coarser (--paper-rules) */
     float flc_mu;               /* flc: mu > 1 of S_k = S0 mu^k, Eq. 17 (--mu; 2) */
     float flc_n_avg;            /* flc: N_avg of Eq. 1 (--navg; 256) */
     float flc_epsilon;          /* flc: the distance clamp epsilon, world units

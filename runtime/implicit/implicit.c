@@ -36,6 +36,7 @@ typedef struct implicit_state {
                                    front then back */
     float *environment;         /* bins.count * 3 from the scene's map, or NULL */
     int bounces;
+    int paper_rules;            /* the links by 4.2.2's rules alone (--paper-rules) */
     double build_seconds;       /* the last Update + links */
     gb_implicit_step_times times;
     GLuint position_buffer, incident_buffer, index_buffer, vertex_array;
@@ -120,7 +121,8 @@ static gb_result check_parameters(const gb_method_parameters *p, int *bins, int 
 static gb_result rebuild_links(implicit_state *s, gb_error *error)
 {
     gb_implicit_link_options options = {.hierarchical = 1, .lights = s->scene,
-                                        .environment = s->environment};
+                                        .environment = s->environment,
+                                        .paper_rules = s->paper_rules};
     gb_implicit_links links;
     double start = gb_seconds();
     gb_result result = gb_implicit_update_elements(&s->model, error);
@@ -185,6 +187,7 @@ static gb_result implicit_create(const gb_indirect_setup *setup, void **state, g
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
     s->scene = setup->scene;
     s->bounces = bounces;
+    s->paper_rules = setup->parameters && setup->parameters->paper_rules;
     result = build(s, bins, error);
     if (result == GB_OK) {
         s->vertex_incident = malloc(6 * (size_t)s->model.vertex_count * sizeof(float) + 1);
