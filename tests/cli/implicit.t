@@ -103,7 +103,16 @@ if [ -x "$reference" ]; then
     "$tool" --headless --supersample 2 --quiet "$dir/box.scene" -o "$dir/box_direct.exr"
     sky_checks "box under the sky" "$dir/box.exr" "$dir/box_ref.exr" "$dir/box_direct.exr" \
         "direct pass alone" 100 "a hundredth of the direct pass's error"
+    # --paper-rules: the links by 4.2.2's rules alone, coarser but the method
+    "$tool" --headless --method implicit --paper-rules --supersample 2 --quiet \
+        "$dir/box.scene" -o "$dir/box_paper.exr"
+    error=$(image_diff relative_mse "$dir/box_paper.exr" "$dir/box_ref.exr")
+    other=$(image_diff relative_mse "$dir/box_direct.exr" "$dir/box_ref.exr")
+    echo "# box under the sky, --paper-rules: relative MSE $error (direct pass alone: $other)"
+    ok "$(below "$error" "$(awk -v b="$other" 'BEGIN { print b / 10 }')"; echo $?)" \
+        "box under the sky, --paper-rules: a tenth of the direct pass's error"
 else
+    missing "$reference not built"
     missing "$reference not built"
     missing "$reference not built"
 fi
