@@ -55,10 +55,11 @@ typedef struct gb_implicit_link_options {
     int depths;                 /* 1: keep the depth maps (links->depth_first) */
     int thread_count;           /* for CreateHierarchicalLinks; 0: GB_IMPLICIT_LINK_THREADS.
                                    The links do not depend on it. */
-    int paper_rules;            /* 1: 4.2.2's rules alone, to measure what this
-                                   file's additions cost (bench/implicit_steps):
-                                   subdivide at a whole bin, store a link in the
-                                   bin of the other's centre only (no discs) */
+    int paper_rules;            /* 1: 4.2.2's rules alone (gbview --paper-rules,
+                                   bench/implicit_steps): subdivide at a whole
+                                   bin, store a link in the bin of the other's
+                                   centre only (no discs); faster, and leaks
+                                   where a surface is near another */
 } gb_implicit_link_options;
 
 enum { GB_IMPLICIT_LINK_THREADS = 2 };
