@@ -19,10 +19,6 @@ _Static_assert(sizeof(gb_atlas_chart) == 32, "chart record is 32 bytes");
 
 enum { ALIGNMENT = 16, SECTION_COUNT = 4 };
 
-/* How far (texels) a UV may lie outside its chart's rect: the rounding of
- * texel coordinates divided by the atlas size and multiplied back. */
-#define RECT_TOLERANCE 1e-3
-
 /* ---- header and charts ---- */
 
 static gb_result check_header(const gb_atlas_header *h, const char *path, gb_error *error)
@@ -93,10 +89,10 @@ static gb_result check_corner(const gb_atlas *atlas, uint32_t t, int corner,
     if (!(u >= 0.0 && u <= 1.0 && v >= 0.0 && v <= 1.0))
         return gb_fail(error, GB_ERROR_FORMAT, "%s: triangle %u: corner %d's UV (%g, %g) is "
                        "not in [0, 1]", path, t, corner, u, v);
-    if (x < chart->rect[0] - RECT_TOLERANCE ||
-        x > (double)chart->rect[0] + chart->rect[2] + RECT_TOLERANCE ||
-        y < chart->rect[1] - RECT_TOLERANCE ||
-        y > (double)chart->rect[1] + chart->rect[3] + RECT_TOLERANCE)
+    if (x < chart->rect[0] - GB_ATLAS_RECT_TOLERANCE ||
+        x > (double)chart->rect[0] + chart->rect[2] + GB_ATLAS_RECT_TOLERANCE ||
+        y < chart->rect[1] - GB_ATLAS_RECT_TOLERANCE ||
+        y > (double)chart->rect[1] + chart->rect[3] + GB_ATLAS_RECT_TOLERANCE)
         return gb_fail(error, GB_ERROR_FORMAT, "%s: triangle %u: corner %d at texel (%g, %g) "
                        "is outside its chart's rect", path, t, corner, x, y);
     return GB_OK;

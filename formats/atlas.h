@@ -39,6 +39,11 @@ enum {
     GB_ATLAS_MAX_SIZE = 16384,          /* texels along a side */
 };
 
+/* How far (texels) gb_atlas_check lets a UV lie outside its chart's rect:
+ * the rounding of texel coordinates divided by the atlas size and
+ * multiplied back. */
+#define GB_ATLAS_RECT_TOLERANCE 1e-3
+
 typedef struct gb_atlas_header {
     uint64_t scene_hash;        /* gb_scene.hash of the scene parameterised */
     uint32_t triangle_count;    /* the scene's */

@@ -4,7 +4,8 @@
  * by `make fuzz`). The input is copied into a 16-byte aligned buffer, as a
  * mapped file is; every UV of a parsed atlas is turned into the texel the
  * runtime would fetch and checked to lie in its chart's rect, grown by the
- * padding.
+ * padding and by the rounding the reader allows (GB_ATLAS_RECT_TOLERANCE:
+ * with no padding, a UV a thousandth of a texel outside its rect passes).
  *
  * Every payload is CRC-checked by the container, so each input is parsed as
  * it is, then again with its checksums recomputed (fix_checksums.h), which
@@ -21,16 +22,17 @@
 static float fetch_every_corner(const gb_atlas *atlas)
 {
     const gb_atlas_header *h = &atlas->header;
+    double margin = h->padding + GB_ATLAS_RECT_TOLERANCE;
     float sum = 0.0f;
     for (uint32_t t = 0; t < h->triangle_count; ++t) {
         const gb_atlas_chart *chart = &atlas->chart_records[atlas->charts[t]];
         for (int c = 0; c < 3; ++c) {
             double x = atlas->uvs[6 * (size_t)t + 2 * c] * (double)h->width;
             double y = atlas->uvs[6 * (size_t)t + 2 * c + 1] * (double)h->height;
-            if (x < (double)chart->rect[0] - h->padding ||
-                x > (double)chart->rect[0] + chart->rect[2] + h->padding ||
-                y < (double)chart->rect[1] - h->padding ||
-                y > (double)chart->rect[1] + chart->rect[3] + h->padding)
+            if (x < (double)chart->rect[0] - margin ||
+                x > (double)chart->rect[0] + chart->rect[2] + margin ||
+                y < (double)chart->rect[1] - margin ||
+                y > (double)chart->rect[1] + chart->rect[3] + margin)
                 __builtin_trap();
             sum += (float)(x + y);
         }
