@@ -43,6 +43,8 @@ echo "implicit visibility on the CPU; $(nproc) cores, load $(cut -d' ' -f1-3 /pr
 # Columns of implicit_steps: bins vertices elements update create refine
 # illuminate total cpu.
 percent_table() {
+    echo "| bins | vertices | elements | update | create links | refine & push | illumination | total | wall | once: steps 1-2 |"
+    echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     awk 'NR > 1 {
         p = $8
         printf "| 6x%sx%s | %s | %s | %.1f (%.0f %%) | %.1f (%.0f %%) | %.1f (%.0f %%) | %.1f (%.0f %%) | %.1f | %.1f | %.1f |\n",
@@ -51,23 +53,27 @@ percent_table() {
     }' "$1"
 }
 
+# Table 1's model at 6x8x8, 6x12x12 and 6x16x16 into the file $1, run with
+# the settings (VAR=VALUE) that follow.
+table_1() {
+    file=$1
+    shift
+    env "$@" "$helper" table "$IMPLICIT_VERTICES" "$IMPLICIT_FRAMES" 1 8 12 16 >"$file" 2>"$err" ||
+        { cat "$err" >&2; exit 1; }
+}
+
 echo
 echo "Table 1: bumpy sphere on a plane, ~$IMPLICIT_VERTICES vertices, 1 bounce, ms a frame" \
     "(CPU ms of each step, process time, both threads counted; wall: the frame)"
 echo
-echo "| bins | vertices | elements | update | create links | refine & push | illumination | total | wall | once: steps 1-2 |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
-"$helper" table "$IMPLICIT_VERTICES" "$IMPLICIT_FRAMES" 1 8 12 16 >"$out" 2>"$err" || { cat "$err" >&2; exit 1; }
+table_1 "$out"
 percent_table "$out"
 
 echo
 echo "The same model with the paper's rules alone (IMPLICIT_PAPER_RULES=1: subdivide at a whole bin," \
     "a link stored in the bin of the other's centre only), same run: what the runtime's additions cost"
 echo
-echo "| bins | vertices | elements | update | create links | refine & push | illumination | total | wall | once: steps 1-2 |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
-IMPLICIT_PAPER_RULES=1 "$helper" table "$IMPLICIT_VERTICES" "$IMPLICIT_FRAMES" 1 8 12 16 \
-    >"$out.paper" 2>"$err" || { cat "$err" >&2; exit 1; }
+table_1 "$out.paper" IMPLICIT_PAPER_RULES=1
 percent_table "$out.paper"
 rm -f "$out.paper"
 
@@ -77,8 +83,7 @@ echo "CreateHierarchicalLinks on 1 and 2 threads (IMPLICIT_LINK_THREADS), same m
 echo
 echo "| bins | 1 thread | 2 threads | 2 / 1 |"
 echo "|---|---:|---:|---:|"
-IMPLICIT_LINK_THREADS=2 "$helper" table "$IMPLICIT_VERTICES" "$IMPLICIT_FRAMES" 1 8 12 16 \
-    >"$out.2" 2>"$err" || { cat "$err" >&2; exit 1; }
+table_1 "$out.2" IMPLICIT_LINK_THREADS=2
 paste "$out" "$out.2" | awk 'NR > 1 { n = NF / 2
     printf "| 6x%sx%s | %.1f | %.1f | %.2f |\n", $1, $1, $n, $NF, $NF / $n }'
 rm -f "$out.2"
@@ -122,7 +127,5 @@ rm -f "$err.memory"
 echo
 echo "Cornell box (scenes/cornell, runtime element size), 1 bounce, CPU ms a frame (wall: the frame)"
 echo
-echo "| bins | vertices | elements | update | create links | refine & push | illumination | total | wall | once: steps 1-2 |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 "$helper" scene "$root/scenes/cornell/cornell.scene" "$IMPLICIT_FRAMES" 1 8 12 16 >"$out" 2>"$err" || { cat "$err" >&2; exit 1; }
 percent_table "$out"
