@@ -138,9 +138,8 @@ typedef struct linker {
                                    the i-th of count points' radius over the disc's */
     disc_frame *discs;          /* node_count, made once (disc_frames) */
     int depths;                 /* depth maps wanted (flc-iv): they only hide */
-    float split, one_way_split; /* rule 1's fractions of a bin (GB_IMPLICIT_SPLIT,
-                                   ONE_WAY_SPLIT; 1 with the paper's rules) */
-    int centre_only;            /* the paper's rules: no discs (store_disc) */
+    int paper_rules;            /* rule 1 at a whole bin, no discs
+                                   (gb_implicit_link_options.paper_rules) */
 } linker;
 
 static int is_leaf(const gb_implicit_node *node)
@@ -335,7 +334,7 @@ static pair_step pair_step_of(const linker *l, uint32_t a, uint32_t b, pair_geom
     /* front to front or back to back: a pair that is not mixed (see the top) */
     int matched = at_a & at_b;
     g->matched = matched;
-    float split = matched ? l->split : l->one_way_split;
+    float split = l->paper_rules ? 1.0f : matched ? GB_IMPLICIT_SPLIT : ONE_WAY_SPLIT;
     g->r2 = 0.0f;
     for (int k = 0; k < 3; ++k) {
         g->d[k] = nb->position[k] - na->position[k];
@@ -367,7 +366,7 @@ static void link_side(linker *l, uint32_t a, uint32_t b, const pair_geometry *g,
     /* B's centre in front of A with A's box reaching in front of B: A is
      * an element of a surface that runs on past B (under a wall), not
      * past a convex edge; B's whole disc hides, as before the shrink */
-    if (l->centre_only)
+    if (l->paper_rules)
         return;
     int mixed = facing * height_a < 0.0f &&
                 !(l->depths && g->matched && facing * height_b > 0.0f);
@@ -615,9 +614,7 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
     l.slot = allocate_slots(slots);
     l.discs = disc_frames(model);
     l.depths = options && options->depths;
-    l.centre_only = options && options->paper_rules;
-    l.split = l.centre_only ? 1.0f : GB_IMPLICIT_SPLIT;
-    l.one_way_split = l.centre_only ? 1.0f : ONE_WAY_SPLIT;
+    l.paper_rules = options && options->paper_rules;
     gb_result result = GB_OK;
     if (!l.slot || !l.discs)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
