@@ -303,6 +303,30 @@ static int same_links(const gb_implicit_links *a, const gb_implicit_links *b, ui
            !memcmp(a->depth, b->depth, depths * sizeof *a->depth);
 }
 
+/* closed_box's model at element_size with 6 x 8 x 8 bins; the caller frees
+ * it with box_model_free, whether or not it could be made. */
+typedef struct box_model {
+    gb_scene scene;
+    gb_implicit_model m;
+    gb_implicit_bins bins;
+} box_model;
+
+static int box_model_create(box_model *x, float element_size, gb_error *error)
+{
+    memset(x, 0, sizeof *x);
+    closed_box(&x->scene);
+    return gb_implicit_model_create(&x->scene, element_size, RUNTIME_CELL, &x->m, error) ==
+               GB_OK &&
+           gb_implicit_bins_create(8, &x->bins, error) == GB_OK;
+}
+
+static void box_model_free(box_model *x)
+{
+    gb_implicit_bins_free(&x->bins);
+    gb_implicit_model_free(&x->m);
+    gb_scene_free(&x->scene);
+}
+
 /* The paper's rules alone (options.paper_rules, for bench/implicit_steps):
  * every pair of elements of a closed box (brute force, so each element's
  * bins hold only its own links) is stored in the bin of the other's centre
@@ -327,20 +351,17 @@ static int bins_hold_centres(const gb_implicit_model *m, const gb_implicit_bins 
 
 static void test_paper_rules(void)
 {
-    gb_scene scene;
-    closed_box(&scene);
-    gb_implicit_model m;
-    gb_implicit_bins bins;
+    box_model x;
     gb_error error;
-    int ok = gb_implicit_model_create(&scene, 0.1f, RUNTIME_CELL, &m, &error) == GB_OK &&
-             gb_implicit_bins_create(8, &bins, &error) == GB_OK;
+    int ok = box_model_create(&x, 0.1f, &error);
     int held[2] = {0, 0};
     for (int paper = 0; paper < 2 && ok; ++paper) {
         gb_implicit_link_options options = {.hierarchical = 0, .paper_rules = paper};
         gb_implicit_links links;
         uint32_t *targets = NULL;
-        ok = gb_implicit_create_links(&m, &bins, &options, &links, &targets, &error) == GB_OK;
-        held[paper] = ok && bins_hold_centres(&m, &bins, targets);
+        ok = gb_implicit_create_links(&x.m, &x.bins, &options, &links, &targets, &error) ==
+             GB_OK;
+        held[paper] = ok && bins_hold_centres(&x.m, &x.bins, targets);
         free(targets);
         if (ok)
             gb_implicit_links_free(&links);
@@ -348,54 +369,42 @@ static void test_paper_rules(void)
     CHECK(ok, "paper's rules: links made both ways");
     CHECK(held[1], "paper's rules: a bin holds only a node whose centre lies in it");
     CHECK(!held[0], "... the runtime's discs also fill bins beside it");
-    gb_implicit_bins_free(&bins);
-    gb_implicit_model_free(&m);
-    gb_scene_free(&scene);
+    box_model_free(&x);
 }
 
 static void test_threads_give_same_links(void)
 {
-    gb_scene scene;
-    closed_box(&scene);
-    gb_implicit_model m;
-    gb_implicit_bins bins;
+    box_model x;
     gb_error error;
-    int ok = gb_implicit_model_create(&scene, 0.05f, RUNTIME_CELL, &m, &error) == GB_OK &&
-             gb_implicit_bins_create(8, &bins, &error) == GB_OK;
-    gb_implicit_links links[3];
+    int ok = box_model_create(&x, 0.05f, &error);
+    const gb_implicit_model *m = &x.m;
+    gb_implicit_links links[3] = {{0}};
     uint32_t *targets[3] = {NULL, NULL, NULL};
     const int threads[3] = {1, 2, 3};
     for (int t = 0; t < 3 && ok; ++t) {
         gb_implicit_link_options options = {.hierarchical = 1, .depths = 1,
                                             .thread_count = threads[t]};
-        ok = gb_implicit_create_links(&m, &bins, &options, &links[t], &targets[t], &error) ==
+        ok = gb_implicit_create_links(m, &x.bins, &options, &links[t], &targets[t], &error) ==
              GB_OK;
-        if (!ok)
-            break;
     }
-    if (!CHECK(ok, "threads: links made on 1, 2 and 3 threads")) {
+    if (!CHECK(ok, "threads: links made on 1, 2 and 3 threads"))
         printf("# %s\n", error.message);
-        gb_scene_free(&scene);
-        return;
-    }
-    size_t slots = (size_t)m.node_count * bins.count, filled = 0;
-    for (size_t i = 0; i < slots; ++i)
+    size_t slots = (size_t)m->node_count * x.bins.count, filled = 0;
+    for (size_t i = 0; ok && i < slots; ++i)
         filled += targets[0][i] != GB_IMPLICIT_NO_NODE;
-    printf("# threads: %u elements, %zu of %zu bins filled\n", m.element_count, filled, slots);
-    for (int t = 1; t < 3; ++t) {
+    printf("# threads: %u elements, %zu of %zu bins filled\n", m->element_count, filled, slots);
+    for (int t = 1; ok && t < 3; ++t) {
         char what[96];
         snprintf(what, sizeof what, "threads: %d threads fill the bins as 1 does", threads[t]);
         CHECK(!memcmp(targets[0], targets[t], slots * sizeof *targets[0]), what);
         snprintf(what, sizeof what, "threads: %d threads give 1's links and depths", threads[t]);
-        CHECK(same_links(&links[0], &links[t], m.element_count), what);
+        CHECK(same_links(&links[0], &links[t], m->element_count), what);
     }
     for (int t = 0; t < 3; ++t) {
         free(targets[t]);
         gb_implicit_links_free(&links[t]);
     }
-    gb_implicit_bins_free(&bins);
-    gb_implicit_model_free(&m);
-    gb_scene_free(&scene);
+    box_model_free(&x);
 }
 
 static void test_furnace(int bins_n)
