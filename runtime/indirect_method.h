@@ -21,6 +21,7 @@
 #include "gbuffer.h"
 #include "gpu_scene.h"
 #include "mat4.h"
+#include "progress.h"
 #include "result.h"
 #include "scene.h"
 #include "shadow_maps.h"
@@ -57,6 +58,10 @@ typedef struct gb_indirect_setup {
                                    method borrows its files (bake.h) */
     const gb_method_parameters *parameters;
     int width, height;
+    gb_progress_callback progress;  /* may be NULL: a method whose setup takes
+                                   long (implicit's links) reports its fraction
+                                   done, and stops (fails) when asked to */
+    void *progress_user;
 } gb_indirect_setup;
 
 typedef struct gb_indirect_frame {

@@ -14,6 +14,7 @@
 #include "image.h"
 #include "methods.h"
 #include "output_file.h"
+#include "progress.h"
 #include "scene.h"
 #include "scene_warnings.h"
 #include "timings.h"
@@ -76,7 +77,8 @@ static const char usage[] =
     "                          and show it through it, one fetch a pixel (default:\n"
     "                          the bake's NAME.atlas if there is one; none: the\n"
     "                          octree walk at every pixel)\n"
-    "  -q, --quiet             no warnings\n"
+    "  -q, --quiet             no warnings, no progress bar (the links of implicit\n"
+    "                          and flc-iv show one on a terminal)\n"
     "  -h, --help              this help\n"
     "  -V, --version           the version\n"
     "\n"
@@ -334,6 +336,26 @@ static gb_result check_outputs(const arguments *a, gb_error *error)
     return result;
 }
 
+/* The bar of a method's long setup (the links of implicit and flc-iv), on
+ * stderr when it is a terminal: begun at a setup's first report, ended
+ * when it reports the work done. */
+typedef struct setup_bar {
+    gb_progress bar;
+    int quiet, running;
+} setup_bar;
+
+static int report_setup(void *user, double fraction)
+{
+    setup_bar *s = user;
+    if (!s->running)
+        gb_progress_begin(&s->bar, "gbview: implicit links", s->quiet);
+    s->running = fraction < 1.0;
+    int stop = gb_progress_report(&s->bar, fraction);
+    if (!s->running)
+        gb_progress_end(&s->bar);
+    return stop;
+}
+
 static gb_result run(void *context, gb_error *error)
 {
     arguments *a = context;
@@ -349,6 +371,9 @@ static gb_result run(void *context, gb_error *error)
     gb_bake *bake;
     result = open_bake(&scene, a, &bake, error);
     a->renderer.bake = bake;
+    setup_bar bar = {.quiet = a->quiet};
+    a->renderer.progress = report_setup;
+    a->renderer.progress_user = &bar;
     if (result == GB_OK)
         result = render(&scene, a, error);
     gb_bake_release(bake);

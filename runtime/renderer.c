@@ -33,6 +33,8 @@ static gb_result prepare_method(gb_renderer *r, gb_method method, gb_error *erro
         .parameters = &r->options.parameters,
         .width = r->options.width,
         .height = r->options.height,
+        .progress = r->options.progress,
+        .progress_user = r->options.progress_user,
     };
     gb_result result = indirect->create(&setup, &r->method_state[method], error);
     if (result == GB_OK)

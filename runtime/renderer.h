@@ -20,6 +20,7 @@
 #include "image.h"
 #include "methods.h"
 #include "output.h"
+#include "progress.h"
 #include "result.h"
 #include "scene.h"
 #include "shadow_maps.h"
@@ -38,6 +39,9 @@ typedef struct gb_renderer_options {
     const gb_bake *bake;        /* the bake's files (bake.h), or NULL; must outlive
                                    the renderer */
     gb_method_parameters parameters;
+    gb_progress_callback progress;  /* may be NULL: given to the method's setup
+                                   (gb_indirect_setup) */
+    void *progress_user;
 } gb_renderer_options;
 
 typedef struct gb_renderer {

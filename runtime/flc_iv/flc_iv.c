@@ -61,15 +61,18 @@ static void flc_iv_destroy(void *state)
     free(s);
 }
 
-/* Steps 1-7 of implicit visibility, with the depth maps, no light. */
-static gb_result build_depth_maps(flc_iv_state *s, const gb_scene *scene, int bins,
+/* Steps 1-7 of implicit visibility, with the depth maps, no light; the
+ * links report to the setup's progress. */
+static gb_result build_depth_maps(flc_iv_state *s, const gb_indirect_setup *setup, int bins,
                                   gb_error *error)
 {
     gb_result result =
-        gb_implicit_model_create(scene, 0.0f, GB_IMPLICIT_ELEMENT_CELL, &s->model, error);
+        gb_implicit_model_create(setup->scene, 0.0f, GB_IMPLICIT_ELEMENT_CELL, &s->model, error);
     if (result == GB_OK)
         result = gb_implicit_bins_create(bins, &s->bins, error);
-    gb_implicit_link_options options = {.hierarchical = 1, .depths = 1};
+    gb_implicit_link_options options = {.hierarchical = 1, .depths = 1,
+                                        .progress = setup->progress,
+                                        .progress_user = setup->progress_user};
     if (result == GB_OK)
         result = gb_implicit_create_links(&s->model, &s->bins, &options, &s->links, NULL, error);
     return result;
@@ -170,7 +173,7 @@ static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_
     if (!s)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "flc-iv: out of memory");
     s->bin_filter = p->visibility_filter;
-    gb_result result = build_depth_maps(s, setup->scene, bins, error);
+    gb_result result = build_depth_maps(s, setup, bins, error);
     if (result == GB_OK)
         result = upload_depth_maps(s, setup->scene, error);
     gb_implicit_links_free(&s->links);  /* on the GPU now */

@@ -37,6 +37,9 @@ typedef struct implicit_state {
     float *environment;         /* bins.count * 3 from the scene's map, or NULL */
     int bounces;
     int paper_rules;            /* the links by 4.2.2's rules alone (--paper-rules) */
+    gb_progress_callback progress;  /* the setup's (gb_indirect_setup): the first
+                                   links report to it, later ones not */
+    void *progress_user;
     double build_seconds;       /* the last Update + links */
     gb_implicit_step_times times;
     GLuint position_buffer, incident_buffer, index_buffer, vertex_array;
@@ -122,13 +125,16 @@ static gb_result rebuild_links(implicit_state *s, gb_error *error)
 {
     gb_implicit_link_options options = {.hierarchical = 1, .lights = s->scene,
                                         .environment = s->environment,
-                                        .paper_rules = s->paper_rules};
+                                        .paper_rules = s->paper_rules,
+                                        .progress = s->progress,
+                                        .progress_user = s->progress_user};
     gb_implicit_links links;
     double start = gb_seconds();
     gb_result result = gb_implicit_update_elements(&s->model, error);
     double updated = gb_seconds();
     if (result == GB_OK)
         result = gb_implicit_create_links(&s->model, &s->bins, &options, &links, NULL, error);
+    s->progress = NULL;
     if (result != GB_OK)
         return result;
     gb_implicit_links_free(&s->links);
@@ -188,6 +194,8 @@ static gb_result implicit_create(const gb_indirect_setup *setup, void **state, g
     s->scene = setup->scene;
     s->bounces = bounces;
     s->paper_rules = setup->parameters && setup->parameters->paper_rules;
+    s->progress = setup->progress;
+    s->progress_user = setup->progress_user;
     result = build(s, bins, error);
     if (result == GB_OK) {
         s->vertex_incident = malloc(6 * (size_t)s->model.vertex_count * sizeof(float) + 1);

@@ -8,6 +8,7 @@
 
 #include "implicit_bins.h"
 #include "implicit_model.h"
+#include "progress.h"
 #include "result.h"
 #include "scene.h"
 
@@ -60,6 +61,11 @@ typedef struct gb_implicit_link_options {
                                    bin, store a link in the bin of the other's
                                    centre only (no discs); faster, and leaks
                                    where a surface is near another */
+    gb_progress_callback progress;  /* may be NULL: the fraction of
+                                   CreateHierarchicalLinks' pairs started, then
+                                   1 when the links are made; nonzero stops the
+                                   work (GB_ERROR_INTERRUPTED) */
+    void *progress_user;
 } gb_implicit_link_options;
 
 enum { GB_IMPLICIT_LINK_THREADS = 2 };

@@ -407,6 +407,64 @@ static void test_threads_give_same_links(void)
     box_model_free(&x);
 }
 
+/* What the links told a progress callback; it asks them to stop at the
+ * fraction stop_at or beyond (above 1: never). */
+typedef struct progress_record {
+    int calls, grows;
+    double last, stop_at;
+} progress_record;
+
+static int record_progress(void *user, double fraction)
+{
+    progress_record *r = user;
+    r->grows &= fraction >= r->last && fraction <= 1.0;
+    r->last = fraction;
+    ++r->calls;
+    return fraction >= r->stop_at;
+}
+
+/* Links on 2 threads told of a progress callback: the same links as
+ * without one, the fraction growing to 1; asked to stop halfway, they fail
+ * as interrupted, before the end (the sanitized build checks that they
+ * leak nothing). */
+static void test_progress(void)
+{
+    box_model x;
+    gb_error error;
+    int ok = box_model_create(&x, 0.05f, &error);
+    progress_record heard = {0, 1, 0.0, 2.0}, stopped = {0, 1, 0.0, 0.5};
+    gb_implicit_links links[2] = {{0}};
+    uint32_t *targets[2] = {NULL, NULL};
+    for (int told = 0; told < 2 && ok; ++told) {
+        gb_implicit_link_options options = {.hierarchical = 1, .thread_count = 2,
+                                            .progress = told ? record_progress : NULL,
+                                            .progress_user = &heard};
+        ok = gb_implicit_create_links(&x.m, &x.bins, &options, &links[told], &targets[told],
+                                      &error) == GB_OK;
+    }
+    CHECK(ok, "progress: links made with a callback and without");
+    size_t slots = (size_t)x.m.node_count * x.bins.count;
+    CHECK(ok && !memcmp(targets[0], targets[1], slots * sizeof *targets[0]),
+          "progress: the callback leaves the links as they were");
+    printf("# progress: %d calls, the last %.3f\n", heard.calls, heard.last);
+    CHECK(heard.calls > 2 && heard.grows && heard.last == 1.0,
+          "progress: the fraction grows, and ends at 1");
+    gb_implicit_link_options options = {.hierarchical = 1, .thread_count = 2,
+                                        .progress = record_progress, .progress_user = &stopped};
+    gb_implicit_links interrupted;
+    gb_result result = ok ? gb_implicit_create_links(&x.m, &x.bins, &options, &interrupted,
+                                                     NULL, &error)
+                          : GB_OK;
+    CHECK(result == GB_ERROR_INTERRUPTED, "progress: asked to stop, the links fail as interrupted");
+    CHECK(stopped.grows && stopped.last >= 0.5 && stopped.last < 1.0,
+          "progress: ... at the fraction they were stopped at, not at the end");
+    for (int told = 0; told < 2; ++told) {
+        free(targets[told]);
+        gb_implicit_links_free(&links[told]);
+    }
+    box_model_free(&x);
+}
+
 static void test_furnace(int bins_n)
 {
     gb_scene scene;
@@ -1191,6 +1249,7 @@ int main(void)
     test_furnace(8);
     test_furnace(12);
     test_threads_give_same_links();
+    test_progress();
     test_paper_rules();
     test_point_light();
     test_implicit_shadow();
