@@ -124,12 +124,14 @@ enum { TASKS_WANTED = 4096 };
  * 0.3, RMS 0.28 %; at 0.3, 0.46 %; at 0.5, 0.84 %; at a whole bin, 2.5 %. */
 #define ONE_WAY_SPLIT 0.3f
 
-/* A node's disc: its radius (sqrt(area / pi)) and two unit tangents, which
- * every link to the node would compute again. */
-typedef struct disc_frame {
+/* What every pair test or link of a node would compute again, made once
+ * (node_frames): its disc's radius (sqrt(area / pi)) and two unit
+ * tangents, and the span of its box along its own normal (box_span). */
+typedef struct node_frame {
     float radius;
     float tangent[2][3];
-} disc_frame;
+    float lowest, highest;
+} node_frame;
 
 typedef struct linker {
     const gb_implicit_model *model;
@@ -140,7 +142,7 @@ typedef struct linker {
     float spiral[SPREAD_MAX][2];/* cos, sin of the golden angle times i */
     float spiral_radius[SPREAD_MAX + 1][SPREAD_MAX];  /* [count][i]: sqrt((i + 1/2) / count),
                                    the i-th of count points' radius over the disc's */
-    disc_frame *discs;          /* node_count, made once (disc_frames) */
+    node_frame *frames;         /* node_count, made once (node_frames) */
     int depths;                 /* depth maps wanted (flc-iv): they only hide */
     int paper_rules;            /* rule 1 at a whole bin, no discs
                                    (gb_implicit_link_options.paper_rules) */
@@ -151,25 +153,35 @@ static int is_leaf(const gb_implicit_node *node)
     return node->child_count == 0;
 }
 
-/* max or min of dot(n, x) over the node's box (the comparisons written
- * out: fmaxf and fminf are library calls at -O2, a few % of link time). */
-static float box_extreme(const gb_implicit_node *node, const float n[3], int highest)
+/* The min and max of dot(n, x) over the node's box (the comparisons
+ * written out: fmaxf and fminf are library calls at -O2, a few % of link
+ * time). */
+static void box_span(const gb_implicit_node *node, const float n[3], float *lowest,
+                     float *highest)
 {
-    float sum = 0.0f;
+    float low = 0.0f, high = 0.0f;
     for (int k = 0; k < 3; ++k) {
         float a = n[k] * node->box_min[k], b = n[k] * node->box_max[k];
-        sum += highest ? (a > b ? a : b) : (a < b ? a : b);
+        low += a < b ? a : b;
+        high += a > b ? a : b;
     }
-    return sum;
+    *lowest = low;
+    *highest = high;
 }
 
-/* How far node b's disc (its radius, its normal) reaches along the unit n. */
-static float disc_reach(const linker *l, uint32_t b, const float n[3])
+/* The sine of the angle between the unit normals of a and b: a disc of
+ * either reaches its radius times it along the other's normal. */
+static float normals_sine(const gb_implicit_node *a, const gb_implicit_node *b)
 {
-    const float *normal = l->model->nodes[b].normal;
-    float c = normal[0] * n[0] + normal[1] * n[1] + normal[2] * n[2];
+    float c = gb_dot3(b->normal, a->normal);
     float sine2 = 1.0f - c * c;
-    return sine2 > 0.0f ? l->discs[b].radius * sqrtf(sine2) : 0.0f;
+    return sine2 > 0.0f ? sqrtf(sine2) : 0.0f;
+}
+
+/* How far node b's disc reaches along a's normal. */
+static float disc_reach(const linker *l, uint32_t a, uint32_t b)
+{
+    return l->frames[b].radius * normals_sine(&l->model->nodes[a], &l->model->nodes[b]);
 }
 
 /* The sides of node a that some of node b (its box, widened by its disc)
@@ -178,16 +190,17 @@ static float disc_reach(const linker *l, uint32_t b, const float n[3])
  * (gb_implicit_node_two_sided); both for nodes of no side. */
 enum { SEES_FRONT = 1 << GB_IMPLICIT_FRONT, SEES_BACK = 1 << GB_IMPLICIT_BACK };
 
-static int sides_seen(const linker *l, uint32_t a, uint32_t b)
+/* sine: normals_sine(a, b), which the two ends share. */
+static int sides_seen(const linker *l, uint32_t a, uint32_t b, float sine)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
     if (!gb_implicit_node_has_side(na) || !gb_implicit_node_has_side(nb))
         return SEES_FRONT | SEES_BACK;
-    float reach = disc_reach(l, b, na->normal);
-    int front =
-        box_extreme(nb, na->normal, 1) + reach > box_extreme(na, na->normal, 0) + l->epsilon;
+    float reach = l->frames[b].radius * sine, lowest, highest;
+    box_span(nb, na->normal, &lowest, &highest);
+    int front = highest + reach > l->frames[a].lowest + l->epsilon;
     int back = gb_implicit_node_two_sided(l->model, na) &&
-               box_extreme(nb, na->normal, 0) - reach < box_extreme(na, na->normal, 1) - l->epsilon;
+               lowest - reach < l->frames[a].highest - l->epsilon;
     return (front ? SEES_FRONT : 0) | (back ? SEES_BACK : 0);
 }
 
@@ -220,14 +233,16 @@ static void tangents(const float n[3], float t[2][3])
     t[1][2] = n[0] * t[0][1] - n[1] * t[0][0];
 }
 
-static disc_frame *disc_frames(const gb_implicit_model *model)
+static node_frame *node_frames(const gb_implicit_model *model)
 {
-    disc_frame *discs = malloc((size_t)model->node_count * sizeof *discs + 1);
-    for (uint32_t n = 0; discs && n < model->node_count; ++n) {
-        discs[n].radius = sqrtf(model->nodes[n].area / GB_PI);
-        tangents(model->nodes[n].normal, discs[n].tangent);
+    node_frame *frames = malloc((size_t)model->node_count * sizeof *frames + 1);
+    for (uint32_t n = 0; frames && n < model->node_count; ++n) {
+        const gb_implicit_node *node = &model->nodes[n];
+        frames[n].radius = sqrtf(node->area / GB_PI);
+        tangents(node->normal, frames[n].tangent);
+        box_span(node, node->normal, &frames[n].lowest, &frames[n].highest);
     }
-    return discs;
+    return frames;
 }
 
 /* Whether direction d from a lies on the side of a's plane facing
@@ -272,7 +287,7 @@ static void spread_far_disc(linker *l, uint32_t a, uint32_t b, float radius, flo
                             float facing)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
-    const disc_frame *disc = &l->discs[b];
+    const node_frame *disc = &l->frames[b];
     int count = covered_bins < 1.0f ? 3 : (int)ceilf(3.0f * covered_bins + 1.0f);
     const float(*t)[3] = disc->tangent;
     for (int i = 0; i < count; ++i) {
@@ -332,7 +347,8 @@ static pair_step pair_step_of(const linker *l, uint32_t a, uint32_t b, pair_geom
     /* A node of no area (degenerate triangles only) neither sends nor hides. */
     if (!(na->area > 0.0f) || !(nb->area > 0.0f))
         return PAIR_UNSEEN;
-    int at_a = sides_seen(l, a, b), at_b = sides_seen(l, b, a);
+    float sine = normals_sine(na, nb);
+    int at_a = sides_seen(l, a, b, sine), at_b = sides_seen(l, b, a, sine);
     if (!at_a && !at_b)
         return PAIR_UNSEEN;
     /* front to front or back to back: a pair that is not mixed (see the top) */
@@ -363,7 +379,7 @@ static void link_side(linker *l, uint32_t a, uint32_t b, const pair_geometry *g,
                       float omega, float height_b, float height_a, float facing)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
-    if (facing * height_b + disc_reach(l, b, na->normal) <= 0.0f)
+    if (facing * height_b + disc_reach(l, a, b) <= 0.0f)
         return;
     if (facing * height_b > 0.0f)
         store(l, a, bin, b, sqrtf(g->r2));
@@ -374,7 +390,7 @@ static void link_side(linker *l, uint32_t a, uint32_t b, const pair_geometry *g,
         return;
     int mixed = facing * height_a < 0.0f &&
                 !(l->depths && g->matched && facing * height_b > 0.0f);
-    store_disc(l, a, b, l->discs[b].radius * (mixed ? BACK_SHRINK : 1.0f),
+    store_disc(l, a, b, l->frames[b].radius * (mixed ? BACK_SHRINK : 1.0f),
                nb->area / (omega * g->r2), gb_implicit_node_has_side(na) ? facing : 0.0f);
 }
 
@@ -622,11 +638,11 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
             l.spiral_radius[count][i] = sqrtf(((float)i + 0.5f) / (float)count);
     }
     l.slot = allocate_slots(slots);
-    l.discs = disc_frames(model);
+    l.frames = node_frames(model);
     l.depths = options && options->depths;
     l.paper_rules = options && options->paper_rules;
     gb_result result = GB_OK;
-    if (!l.slot || !l.discs)
+    if (!l.slot || !l.frames)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
     int hierarchical = !options || options->hierarchical;
     int threads = options && options->thread_count > 0 ? options->thread_count
@@ -658,7 +674,7 @@ gb_result gb_implicit_create_links(const gb_implicit_model *model, const gb_impl
     if (result == GB_OK && options && options->progress)
         options->progress(options->progress_user, 1.0);
     free(l.slot);
-    free(l.discs);
+    free(l.frames);
     if (result != GB_OK)
         gb_implicit_links_free(links);
     return result;
