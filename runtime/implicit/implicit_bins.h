@@ -40,7 +40,8 @@ static inline int gb_implicit_bin(int n, const float d[3])
     int cell[2];
     for (int k = 0; k < 2; ++k) {
         float t = d[(axis + 1 + k) % 3] / major;           /* in [-1, 1] */
-        int i = (int)floorf(0.5f * (t + 1.0f) * (float)n);
+        /* the cast truncates, which is floor on [0, n] */
+        int i = (int)(0.5f * (t + 1.0f) * (float)n);
         cell[k] = i < 0 ? 0 : i >= n ? n - 1 : i;
     }
     return (face * n + cell[1]) * n + cell[0];
