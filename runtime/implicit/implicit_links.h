@@ -61,9 +61,10 @@ typedef struct gb_implicit_link_options {
                                    bin, store a link in the bin of the other's
                                    centre only (no discs); faster, and leaks
                                    where a surface is near another */
-    gb_progress_callback progress;  /* may be NULL: the fraction of
-                                   CreateHierarchicalLinks' pairs started, then
-                                   1 when the links are made; nonzero stops the
+    gb_progress_callback progress;  /* may be NULL: 0.9 x the fraction of
+                                   CreateHierarchicalLinks' tasks started (its
+                                   first pairs; one task on one thread), then 1
+                                   when the links are made; nonzero stops the
                                    work (GB_ERROR_INTERRUPTED) */
     void *progress_user;
 } gb_implicit_link_options;

@@ -19,17 +19,19 @@ small="--headless --method implicit --bins 8 --resolution 64x64 --quiet"
 
 "$tool" $small --terms indirect "$scene" -o "$dir/a.exr" >"$dir/out" 2>"$dir/err"
 ok_run "--method implicit renders the Cornell box headless"
-ok "$([ ! -s "$dir/err" ]; echo $?)" "... and prints no progress bar into a file"
 
-# The links' progress bar on a terminal (script(1) gives gbview one),
-# ended by the time they took; none with --quiet.
+# The links' progress bar: on a terminal only (script(1) gives gbview
+# one), ended by the time they took; none into a file, none with --quiet.
 bar="--headless --method implicit --bins 8 --resolution 64x64"
+"$tool" $bar "$scene" -o "$dir/file.exr" 2>"$dir/err"
+ok "$([ $? = 0 ] && [ ! -s "$dir/err" ]; echo $?)" "stderr into a file: no progress bar"
 script -qec "'$tool' $bar '$scene' -o '$dir/tty.exr'" /dev/null >"$dir/tty" 2>&1
 ok "$([ $? = 0 ] && tr '\r' '\n' <"$dir/tty" | grep -q '^gbview: implicit links done in [0-9.]* s'; echo $?)" \
     "on a terminal: the links' progress bar, ended by their time"
 script -qec "'$tool' $bar --quiet '$scene' -o '$dir/tty.exr'" /dev/null >"$dir/tty" 2>&1
 ok "$([ $? = 0 ] && ! grep -q 'implicit links' "$dir/tty"; echo $?)" \
     "on a terminal with --quiet: no bar"
+
 "$tool" $small --terms indirect "$scene" -o "$dir/b.exr"
 ok "$([ "$(image_diff max_error "$dir/a.exr" "$dir/b.exr")" = 0 ]; echo $?)" \
     "rendering twice: identical images"
