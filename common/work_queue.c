@@ -51,13 +51,14 @@ static void restore_denormals(unsigned saved)
 
 /* The next item to run, or item_count when none is left or the queue
  * stopped. The progress callback sees the fraction of items started and may
- * stop the queue before this item starts. */
+ * stop the queue before this item starts (a queue of no items has no
+ * fraction: it is not called). */
 static uint64_t take_item(queue_run *run)
 {
     const gb_work_queue *queue = run->queue;
     pthread_mutex_lock(&run->lock);
     uint64_t item = queue->item_count;
-    if (!run->stop && queue->progress &&
+    if (!run->stop && queue->progress && queue->item_count > 0 &&
         queue->progress(queue->progress_user, (double)run->next_item / (double)queue->item_count))
         run->stop = 1;
     if (!run->stop && run->next_item < queue->item_count)

@@ -20,6 +20,14 @@ static int count_item(void *context, uint64_t item)
     return (int)item == c->stop_at;
 }
 
+/* Counts the calls whose fraction is not in [0, 1] (0/0 was one). */
+static int count_bad_fraction(void *user, double fraction)
+{
+    int *bad = user;
+    *bad += !(fraction >= 0.0 && fraction <= 1.0);
+    return 0;
+}
+
 static int stop_at_half(void *user, double fraction)
 {
     int *calls = user;
@@ -80,9 +88,11 @@ int main(void)
         CHECK(ran_up_to(&c, ITEMS / 2), "the items before the stop ran once, none after");
     }
 
-    gb_work_queue empty = {.item_count = 0};
+    int bad = 0;
+    gb_work_queue empty = {.item_count = 0, .progress = count_bad_fraction, .progress_user = &bad};
     int used = 0;
     CHECK(gb_work_queue_run(&empty, count_item, &c, &used) == GB_OK && used == 1,
           "no items: success on the calling thread");
+    CHECK_EQ_INT(bad, 0, "... and the progress callback never sees a fraction outside [0, 1]");
     return tap_done();
 }
