@@ -178,12 +178,6 @@ static float normals_sine(const gb_implicit_node *a, const gb_implicit_node *b)
     return sine2 > 0.0f ? sqrtf(sine2) : 0.0f;
 }
 
-/* How far node b's disc reaches along a's normal. */
-static float disc_reach(const linker *l, uint32_t a, uint32_t b)
-{
-    return l->frames[b].radius * normals_sine(&l->model->nodes[a], &l->model->nodes[b]);
-}
-
 /* The sides of node a that some of node b (its box, widened by its disc)
  * may lie on: bit GB_IMPLICIT_FRONT set when b reaches in front of a's
  * plane, bit GB_IMPLICIT_BACK behind it when a has a back
@@ -339,6 +333,8 @@ typedef struct pair_geometry {
     int bin_a, bin_b;           /* the bins of d at a and of back at b */
     float omega_a, omega_b;     /* their solid angles */
     int matched;                /* the boxes see the same side both ways */
+    float sine;                 /* normals_sine(a, b): a disc of either reaches
+                                   its radius times it along the other's normal */
 } pair_geometry;
 
 static pair_step pair_step_of(const linker *l, uint32_t a, uint32_t b, pair_geometry *g)
@@ -347,8 +343,8 @@ static pair_step pair_step_of(const linker *l, uint32_t a, uint32_t b, pair_geom
     /* A node of no area (degenerate triangles only) neither sends nor hides. */
     if (!(na->area > 0.0f) || !(nb->area > 0.0f))
         return PAIR_UNSEEN;
-    float sine = normals_sine(na, nb);
-    int at_a = sides_seen(l, a, b, sine), at_b = sides_seen(l, b, a, sine);
+    g->sine = normals_sine(na, nb);
+    int at_a = sides_seen(l, a, b, g->sine), at_b = sides_seen(l, b, a, g->sine);
     if (!at_a && !at_b)
         return PAIR_UNSEEN;
     /* front to front or back to back: a pair that is not mixed (see the top) */
@@ -379,7 +375,7 @@ static void link_side(linker *l, uint32_t a, uint32_t b, const pair_geometry *g,
                       float omega, float height_b, float height_a, float facing)
 {
     const gb_implicit_node *na = &l->model->nodes[a], *nb = &l->model->nodes[b];
-    if (facing * height_b + disc_reach(l, a, b) <= 0.0f)
+    if (facing * height_b + l->frames[b].radius * g->sine <= 0.0f)
         return;
     if (facing * height_b > 0.0f)
         store(l, a, bin, b, sqrtf(g->r2));
