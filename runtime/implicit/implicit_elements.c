@@ -10,6 +10,7 @@
 #include "implicit_elements.h"
 #include "implicit_closed_parts.h"
 #include "implicit_hierarchy.h"
+#include "implicit_small_segments.h"
 #include "implicit_update.h"
 
 #include <math.h>
@@ -243,6 +244,9 @@ gb_result gb_implicit_model_create(const gb_scene *scene, float element_size, fl
     model->element_size = element_size > 0.0f ? element_size : default_element_size(scene);
     model->element_cell = element_cell > 0.0f ? element_cell * model->element_size : 0.0f;
     gb_result result = gb_implicit_segment_faces(scene, model, error);
+    if (result == GB_OK && model->element_cell > 0.0f)
+        result = gb_implicit_merge_small_segments(
+            scene, model, model->element_cell * model->element_cell, model->element_cell, error);
     if (result == GB_OK)
         result = gb_implicit_open_segments(scene, model, error);
     if (result == GB_OK)

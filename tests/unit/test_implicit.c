@@ -12,6 +12,7 @@
 
 
 #include "../../runtime/implicit/implicit.h"
+#include "../../runtime/implicit/implicit_hierarchy.h"
 #include "brdf.h"
 #include "progress.h"
 #include "scene_builder.h"
@@ -887,6 +888,87 @@ static uint32_t push_vertex(gb_scene *scene, float x, float y, float z)
     return scene->vertex_count++;
 }
 
+/* Small segments (implicit_small_segments.h): a floor, a tilted square of
+ * more area than an element's cell, and 4 x 4 steep pyramids side by side,
+ * each face (60 degrees from its neighbours) a segment far smaller than a
+ * cell, of two materials. The model's segments must be exactly: the floor, the
+ * square, and one per material and cell of the faces' centroids, checked
+ * pair by pair against the segments before regrouping. */
+static void test_small_segments(void)
+{
+    const float size = 0.25f, cell = RUNTIME_CELL * size;
+    gb_scene scene = {0};
+    uint32_t grey = add_grey(&scene, 0.5f, 0.0f), light = add_grey(&scene, 0.7f, 0.0f);
+    const float floor_quad[4][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    add_quad(&scene, floor_quad, grey);
+    const float square[4][3] = {
+        {0.42f, 0.40f, 0.01f}, {0.57f, 0.40f, 0.01f}, {0.57f, 0.50f, 0.12f}, {0.42f, 0.50f, 0.12f}};
+    add_quad(&scene, square, grey);
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) {
+            float x = 0.2f + 0.05f * i, y = 0.2f + 0.05f * j, h = 0.02f;
+            uint32_t apex = push_vertex(&scene, x, y, 0.001f + 2.0f * h), corner[4];
+            for (int c = 0; c < 4; ++c)
+                corner[c] = push_vertex(&scene, x + (c == 1 || c == 2 ? h : -h),
+                                        y + (c >= 2 ? h : -h), 0.001f);
+            for (int c = 0; c < 4; ++c)
+                add_triangle(&scene, corner[c], corner[(c + 1) % 4], apex, i % 2 ? light : grey);
+        }
+    scene_done(&scene);
+    gb_implicit_model before = {0}, m;
+    gb_error error;
+    int ok = gb_implicit_segment_faces(&scene, &before, &error) == GB_OK &&
+             gb_implicit_model_create(&scene, size, RUNTIME_CELL, &m, &error) == GB_OK;
+    if (!CHECK(ok, "small segments: model created")) {
+        free(before.triangle_segment);
+        gb_scene_free(&scene);
+        return;
+    }
+    CHECK_EQ_INT(before.segment_count, 2 + 16 * 4, "small segments: each face is a segment first");
+    double *area = calloc(before.segment_count, sizeof *area);
+    for (uint32_t t = 0; t < scene.triangle_count; ++t)
+        area[before.triangle_segment[t]] += gb_triangle_area(&scene, t);
+    int same = 1, numbered = 1;
+    for (uint32_t t = 0; t < scene.triangle_count; ++t)
+        for (uint32_t u = t + 1; u < scene.triangle_count; ++u) {
+            int small_t = area[before.triangle_segment[t]] < cell * cell;
+            int small_u = area[before.triangle_segment[u]] < cell * cell;
+            int expected = small_t != small_u ? 0
+                           : !small_t        ? before.triangle_segment[t] ==
+                                                    before.triangle_segment[u]
+                                             : scene.triangle_material[t] ==
+                                                   scene.triangle_material[u];
+            for (int k = 0; expected && small_t && k < 3; ++k) {
+                double ct = 0.0, cu = 0.0;
+                for (int c = 0; c < 3; ++c) {
+                    ct += scene.positions[3 * scene.indices[3 * t + c] + k] / 3.0;
+                    cu += scene.positions[3 * scene.indices[3 * u + c] + k] / 3.0;
+                }
+                expected = llround(ct / cell) == llround(cu / cell);
+            }
+            same &= expected == (m.triangle_segment[t] == m.triangle_segment[u]);
+        }
+    uint32_t *used = calloc(m.segment_count + 1, sizeof *used);
+    for (uint32_t t = 0; t < scene.triangle_count; ++t)
+        if (m.triangle_segment[t] < m.segment_count)
+            ++used[m.triangle_segment[t]];
+        else
+            numbered = 0;
+    for (uint32_t s = 0; s < m.segment_count; ++s)
+        numbered &= used[s] > 0;
+    CHECK(same, "small segments: the floor and the square kept, the faces one segment a "
+                "material and cell");
+    CHECK(numbered, "small segments: segments numbered from 0, none empty");
+    CHECK(m.segment_count < before.segment_count / 4, "small segments: a quarter as many or fewer");
+    printf("# small segments: %u segments before, %u after, %u elements\n", before.segment_count,
+           m.segment_count, m.element_count);
+    free(used);
+    free(area);
+    free(before.triangle_segment);
+    gb_implicit_model_free(&m);
+    gb_scene_free(&scene);
+}
+
 /* A degenerate triangle (gb_scene_finish would drop it; built by hand,
  * it reaches the model) over a square under the sky: its elements have no
  * area, no NaN, and they hide nothing. */
@@ -1256,6 +1338,7 @@ int main(void)
     test_sky();
     test_cornice();
     test_ceiling_seen_from_behind();
+    test_small_segments();
     test_zero_area();
     test_one_vertex();
     test_dynamic_update();
