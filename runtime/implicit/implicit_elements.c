@@ -140,7 +140,11 @@ static void cluster_vertices(corner *welded, corner *scratch, gb_implicit_model 
     for (uint32_t v = 0; v < model->vertex_count; ++v) {
         double p[3] = {welded[v].position[0], welded[v].position[1], welded[v].position[2]};
         memcpy(&model->vertices[3 * (size_t)v], welded[v].position, sizeof welded[v].position);
-        if (model->element_cell > 0.0f)
+        if (model->segment_regrouped && model->segment_regrouped[welded[v].segment]) {
+            scratch[v] = welded[v];     /* the whole segment one place */
+            scratch[v].q[0] = scratch[v].q[1] = scratch[v].q[2] = 0;
+            scratch[v].slot = v;
+        } else if (model->element_cell > 0.0f)
             set_corner(&scratch[v], welded[v].segment, v, p, model->element_cell);
         else {      /* a place of its own */
             scratch[v] = welded[v];
@@ -262,6 +266,7 @@ void gb_implicit_model_free(gb_implicit_model *model)
 {
     free(model->triangle_segment);
     free(model->segment_open);
+    free(model->segment_regrouped);
     free(model->nodes);
     free(model->children);
     free(model->roots);

@@ -960,6 +960,20 @@ static void test_small_segments(void)
                 "material and cell");
     CHECK(numbered, "small segments: segments numbered from 0, none empty");
     CHECK(m.segment_count < before.segment_count / 4, "small segments: a quarter as many or fewer");
+    /* a segment holding a small one's triangles is one element */
+    uint32_t *elements = calloc(m.segment_count + 1, sizeof *elements);
+    uint8_t *regrouped = calloc(m.segment_count + 1, 1);
+    for (uint32_t e = 0; e < m.element_count; ++e)
+        ++elements[m.nodes[e].segment];
+    for (uint32_t t = 0; t < scene.triangle_count; ++t)
+        if (area[before.triangle_segment[t]] < cell * cell)
+            regrouped[m.triangle_segment[t]] = 1;
+    int one = 1;
+    for (uint32_t s = 0; s < m.segment_count; ++s)
+        one &= !regrouped[s] || elements[s] == 1;
+    CHECK(one, "small segments: each regrouped one is one element");
+    free(elements);
+    free(regrouped);
     printf("# small segments: %u segments before, %u after, %u elements\n", before.segment_count,
            m.segment_count, m.element_count);
     free(used);
