@@ -6,7 +6,8 @@
  * grid (GB_IMPLICIT_ELEMENT_CELL element sizes in the runtime) make one
  * element, so that a finely tessellated scene gets no more elements than
  * its size needs; a coarse one, cut to the element size, keeps one element
- * a vertex. Also the model's create and free. */
+ * a vertex; a segment regrouped from small ones is one element
+ * (implicit_small_segments.h). Also the model's create and free. */
 #include "implicit_elements.h"
 #include "implicit_closed_parts.h"
 #include "implicit_hierarchy.h"

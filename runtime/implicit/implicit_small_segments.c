@@ -57,7 +57,7 @@ static placed_triangle place(const gb_scene *scene, uint32_t t, float cell)
 
 /* The new segment of every triangle: the groups of the small ones first
  * take ids from segment_count up, then all ids are made consecutive in
- * order of first triangle. */
+ * order of first triangle, and the groups' marked in segment_regrouped. */
 static void renumber(gb_implicit_model *model, uint32_t triangle_count, uint32_t id_count,
                      uint32_t *new_id)
 {
