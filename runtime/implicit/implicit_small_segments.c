@@ -2,16 +2,15 @@
  * (implicit_small_segments.h). Segments are grown within 30 degrees of
  * normal (implicit_hierarchy.c), so a curved or detailed surface (a
  * column's fluting, a plant's leaves, a carved frame) breaks into many
- * segments, each smaller than an element, and each gets an element of
- * its own at least: Sponza's 15 692 segments made 41 591 elements, 30 719
- * of them in segments of less area than the element size squared. Such a
- * piece is below what the bins can tell apart, so its triangles are
- * regrouped by material and place, and the pieces in one cell make one
- * segment and one element (Sponza: 16 238 elements; the links' time and
- * the error against the reference in the README). One element, not one a
- * cell its vertices reach: a group's triangles are placed by centroid, and
- * their corners reach into the next cells, which made slivers (20 556
- * elements on Sponza). */
+ * segments, each smaller than an element, and each got an element of
+ * its own at least (Sponza: 41 591 elements). Such a piece is below what
+ * the bins can tell apart, so its triangles are regrouped by material and
+ * place, and the pieces in one cell make one segment and one element
+ * (Sponza: 16 238 elements; bench/implicit_large.sh in the README gives
+ * the links' time and the error against the reference). One element, not
+ * one a cell its vertices reach: a group's triangles are placed by
+ * centroid, and their corners reach into the next cells, which made
+ * slivers (20 556 elements on Sponza). */
 #include "implicit_small_segments.h"
 
 #include <math.h>
@@ -23,21 +22,25 @@ typedef struct placed_triangle {
     uint32_t triangle;
 } placed_triangle;
 
-static int compare_placed(const void *x, const void *y)
+/* By group (material, then cell): 0 for two triangles of one group. */
+static int compare_groups(const placed_triangle *p, const placed_triangle *q)
 {
-    const placed_triangle *p = x, *q = y;
     if (p->material != q->material)
         return p->material < q->material ? -1 : 1;
     for (int k = 0; k < 3; ++k)
         if (p->cell[k] != q->cell[k])
             return p->cell[k] < q->cell[k] ? -1 : 1;
-    return p->triangle < q->triangle ? -1 : p->triangle > q->triangle;
+    return 0;
 }
 
-static int same_group(const placed_triangle *p, const placed_triangle *q)
+/* By group, then triangle (qsort's order is then unique). */
+static int compare_placed(const void *x, const void *y)
 {
-    return p->material == q->material && p->cell[0] == q->cell[0] &&
-           p->cell[1] == q->cell[1] && p->cell[2] == q->cell[2];
+    const placed_triangle *p = x, *q = y;
+    int by_group = compare_groups(p, q);
+    if (by_group)
+        return by_group;
+    return p->triangle < q->triangle ? -1 : p->triangle > q->triangle;
 }
 
 /* The triangle's material and the cell of its centroid, on the grid of the
@@ -100,7 +103,7 @@ gb_result gb_implicit_merge_small_segments(const gb_scene *scene, gb_implicit_mo
     qsort(small, count, sizeof *small, compare_placed);
     uint32_t id = model->segment_count;
     for (size_t i = 0; i < count; ++i) {
-        if (i > 0 && !same_group(&small[i], &small[i - 1]))
+        if (i > 0 && compare_groups(&small[i], &small[i - 1]) != 0)
             ++id;
         model->triangle_segment[small[i].triangle] = id;
     }
