@@ -15,7 +15,8 @@
 #            300 000 vertices (IMPLICIT_RUNTIME_SIZES), with each run's peak
 #            memory: the elements a scene gets stop growing with its mesh;
 #   the Cornell box (scenes/cornell) at the runtime's element size.
-# Means over IMPLICIT_FRAMES frames (default 3; 1 for the scaling). Prints
+# Means over IMPLICIT_FRAMES frames (default 3; 1 for the scaling), each
+# after a frame that is not counted (its page faults, once). Prints
 # Markdown tables on stdout.
 #
 # Run by `make bench` (GB_BIN: the tools folder, build/bin by default).
