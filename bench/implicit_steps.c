@@ -256,17 +256,15 @@ static gb_result run(const gb_scene *scene, float element_size, float element_ce
         double t2 = gb_cpu_seconds();
         gb_implicit_illuminate(scene, &m, &links, bounces, &solution);
         double t3 = gb_cpu_seconds();
-        if (f < 0) {
-            gb_implicit_links_free(&links);
-            continue;
+        if (f >= 0) {
+            sum.wall += gb_seconds() - wall;
+            sum.update += t1 - t0;
+            sum.create += links.cpu.create;
+            sum.create_wall += links.wall.create;
+            sum.refine += links.cpu.refine + links.cpu.compact;
+            sum.illuminate += t3 - t2;
+            sum.total += t3 - t0;
         }
-        sum.wall += gb_seconds() - wall;
-        sum.update += t1 - t0;
-        sum.create += links.cpu.create;
-        sum.create_wall += links.wall.create;
-        sum.refine += links.cpu.refine + links.cpu.compact;
-        sum.illuminate += t3 - t2;
-        sum.total += t3 - t0;
         gb_implicit_links_free(&links);
     }
     if (result == GB_OK) {
