@@ -4,12 +4,32 @@
  * Each method lives in its own folder under runtime/ (topo/, octree/, flc/,
  * implicit/, flc_iv/), reaches the core only through this header and the
  * core's, never another method's files (but flc_iv/, which is flc/ and
- * implicit/ combined, and uses their headers), and exports one const gb_indirect_method, listed in
- * methods.c. The renderer calls create when the method is first used (with a
- * current GL context), draw once a frame with the output framebuffer bound,
- * additive blending on (glBlendFunc(GL_ONE, GL_ONE)) and depth test off, and
- * destroy with the renderer. The state is the method's own: create allocates
- * it, destroy frees it. Methods that keep screen-sized buffers compare
+ * implicit/ combined, and uses their headers), and exports one const
+ * gb_indirect_method, listed in methods.c.
+ *
+ * Lifetime. The renderer calls create when the method is first used (with a
+ * current GL context) and destroy with the renderer. The state is the
+ * method's own: create allocates it, destroy frees it. A method whose setup
+ * is long CPU work (implicit's links) may also give prepare: the GL-free
+ * part of create, which the window runs on a worker thread while it shows
+ * direct light (renderer.h); create then finds its result in
+ * setup->prepared and takes it over. prepare reports to setup->progress and
+ * fails when asked to stop; discard frees a prepared result create never
+ * took. Without prepare, create does all of it.
+ *
+ * Drawing. An image of one view is drawn in parts, to fit the renderer's
+ * frame budget (renderer.h): draw is called for part 0, 1 ... parts - 1,
+ * with the output framebuffer bound, additive blending on
+ * (glBlendFunc(GL_ONE, GL_ONE)), depth test off and the scissor test on
+ * the part's band of rows (frame->band). A method does its per-view work
+ * (compute passes, its own targets, CPU work) at part 0, with the scissor
+ * test off for what must cover the whole view, and its per-pixel output
+ * passes within the band; a method that cuts its work otherwise (flc: by
+ * VPLs) turns the scissor off and adds its whole image at the last part.
+ * The image is the same bytes whatever the number of parts. draw returns
+ * nonzero when another image of the same view would be better (flc's next
+ * sample, octree's atlas not yet complete): the window keeps drawing; 0 when
+ * the image is final. Methods that keep screen-sized buffers compare
  * frame->width/height with theirs and reallocate.
  */
 #ifndef GB_INDIRECT_METHOD_H
@@ -62,6 +82,8 @@ typedef struct gb_indirect_setup {
                                    long (implicit's links) reports its fraction
                                    done, and stops (fails) when asked to */
     void *progress_user;
+    void *prepared;             /* create: prepare's result, or NULL when
+                                   prepare did not run (create does it all) */
 } gb_indirect_setup;
 
 typedef struct gb_indirect_frame {
@@ -70,14 +92,23 @@ typedef struct gb_indirect_frame {
     const gb_view *view;
     const gb_mat4 *view_matrix, *projection;
     int width, height;
-    uint32_t frame_index;       /* 0, 1, 2 ... since the method was created */
+    uint32_t frame_index;       /* images since the method was created: 0, 1, 2 ...
+                                   (the same for every part of one image) */
+    int part, parts;            /* 0 <= part < parts (1: a whole image at once) */
+    int band[2];                /* the part's rows, first and count: the scissor box */
+    double budget_ms;           /* what a part may take, 0 for no limit: startup
+                                   work a method slices (octree's atlas) */
     gb_timings *timings;
 } gb_indirect_frame;
 
 typedef struct gb_indirect_method {
     gb_result (*create)(const gb_indirect_setup *setup, void **state, gb_error *error);
-    void (*draw)(void *state, const gb_indirect_frame *frame);
+    /* Nonzero when another image of the same view would refine this one. */
+    int (*draw)(void *state, const gb_indirect_frame *frame);
     void (*destroy)(void *state);
+    /* Optional (see above): create's CPU work, without GL, on any thread. */
+    gb_result (*prepare)(const gb_indirect_setup *setup, void **prepared, gb_error *error);
+    void (*discard)(void *prepared);
 } gb_indirect_method;
 
 #endif

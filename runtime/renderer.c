@@ -141,6 +141,9 @@ static void draw_indirect_light(gb_renderer *r, const gb_view *view, const gb_ma
         .width = r->options.width,
         .height = r->options.height,
         .frame_index = r->method_frames[method]++,
+        .part = 0,
+        .parts = 1,
+        .band = {0, r->options.height},
         .timings = &r->timings,
     };
     gb_output_bind(&r->output);

@@ -521,7 +521,7 @@ static void restart_if_moved(flc_state *s, const gb_indirect_frame *frame)
     s->last_projection = *frame->projection;
 }
 
-void gb_flc_draw(void *state, const gb_indirect_frame *frame)
+int gb_flc_draw(void *state, const gb_indirect_frame *frame)
 {
     flc_state *s = state;
     GLint target = 0;
@@ -555,6 +555,7 @@ void gb_flc_draw(void *state, const gb_indirect_frame *frame)
             glGetNamedBufferSubData(s->command_buffer, 4 * sizeof(uint32_t), sizeof made, &made);
         s->times.divergent_vpls += made;
     }
+    return 1;
 }
 
 void gb_flc_measure(void *state, int on)

@@ -80,7 +80,7 @@ typedef struct gb_flc_visibility {
  * gb_flc_method); draw and destroy are gb_flc_method's. */
 gb_result gb_flc_create(const gb_indirect_setup *setup, const gb_flc_visibility *visibility,
                         void **state, gb_error *error);
-void gb_flc_draw(void *state, const gb_indirect_frame *frame);
+int gb_flc_draw(void *state, const gb_indirect_frame *frame);
 void gb_flc_destroy(void *state);
 
 /* The levels of scene for parameters (zero fields: defaults), R_scene half

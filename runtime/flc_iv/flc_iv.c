@@ -209,7 +209,7 @@ static void draw_element_ids(flc_iv_state *s, const gb_indirect_frame *frame)
     glDisable(GL_DEPTH_TEST);
 }
 
-static void flc_iv_draw(void *state, const gb_indirect_frame *frame)
+static int flc_iv_draw(void *state, const gb_indirect_frame *frame)
 {
     flc_iv_state *s = state;
     GLint output = 0;
@@ -219,7 +219,7 @@ static void flc_iv_draw(void *state, const gb_indirect_frame *frame)
     glViewport(0, 0, frame->width, frame->height);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    gb_flc_draw(s->flc, frame);
+    return gb_flc_draw(s->flc, frame);
 }
 
 const gb_indirect_method gb_flc_iv_method = {

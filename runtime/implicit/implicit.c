@@ -252,7 +252,7 @@ static void draw_incident(implicit_state *s, const gb_indirect_frame *frame)
     glDisable(GL_DEPTH_TEST);
 }
 
-static void implicit_draw(void *state, const gb_indirect_frame *frame)
+static int implicit_draw(void *state, const gb_indirect_frame *frame)
 {
     implicit_state *s = state;
     GLint output = 0;
@@ -276,6 +276,7 @@ static void implicit_draw(void *state, const gb_indirect_frame *frame)
     gb_gbuffer_bind(frame->gbuffer);
     glBindTextureUnit(UNIT_INCIDENT, s->incident.color);
     gb_gl_draw_fullscreen(s->empty_vertex_array);
+    return 0;
 }
 
 const gb_indirect_method gb_implicit_method = {

@@ -157,18 +157,19 @@ static void set_uniforms(const octree_state *s, const gb_indirect_frame *frame)
     glProgramUniform1i(p, glGetUniformLocation(p, "depth"), (GLint)h->depth);
 }
 
-static void octree_draw(void *state, const gb_indirect_frame *frame)
+static int octree_draw(void *state, const gb_indirect_frame *frame)
 {
     octree_state *s = state;
     if (s->atlas) {
         gb_octree_atlas_draw(s->atlas, frame);
-        return;
+        return 0;
     }
     set_uniforms(s, frame);
     bind_buffers(s);
     glUseProgram(s->program);
     gb_gbuffer_bind(frame->gbuffer);
     gb_gl_draw_fullscreen(s->empty_vertex_array);
+    return 0;
 }
 
 const gb_indirect_method gb_octree_method = {

@@ -40,6 +40,7 @@ typedef struct topo_state {
     float *depth;
     uint32_t *clusters;
     int width, height;
+    int every_vpl;              /* this image gathers every VPL, unshadowed */
     gb_topo_pass_times times;
 } topo_state;
 
@@ -240,33 +241,44 @@ gb_topo_frame_input gb_topo_frame_input_of_view(const gb_view *view, int width, 
     return input;
 }
 
-static void topo_draw(void *state, const gb_indirect_frame *frame)
+/* The view's passes, once an image: visibility cluster per fragment, then
+ * IUGC and LA (t->every_vpl when they could not run). */
+static void cluster_view(topo_state *t, const gb_indirect_frame *frame,
+                         gb_topo_frame_input *input)
+{
+    double start = gb_seconds();
+    const gb_gbuffer *g = frame->gbuffer;
+    gb_topo_cluster_pass_run(&t->cluster_pass, g->depth, g->normal, g->clusters, frame->width,
+                             frame->height, input->view_to_world, input->tan_half_fov,
+                             input->near);
+    glFinish();
+    t->times.clusters_ms += 1e3 * (gb_seconds() - start);
+    t->every_vpl = t->visibility == GB_TOPO_NONE;
+    if (!t->every_vpl && !t->iugc_on_cpu) {
+        t->every_vpl = !cluster_and_assign_gpu(t, frame, input);
+    } else if (!t->every_vpl && fit_frame(t, frame->width, frame->height)) {
+        input->depth = t->depth;
+        input->clusters = t->clusters;
+        t->every_vpl = !cluster_and_assign(t, frame, input);
+    }
+}
+
+/* The view's passes at part 0, then IL within the part's band. */
+static int topo_draw(void *state, const gb_indirect_frame *frame)
 {
     topo_state *t = state;
     gb_topo_frame_input input =
         gb_topo_frame_input_of_view(frame->view, frame->width, frame->height);
-    double start = gb_seconds();
-    const gb_gbuffer *g = frame->gbuffer;
-    gb_topo_cluster_pass_run(&t->cluster_pass, g->depth, g->normal, g->clusters, frame->width,
-                             frame->height, input.view_to_world, input.tan_half_fov, input.near);
-    glFinish();
-    double clusters = gb_seconds();
-    int every_vpl = t->visibility == GB_TOPO_NONE;
-    if (!every_vpl && !t->iugc_on_cpu) {
-        every_vpl = !cluster_and_assign_gpu(t, frame, &input);
-    } else if (!every_vpl && fit_frame(t, frame->width, frame->height)) {
-        input.depth = t->depth;
-        input.clusters = t->clusters;
-        every_vpl = !cluster_and_assign(t, frame, &input);
-    }
+    if (frame->part == 0)
+        cluster_view(t, frame, &input);
     double il_start = gb_seconds();
-    gb_gbuffer_bind(g);
+    gb_gbuffer_bind(frame->gbuffer);
     gb_topo_gather_draw(&t->gather, input.view_to_world, input.tan_half_fov, input.near,
-                        every_vpl);
+                        t->every_vpl);
     glFinish();
-    t->times.clusters_ms += 1e3 * (clusters - start);
     t->times.il_ms += 1e3 * (gb_seconds() - il_start);
-    t->times.frames++;
+    t->times.frames += frame->part + 1 == frame->parts;
+    return 0;
 }
 
 void gb_topo_times(const void *state, gb_topo_pass_times *times)
