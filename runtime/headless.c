@@ -15,6 +15,22 @@ static gb_result render_frames(gb_renderer *renderer, const gb_view *view, int f
     return result;
 }
 
+/* As the window draws a still view: refine until frames full-resolution
+ * images are shown or the image is final. */
+static gb_result refine_frames(gb_renderer *renderer, const gb_view *view, int frames,
+                               gb_error *error)
+{
+    gb_result result = GB_OK;
+    while (result == GB_OK && renderer->status.images < (uint32_t)frames &&
+           !renderer->status.converged) {
+        int changed;
+        result = gb_renderer_refine(renderer, view, &changed, error);
+        if (result == GB_OK)
+            result = gb_renderer_finish_frame(renderer, error);
+    }
+    return result;
+}
+
 /* Each pixel of image, the mean of its s x s block of samples. */
 static gb_result box_filter(const gb_image *samples, int s, gb_image *image, gb_error *error)
 {
@@ -78,9 +94,11 @@ gb_result gb_render_headless(const gb_scene *scene, const gb_headless_options *o
         return result;
     gb_renderer renderer;
     result = gb_renderer_create(scene, &renderer_options, &context.errors, &renderer, error);
+    int frames = options->frames > 0 ? options->frames : 1;
     if (result == GB_OK)
-        result = render_frames(&renderer, &view, options->frames > 0 ? options->frames : 1,
-                               error);
+        result = renderer_options.budget_ms > 0.0
+                     ? refine_frames(&renderer, &view, frames, error)
+                     : render_frames(&renderer, &view, frames, error);
     if (result == GB_OK)
         result = read_frame(&renderer, s, image, error);
     copy_timings(&renderer.timings, timings);

@@ -1,6 +1,8 @@
 /* headless.h — the headless face of gbview: an EGL surfaceless context, a
  * renderer, K frames from one of the scene's cameras, the last one read
- * back. How tests, CI and benchmarks render.
+ * back. How tests, CI and benchmarks render. With renderer.budget_ms > 0
+ * the frames are drawn as the window draws them (gb_renderer_refine) until
+ * K full-resolution images are shown or the image is final.
  */
 #ifndef GB_HEADLESS_H
 #define GB_HEADLESS_H

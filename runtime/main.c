@@ -83,14 +83,16 @@ static const char usage[] =
     "  -V, --version           the version\n"
     "\n"
     "Window keys: mouse (left button held) and W A S D Q E fly, Shift faster,\n"
-    "M next method, T direct/indirect/both, C next camera, F12 or P screenshot,\n"
-    "Esc quit.\n";
+    "wheel: speed; right button held: orbit about the point under the cursor;\n"
+    "M next method, T direct/indirect/both, C next camera, B print the view as a\n"
+    ".scene camera line, H keys, F1 HUD, F12 or P screenshot, Esc quit.\n";
 
 typedef struct arguments {
     const char *scene_path, *output, *bake;
     gb_method method;
     gb_renderer_options renderer;
     long camera, frames, supersample;
+    int budget_given;
     int headless, timings, quiet;
 } arguments;
 
@@ -117,6 +119,7 @@ enum {
     OPTION_BIN_FILTER,
     OPTION_PAPER_RULES,
     OPTION_ATLAS,
+    OPTION_BUDGET,
 };
 
 static const struct option long_options[] = {
@@ -147,6 +150,7 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("bin-filter", OPTION_BIN_FILTER),
     GB_CLI_FLAG("paper-rules", OPTION_PAPER_RULES),
     GB_CLI_VALUE("atlas", OPTION_ATLAS),
+    GB_CLI_VALUE("budget", OPTION_BUDGET),
     GB_CLI_OPTIONS_END,
 };
 
@@ -226,6 +230,9 @@ static int parse_option(int option, const char *value, void *context)
     case OPTION_ATLAS: a->renderer.parameters.atlas = value; return 0;
     case 'o': a->output = value; return 0;
     case 'q': a->quiet = 1; return 0;
+    case OPTION_BUDGET:
+        a->budget_given = 1;
+        return gb_cli_number("gbview", "budget", value, 0.0, 1e6, &a->renderer.budget_ms);
     case OPTION_SUPERSAMPLE:
         return gb_cli_integer("gbview", "supersample", value, 1, 16, &a->supersample);
     case 'c': return gb_cli_integer("gbview", "camera", value, 0, 1 << 30, &a->camera);
@@ -304,8 +311,12 @@ static gb_result run_window(const gb_scene *scene, const arguments *a, gb_timing
                             gb_error *error)
 {
     const char *name = strrchr(a->scene_path, '/');
+    gb_renderer_options renderer = a->renderer;
+    if (!a->budget_given)
+        renderer.budget_ms = GB_WINDOW_DEFAULT_BUDGET_MS;
     gb_window_options options = {
-        .renderer = a->renderer,
+        .renderer = renderer,
+        .log_frames = a->timings,
         .camera = (uint32_t)a->camera,
         .frames = (int)a->frames,
         .screenshot_path = a->output,

@@ -1,5 +1,6 @@
 #include "renderer.h"
 
+#include <math.h>
 #include <string.h>
 
 #include "progress.h"
@@ -79,9 +80,11 @@ gb_result gb_renderer_resize(gb_renderer *renderer, int width, int height, gb_er
     gb_result result = gb_gbuffer_resize(&renderer->gbuffer, width, height, error);
     if (result == GB_OK)
         result = gb_output_resize(&renderer->output, width, height, error);
-    if (result == GB_OK) {
+    if (result == GB_OK && (width != renderer->options.width ||
+                            height != renderer->options.height)) {
         renderer->options.width = width;
         renderer->options.height = height;
+        renderer->restart = 1;
     }
     return result;
 }
@@ -91,14 +94,17 @@ gb_result gb_renderer_set_method(gb_renderer *renderer, gb_method method, gb_err
     gb_result result = gb_method_check(method, error);
     if (result == GB_OK)
         result = prepare_method(renderer, method, error);
-    if (result == GB_OK)
+    if (result == GB_OK) {
         renderer->options.method = method;
+        renderer->restart = 1;
+    }
     return result;
 }
 
 void gb_renderer_set_terms(gb_renderer *renderer, gb_terms terms)
 {
     renderer->options.terms = terms;
+    renderer->restart = 1;
 }
 
 static void draw_shadow_maps(gb_renderer *r)
@@ -124,26 +130,29 @@ static void draw_direct_light(gb_renderer *r, const gb_view *view)
     gb_timings_end(&r->timings, GB_PASS_DIRECT_LIGHT);
 }
 
-/* The GI method's indirect light, added onto the output. */
-static void draw_indirect_light(gb_renderer *r, const gb_view *view, const gb_mat4 *view_matrix,
-                                const gb_mat4 *projection)
+/* The GI method's indirect light, added onto the output within the
+ * scissor box; nonzero when another image would refine it. */
+static int draw_indirect_light(gb_renderer *r, const gb_view *view, const gb_mat4 *view_matrix,
+                               const gb_mat4 *projection, int part, int parts,
+                               const int band[2])
 {
     gb_method method = r->options.method;
     const gb_indirect_method *indirect = gb_method_indirect(method);
     if (!indirect || !r->method_state[method])
-        return;
+        return 0;
     gb_indirect_frame frame = {
         .gbuffer = &r->gbuffer,
         .shadows = &r->shadows,
         .view = view,
         .view_matrix = view_matrix,
         .projection = projection,
-        .width = r->options.width,
-        .height = r->options.height,
-        .frame_index = r->method_frames[method]++,
-        .part = 0,
-        .parts = 1,
-        .band = {0, r->options.height},
+        .width = r->gbuffer.width,
+        .height = r->gbuffer.height,
+        .frame_index = r->method_frames[method],
+        .part = part,
+        .parts = parts,
+        .band = {band[0], band[1]},
+        .budget_ms = parts > 1 || r->divisor > 1 ? r->options.budget_ms : 0.0,
         .timings = &r->timings,
     };
     gb_output_bind(&r->output);
@@ -151,35 +160,159 @@ static void draw_indirect_light(gb_renderer *r, const gb_view *view, const gb_ma
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     gb_timings_begin(&r->timings, GB_PASS_INDIRECT_LIGHT);
-    indirect->draw(r->method_state[method], &frame);
+    int more = indirect->draw(r->method_state[method], &frame);
     gb_timings_end(&r->timings, GB_PASS_INDIRECT_LIGHT);
     gb_output_bind(&r->output);
     glDisable(GL_BLEND);
+    if (part + 1 == parts)
+        ++r->method_frames[method];
+    return more;
+}
+
+/* The rows of part (of parts) of an image height rows high, from the top:
+ * band[0] the first in GL's bottom-up rows, band[1] how many. */
+static void band_of_part(int part, int parts, int height, int band[2])
+{
+    int top = (int)((long)height * part / parts), bottom = (int)((long)height * (part + 1) / parts);
+    band[0] = height - bottom;
+    band[1] = bottom - top;
+}
+
+/* One part of the image: at part 0 the shadow maps (once) and the G-buffer;
+ * then the direct and the indirect light within the part's band. Nonzero
+ * when the method would refine the image. */
+static int draw_part(gb_renderer *r, const gb_view *view, int part, int parts)
+{
+    int width = r->gbuffer.width, height = r->gbuffer.height;
+    gb_mat4 view_matrix = gb_view_matrix(view);
+    gb_mat4 projection = gb_view_projection(view, width, height);
+    if (part == 0) {
+        draw_shadow_maps(r);
+        gb_timings_begin(&r->timings, GB_PASS_GBUFFER);
+        gb_gbuffer_draw(&r->gbuffer, &r->gpu_scene, &view_matrix, &projection);
+        gb_timings_end(&r->timings, GB_PASS_GBUFFER);
+    }
+    int band[2];
+    band_of_part(part, parts, height, band);
+    gb_output_bind(&r->output);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(0, band[0], width, band[1]);
+    if (r->options.terms == GB_TERMS_INDIRECT)
+        gb_output_clear(&r->output);
+    else
+        draw_direct_light(r, view);
+    int more = 0;
+    if (r->options.terms != GB_TERMS_DIRECT)
+        more = draw_indirect_light(r, view, &view_matrix, &projection, part, parts, band);
+    glDisable(GL_SCISSOR_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    return more;
+}
+
+/* The G-buffer and the output at the full size divided by divisor. */
+static gb_result fit_size(gb_renderer *r, int divisor, gb_error *error)
+{
+    int width = r->options.width / divisor, height = r->options.height / divisor;
+    width = width > 0 ? width : 1;
+    height = height > 0 ? height : 1;
+    r->divisor = divisor;
+    gb_result result = gb_gbuffer_resize(&r->gbuffer, width, height, error);
+    if (result == GB_OK && !r->output.framebuffer)
+        result = gb_output_create(width, height, &r->output, error);
+    else if (result == GB_OK)
+        result = gb_output_resize(&r->output, width, height, error);
+    return result;
 }
 
 void gb_renderer_draw(gb_renderer *r, const gb_view *view)
 {
     r->frame_start = gb_seconds();
-    draw_shadow_maps(r);
-    gb_mat4 view_matrix = gb_view_matrix(view);
-    gb_mat4 projection = gb_view_projection(view, r->options.width, r->options.height);
-    gb_timings_begin(&r->timings, GB_PASS_GBUFFER);
-    gb_gbuffer_draw(&r->gbuffer, &r->gpu_scene, &view_matrix, &projection);
-    gb_timings_end(&r->timings, GB_PASS_GBUFFER);
-    gb_output_bind(&r->output);
-    if (r->options.terms == GB_TERMS_INDIRECT)
-        gb_output_clear(&r->output);
-    else
-        draw_direct_light(r, view);
-    if (r->options.terms != GB_TERMS_DIRECT)
-        draw_indirect_light(r, view, &view_matrix, &projection);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    draw_part(r, view, 0, 1);
+}
+
+/* The image drawn is complete: it becomes the shown one. */
+static void show_image(gb_renderer *r, int more)
+{
+    gb_output drawn = r->output;
+    r->output = r->shown;
+    r->shown = drawn;
+    r->part = 0;
+    r->status.divisor = r->divisor;
+    r->status.images = r->divisor == 1 ? r->status.images + 1 : 0;
+    r->status.converged = r->divisor == 1 && !more;
+}
+
+/* The next parts of the image being drawn (planned at its part 0) while
+ * they fit the budget; at least one. Nonzero when the image is complete. */
+static int draw_parts(gb_renderer *r, const gb_view *view, int *more)
+{
+    double elapsed = 0.0, part_ms;
+    do {
+        double start = gb_seconds();
+        *more = draw_part(r, view, r->part, r->parts);
+        glFinish();
+        part_ms = 1e3 * (gb_seconds() - start);
+        elapsed += part_ms;
+        ++r->part;
+    } while (r->part < r->parts && elapsed + part_ms <= r->options.budget_ms);
+    r->image_ms += elapsed;
+    return r->part == r->parts;
+}
+
+/* Plans the next image of a still view: twice the resolution of the shown
+ * one, up to the full; in as many parts as fit the budget. */
+static gb_result plan_image(gb_renderer *r, int moving, gb_error *error)
+{
+    int divisor = moving ? gb_frame_budget_divisor(&r->budget, r->options.width,
+                                                   r->options.height)
+                         : (r->status.divisor > 1 ? r->status.divisor / 2 : 1);
+    gb_result result = fit_size(r, divisor, error);
+    r->part = 0;
+    r->parts = moving ? 1
+                      : gb_frame_budget_parts(&r->budget, r->gbuffer.width, r->gbuffer.height);
+    r->image_ms = 0.0;
+    return result;
+}
+
+gb_result gb_renderer_refine(gb_renderer *r, const gb_view *view, int *changed,
+                             gb_error *error)
+{
+    *changed = 0;
+    r->frame_start = gb_seconds();
+    r->budget.budget_ms = r->options.budget_ms;
+    if (memcmp(view, &r->view, sizeof *view) != 0) {
+        r->view = *view;
+        r->restart = 1;
+    }
+    int moving = r->restart;
+    if (!moving && r->status.converged)
+        return GB_OK;
+    r->restart = 0;
+    gb_result result = GB_OK;
+    if (moving || r->part == 0)
+        result = plan_image(r, moving, error);
+    int more = 0;
+    if (result == GB_OK && draw_parts(r, view, &more)) {
+        gb_frame_budget_measure(&r->budget, r->image_ms,
+                                (double)r->gbuffer.width * (double)r->gbuffer.height);
+        show_image(r, more);
+        *changed = 1;
+    }
+    r->status.part = r->part;
+    r->status.parts = r->part ? r->parts : 1;
+    return result;
+}
+
+/* The image to present or read: refine's last complete one, else the output. */
+static const gb_output *image_of(const gb_renderer *r)
+{
+    return r->shown.framebuffer ? &r->shown : &r->output;
 }
 
 void gb_renderer_present(gb_renderer *renderer, int width, int height)
 {
     gb_timings_begin(&renderer->timings, GB_PASS_PRESENT);
-    gb_output_present(&renderer->output, width, height);
+    gb_output_present(image_of(renderer), width, height);
     gb_timings_end(&renderer->timings, GB_PASS_PRESENT);
 }
 
@@ -190,9 +323,33 @@ gb_result gb_renderer_finish_frame(gb_renderer *renderer, gb_error *error)
     return gb_gl_check(renderer->errors, "frame", error);
 }
 
+int gb_renderer_point_at(gb_renderer *r, const gb_view *view, float x, float y,
+                         gb_vec3 *point)
+{
+    int width = r->gbuffer.width, height = r->gbuffer.height;
+    int column = (int)(x * (float)width), row = height - 1 - (int)(y * (float)height);
+    if (column < 0 || column >= width || row < 0 || row >= height)
+        return 0;
+    float depth = 0.0f;
+    glGetTextureSubImage(r->gbuffer.depth, 0, column, row, 0, 1, 1, 1, GL_DEPTH_COMPONENT,
+                         GL_FLOAT, sizeof depth, &depth);
+    if (!(depth > 0.0f))
+        return 0;
+    /* gbuffer_world_position.glsl: view z = -near / depth along the pixel's ray. */
+    float distance = view->near / depth;
+    float tan_y = tanf(0.5f * view->fov_y * (float)M_PI / 180.0f);
+    float ndc_x = 2.0f * ((float)column + 0.5f) / (float)width - 1.0f;
+    float ndc_y = 2.0f * ((float)row + 0.5f) / (float)height - 1.0f;
+    gb_vec3 ray = gb_vec3_add(view->forward,
+                              gb_vec3_scale(view->right, ndc_x * tan_y * width / height));
+    ray = gb_vec3_add(ray, gb_vec3_scale(view->up, ndc_y * tan_y));
+    *point = gb_vec3_add(view->position, gb_vec3_scale(ray, distance));
+    return 1;
+}
+
 gb_result gb_renderer_read(gb_renderer *renderer, gb_image *image, gb_error *error)
 {
-    gb_result result = gb_output_read(&renderer->output, image, error);
+    gb_result result = gb_output_read(image_of(renderer), image, error);
     if (result == GB_OK)
         result = gb_gl_check(renderer->errors, "reading the frame back", error);
     if (result != GB_OK)
@@ -209,6 +366,7 @@ void gb_renderer_destroy(gb_renderer *renderer)
     }
     gb_timings_destroy(&renderer->timings);
     gb_output_destroy(&renderer->output);
+    gb_output_destroy(&renderer->shown);
     gb_direct_light_destroy(&renderer->direct);
     gb_shadow_maps_destroy(&renderer->shadows);
     gb_gbuffer_destroy(&renderer->gbuffer);

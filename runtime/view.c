@@ -3,6 +3,7 @@
 #include "camera.h"
 
 #include <math.h>
+#include <stdio.h>
 
 static void set_basis(gb_view *view, gb_vec3 forward)
 {
@@ -67,6 +68,38 @@ void gb_view_turn(gb_view *view, float yaw, float pitch)
     if (fabsf(gb_vec3_dot(pitched, view->world_up)) < 0.99f)
         forward = pitched;
     set_basis(view, forward);
+}
+
+void gb_view_orbit(gb_view *view, gb_vec3 pivot, float yaw, float pitch)
+{
+    gb_vec3 offset = rotate(gb_vec3_sub(view->position, pivot), view->world_up, yaw);
+    gb_vec3 forward = rotate(view->forward, view->world_up, yaw);
+    gb_vec3 axis = gb_vec3_normalize(gb_vec3_cross(forward, view->world_up));
+    gb_vec3 pitched = rotate(forward, axis, pitch);
+    if (fabsf(gb_vec3_dot(pitched, view->world_up)) < 0.99f) {
+        forward = pitched;
+        offset = rotate(offset, axis, pitch);
+    }
+    view->position = gb_vec3_add(pivot, offset);
+    set_basis(view, forward);
+}
+
+float gb_view_step_length(float speed, double seconds)
+{
+    if (!(seconds > 0.0))
+        return 0.0f;
+    return speed * (float)(seconds < GB_VIEW_LONGEST_STEP_SECONDS ? seconds
+                                                                  : GB_VIEW_LONGEST_STEP_SECONDS);
+}
+
+void gb_view_camera_line(const gb_view *view, int width, int height, char *line, size_t size)
+{
+    gb_vec3 p = view->position, t = gb_vec3_add(view->position, view->forward),
+            u = view->world_up;
+    snprintf(line, size,
+             "camera position %.9g %.9g %.9g target %.9g %.9g %.9g up %.9g %.9g %.9g "
+             "fov %.9g resolution %d %d",
+             p.x, p.y, p.z, t.x, t.y, t.z, u.x, u.y, u.z, view->fov_y, width, height);
 }
 
 gb_result gb_scene_view(const gb_scene *scene, uint32_t camera, gb_view *view,

@@ -7,6 +7,8 @@
 #ifndef GB_VIEW_H
 #define GB_VIEW_H
 
+#include <stddef.h>
+
 #include "mat4.h"
 #include "result.h"
 #include "scene.h"
@@ -38,5 +40,18 @@ void gb_view_move(gb_view *view, float forward, float right, float up);
 /* Turns by yaw about world up and pitch about right (radians), keeping the
  * view away from the poles. */
 void gb_view_turn(gb_view *view, float yaw, float pitch);
+/* Turns as gb_view_turn and moves the eye with the turn about pivot, which
+ * stays where it is in the image. */
+void gb_view_orbit(gb_view *view, gb_vec3 pivot, float yaw, float pitch);
+
+/* The longest time one fly step covers, seconds: a step after a slow frame
+ * is speed x this at most, not a jump across the scene. */
+#define GB_VIEW_LONGEST_STEP_SECONDS 0.1
+/* The length of a fly step at speed (units a second) after seconds. */
+float gb_view_step_length(float speed, double seconds);
+
+/* The view as a .scene camera line (formats/scene_file.h), target one unit
+ * ahead, with its resolution: "camera position ... resolution W H". */
+void gb_view_camera_line(const gb_view *view, int width, int height, char *line, size_t size);
 
 #endif

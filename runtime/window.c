@@ -1,27 +1,47 @@
 #include "window.h"
 
 #include <math.h>
+#include <signal.h>
 #include <stdio.h>
 #include <string.h>
 
 #include <GLFW/glfw3.h>
 
 #include "context.h"
+#include "method_cycle.h"
 #include "progress.h"
+#include "screenshot_path.h"
+
+/* How long an idle window sleeps between looks at SIGINT, seconds. */
+static const double IDLE_WAIT_SECONDS = 0.25;
+static const float RADIANS_PER_PIXEL = 0.004f;
+static const float WHEEL_SPEED_FACTOR = 1.25f;
+
+static volatile sig_atomic_t interrupted;
+
+static void on_interrupt(int signal)
+{
+    (void)signal;
+    interrupted = 1;
+}
 
 typedef struct window_state {
     const gb_scene *scene;
     const gb_window_options *options;
     GLFWwindow *window;
     gb_renderer renderer;
+    gb_method_cycle cycle;
     gb_view view;
     uint32_t camera;
     float speed;                /* world units per second */
     double last_x, last_y;
-    int dragging;
+    int dragging;               /* GLFW_MOUSE_BUTTON_LEFT (look) or _RIGHT (orbit), or -1 */
+    gb_vec3 pivot;              /* of the orbit */
     int screenshot_requested;
-    unsigned screenshot_count;
-    double last_title_time;
+    unsigned screenshot_next;
+    int redraw;                 /* present again: exposed, resized, a key's effect */
+    double input_time;          /* the first input since the last present, or 0 */
+    uint32_t presented;
 } window_state;
 
 static void report(window_state *s, const char *message)
@@ -30,13 +50,17 @@ static void report(window_state *s, const char *message)
         s->options->report(s->options->report_user, message);
 }
 
-static void switch_method(window_state *s)
+static void report_to(void *user, const char *message)
 {
-    gb_method next = gb_method_next(s->renderer.options.method);
-    gb_error error;
-    if (next == s->renderer.options.method ||
-        gb_renderer_set_method(&s->renderer, next, &error) != GB_OK)
-        report(s, "no other GI method is available in this build");
+    report(user, message);
+}
+
+/* An input arrived: the latency of the next present counts from here. */
+static void note_input(window_state *s)
+{
+    if (s->input_time == 0.0)
+        s->input_time = gb_seconds();
+    s->redraw = 1;
 }
 
 static void switch_camera(window_state *s)
@@ -49,45 +73,95 @@ static void switch_camera(window_state *s)
         report(s, error.message);
 }
 
+static void print_bookmark(window_state *s)
+{
+    char line[512];
+    gb_view_camera_line(&s->view, s->renderer.options.width, s->renderer.options.height, line,
+                        sizeof line);
+    report(s, line);
+}
+
 static void on_key(GLFWwindow *window, int key, int scancode, int action, int mods)
 {
     (void)scancode, (void)mods;
     window_state *s = glfwGetWindowUserPointer(window);
     if (action != GLFW_PRESS)
         return;
+    note_input(s);
     if (key == GLFW_KEY_ESCAPE)
         glfwSetWindowShouldClose(window, GLFW_TRUE);
     else if (key == GLFW_KEY_M)
-        switch_method(s);
+        gb_method_cycle_next(&s->cycle, &s->renderer, report_to, s);
     else if (key == GLFW_KEY_T)
         gb_renderer_set_terms(&s->renderer,
                               (gb_terms)((s->renderer.options.terms + 1) % GB_TERMS_COUNT));
     else if (key == GLFW_KEY_C)
         switch_camera(s);
+    else if (key == GLFW_KEY_B)
+        print_bookmark(s);
     else if (key == GLFW_KEY_F12 || key == GLFW_KEY_P)
         s->screenshot_requested = 1;
+}
+
+/* The point the cursor shows, or the scene's centre where it shows none. */
+static gb_vec3 point_under_cursor(window_state *s)
+{
+    int width, height;
+    glfwGetWindowSize(s->window, &width, &height);
+    gb_vec3 point;
+    if (width > 0 && height > 0 &&
+        gb_renderer_point_at(&s->renderer, &s->view, (float)(s->last_x / width),
+                             (float)(s->last_y / height), &point))
+        return point;
+    const float *lo = s->scene->bounds_min, *hi = s->scene->bounds_max;
+    return gb_vec3_make(0.5f * (lo[0] + hi[0]), 0.5f * (lo[1] + hi[1]), 0.5f * (lo[2] + hi[2]));
 }
 
 static void on_mouse_button(GLFWwindow *window, int button, int action, int mods)
 {
     (void)mods;
     window_state *s = glfwGetWindowUserPointer(window);
-    if (button != GLFW_MOUSE_BUTTON_LEFT)
+    if (button != GLFW_MOUSE_BUTTON_LEFT && button != GLFW_MOUSE_BUTTON_RIGHT)
         return;
-    s->dragging = action == GLFW_PRESS;
     glfwGetCursorPos(window, &s->last_x, &s->last_y);
+    if (action == GLFW_RELEASE) {
+        if (button == s->dragging)
+            s->dragging = -1;
+        return;
+    }
+    s->dragging = button;
+    if (button == GLFW_MOUSE_BUTTON_RIGHT)
+        s->pivot = point_under_cursor(s);
 }
 
 static void on_cursor(GLFWwindow *window, double x, double y)
 {
     window_state *s = glfwGetWindowUserPointer(window);
-    if (!s->dragging)
+    if (s->dragging < 0)
         return;
-    const float radians_per_pixel = 0.004f;
-    gb_view_turn(&s->view, -(float)(x - s->last_x) * radians_per_pixel,
-                 -(float)(y - s->last_y) * radians_per_pixel);
+    float yaw = -(float)(x - s->last_x) * RADIANS_PER_PIXEL;
+    float pitch = -(float)(y - s->last_y) * RADIANS_PER_PIXEL;
+    if (s->dragging == GLFW_MOUSE_BUTTON_RIGHT)
+        gb_view_orbit(&s->view, s->pivot, yaw, pitch);
+    else
+        gb_view_turn(&s->view, yaw, pitch);
     s->last_x = x;
     s->last_y = y;
+    note_input(s);
+}
+
+static void on_scroll(GLFWwindow *window, double dx, double dy)
+{
+    (void)dx;
+    window_state *s = glfwGetWindowUserPointer(window);
+    s->speed *= powf(WHEEL_SPEED_FACTOR, (float)dy);
+    note_input(s);
+}
+
+static void on_refresh(GLFWwindow *window)
+{
+    window_state *s = glfwGetWindowUserPointer(window);
+    s->redraw = 1;
 }
 
 static float key_axis(GLFWwindow *window, int positive, int negative)
@@ -96,25 +170,24 @@ static float key_axis(GLFWwindow *window, int positive, int negative)
            (float)(glfwGetKey(window, negative) == GLFW_PRESS);
 }
 
+/* Moves the view by the keys held over seconds (at most a capped step). */
 static void fly(window_state *s, double seconds)
 {
     GLFWwindow *w = s->window;
-    float step = s->speed * (float)seconds;
+    float forward = key_axis(w, GLFW_KEY_W, GLFW_KEY_S), right = key_axis(w, GLFW_KEY_D, GLFW_KEY_A),
+          up = key_axis(w, GLFW_KEY_E, GLFW_KEY_Q);
+    if (forward == 0.0f && right == 0.0f && up == 0.0f)
+        return;
+    float step = gb_view_step_length(s->speed, seconds);
     if (glfwGetKey(w, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS)
         step *= 5.0f;
-    gb_view_move(&s->view, step * key_axis(w, GLFW_KEY_W, GLFW_KEY_S),
-                 step * key_axis(w, GLFW_KEY_D, GLFW_KEY_A),
-                 step * key_axis(w, GLFW_KEY_E, GLFW_KEY_Q));
+    gb_view_move(&s->view, step * forward, step * right, step * up);
+    note_input(s);
 }
 
-static void save_screenshot(window_state *s)
+static void save_screenshot(window_state *s, const char *path)
 {
-    char path[1024], message[1200];
-    if (s->options->screenshot_path)
-        snprintf(path, sizeof path, "%s", s->options->screenshot_path);
-    else
-        snprintf(path, sizeof path, "gbview-%03u.png", s->screenshot_count);
-    ++s->screenshot_count;
+    char message[1200];
     gb_image image;
     gb_error error;
     gb_result result = gb_renderer_read(&s->renderer, &image, &error);
@@ -129,55 +202,110 @@ static void save_screenshot(window_state *s)
     report(s, message);
 }
 
+static void take_screenshot(window_state *s)
+{
+    char path[1024];
+    gb_error error;
+    const char *base = s->options->screenshot_path ? s->options->screenshot_path : "gbview.png";
+    if (gb_screenshot_path(base, &s->screenshot_next, path, sizeof path, &error) == GB_OK)
+        save_screenshot(s, path);
+    else
+        report(s, error.message);
+}
+
 static void update_title(window_state *s)
 {
-    double now = gb_seconds();
-    if (now - s->last_title_time < 0.5)
-        return;
-    s->last_title_time = now;
-    char times[256], title[512];
-    gb_timings_format_last(&s->renderer.timings, times, sizeof times);
-    snprintf(title, sizeof title, "gbview %s - %s - %s - %s", s->options->title,
-             gb_method_name(s->renderer.options.method),
-             gb_terms_name(s->renderer.options.terms), times);
+    char title[512];
+    snprintf(title, sizeof title, "gbview %s - %s", s->options->title,
+             gb_method_name(s->renderer.options.method));
     glfwSetWindowTitle(s->window, title);
 }
 
-static gb_result follow_window_size(window_state *s, int *width, int *height, gb_error *error)
+static void log_frame(window_state *s, double now)
 {
-    glfwGetFramebufferSize(s->window, width, height);
-    if (*width <= 0 || *height <= 0)
-        return GB_OK;   /* minimised */
-    return gb_renderer_resize(&s->renderer, *width, *height, error);
+    if (!s->options->log_frames)
+        return;
+    const gb_renderer_status *st = &s->renderer.status;
+    char line[256];
+    snprintf(line, sizeof line,
+             "frame %u: %.1f ms, latency %.1f ms, 1/%d, part %d/%d, images %u%s",
+             s->presented, s->renderer.timings.last_frame_wall_ms,
+             s->input_time > 0.0 ? 1e3 * (now - s->input_time) : 0.0, st->divisor, st->part,
+             st->parts, st->images, st->converged ? ", final" : "");
+    report(s, line);
+}
+
+static void present(window_state *s, int width, int height)
+{
+    gb_renderer_present(&s->renderer, width, height);
+    glfwSwapBuffers(s->window);
+    glFinish();
+    double now = gb_seconds();
+    ++s->presented;
+    log_frame(s, now);
+    s->input_time = 0.0;
+    s->redraw = 0;
+    update_title(s);
+}
+
+/* Draws toward the image: its next parts to the budget, or a whole image
+ * with --budget 0. *changed when the image to show changed. */
+static gb_result draw(window_state *s, int *changed, gb_error *error)
+{
+    if (s->renderer.options.budget_ms > 0.0)
+        return gb_renderer_refine(&s->renderer, &s->view, changed, error);
+    gb_renderer_draw(&s->renderer, &s->view);
+    s->renderer.status = (gb_renderer_status){.divisor = 1, .parts = 1,
+                                              .images = s->renderer.status.images + 1};
+    *changed = 1;
+    return GB_OK;
+}
+
+/* Waits for input when there is nothing to draw, else only looks. */
+static void wait_or_poll(window_state *s)
+{
+    if (s->renderer.status.converged && !s->redraw && s->renderer.options.budget_ms > 0.0)
+        glfwWaitEventsTimeout(IDLE_WAIT_SECONDS);
+    else
+        glfwPollEvents();
+    if (interrupted)
+        glfwSetWindowShouldClose(s->window, GLFW_TRUE);
+}
+
+static int done(const window_state *s)
+{
+    const gb_renderer_status *st = &s->renderer.status;
+    return s->options->frames > 0 &&
+           (st->images >= (uint32_t)s->options->frames || st->converged);
 }
 
 static gb_result run_frames(window_state *s, gb_error *error)
 {
     double previous = gb_seconds();
     gb_result result = GB_OK;
-    for (int frame = 0; result == GB_OK && !glfwWindowShouldClose(s->window); ++frame) {
-        if (s->options->frames > 0 && frame >= s->options->frames)
-            break;
-        glfwPollEvents();
+    while (result == GB_OK && !glfwWindowShouldClose(s->window) && !done(s)) {
+        wait_or_poll(s);
         double now = gb_seconds();
         fly(s, now - previous);
         previous = now;
-        int width, height;
-        result = follow_window_size(s, &width, &height, error);
-        if (result != GB_OK || width <= 0 || height <= 0)
-            continue;
-        gb_renderer_draw(&s->renderer, &s->view);
-        gb_renderer_present(&s->renderer, width, height);
-        result = gb_renderer_finish_frame(&s->renderer, error);
-        if (frame + 1 == s->options->frames && s->options->screenshot_path)
-            s->screenshot_requested = 1;
+        int width, height, changed = 0;
+        glfwGetFramebufferSize(s->window, &width, &height);
+        if (width <= 0 || height <= 0)
+            continue;   /* minimised */
+        result = gb_renderer_resize(&s->renderer, width, height, error);
+        if (result == GB_OK)
+            result = draw(s, &changed, error);
+        if (result == GB_OK)
+            result = gb_renderer_finish_frame(&s->renderer, error);
+        if (result == GB_OK && (changed || s->redraw))
+            present(s, width, height);
         if (result == GB_OK && s->screenshot_requested) {
             s->screenshot_requested = 0;
-            save_screenshot(s);
+            take_screenshot(s);
         }
-        glfwSwapBuffers(s->window);
-        update_title(s);
     }
+    if (result == GB_OK && done(s) && s->options->screenshot_path)
+        save_screenshot(s, s->options->screenshot_path);
     return result;
 }
 
@@ -187,6 +315,8 @@ static void install_callbacks(window_state *s)
     glfwSetKeyCallback(s->window, on_key);
     glfwSetMouseButtonCallback(s->window, on_mouse_button);
     glfwSetCursorPosCallback(s->window, on_cursor);
+    glfwSetScrollCallback(s->window, on_scroll);
+    glfwSetWindowRefreshCallback(s->window, on_refresh);
 }
 
 static float scene_diagonal(const gb_scene *scene)
@@ -208,6 +338,7 @@ gb_result gb_run_window(const gb_scene *scene, const gb_window_options *options,
     s.options = options;
     s.camera = options->camera;
     s.speed = 0.25f * scene_diagonal(scene);
+    s.dragging = -1;
     gb_result result = gb_scene_view(scene, options->camera, &s.view, error);
     if (result != GB_OK)
         return result;
@@ -222,11 +353,14 @@ gb_result gb_run_window(const gb_scene *scene, const gb_window_options *options,
     if (result != GB_OK)
         return result;
     s.window = context.window;
+    interrupted = 0;
+    void (*previous_handler)(int) = signal(SIGINT, on_interrupt);
     result = gb_renderer_create(scene, &renderer_options, &context.errors, &s.renderer, error);
     if (result == GB_OK) {
         install_callbacks(&s);
         result = run_frames(&s, error);
     }
+    signal(SIGINT, previous_handler);
     if (timings) {
         *timings = s.renderer.timings;
         memset(timings->queries, 0, sizeof timings->queries);
