@@ -72,6 +72,13 @@ gb_result gb_renderer_create(const gb_scene *scene, const gb_renderer_options *o
     return GB_OK;
 }
 
+/* The next refine draws a new image, and the shown one is final no more. */
+static void start_again(gb_renderer *r)
+{
+    r->restart = 1;
+    r->status.converged = 0;
+}
+
 gb_result gb_renderer_resize(gb_renderer *renderer, int width, int height, gb_error *error)
 {
     if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
@@ -84,7 +91,7 @@ gb_result gb_renderer_resize(gb_renderer *renderer, int width, int height, gb_er
                             height != renderer->options.height)) {
         renderer->options.width = width;
         renderer->options.height = height;
-        renderer->restart = 1;
+        start_again(renderer);
     }
     return result;
 }
@@ -96,7 +103,7 @@ gb_result gb_renderer_set_method(gb_renderer *renderer, gb_method method, gb_err
         result = prepare_method(renderer, method, error);
     if (result == GB_OK) {
         renderer->options.method = method;
-        renderer->restart = 1;
+        start_again(renderer);
     }
     return result;
 }
@@ -104,7 +111,7 @@ gb_result gb_renderer_set_method(gb_renderer *renderer, gb_method method, gb_err
 void gb_renderer_set_terms(gb_renderer *renderer, gb_terms terms)
 {
     renderer->options.terms = terms;
-    renderer->restart = 1;
+    start_again(renderer);
 }
 
 static void draw_shadow_maps(gb_renderer *r)
@@ -282,7 +289,7 @@ gb_result gb_renderer_refine(gb_renderer *r, const gb_view *view, int *changed,
     r->budget.budget_ms = r->options.budget_ms;
     if (memcmp(view, &r->view, sizeof *view) != 0) {
         r->view = *view;
-        r->restart = 1;
+        start_again(r);
     }
     int moving = r->restart;
     if (!moving && r->status.converged)
