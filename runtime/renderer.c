@@ -79,21 +79,33 @@ static void start_again(gb_renderer *r)
     r->status.converged = 0;
 }
 
+/* The G-buffer and the output at the full size divided by divisor. */
+static gb_result fit_size(gb_renderer *r, int divisor, gb_error *error)
+{
+    int width = r->options.width / divisor, height = r->options.height / divisor;
+    width = width > 0 ? width : 1;
+    height = height > 0 ? height : 1;
+    r->divisor = divisor;
+    gb_result result = gb_gbuffer_resize(&r->gbuffer, width, height, error);
+    if (result == GB_OK && !r->output.framebuffer)
+        result = gb_output_create(width, height, &r->output, error);
+    else if (result == GB_OK)
+        result = gb_output_resize(&r->output, width, height, error);
+    return result;
+}
+
 gb_result gb_renderer_resize(gb_renderer *renderer, int width, int height, gb_error *error)
 {
     if (width <= 0 || height <= 0 || width > 16384 || height > 16384)
         return gb_fail(error, GB_ERROR_ARGUMENT, "resolution %dx%d is not in 1..16384", width,
                        height);
-    gb_result result = gb_gbuffer_resize(&renderer->gbuffer, width, height, error);
-    if (result == GB_OK)
-        result = gb_output_resize(&renderer->output, width, height, error);
-    if (result == GB_OK && (width != renderer->options.width ||
-                            height != renderer->options.height)) {
-        renderer->options.width = width;
-        renderer->options.height = height;
-        start_again(renderer);
-    }
-    return result;
+    if (width == renderer->options.width && height == renderer->options.height)
+        return GB_OK;
+    renderer->options.width = width;
+    renderer->options.height = height;
+    start_again(renderer);
+    /* gb_renderer_refine sizes each image itself. */
+    return renderer->options.budget_ms > 0.0 ? GB_OK : fit_size(renderer, 1, error);
 }
 
 gb_result gb_renderer_set_method(gb_renderer *renderer, gb_method method, gb_error *error)
@@ -214,21 +226,6 @@ static int draw_part(gb_renderer *r, const gb_view *view, int part, int parts)
     glDisable(GL_SCISSOR_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return more;
-}
-
-/* The G-buffer and the output at the full size divided by divisor. */
-static gb_result fit_size(gb_renderer *r, int divisor, gb_error *error)
-{
-    int width = r->options.width / divisor, height = r->options.height / divisor;
-    width = width > 0 ? width : 1;
-    height = height > 0 ? height : 1;
-    r->divisor = divisor;
-    gb_result result = gb_gbuffer_resize(&r->gbuffer, width, height, error);
-    if (result == GB_OK && !r->output.framebuffer)
-        result = gb_output_create(width, height, &r->output, error);
-    else if (result == GB_OK)
-        result = gb_output_resize(&r->output, width, height, error);
-    return result;
 }
 
 void gb_renderer_draw(gb_renderer *r, const gb_view *view)
