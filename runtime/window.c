@@ -41,7 +41,8 @@ typedef struct window_state {
     unsigned screenshot_next;
     int redraw;                 /* present again: exposed, resized, a key's effect */
     double input_time;          /* the first input since the last present, or 0 */
-    uint32_t presented;
+    uint32_t frames;            /* that drew */
+    int quit_told;
 } window_state;
 
 static void report(window_state *s, const char *message)
@@ -221,17 +222,22 @@ static void update_title(window_state *s)
     glfwSetWindowTitle(s->window, title);
 }
 
-static void log_frame(window_state *s, double now)
+/* With log_frames, a line a frame that drew: bench/viewer.sh and the
+ * window test read them. latency: from the first input the frame answers to
+ * its image on screen. */
+static void log_frame(window_state *s, int presented, double now)
 {
     if (!s->options->log_frames)
         return;
     const gb_renderer_status *st = &s->renderer.status;
     char line[256];
     snprintf(line, sizeof line,
-             "frame %u: %.1f ms, latency %.1f ms, 1/%d, part %d/%d, images %u%s",
-             s->presented, s->renderer.timings.last_frame_wall_ms,
-             s->input_time > 0.0 ? 1e3 * (now - s->input_time) : 0.0, st->divisor, st->part,
-             st->parts, st->images, st->converged ? ", final" : "");
+             "frame %u: %.1f ms, 1/%d, part %d/%d, images %u%s%s", s->frames,
+             s->renderer.timings.last_frame_wall_ms, st->divisor, st->part, st->parts,
+             st->images, st->converged ? ", final" : "", presented ? ", presented" : "");
+    if (presented && s->input_time > 0.0)
+        snprintf(line + strlen(line), sizeof line - strlen(line), ", latency %.1f ms",
+                 1e3 * (now - s->input_time));
     report(s, line);
 }
 
@@ -240,10 +246,6 @@ static void present(window_state *s, int width, int height)
     gb_renderer_present(&s->renderer, width, height);
     glfwSwapBuffers(s->window);
     glFinish();
-    double now = gb_seconds();
-    ++s->presented;
-    log_frame(s, now);
-    s->input_time = 0.0;
     s->redraw = 0;
     update_title(s);
 }
@@ -270,6 +272,10 @@ static void wait_or_poll(window_state *s)
         glfwPollEvents();
     if (interrupted)
         glfwSetWindowShouldClose(s->window, GLFW_TRUE);
+    if (glfwWindowShouldClose(s->window) && !s->quit_told && s->options->log_frames) {
+        report(s, "quit asked");
+        s->quit_told = 1;
+    }
 }
 
 static int done(const window_state *s)
@@ -279,30 +285,55 @@ static int done(const window_state *s)
            (st->images >= (uint32_t)s->options->frames || st->converged);
 }
 
+/* Nonzero when refine has nothing to draw: the image is final and nothing
+ * asked for another. */
+static int idle(const window_state *s)
+{
+    return s->renderer.options.budget_ms > 0.0 && s->renderer.status.converged &&
+           !s->renderer.restart;
+}
+
+/* One turn of the loop: input, then the next slice of the image, shown when
+ * it changed. */
+static gb_result run_frame(window_state *s, double seconds, gb_error *error)
+{
+    fly(s, seconds);
+    int width, height, changed = 0;
+    glfwGetFramebufferSize(s->window, &width, &height);
+    if (width <= 0 || height <= 0)
+        return GB_OK;   /* minimised */
+    gb_result result = gb_renderer_resize(&s->renderer, width, height, error);
+    int drawing = result == GB_OK && !idle(s);
+    if (drawing)
+        result = draw(s, &changed, error);
+    if (drawing && result == GB_OK)
+        result = gb_renderer_finish_frame(&s->renderer, error);
+    int presented = result == GB_OK && (changed || s->redraw);
+    if (presented)
+        present(s, width, height);
+    if (drawing)
+        log_frame(s, presented, gb_seconds());
+    s->frames += drawing;
+    if (presented)
+        s->input_time = 0.0;
+    if (result == GB_OK && s->screenshot_requested) {
+        s->screenshot_requested = 0;
+        take_screenshot(s);
+    }
+    return result;
+}
+
 static gb_result run_frames(window_state *s, gb_error *error)
 {
     double previous = gb_seconds();
     gb_result result = GB_OK;
-    while (result == GB_OK && !glfwWindowShouldClose(s->window) && !done(s)) {
+    while (result == GB_OK && !done(s)) {
         wait_or_poll(s);
+        if (glfwWindowShouldClose(s->window))
+            break;
         double now = gb_seconds();
-        fly(s, now - previous);
+        result = run_frame(s, now - previous, error);
         previous = now;
-        int width, height, changed = 0;
-        glfwGetFramebufferSize(s->window, &width, &height);
-        if (width <= 0 || height <= 0)
-            continue;   /* minimised */
-        result = gb_renderer_resize(&s->renderer, width, height, error);
-        if (result == GB_OK)
-            result = draw(s, &changed, error);
-        if (result == GB_OK)
-            result = gb_renderer_finish_frame(&s->renderer, error);
-        if (result == GB_OK && (changed || s->redraw))
-            present(s, width, height);
-        if (result == GB_OK && s->screenshot_requested) {
-            s->screenshot_requested = 0;
-            take_screenshot(s);
-        }
     }
     if (result == GB_OK && done(s) && s->options->screenshot_path)
         save_screenshot(s, s->options->screenshot_path);
