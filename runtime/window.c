@@ -8,6 +8,7 @@
 #include <GLFW/glfw3.h>
 
 #include "context.h"
+#include "hud.h"
 #include "method_cycle.h"
 #include "progress.h"
 #include "screenshot_path.h"
@@ -43,6 +44,10 @@ typedef struct window_state {
     double input_time;          /* the first input since the last present, or 0 */
     uint32_t frames;            /* that drew */
     int quit_told;
+    gb_hud hud;
+    int hud_hidden, keys_shown;
+    char hud_text[512];         /* as last presented */
+    double frame_seconds;       /* between frames that drew, a running mean */
 } window_state;
 
 static void report(window_state *s, const char *message)
@@ -100,6 +105,10 @@ static void on_key(GLFWwindow *window, int key, int scancode, int action, int mo
         switch_camera(s);
     else if (key == GLFW_KEY_B)
         print_bookmark(s);
+    else if (key == GLFW_KEY_H)
+        s->keys_shown = !s->keys_shown;
+    else if (key == GLFW_KEY_F1)
+        s->hud_hidden = !s->hud_hidden;
     else if (key == GLFW_KEY_F12 || key == GLFW_KEY_P)
         s->screenshot_requested = 1;
 }
@@ -241,9 +250,64 @@ static void log_frame(window_state *s, int presented, double now)
     report(s, line);
 }
 
+static const char keys_text[] =
+    "left button: look      right button: orbit\n"
+    "W A S D Q E: fly       Shift: 5x   wheel: speed\n"
+    "M: method   T: terms   C: camera\n"
+    "B: print the view as a .scene camera line\n"
+    "P, F12: screenshot     F1: HUD   H: these keys\n"
+    "Esc: quit";
+
+/* Where the image is: refining it, moving, final. */
+static void describe_image(const window_state *s, char *text, size_t size)
+{
+    const gb_renderer_status *st = &s->renderer.status;
+    if (s->renderer.options.budget_ms <= 0.0)
+        snprintf(text, size, "whole frames (--budget 0)");
+    else if (st->converged)
+        snprintf(text, size, "final%s", st->images > 1 ? " (samples)" : "");
+    else if (st->parts > 1)
+        snprintf(text, size, "1/%d shown; drawing part %d/%d", st->divisor, st->part, st->parts);
+    else if (st->images > 0)
+        snprintf(text, size, "refining: %u images", st->images);
+    else
+        snprintf(text, size, "1/%d resolution", st->divisor);
+}
+
+static void make_hud_text(const window_state *s, char *text, size_t size)
+{
+    char image[128];
+    describe_image(s, image, sizeof image);
+    const gb_renderer *r = &s->renderer;
+    gb_vec3 eye = s->view.position;
+    snprintf(text, size,
+             "%s - %s\n%.1f ms a frame, %.1f fps, budget %.0f ms\n%s\n"
+             "eye %.4g %.4g %.4g, speed %.3g\nH: keys",
+             gb_method_name(r->options.method), gb_terms_name(r->options.terms),
+             r->timings.last_frame_wall_ms, s->frame_seconds > 0.0 ? 1.0 / s->frame_seconds : 0.0,
+             r->options.budget_ms, image, eye.x, eye.y, eye.z, s->speed);
+}
+
+/* The HUD's text changed since it was last shown. */
+static int hud_changed(window_state *s)
+{
+    char text[sizeof s->hud_text];
+    make_hud_text(s, text, sizeof text);
+    if (s->hud_hidden || strcmp(text, s->hud_text) == 0)
+        return 0;
+    memcpy(s->hud_text, text, sizeof text);
+    return 1;
+}
+
 static void present(window_state *s, int width, int height)
 {
     gb_renderer_present(&s->renderer, width, height);
+    if (!s->hud_hidden) {
+        make_hud_text(s, s->hud_text, sizeof s->hud_text);
+        gb_hud_draw(&s->hud, s->hud_text, GB_HUD_TOP_LEFT, width, height);
+    }
+    if (s->keys_shown)
+        gb_hud_draw(&s->hud, keys_text, GB_HUD_BOTTOM_LEFT, width, height);
     glfwSwapBuffers(s->window);
     glFinish();
     s->redraw = 0;
@@ -308,11 +372,13 @@ static gb_result run_frame(window_state *s, double seconds, gb_error *error)
         result = draw(s, &changed, error);
     if (drawing && result == GB_OK)
         result = gb_renderer_finish_frame(&s->renderer, error);
-    int presented = result == GB_OK && (changed || s->redraw);
+    int presented = result == GB_OK && (changed || s->redraw || hud_changed(s));
     if (presented)
         present(s, width, height);
-    if (drawing)
+    if (drawing) {
         log_frame(s, presented, gb_seconds());
+        s->frame_seconds += 0.1 * (seconds - s->frame_seconds);
+    }
     s->frames += drawing;
     if (presented)
         s->input_time = 0.0;
@@ -387,6 +453,8 @@ gb_result gb_run_window(const gb_scene *scene, const gb_window_options *options,
     interrupted = 0;
     void (*previous_handler)(int) = signal(SIGINT, on_interrupt);
     result = gb_renderer_create(scene, &renderer_options, &context.errors, &s.renderer, error);
+    if (result == GB_OK)
+        result = gb_hud_create(&s.hud, error);
     if (result == GB_OK) {
         install_callbacks(&s);
         result = run_frames(&s, error);
@@ -396,6 +464,7 @@ gb_result gb_run_window(const gb_scene *scene, const gb_window_options *options,
         *timings = s.renderer.timings;
         memset(timings->queries, 0, sizeof timings->queries);
     }
+    gb_hud_destroy(&s.hud);
     gb_renderer_destroy(&s.renderer);
     gb_context_destroy(&context);
     return result;
