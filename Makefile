@@ -34,7 +34,7 @@ FUZZ_SECONDS ?= 20
 DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
   libopenvdb-dev libtbb-dev libembree-dev libflann-dev liblz4-dev libcgal-dev libeigen3-dev \
   libopenmesh-dev libopenimageio-dev libepoxy-dev libglfw3-dev libegl-dev libstb-dev \
-  libegl-mesa0 libgl1-mesa-dri xvfb xauth libopenvdb-tools openimageio-tools time strace gnuplot-nox help2man \
+  libegl-mesa0 libgl1-mesa-dri xvfb xauth xdotool openbox libopenvdb-tools openimageio-tools time strace gnuplot-nox help2man \
   munge slurm-wlm nodejs python3
 # What make bench needs beside: scikit-image's skeletonize_3d, thin's peer
 # in bench/thin.sh (for Debian's /usr/bin/python3).

@@ -97,8 +97,8 @@ void gb_view_camera_line(const gb_view *view, int width, int height, char *line,
     gb_vec3 p = view->position, t = gb_vec3_add(view->position, view->forward),
             u = view->world_up;
     snprintf(line, size,
-             "camera position %.9g %.9g %.9g target %.9g %.9g %.9g up %.9g %.9g %.9g "
-             "fov %.9g resolution %d %d",
+             "camera position %.7g %.7g %.7g target %.7g %.7g %.7g up %.7g %.7g %.7g "
+             "fov %.7g resolution %d %d",
              p.x, p.y, p.z, t.x, t.y, t.z, u.x, u.y, u.z, view->fov_y, width, height);
 }
 

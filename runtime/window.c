@@ -35,7 +35,7 @@ typedef struct window_state {
     gb_view view;
     uint32_t camera;
     float speed;                /* world units per second */
-    double last_x, last_y;
+    double last_x, last_y;      /* the cursor's last position, window pixels */
     int dragging;               /* GLFW_MOUSE_BUTTON_LEFT (look) or _RIGHT (orbit), or -1 */
     gb_vec3 pivot;              /* of the orbit */
     int screenshot_requested;
@@ -87,6 +87,13 @@ static void print_bookmark(window_state *s)
     report(s, line);
 }
 
+static void toggle_keys(window_state *s)
+{
+    s->keys_shown = !s->keys_shown;
+    if (s->options->log_frames)
+        report(s, s->keys_shown ? "keys shown" : "keys hidden");
+}
+
 static void on_key(GLFWwindow *window, int key, int scancode, int action, int mods)
 {
     (void)scancode, (void)mods;
@@ -106,7 +113,7 @@ static void on_key(GLFWwindow *window, int key, int scancode, int action, int mo
     else if (key == GLFW_KEY_B)
         print_bookmark(s);
     else if (key == GLFW_KEY_H)
-        s->keys_shown = !s->keys_shown;
+        toggle_keys(s);
     else if (key == GLFW_KEY_F1)
         s->hud_hidden = !s->hud_hidden;
     else if (key == GLFW_KEY_F12 || key == GLFW_KEY_P)
@@ -133,7 +140,6 @@ static void on_mouse_button(GLFWwindow *window, int button, int action, int mods
     window_state *s = glfwGetWindowUserPointer(window);
     if (button != GLFW_MOUSE_BUTTON_LEFT && button != GLFW_MOUSE_BUTTON_RIGHT)
         return;
-    glfwGetCursorPos(window, &s->last_x, &s->last_y);
     if (action == GLFW_RELEASE) {
         if (button == s->dragging)
             s->dragging = -1;
@@ -147,8 +153,12 @@ static void on_mouse_button(GLFWwindow *window, int button, int action, int mods
 static void on_cursor(GLFWwindow *window, double x, double y)
 {
     window_state *s = glfwGetWindowUserPointer(window);
-    if (s->dragging < 0)
+    if (s->dragging < 0) {  /* where a drag starts: the events' own positions,
+                               not the pointer's now, which may be further */
+        s->last_x = x;
+        s->last_y = y;
         return;
+    }
     float yaw = -(float)(x - s->last_x) * RADIANS_PER_PIXEL;
     float pitch = -(float)(y - s->last_y) * RADIANS_PER_PIXEL;
     if (s->dragging == GLFW_MOUSE_BUTTON_RIGHT)
@@ -226,8 +236,9 @@ static void take_screenshot(window_state *s)
 static void update_title(window_state *s)
 {
     char title[512];
-    snprintf(title, sizeof title, "gbview %s - %s", s->options->title,
-             gb_method_name(s->renderer.options.method));
+    snprintf(title, sizeof title, "gbview %s - %s - %s", s->options->title,
+             gb_method_name(s->renderer.options.method),
+             gb_terms_name(s->renderer.options.terms));
     glfwSetWindowTitle(s->window, title);
 }
 
