@@ -43,6 +43,7 @@ typedef struct window_state {
     int redraw;                 /* present again: exposed, resized, a key's effect */
     double input_time;          /* the first input since the last present, or 0 */
     uint32_t frames;            /* that drew */
+    double start_time;          /* the window's creation, gb_seconds() */
     int quit_told;
     gb_hud hud;
     int hud_hidden, keys_shown;
@@ -245,16 +246,17 @@ static void update_title(window_state *s)
 /* With log_frames, a line a frame that drew: bench/viewer.sh and the
  * window test read them. latency: from the first input the frame answers to
  * its image on screen. */
-static void log_frame(window_state *s, int presented, double now)
+static void log_frame(window_state *s, int moving, int presented, double now)
 {
     if (!s->options->log_frames)
         return;
     const gb_renderer_status *st = &s->renderer.status;
     char line[256];
     snprintf(line, sizeof line,
-             "frame %u: %.1f ms, 1/%d, part %d/%d, images %u%s%s", s->frames,
-             s->renderer.timings.last_frame_wall_ms, st->divisor, st->part, st->parts,
-             st->images, st->converged ? ", final" : "", presented ? ", presented" : "");
+             "frame %u: %.1f ms, t %.3f s, 1/%d, part %d/%d, images %u%s%s%s", s->frames,
+             s->renderer.timings.last_frame_wall_ms, now - s->start_time, st->divisor,
+             st->part, st->parts, st->images, moving ? ", moving" : "",
+             st->converged ? ", final" : "", presented ? ", presented" : "");
     if (presented && s->input_time > 0.0)
         snprintf(line + strlen(line), sizeof line - strlen(line), ", latency %.1f ms",
                  1e3 * (now - s->input_time));
@@ -360,12 +362,12 @@ static int done(const window_state *s)
            (st->images >= (uint32_t)s->options->frames || st->converged);
 }
 
-/* Nonzero when refine has nothing to draw: the image is final and nothing
- * asked for another. */
-static int idle(const window_state *s)
+/* Nonzero when refine has nothing to draw: the image is final and neither
+ * the view nor anything else asked for another. */
+static int idle(const window_state *s, int moving)
 {
     return s->renderer.options.budget_ms > 0.0 && s->renderer.status.converged &&
-           !s->renderer.restart;
+           !s->renderer.restart && !moving;
 }
 
 /* One turn of the loop: input, then the next slice of the image, shown when
@@ -378,7 +380,8 @@ static gb_result run_frame(window_state *s, double seconds, gb_error *error)
     if (width <= 0 || height <= 0)
         return GB_OK;   /* minimised */
     gb_result result = gb_renderer_resize(&s->renderer, width, height, error);
-    int drawing = result == GB_OK && !idle(s);
+    int moving = memcmp(&s->view, &s->renderer.view, sizeof s->view) != 0;
+    int drawing = result == GB_OK && !idle(s, moving);
     if (drawing)
         result = draw(s, &changed, error);
     if (drawing && result == GB_OK)
@@ -387,7 +390,7 @@ static gb_result run_frame(window_state *s, double seconds, gb_error *error)
     if (presented)
         present(s, width, height);
     if (drawing) {
-        log_frame(s, presented, gb_seconds());
+        log_frame(s, moving, presented, gb_seconds());
         s->frame_seconds += 0.1 * (seconds - s->frame_seconds);
     }
     s->frames += drawing;
@@ -461,6 +464,7 @@ gb_result gb_run_window(const gb_scene *scene, const gb_window_options *options,
     if (result != GB_OK)
         return result;
     s.window = context.window;
+    s.start_time = gb_seconds();
     interrupted = 0;
     void (*previous_handler)(int) = signal(SIGINT, on_interrupt);
     result = gb_renderer_create(scene, &renderer_options, &context.errors, &s.renderer, error);

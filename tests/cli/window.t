@@ -62,6 +62,8 @@ second=$(bookmark 2)
 ok "$([ -n "$second" ] && [ "$second" != "$first" ] &&
       [ "$(echo "$second" | cut -d' ' -f5)" != 278 ] || [ "$(echo "$second" | cut -d' ' -f7)" != -800 ]; echo $?)" \
     "W moves the eye"
+ok "$(sed -n '/, final/,$p' "$dir/log" | grep -q '^gbview: frame .*, moving.*, presented'; echo $?)" \
+    "... and a final image gives way to the moving view's"
 eval "$(xdotool getwindowgeometry --shell "$wid")"
 xdotool mousemove --window "$wid" 80 60 mousedown 1 mousemove --window "$wid" 120 70 mouseup 1
 third=$(bookmark 3)
