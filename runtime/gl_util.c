@@ -225,6 +225,48 @@ void gb_gl_set_view_projection(GLuint program, const float view[16], const float
                               projection);
 }
 
+void gb_gl_state_save(gb_gl_state *s)
+{
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &s->draw_framebuffer);
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &s->read_framebuffer);
+    glGetIntegerv(GL_VIEWPORT, s->viewport);
+    glGetIntegerv(GL_SCISSOR_BOX, s->scissor_box);
+    s->scissor_test = glIsEnabled(GL_SCISSOR_TEST);
+    s->blend = glIsEnabled(GL_BLEND);
+    glGetIntegerv(GL_BLEND_SRC_RGB, &s->blend_functions[0]);
+    glGetIntegerv(GL_BLEND_DST_RGB, &s->blend_functions[1]);
+    glGetIntegerv(GL_BLEND_SRC_ALPHA, &s->blend_functions[2]);
+    glGetIntegerv(GL_BLEND_DST_ALPHA, &s->blend_functions[3]);
+    s->depth_test = glIsEnabled(GL_DEPTH_TEST);
+    glGetIntegerv(GL_DEPTH_FUNC, &s->depth_function);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &s->depth_mask);
+    s->cull_face = glIsEnabled(GL_CULL_FACE);
+}
+
+static void set_enabled(GLenum capability, GLboolean enabled)
+{
+    if (enabled)
+        glEnable(capability);
+    else
+        glDisable(capability);
+}
+
+void gb_gl_state_restore(const gb_gl_state *s)
+{
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)s->draw_framebuffer);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, (GLuint)s->read_framebuffer);
+    glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
+    glScissor(s->scissor_box[0], s->scissor_box[1], s->scissor_box[2], s->scissor_box[3]);
+    set_enabled(GL_SCISSOR_TEST, s->scissor_test);
+    set_enabled(GL_BLEND, s->blend);
+    glBlendFuncSeparate((GLenum)s->blend_functions[0], (GLenum)s->blend_functions[1],
+                        (GLenum)s->blend_functions[2], (GLenum)s->blend_functions[3]);
+    set_enabled(GL_DEPTH_TEST, s->depth_test);
+    glDepthFunc((GLenum)s->depth_function);
+    glDepthMask(s->depth_mask);
+    set_enabled(GL_CULL_FACE, s->cull_face);
+}
+
 const char gb_gl_fullscreen_vertex_shader[] =
 #include "runtime/fullscreen.vert.glsl.inc"
     ;

@@ -99,6 +99,23 @@ void gb_gl_target_begin_geometry(const gb_gl_target *target);
 /* The uniforms "view" and "projection" of program. */
 void gb_gl_set_view_projection(GLuint program, const float view[16], const float projection[16]);
 
+/* The state a pass changes when it draws somewhere else than its caller
+ * (its own target, a texture) or otherwise than its caller set up, and puts
+ * back before it returns: the draw and read framebuffers, the viewport, the
+ * scissor test and box, blending and its functions, the depth test, its
+ * function and mask, and face culling. */
+typedef struct gb_gl_state {
+    GLint draw_framebuffer, read_framebuffer;
+    GLint viewport[4], scissor_box[4];
+    GLboolean scissor_test, blend, depth_test, depth_mask, cull_face;
+    GLint blend_functions[4];   /* source RGB, destination RGB, source and
+                                   destination alpha */
+    GLint depth_function;
+} gb_gl_state;
+
+void gb_gl_state_save(gb_gl_state *state);
+void gb_gl_state_restore(const gb_gl_state *state);
+
 /* The full-screen triangle (fullscreen.vert.glsl): a vertex shader that needs
  * no attribute; draw with gb_gl_draw_fullscreen and an empty vertex array. */
 extern const char gb_gl_fullscreen_vertex_shader[];

@@ -164,45 +164,6 @@ static int fit_indices(gb_hud *hud, int quads)
 
 /* ---- drawing ---- */
 
-/* What gb_hud_draw changes and restores. */
-typedef struct gl_state {
-    GLboolean blend, depth_test, scissor_test, cull_face;
-    GLint blend_source_rgb, blend_destination_rgb, blend_source_alpha, blend_destination_alpha;
-    GLint viewport[4];
-} gl_state;
-
-static void save_state(gl_state *s)
-{
-    s->blend = glIsEnabled(GL_BLEND);
-    s->depth_test = glIsEnabled(GL_DEPTH_TEST);
-    s->scissor_test = glIsEnabled(GL_SCISSOR_TEST);
-    s->cull_face = glIsEnabled(GL_CULL_FACE);
-    glGetIntegerv(GL_BLEND_SRC_RGB, &s->blend_source_rgb);
-    glGetIntegerv(GL_BLEND_DST_RGB, &s->blend_destination_rgb);
-    glGetIntegerv(GL_BLEND_SRC_ALPHA, &s->blend_source_alpha);
-    glGetIntegerv(GL_BLEND_DST_ALPHA, &s->blend_destination_alpha);
-    glGetIntegerv(GL_VIEWPORT, s->viewport);
-}
-
-static void set_enabled(GLenum capability, GLboolean enabled)
-{
-    if (enabled)
-        glEnable(capability);
-    else
-        glDisable(capability);
-}
-
-static void restore_state(const gl_state *s)
-{
-    set_enabled(GL_BLEND, s->blend);
-    set_enabled(GL_DEPTH_TEST, s->depth_test);
-    set_enabled(GL_SCISSOR_TEST, s->scissor_test);
-    set_enabled(GL_CULL_FACE, s->cull_face);
-    glBlendFuncSeparate((GLenum)s->blend_source_rgb, (GLenum)s->blend_destination_rgb,
-                        (GLenum)s->blend_source_alpha, (GLenum)s->blend_destination_alpha);
-    glViewport(s->viewport[0], s->viewport[1], s->viewport[2], s->viewport[3]);
-}
-
 /* Draws quads quads of hud->vertices, the text's top left corner at pixel
  * origin of the width x height framebuffer. */
 static void draw_quads(const gb_hud *hud, int quads, const float origin[2], int width,
@@ -214,8 +175,8 @@ static void draw_quads(const gb_hud *hud, int quads, const float origin[2], int 
     glProgramUniform2fv(p, glGetUniformLocation(p, "origin"), 1, origin);
     glProgramUniform1f(p, glGetUniformLocation(p, "scale"), (float)gb_hud_scale(height));
     glProgramUniform2f(p, glGetUniformLocation(p, "size"), (float)width, (float)height);
-    gl_state saved;
-    save_state(&saved);
+    gb_gl_state saved;
+    gb_gl_state_save(&saved);
     glViewport(0, 0, width, height);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_SCISSOR_TEST);
@@ -225,7 +186,7 @@ static void draw_quads(const gb_hud *hud, int quads, const float origin[2], int 
     glUseProgram(p);
     glBindVertexArray(hud->vertex_array);
     glDrawElements(GL_TRIANGLES, 6 * quads, GL_UNSIGNED_INT, NULL);
-    restore_state(&saved);
+    gb_gl_state_restore(&saved);
 }
 
 void gb_hud_draw(gb_hud *hud, const char *text, gb_hud_corner corner, int width, int height)
