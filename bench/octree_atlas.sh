@@ -10,7 +10,8 @@
 #              1024x512): wall ms of a whole frame (--timings "frame (wall)",
 #              mean of frames 2..ATLAS_FRAMES), with the walk (--atlas none)
 #              and through the atlas (--atlas FILE), and their ratio; the
-#              render into the atlas is done once, before the first frame;
+#              render into the atlas is done once, in the first frame (the
+#              headless renderer gives no budget), which the mean leaves out;
 #   error      the indirect term (--terms indirect) at the scene's error
 #              size against `reference --mode full --min-bounces 2`:
 #              relative MSE (imgdiff) of the walk and of the atlas; the atlas

@@ -112,11 +112,9 @@ static gb_result create_atlas_display(octree_state *s, const gb_indirect_setup *
     gb_atlas own = {0};
     const gb_atlas *atlas;
     gb_result result = find_atlas(setup, &own, &atlas, error);
-    if (result == GB_OK && atlas) {
-        bind_buffers(s);
+    if (result == GB_OK && atlas)
         result = gb_octree_atlas_create(setup->scene, atlas, &s->octree->header, &s->atlas,
                                         error);
-    }
     gb_atlas_free(&own);
     return result;
 }
@@ -157,19 +155,37 @@ static void set_uniforms(const octree_state *s, const gb_indirect_frame *frame)
     glProgramUniform1i(p, glGetUniformLocation(p, "depth"), (GLint)h->depth);
 }
 
-static int octree_draw(void *state, const gb_indirect_frame *frame)
+/* The walk: the octree's irradiance at each pixel of the band. */
+static void draw_walk(octree_state *s, const gb_indirect_frame *frame)
 {
-    octree_state *s = state;
-    if (s->atlas) {
-        gb_octree_atlas_draw(s->atlas, frame);
-        return 0;
-    }
     set_uniforms(s, frame);
     bind_buffers(s);
     glUseProgram(s->program);
     gb_gbuffer_bind(frame->gbuffer);
     gb_gl_draw_fullscreen(s->empty_vertex_array);
-    return 0;
+}
+
+/* With an atlas: at part 0, slices of it until the budget is spent; the
+ * walk until it is complete (another image will be better), then the
+ * display through it. */
+static int octree_draw(void *state, const gb_indirect_frame *frame)
+{
+    octree_state *s = state;
+    int complete = !s->atlas || gb_octree_atlas_complete(s->atlas);
+    if (!complete && frame->part == 0) {
+        bind_buffers(s);
+        complete = gb_octree_atlas_render(s->atlas, frame->budget_ms);
+    }
+    if (s->atlas && complete)
+        gb_octree_atlas_draw(s->atlas, frame);
+    else
+        draw_walk(s, frame);
+    return !complete;
+}
+
+gb_octree_atlas *gb_octree_atlas_of(void *state)
+{
+    return ((octree_state *)state)->atlas;
 }
 
 const gb_indirect_method gb_octree_method = {

@@ -15,6 +15,13 @@
  *         weights of the other 7 are 0) gets its neighbours' mean, not
  *         black. Only a point whose 8 neighbours all lack VDLs is black.
  *         tests/unit/test_octree_display.c checks this on a hand-made octree.
+ *         With an atlas (--atlas, or the bake's NAME.atlas), the display
+ *         goes through it instead (octree_atlas.h): create prepares it,
+ *         draw renders it in slices at part 0 of each image until the
+ *         frame's budget_ms is spent on them (all of it at the first image
+ *         when budget_ms is 0), and shows the walk, returning nonzero
+ *         (another image will be better), until the atlas is complete;
+ *         then the display through it, returning 0.
  *
  * Convention: a VDL's irradiance E (cluster: Σ Φ / (π r²) over its
  * photons, a density on the leaf's surface) is the irradiance it gives the
@@ -41,5 +48,10 @@
 
 struct gb_indirect_method;
 extern const struct gb_indirect_method gb_octree_method;
+
+/* The atlas of a state gb_octree_method's create made (octree_atlas.h), or
+ * NULL when it shows the walk: for tests. */
+struct gb_octree_atlas;
+struct gb_octree_atlas *gb_octree_atlas_of(void *state);
 
 #endif

@@ -1,11 +1,12 @@
-/* octree_atlas.c — the light octree rendered into the atlas once and shown
- * through it (octree_atlas.h). */
+/* octree_atlas.c — the light octree rendered into the atlas, in slices,
+ * and shown through it (octree_atlas.h). */
 #include "octree_atlas.h"
 
 #include <stdlib.h>
 #include <string.h>
 
 #include "gl_util.h"
+#include "progress.h"
 #include "scene_triangles.h"
 
 enum { UNIT_ATLAS = 7, UNIT_SEEN_UV = 8, SSBO_CORNERS = 3 };
@@ -21,12 +22,22 @@ enum { SIDES = 2 };
 
 struct gb_octree_atlas {
     GLuint texture;             /* RGBA32F array of SIDES layers: irradiance, alpha 1
-                                   where filled */
+                                   where filled (complete once every pass is done) */
     GLuint corner_buffer, corner_array;
     GLsizei corner_count;
     GLuint uv_program, display_program, empty_vertex_array;
     gb_gl_target seen_uv;       /* RGBA32F: the atlas UV at each pixel (-1 for none)
                                    and the layer of the side seen */
+    /* The render into the atlas, in slices (its programs and textures
+     * released when it is complete): */
+    GLsizei width, height;      /* the atlas's, texels */
+    uint32_t padding;
+    GLuint render_program, gutter_program;
+    GLuint depth;               /* the triangles' distance to each texel */
+    GLuint next;                /* the texture a gutter round writes, or 0 */
+    int pass;                   /* the pass under way (pass_count: complete) */
+    GLsizei row;                /* its first row not yet rendered */
+    double seconds_per_row;     /* the last slice's time per row, 0 before any */
 };
 
 static const char render_vertex_shader[] =
@@ -99,13 +110,26 @@ static gb_result upload_corners(gb_octree_atlas *s, const gb_scene *scene,
     return GB_OK;
 }
 
-/* ---- the render into the atlas ---- */
+/* ---- the render into the atlas, in slices ---- */
 
-static GLuint make_atlas_texture(const gb_atlas_header *h)
+/* The render is a sequence of passes, each over the whole atlas, one
+ * layer each: the triangles into layer 0, then layer 1 (round 0); then
+ * each gutter round r = 1 .. padding - 1 reads the texture the round before
+ * wrote and writes both layers of a new one. A pass is cut into bands of
+ * rows, the slices, each drawn with the scissor on its rows: a texel's
+ * value depends on the fragments that reach it and on their order alone,
+ * which the scissor leaves as they are, so the atlas is the same bytes
+ * whatever the slices. */
+static int pass_count(const gb_octree_atlas *s)
+{
+    return SIDES * (s->padding > 1 ? (int)s->padding : 1);
+}
+
+static GLuint make_atlas_texture(const gb_octree_atlas *s)
 {
     GLuint texture;
     glCreateTextures(GL_TEXTURE_2D_ARRAY, 1, &texture);
-    glTextureStorage3D(texture, 1, GL_RGBA32F, (GLsizei)h->width, (GLsizei)h->height, SIDES);
+    glTextureStorage3D(texture, 1, GL_RGBA32F, s->width, s->height, SIDES);
     glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
     glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -130,96 +154,160 @@ static void set_octree_uniforms(GLuint program, const gb_light_octree_header *h)
     glProgramUniform1i(program, glGetUniformLocation(program, "depth"), (GLint)h->depth);
 }
 
-/* The triangles drawn at their UVs, each reaching gb_atlas_reach texels
- * past its edges, the nearest triangle keeping a texel (a depth test on the
- * distance): the irradiance of each side into its layer of s->texture. */
-static gb_result render_triangles(gb_octree_atlas *s, const gb_atlas_header *h,
-                                  const gb_light_octree_header *octree, gb_error *error)
+/* The programs and the depth texture the render needs, kept until it is
+ * complete. */
+static gb_result prepare_render(gb_octree_atlas *s, const gb_atlas_header *h,
+                                const gb_light_octree_header *octree, gb_error *error)
 {
-    GLuint program;
+    s->width = (GLsizei)h->width;
+    s->height = (GLsizei)h->height;
+    s->padding = h->padding;
     gb_result result = gb_gl_program("octree atlas render", render_vertex_shader,
-                                     render_fragment_shader, &program, error);
+                                     render_fragment_shader, &s->render_program, error);
+    if (result == GB_OK)
+        result = gb_gl_program("octree atlas gutter", gb_gl_fullscreen_vertex_shader,
+                               gutter_fragment_shader, &s->gutter_program, error);
     if (result != GB_OK)
         return result;
-    set_octree_uniforms(program, octree);
-    glProgramUniform2f(program, glGetUniformLocation(program, "atlas_size"), (float)h->width,
+    GLuint p = s->render_program;
+    set_octree_uniforms(p, octree);
+    glProgramUniform2f(p, glGetUniformLocation(p, "atlas_size"), (float)h->width,
                        (float)h->height);
-    glProgramUniform1f(program, glGetUniformLocation(program, "reach"),
-                       (float)gb_atlas_reach(h->padding));
-    GLuint depth = gb_gl_texture_2d(GL_DEPTH_COMPONENT32F, (int)h->width, (int)h->height);
+    glProgramUniform1f(p, glGetUniformLocation(p, "reach"), (float)gb_atlas_reach(h->padding));
+    s->texture = make_atlas_texture(s);
+    s->depth = gb_gl_texture_2d(GL_DEPTH_COMPONENT32F, s->width, s->height);
+    return GB_OK;
+}
+
+/* What only the render needs, once it is complete. */
+static void release_render(gb_octree_atlas *s)
+{
+    if (s->render_program)
+        glDeleteProgram(s->render_program);
+    if (s->gutter_program)
+        glDeleteProgram(s->gutter_program);
+    GLuint textures[2] = {s->depth, s->next};
+    glDeleteTextures(2, textures);
+    s->render_program = s->gutter_program = s->depth = s->next = 0;
+}
+
+/* The triangles drawn at their UVs into the scissor's rows of layer,
+ * each reaching gb_atlas_reach texels past its edges, the nearest triangle
+ * keeping a texel (a depth test on the distance): the irradiance of the
+ * layer's side. The rows are cleared first (the clears obey the scissor). */
+static void triangles_slice(gb_octree_atlas *s, int layer)
+{
     static const float nothing_filled[4] = {0, 0, 0, 0}, farthest = 1.0f;
+    GLuint framebuffer = framebuffer_of(s->texture, layer);
+    glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, s->depth, 0);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
+    glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, nothing_filled);
+    glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &farthest);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, SSBO_CORNERS, s->corner_buffer);
-    glUseProgram(program);
+    glUseProgram(s->render_program);
+    glProgramUniform1f(s->render_program, glGetUniformLocation(s->render_program, "side"),
+                       layer == 0 ? 1.0f : -1.0f);
     glBindVertexArray(s->empty_vertex_array);
-    for (int layer = 0; layer < SIDES; ++layer) {
-        GLuint framebuffer = framebuffer_of(s->texture, layer);
-        glNamedFramebufferTexture(framebuffer, GL_DEPTH_ATTACHMENT, depth, 0);
-        glClearNamedFramebufferfv(framebuffer, GL_COLOR, 0, nothing_filled);
-        glClearNamedFramebufferfv(framebuffer, GL_DEPTH, 0, &farthest);
-        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-        glProgramUniform1f(program, glGetUniformLocation(program, "side"),
-                           layer == 0 ? 1.0f : -1.0f);
-        glDrawArrays(GL_TRIANGLES, 0, s->corner_count);
-        glDeleteFramebuffers(1, &framebuffer);
-    }
+    glDrawArrays(GL_TRIANGLES, 0, s->corner_count);
     glDisable(GL_DEPTH_TEST);
-    glDeleteTextures(1, &depth);
-    glDeleteProgram(program);
-    return GB_OK;
+    glDeleteFramebuffers(1, &framebuffer);
 }
 
-/* One full-screen pass of program per layer, reading s->texture (unit 0)
- * into a new texture, which becomes s->texture. */
-static void pass_into_new_texture(gb_octree_atlas *s, const gb_atlas_header *h, GLuint program)
+/* One round of the gutter, past the triangles' reach, in the scissor's rows
+ * of layer: s->texture read, s->next (made at the round's first slice)
+ * written; every unfilled texel the mean of its filled neighbours. */
+static void gutter_slice(gb_octree_atlas *s, int layer)
 {
-    GLuint next = make_atlas_texture(h);
-    glUseProgram(program);
+    if (!s->next)
+        s->next = make_atlas_texture(s);
+    GLuint framebuffer = framebuffer_of(s->next, layer);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glUseProgram(s->gutter_program);
     glBindTextureUnit(0, s->texture);
-    for (int layer = 0; layer < SIDES; ++layer) {
-        GLuint framebuffer = framebuffer_of(next, layer);
-        glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-        glProgramUniform1i(program, glGetUniformLocation(program, "layer"), layer);
-        gb_gl_draw_fullscreen(s->empty_vertex_array);
-        glDeleteFramebuffers(1, &framebuffer);
+    glProgramUniform1i(s->gutter_program, glGetUniformLocation(s->gutter_program, "layer"),
+                       layer);
+    gb_gl_draw_fullscreen(s->empty_vertex_array);
+    glDeleteFramebuffers(1, &framebuffer);
+}
+
+/* Rows s->row .. s->row + rows - 1 of the current pass; then on to the next
+ * pass when that was its last row (a gutter round's texture becomes the
+ * atlas after its last layer). */
+static void render_slice(gb_octree_atlas *s, int rows)
+{
+    int layer = s->pass % SIDES, round = s->pass / SIDES;
+    glScissor(0, s->row, s->width, rows);
+    if (round == 0)
+        triangles_slice(s, layer);
+    else
+        gutter_slice(s, layer);
+    s->row += rows;
+    if (s->row < s->height)
+        return;
+    s->row = 0;
+    s->pass++;
+    if (round > 0 && layer == SIDES - 1) {
+        glDeleteTextures(1, &s->texture);
+        s->texture = s->next;
+        s->next = 0;
     }
-    glDeleteTextures(1, &s->texture);
-    s->texture = next;
 }
 
-/* The rest of the gutter, past the triangles' reach: padding - 1 rounds of
- * means. */
-static gb_result fill_gutter(gb_octree_atlas *s, const gb_atlas_header *h, gb_error *error)
+/* The rows of the first slice timed. */
+enum { FIRST_SLICE_ROWS = 16 };
+
+/* The rows of the next slice: the rest of the pass without a budget; else
+ * as many as the budget left allows at the last slice's time per row (at
+ * least one; FIRST_SLICE_ROWS before any slice was timed). */
+static int slice_rows(const gb_octree_atlas *s, double budget_ms, double spent_seconds)
 {
-    GLuint gutter;
-    gb_result result = gb_gl_program("octree atlas gutter", gb_gl_fullscreen_vertex_shader,
-                                     gutter_fragment_shader, &gutter, error);
-    if (result != GB_OK)
-        return result;
-    for (uint32_t round = 1; round < h->padding; ++round)
-        pass_into_new_texture(s, h, gutter);
-    glDeleteProgram(gutter);
-    return GB_OK;
+    int left = s->height - s->row;
+    if (budget_ms <= 0.0)
+        return left;
+    double rows = s->seconds_per_row > 0.0
+                      ? (1e-3 * budget_ms - spent_seconds) / s->seconds_per_row
+                      : FIRST_SLICE_ROWS;
+    return rows < 1.0 ? 1 : rows >= left ? left : (int)rows;
 }
 
-static gb_result render_atlas(gb_octree_atlas *s, const gb_atlas_header *h,
-                              const gb_light_octree_header *octree, gb_error *error)
+int gb_octree_atlas_complete(const gb_octree_atlas *s)
 {
-    GLint output = 0, viewport[4];
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
-    glGetIntegerv(GL_VIEWPORT, viewport);
-    s->texture = make_atlas_texture(h);
-    glViewport(0, 0, (GLsizei)h->width, (GLsizei)h->height);
+    return s->pass == pass_count(s);
+}
+
+int gb_octree_atlas_render(gb_octree_atlas *s, double budget_ms)
+{
+    if (gb_octree_atlas_complete(s))
+        return 1;
+    gb_gl_state saved;
+    gb_gl_state_save(&saved);
+    glViewport(0, 0, s->width, s->height);
     glDisable(GL_BLEND);
     glDisable(GL_CULL_FACE);
-    gb_result result = render_triangles(s, h, octree, error);
-    if (result == GB_OK)
-        result = fill_gutter(s, h, error);
-    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
-    glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
-    return result;
+    glEnable(GL_SCISSOR_TEST);
+    double start = gb_seconds();
+    do {
+        double slice_start = gb_seconds();
+        int rows = slice_rows(s, budget_ms, slice_start - start);
+        render_slice(s, rows);
+        if (budget_ms > 0.0) {
+            glFinish();
+            s->seconds_per_row = (gb_seconds() - slice_start) / rows;
+        }
+    } while (!gb_octree_atlas_complete(s) &&
+             (budget_ms <= 0.0 || 1e3 * (gb_seconds() - start) < budget_ms));
+    if (gb_octree_atlas_complete(s))
+        release_render(s);
+    gb_gl_state_restore(&saved);
+    return gb_octree_atlas_complete(s);
+}
+
+GLuint gb_octree_atlas_texture(const gb_octree_atlas *s)
+{
+    return s->texture;
 }
 
 /* ---- create, draw, destroy ---- */
@@ -241,7 +329,7 @@ gb_result gb_octree_atlas_create(const gb_scene *scene, const gb_atlas *atlas,
         result = gb_gl_program("octree atlas display", gb_gl_fullscreen_vertex_shader,
                                display_fragment_shader, &s->display_program, error);
     if (result == GB_OK)
-        result = render_atlas(s, &atlas->header, octree, error);
+        result = prepare_render(s, &atlas->header, octree, error);
     if (result != GB_OK) {
         gb_octree_atlas_destroy(s);
         return result;
@@ -250,13 +338,17 @@ gb_result gb_octree_atlas_create(const gb_scene *scene, const gb_atlas *atlas,
     return GB_OK;
 }
 
-/* The atlas UV and the side seen at each pixel; drawn again only when the
- * view or the size changed (the scene is static). */
+/* The atlas UV and the side seen at each pixel, over the whole view (the
+ * scissor off); drawn again only when the view or the size changed (the
+ * scene is static). Leaves the caller's state as it was. */
 static void draw_seen_uv(gb_octree_atlas *s, const gb_indirect_frame *frame)
 {
     if (!gb_gl_target_stale(&s->seen_uv, GL_RGBA32F, frame->width, frame->height,
                             frame->view_matrix->m, frame->projection->m))
         return;
+    gb_gl_state saved;
+    gb_gl_state_save(&saved);
+    glDisable(GL_SCISSOR_TEST);
     static const float none[4] = {-1, -1, 0, 0};
     glClearNamedFramebufferfv(s->seen_uv.framebuffer, GL_COLOR, 0, none);
     gb_gl_target_begin_geometry(&s->seen_uv);
@@ -265,18 +357,12 @@ static void draw_seen_uv(gb_octree_atlas *s, const gb_indirect_frame *frame)
     gb_gl_set_view_projection(s->uv_program, frame->view_matrix->m, frame->projection->m);
     glBindVertexArray(s->corner_array);
     glDrawArrays(GL_TRIANGLES, 0, s->corner_count);
-    glDisable(GL_DEPTH_TEST);
+    gb_gl_state_restore(&saved);
 }
 
 void gb_octree_atlas_draw(gb_octree_atlas *s, const gb_indirect_frame *frame)
 {
-    GLint output = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
     draw_seen_uv(s, frame);
-    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
-    glViewport(0, 0, frame->width, frame->height);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
     glUseProgram(s->display_program);
     gb_gbuffer_bind(frame->gbuffer);
     glBindTextureUnit(UNIT_ATLAS, s->texture);
@@ -288,6 +374,7 @@ void gb_octree_atlas_destroy(gb_octree_atlas *s)
 {
     if (!s)
         return;
+    release_render(s);
     glDeleteTextures(1, &s->texture);
     glDeleteBuffers(1, &s->corner_buffer);
     GLuint arrays[2] = {s->corner_array, s->empty_vertex_array};

@@ -11,6 +11,7 @@
  *   floor_octree_render(&scene, &octree, NULL, FLOOR_IMAGE_SIZE, &image);  // the walk
  *   floor_atlas_make(&scene, square, padding, charts, &a);  // the floor laid flat
  *   floor_octree_render(&scene, &octree, &a.atlas, size, &image);   // through it
+ *   floor_bake_open(&scene, &octree, &a.atlas, atlas_path, &bake);  // in the test's scratch
  *
  * The floor: y = 0, FLOOR_HALF each side of the origin in x and z, albedo
  * FLOOR_KD, seen from FLOOR_CAMERA_HEIGHT above its centre. The octree:
@@ -164,31 +165,46 @@ static inline void floor_octree_make(floor_octree *h, const float normal[3], uin
     octree->vdls = h->vdls;
 }
 
+/* The bake folder of scene in the scratch folder (scratch.h's, made by
+ * the caller): octree written as floor.lot, and atlas as floor.atlas (its
+ * path into atlas_path) when it is not NULL; *bake opened on it (the
+ * caller releases it). 0 when it cannot, with the reason printed. */
+static inline int floor_bake_open(const gb_scene *scene, const gb_light_octree *octree,
+                                  const gb_atlas *atlas, char atlas_path[512], gb_bake **bake)
+{
+    char path[512], scene_path[512];
+    gb_error error;
+    scratch_path_into("floor.lot", path, sizeof path);
+    scratch_path_into("floor.scene", scene_path, sizeof scene_path);
+    scratch_path_into("floor.atlas", atlas_path, 512);
+    *bake = NULL;
+    if (gb_light_octree_write(path, octree, &error) != GB_OK ||
+        (atlas && gb_atlas_write(atlas_path, atlas, &error) != GB_OK) ||
+        gb_bake_open(scene, scene_path, scratch_folder, bake, &error) != GB_OK) {
+        printf("# %s\n", error.message);
+        return 0;
+    }
+    if (gb_bake_problem(*bake, GB_BAKE_LIGHT_OCTREE)) {
+        printf("# %s\n", gb_bake_problem(*bake, GB_BAKE_LIGHT_OCTREE));
+        return 0;
+    }
+    return 1;
+}
+
 /* The octree's indirect term of scene, size x size pixels, rendered
- * headless from a bake folder of its own (scratch.h's, the test's scratch
- * folder left as it was) holding octree as floor.lot (gbview
- * --method octree --terms indirect --bake FOLDER): the walk, or through
- * atlas (written as floor.atlas, --atlas FILE) when it is not NULL. 0 when
- * it cannot, with the reason printed. */
+ * headless as gbview --method octree --terms indirect --bake FOLDER
+ * renders it, FOLDER floor_bake_open's in a scratch folder of its own (the
+ * test's left as it was): the walk, or through atlas (--atlas FILE) when
+ * it is not NULL. 0 when it cannot, with the reason printed. */
 static inline int floor_octree_render(const gb_scene *scene, const gb_light_octree *octree,
                                       const gb_atlas *atlas, int size, gb_image *image)
 {
-    char path[512], scene_path[512], atlas_path[512], outer[sizeof scratch_folder];
-    gb_error error;
+    char atlas_path[512], outer[sizeof scratch_folder];
     memcpy(outer, scratch_folder, sizeof outer);  /* the test's own, if it has one */
     scratch_create("floor-octree");
-    scratch_path_into("floor.lot", path, sizeof path);
-    scratch_path_into("floor.scene", scene_path, sizeof scene_path);
-    scratch_path_into("floor.atlas", atlas_path, sizeof atlas_path);
     int ok = 0;
     gb_bake *bake = NULL;
-    if (gb_light_octree_write(path, octree, &error) != GB_OK ||
-        (atlas && gb_atlas_write(atlas_path, atlas, &error) != GB_OK) ||
-        gb_bake_open(scene, scene_path, scratch_folder, &bake, &error) != GB_OK) {
-        printf("# %s\n", error.message);
-    } else if (gb_bake_problem(bake, GB_BAKE_LIGHT_OCTREE)) {
-        printf("# %s\n", gb_bake_problem(bake, GB_BAKE_LIGHT_OCTREE));
-    } else {
+    if (floor_bake_open(scene, octree, atlas, atlas_path, &bake)) {
         gb_headless_options options = {
             .renderer = {.method = GB_METHOD_OCTREE, .terms = GB_TERMS_INDIRECT,
                          .width = size, .height = size, .bake = bake,
