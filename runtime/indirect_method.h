@@ -26,11 +26,10 @@
  * test off for what must cover the whole view, and its per-pixel output
  * passes within the band; a method that cuts its work otherwise (flc: by
  * VPLs) turns the scissor off and adds its whole image at the last part.
- * The image is the same bytes whatever the number of parts. draw returns
- * nonzero when another image of the same view would be better (flc's next
- * sample, octree's atlas not yet complete): the window keeps drawing; 0 when
- * the image is final. Methods that keep screen-sized buffers compare
- * frame->width/height with theirs and reallocate.
+ * The image is the same bytes whatever the number of parts. draw returns a
+ * gb_image_state: whether another image of the same view would be better
+ * (the window keeps drawing while it would). Methods that keep screen-sized
+ * buffers compare frame->width/height with theirs and reallocate.
  */
 #ifndef GB_INDIRECT_METHOD_H
 #define GB_INDIRECT_METHOD_H
@@ -101,9 +100,17 @@ typedef struct gb_indirect_frame {
     gb_timings *timings;
 } gb_indirect_frame;
 
+/* What the image a draw finished is, against the next one of the same view. */
+typedef enum gb_image_state {
+    GB_IMAGE_FINAL = 0,         /* what this view gives: nothing left to draw */
+    GB_IMAGE_REFINABLE,         /* a sample: the next image adds one (flc) */
+    GB_IMAGE_PROVISIONAL,       /* a stand-in while setup work goes on (octree's
+                                   atlas): it does not count as an image */
+} gb_image_state;
+
 typedef struct gb_indirect_method {
     gb_result (*create)(const gb_indirect_setup *setup, void **state, gb_error *error);
-    /* Nonzero when another image of the same view would refine this one. */
+    /* A gb_image_state, at the last part; anything at the others. */
     int (*draw)(void *state, const gb_indirect_frame *frame);
     void (*destroy)(void *state);
     /* Optional (see above): create's CPU work, without GL, on any thread. */

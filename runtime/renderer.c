@@ -150,7 +150,7 @@ static void draw_direct_light(gb_renderer *r, const gb_view *view)
 }
 
 /* The GI method's indirect light, added onto the output within the
- * scissor box; nonzero when another image would refine it. */
+ * scissor box; the method's gb_image_state. */
 static int draw_indirect_light(gb_renderer *r, const gb_view *view, const gb_mat4 *view_matrix,
                                const gb_mat4 *projection, int part, int parts,
                                const int band[2])
@@ -179,13 +179,13 @@ static int draw_indirect_light(gb_renderer *r, const gb_view *view, const gb_mat
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
     gb_timings_begin(&r->timings, GB_PASS_INDIRECT_LIGHT);
-    int more = indirect->draw(r->method_state[method], &frame);
+    int state = indirect->draw(r->method_state[method], &frame);
     gb_timings_end(&r->timings, GB_PASS_INDIRECT_LIGHT);
     gb_output_bind(&r->output);
     glDisable(GL_BLEND);
     if (part + 1 == parts)
         ++r->method_frames[method];
-    return more;
+    return state;
 }
 
 /* The rows of part (of parts) of an image height rows high, from the top:
@@ -198,8 +198,8 @@ static void band_of_part(int part, int parts, int height, int band[2])
 }
 
 /* One part of the image: at part 0 the shadow maps (once) and the G-buffer;
- * then the direct and the indirect light within the part's band. Nonzero
- * when the method would refine the image. */
+ * then the direct and the indirect light within the part's band. The
+ * image's gb_image_state. */
 static int draw_part(gb_renderer *r, const gb_view *view, int part, int parts)
 {
     int width = r->gbuffer.width, height = r->gbuffer.height;
@@ -220,12 +220,12 @@ static int draw_part(gb_renderer *r, const gb_view *view, int part, int parts)
         gb_output_clear(&r->output);
     else
         draw_direct_light(r, view);
-    int more = 0;
+    int state = GB_IMAGE_FINAL;
     if (r->options.terms != GB_TERMS_DIRECT)
-        more = draw_indirect_light(r, view, &view_matrix, &projection, part, parts, band);
+        state = draw_indirect_light(r, view, &view_matrix, &projection, part, parts, band);
     glDisable(GL_SCISSOR_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    return more;
+    return state;
 }
 
 void gb_renderer_draw(gb_renderer *r, const gb_view *view)
@@ -234,26 +234,31 @@ void gb_renderer_draw(gb_renderer *r, const gb_view *view)
     draw_part(r, view, 0, 1);
 }
 
-/* The image drawn is complete: it becomes the shown one. */
-static void show_image(gb_renderer *r, int more)
+/* The image drawn is complete: it becomes the shown one. state: the
+ * method's gb_image_state. */
+static void show_image(gb_renderer *r, int state)
 {
     gb_output drawn = r->output;
     r->output = r->shown;
     r->shown = drawn;
     r->part = 0;
     r->status.divisor = r->divisor;
-    r->status.images = r->divisor == 1 ? r->status.images + 1 : 0;
-    r->status.converged = r->divisor == 1 && !more;
+    if (r->divisor > 1)
+        r->status.images = 0;
+    else if (state != GB_IMAGE_PROVISIONAL)
+        ++r->status.images;
+    r->status.provisional = state == GB_IMAGE_PROVISIONAL;
+    r->status.converged = r->divisor == 1 && state == GB_IMAGE_FINAL;
 }
 
 /* The next parts of the image being drawn (planned at its part 0) while
  * they fit the budget; at least one. Nonzero when the image is complete. */
-static int draw_parts(gb_renderer *r, const gb_view *view, int *more)
+static int draw_parts(gb_renderer *r, const gb_view *view, int *state)
 {
     double elapsed = 0.0, part_ms;
     do {
         double start = gb_seconds();
-        *more = draw_part(r, view, r->part, r->parts);
+        *state = draw_part(r, view, r->part, r->parts);
         glFinish();
         part_ms = 1e3 * (gb_seconds() - start);
         elapsed += part_ms;
@@ -295,11 +300,11 @@ gb_result gb_renderer_refine(gb_renderer *r, const gb_view *view, int *changed,
     gb_result result = GB_OK;
     if (moving || r->part == 0)
         result = plan_image(r, moving, error);
-    int more = 0;
-    if (result == GB_OK && draw_parts(r, view, &more)) {
+    int state = GB_IMAGE_FINAL;
+    if (result == GB_OK && draw_parts(r, view, &state)) {
         gb_frame_budget_measure(&r->budget, r->image_ms,
                                 (double)r->gbuffer.width * (double)r->gbuffer.height);
-        show_image(r, more);
+        show_image(r, state);
         *changed = 1;
     }
     r->status.part = r->part;

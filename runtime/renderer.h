@@ -64,7 +64,10 @@ typedef struct gb_renderer_options {
 typedef struct gb_renderer_status {
     int divisor;                /* the shown image's resolution: full / divisor */
     int part, parts;            /* of the image being drawn; part 0 of 1 when none is */
-    uint32_t images;            /* full-resolution images of this view shown */
+    uint32_t images;            /* full-resolution images of this view shown
+                                   (not the provisional ones) */
+    int provisional;            /* the shown image stands in while the method's
+                                   setup goes on (octree's atlas) */
     int converged;              /* the shown image is final: nothing left to draw */
 } gb_renderer_status;
 

@@ -279,6 +279,8 @@ static void describe_image(const window_state *s, char *text, size_t size)
         snprintf(text, size, "whole frames (--budget 0)");
     else if (st->converged)
         snprintf(text, size, "final%s", st->images > 1 ? " (samples)" : "");
+    else if (st->provisional)
+        snprintf(text, size, "a stand-in while the method's setup goes on");
     else if (st->parts > 1)
         snprintf(text, size, "1/%d shown; drawing part %d/%d", st->divisor, st->part, st->parts);
     else if (st->images > 0)

@@ -180,7 +180,7 @@ static int octree_draw(void *state, const gb_indirect_frame *frame)
         gb_octree_atlas_draw(s->atlas, frame);
     else
         draw_walk(s, frame);
-    return !complete;
+    return complete ? GB_IMAGE_FINAL : GB_IMAGE_PROVISIONAL;
 }
 
 gb_octree_atlas *gb_octree_atlas_of(void *state)

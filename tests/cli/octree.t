@@ -33,6 +33,11 @@ ok_run "--method octree renders the Cornell box headless"
 ok "$([ "$(value max_error "$dir/same")" = 0 ]; echo $?)" "rendering twice: identical images"
 # A NaN pixel would make the error against itself NaN, not 0.
 ok "$([ "$(value relative_mse "$dir/same")" = 0 ]; echo $?)" "no NaN: relative MSE to itself is 0"
+# As the window draws it: the atlas in slices, the image in parts, the walk
+# shown meanwhile; the final image is the whole frame's bytes.
+"$tool" $small --budget 1 --bake "$dir/bake" "$scene" -o "$dir/budget.exr" 2>/dev/null
+cmp -s "$dir/a.exr" "$dir/budget.exr"
+ok $? "--budget 1 (the atlas in slices, the image in parts): the whole frame's bytes"
 "$tool" --headless --method direct --terms indirect --resolution 96x96 --quiet "$scene" \
     -o "$dir/black.exr" 2>/dev/null
 ok "$(below 0.01 "$(image_diff max_error "$dir/a.exr" "$dir/black.exr")"; echo $?)" \

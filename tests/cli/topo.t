@@ -44,6 +44,9 @@ ok "$([ -s "$dir/c.vpls" ]; echo $?)" "--write-vpls: writes the VPL set"
 "$GB_BIN/gbview" $small --bake "$bake" --terms indirect "$scene" -o "$dir/again.exr"
 "$GB_BIN/imgdiff" "$dir/topo.exr" "$dir/again.exr" >"$dir/same"
 ok "$([ "$(value max_error "$dir/same")" = 0 ]; echo $?)" "rendering twice: identical images"
+"$GB_BIN/gbview" $small --bake "$bake" --terms indirect --budget 1 "$scene" -o "$dir/budget.exr"
+cmp -s "$dir/topo.exr" "$dir/budget.exr"
+ok $? "--budget 1 (moving images, then the image in parts): the whole frame's bytes"
 
 for v in clusters none; do
     "$GB_BIN/gbview" $small --bake "$bake" --topo-visibility $v --terms indirect "$scene" \
