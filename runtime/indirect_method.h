@@ -13,9 +13,10 @@
  * is long CPU work (implicit's links) may also give prepare: the GL-free
  * part of create, which the window runs on a worker thread while it shows
  * direct light (renderer.h); create then finds its result in
- * setup->prepared and takes it over. prepare reports to setup->progress and
- * fails when asked to stop; discard frees a prepared result create never
- * took. Without prepare, create does all of it.
+ * setup->prepared and takes it over, also when it fails. prepare reports
+ * to setup->progress and fails when asked to stop; discard frees a
+ * prepared result create never took. Without prepare, create does all of
+ * it.
  *
  * Drawing. An image of one view is drawn in parts, to fit the renderer's
  * frame budget (renderer.h): draw is called for part 0, 1 ... parts - 1,

@@ -80,7 +80,7 @@ typedef struct flc_state {
     GLuint patch_buffer, command_buffer;
     int width, height, tile_width, tile_height;
     GLuint splat_texture, splat_framebuffer, accumulated_texture, accumulated_framebuffer;
-    uint32_t accumulated;           /* frames in the accumulation */
+    uint32_t accumulated;           /* samples (images) in the accumulation */
     gb_mat4 last_view, last_projection;
     gb_flc_visibility visibility;   /* the splatting's visibility term */
     int measuring;
@@ -429,16 +429,27 @@ static void splat_vpls(flc_state *s, uint32_t first, uint32_t count)
     glDrawArrays(GL_POINTS, (GLint)first, (GLsizei)count);
 }
 
-/* The regular pipeline: VPLs of the regular triangles, generated then
- * splatted. */
-static void run_regular(flc_state *s, const gb_indirect_frame *frame)
+/* The regular pipeline's VPL generation, over every regular triangle. */
+static void generate_regular(flc_state *s, const gb_indirect_frame *frame)
 {
     if (!s->regular_count)
         return;
     prepare_generation(s, s->generate_program, frame);
     generate_vpls(s, 0, s->regular_count);
+}
+
+/* The regular pipeline's splatting, of part's share of its VPLs: the
+ * ranges of the parts follow each other, so that blending, in primitive
+ * order, adds them as one draw would. */
+static void splat_regular(flc_state *s, const gb_indirect_frame *frame)
+{
+    uint64_t R = s->regular_count;
+    uint32_t first = (uint32_t)(R * (uint64_t)frame->part / (uint64_t)frame->parts);
+    uint32_t end = (uint32_t)(R * (uint64_t)(frame->part + 1) / (uint64_t)frame->parts);
+    if (first == end)
+        return;
     prepare_splatting(s, frame);
-    splat_vpls(s, 0, s->regular_count);
+    splat_vpls(s, first, end - first);
 }
 
 /* The divergent pipeline: the compute pass appends the divergent triangles'
@@ -497,11 +508,16 @@ static void resolve(flc_state *s)
     gb_gl_draw_fullscreen(s->empty_vertex_array);
 }
 
-/* Pass 4, into the framebuffer that was bound. */
-static void composite(flc_state *s, GLuint target)
+static void bind_output(const flc_state *s, GLuint target)
 {
     glBindFramebuffer(GL_FRAMEBUFFER, target);
     glViewport(0, 0, s->width, s->height);
+}
+
+/* Pass 4, into the framebuffer that was bound. */
+static void composite(flc_state *s, GLuint target)
+{
+    bind_output(s, target);
     glUseProgram(s->composite_program);
     set_float(s->composite_program, "inverse_count", 1.0f / (float)s->accumulated);
     glBindTextureUnit(UNIT_ACCUMULATED, s->accumulated_texture);
@@ -521,41 +537,73 @@ static void restart_if_moved(flc_state *s, const gb_indirect_frame *frame)
     s->last_projection = *frame->projection;
 }
 
+/* Part 0: the targets, the accumulation restarted if the view moved, the
+ * splat target cleared and the regular VPLs generated. */
+static void begin_sample(flc_state *s, const gb_indirect_frame *frame)
+{
+    prepare_targets(s, frame->width, frame->height);
+    restart_if_moved(s, frame);
+    static const float zero[4] = {0, 0, 0, 0};
+    glClearNamedFramebufferfv(s->splat_framebuffer, GL_COLOR, 0, zero);
+    generate_regular(s, frame);
+}
+
+/* The last part: the divergent pipeline, then the sample into the
+ * accumulation and the mean onto target; the times of a sample when
+ * measuring (start: the lap's). */
+static void end_sample(flc_state *s, const gb_indirect_frame *frame, GLuint target,
+                       double *start)
+{
+    run_divergent(s, frame);
+    double divergent = lap(s, start);
+    resolve(s);
+    ++s->accumulated;
+    composite(s, target);
+    if (!s->measuring)
+        return;
+    s->times.divergent_ms += divergent;
+    s->times.resolve_ms += lap(s, start);
+    s->times.frames++;
+    uint32_t made = 0;
+    if (s->triangle_count > s->regular_count)
+        glGetNamedBufferSubData(s->command_buffer, 4 * sizeof(uint32_t), sizeof made, &made);
+    s->times.divergent_vpls += made;
+}
+
+/* One image is one sample, cut by VPLs: part k of n splats the regular
+ * VPLs [k R / n, (k + 1) R / n); part 0 begins the sample, the last part
+ * ends it. The scissor test is off for all of it: the splat target is the
+ * whole view, and so is the composite, at the last part, when every band of
+ * the output has its direct light. */
 int gb_flc_draw(void *state, const gb_indirect_frame *frame)
 {
     flc_state *s = state;
     GLint target = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target);
-    prepare_targets(s, frame->width, frame->height);
-    restart_if_moved(s, frame);
+    GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+    glDisable(GL_SCISSOR_TEST);
     glDisable(GL_DEPTH_TEST);
     glDisable(GL_CULL_FACE);
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
-    static const float zero[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(s->splat_framebuffer, GL_COLOR, 0, zero);
     double start = 0.0;
     lap(s, &start);
     double cpu_start = s->measuring ? 1e3 * gb_cpu_seconds() : 0.0;
-    run_regular(s, frame);
-    double regular = lap(s, &start);
-    run_divergent(s, frame);
-    double divergent = lap(s, &start);
-    resolve(s);
-    ++s->accumulated;
-    composite(s, (GLuint)target);
-    if (s->measuring) {
-        s->times.regular_ms += regular;
-        s->times.divergent_ms += divergent;
-        s->times.resolve_ms += lap(s, &start);
+    if (frame->part == 0)
+        begin_sample(s, frame);
+    splat_regular(s, frame);
+    s->times.regular_ms += lap(s, &start);
+    int last = frame->part + 1 >= frame->parts;
+    if (last)
+        end_sample(s, frame, (GLuint)target, &start);
+    else
+        bind_output(s, (GLuint)target);
+    if (s->measuring)
         s->times.cpu_ms += 1e3 * gb_cpu_seconds() - cpu_start;
-        s->times.frames++;
-        uint32_t made = 0;
-        if (s->triangle_count > s->regular_count)
-            glGetNamedBufferSubData(s->command_buffer, 4 * sizeof(uint32_t), sizeof made, &made);
-        s->times.divergent_vpls += made;
-    }
-    return 1;
+    if (scissor)
+        glEnable(GL_SCISSOR_TEST);
+    /* The samples once this image's is in: refine until the cap. */
+    return s->accumulated + !last < GB_FLC_CONVERGED_SAMPLES;
 }
 
 void gb_flc_measure(void *state, int on)

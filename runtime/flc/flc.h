@@ -31,7 +31,12 @@
  *   4. the mean of the accumulated frames is added onto the output.
  * Progressive: a new u_rand and new jitter each frame; the accumulation
  * starts again when the view or the size changes, so frame K shows the mean
- * of K estimates.
+ * of K estimates. A frame (an image of indirect_method.h) is one sample,
+ * drawn in parts cut by VPLs: part 0 clears the splat target and runs the
+ * regular generation, each part splats its share of the regular VPLs in
+ * order, the last part runs the divergent pipeline and passes 3 and 4, so
+ * that the image is the same bytes whatever the number of parts. draw says
+ * the image is final at GB_FLC_CONVERGED_SAMPLES.
  *
  * Departures from the paper. For the reference's sake: the VPL emits as
  * a Lambertian surface (radiance rho E / pi, brdf.h's VPL) rather than Eq. 6's
@@ -57,6 +62,9 @@ enum {
     GB_FLC_DEFAULT_LEVELS = 6,      /* N = 5, as the paper's Fig. 10 */
     GB_FLC_MAX_TILING = 4,
 };
+/* The samples after which gb_flc_draw says its image is final: the noise
+ * of a mean of 256 is 1/16 of one sample's. */
+enum { GB_FLC_CONVERGED_SAMPLES = 256 };
 #define GB_FLC_DEFAULT_MU 2.0f
 #define GB_FLC_D_NEAR_FRACTION 0.2f /* D_near = 0.2 R_scene (Sec. 4) */
 #define GB_FLC_EPSILON_FRACTION 0.01f

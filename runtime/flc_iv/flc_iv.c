@@ -1,5 +1,16 @@
 /* flc_iv.c — Forward Light Cuts with implicit visibility as a GI method of
- * the runtime (flc_iv.h says what it computes). */
+ * the runtime (flc_iv.h says what it computes).
+ *
+ * prepare  on the CPU, without GL (any thread): the implicit model, its
+ *          links with the depth maps (reporting to the setup's progress,
+ *          stopping when it asks), packed dense for the GPU.
+ * create   takes prepare's result over (or runs prepare first when the
+ *          setup has none): the depth maps and the finer mesh to the GPU,
+ *          the element-id program, FLC's state with this visibility term.
+ * draw     at part 0, the element ids of the view into the method's own
+ *          target (scissor test off: the whole view), then FLC's draw,
+ *          which cuts its image by VPLs (flc.h).
+ */
 #include "flc_iv.h"
 
 #include <math.h>
@@ -37,10 +48,29 @@ typedef struct flc_iv_state {
     gb_implicit_links links;
     int bin_filter;
     float depth_unit;           /* metres (scene units) of one step of depth */
+    uint16_t *depths;           /* prepare's dense depth maps (element_count x
+                                   bins.count, rounded up to pairs) and */
+    float *centres;             /* the elements' centres (4 floats each), until
+                                   create uploads them */
+    /* The GL half, which create makes. */
     GLuint depths_buffer, centres_buffer;
     GLuint position_buffer, element_buffer, index_buffer, vertex_array, elements_program;
     gb_gl_target element_ids;   /* R32UI, with its depth */
 } flc_iv_state;
+
+/* prepare's half: what the CPU holds. */
+static void flc_iv_discard(void *prepared)
+{
+    flc_iv_state *s = prepared;
+    if (!s)
+        return;
+    free(s->depths);
+    free(s->centres);
+    gb_implicit_links_free(&s->links);
+    gb_implicit_bins_free(&s->bins);
+    gb_implicit_model_free(&s->model);
+    free(s);
+}
 
 static void flc_iv_destroy(void *state)
 {
@@ -55,10 +85,7 @@ static void flc_iv_destroy(void *state)
     if (s->elements_program)
         glDeleteProgram(s->elements_program);
     gb_gl_target_release(&s->element_ids);
-    gb_implicit_links_free(&s->links);
-    gb_implicit_bins_free(&s->bins);
-    gb_implicit_model_free(&s->model);
-    free(s);
+    flc_iv_discard(s);
 }
 
 /* Steps 1-7 of implicit visibility, with the depth maps, no light; the
@@ -88,37 +115,49 @@ static float scene_diagonal(const gb_scene *scene)
     return (float)sqrt(sum);
 }
 
+/* The number of 16-bit depths of the dense maps: one a bin and element,
+ * rounded up to a whole number of 32-bit words. */
+static size_t depth_count(const flc_iv_state *s)
+{
+    return ((size_t)s->model.element_count * s->bins.count + 1) / 2 * 2;
+}
+
 /* The depth maps, dense, 16 bits a bin and element (flc_iv.h), two a word,
- * and the elements' centres. */
-static gb_result upload_depth_maps(flc_iv_state *s, const gb_scene *scene, gb_error *error)
+ * and the elements' centres; the links are then freed. */
+static gb_result pack_depth_maps(flc_iv_state *s, const gb_scene *scene, gb_error *error)
 {
     uint32_t elements = s->model.element_count, bins = s->bins.count;
-    size_t count = (size_t)elements * bins;
-    uint16_t *depths = malloc((count + 1) * sizeof *depths);
-    float *centres = malloc(4 * (size_t)elements * sizeof *centres + 1);
-    if (!depths || !centres) {
-        free(depths);
-        free(centres);
+    s->depths = malloc((depth_count(s) + 1) * sizeof *s->depths);
+    s->centres = malloc(4 * (size_t)elements * sizeof *s->centres + 1);
+    if (!s->depths || !s->centres)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "flc-iv: out of memory");
-    }
     float diagonal = scene_diagonal(scene);
     s->depth_unit = (diagonal > 0.0f ? diagonal : 1.0f) / GB_FLC_IV_DEPTH_FAR;
-    memset(depths, 0xff, (count + 1) * sizeof *depths);
+    memset(s->depths, 0xff, (depth_count(s) + 1) * sizeof *s->depths);
     for (uint32_t e = 0; e < elements; ++e) {
         for (uint32_t i = s->links.depth_first[e]; i < s->links.depth_first[e + 1]; ++i) {
             /* Rounded up: a depth never comes nearer than the link. */
             float steps = ceilf(s->links.depth[i] / s->depth_unit);
-            depths[(size_t)e * bins + s->links.depth_bin[i]] =
+            s->depths[(size_t)e * bins + s->links.depth_bin[i]] =
                 (uint16_t)(steps < GB_FLC_IV_DEPTH_FAR ? steps : GB_FLC_IV_DEPTH_FAR);
         }
-        memcpy(&centres[4 * (size_t)e], s->model.nodes[e].position, 3 * sizeof(float));
-        centres[4 * (size_t)e + 3] = 0.0f;
+        memcpy(&s->centres[4 * (size_t)e], s->model.nodes[e].position, 3 * sizeof(float));
+        s->centres[4 * (size_t)e + 3] = 0.0f;
     }
-    s->depths_buffer = gb_gl_buffer(depths, (GLsizeiptr)((count + 1) / 2 * 2 * sizeof *depths));
-    s->centres_buffer = gb_gl_buffer(centres, 4 * (GLsizeiptr)elements * sizeof *centres);
-    free(depths);
-    free(centres);
+    gb_implicit_links_free(&s->links);
     return GB_OK;
+}
+
+/* The packed maps to the GPU; the CPU's copies freed. */
+static void upload_depth_maps(flc_iv_state *s)
+{
+    s->depths_buffer = gb_gl_buffer(s->depths, (GLsizeiptr)(depth_count(s) * sizeof *s->depths));
+    s->centres_buffer =
+        gb_gl_buffer(s->centres, 4 * (GLsizeiptr)s->model.element_count * sizeof *s->centres);
+    free(s->depths);
+    free(s->centres);
+    s->depths = NULL;
+    s->centres = NULL;
 }
 
 /* The finer mesh with each vertex's element, for the element-id pass. */
@@ -162,9 +201,11 @@ static void bind_visibility(void *context, GLuint program)
     glProgramUniform1f(program, glGetUniformLocation(program, "depth_unit"), s->depth_unit);
 }
 
-static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_error *error)
+/* create's CPU half (the file's top comment): no GL call. */
+static gb_result flc_iv_prepare(const gb_indirect_setup *setup, void **prepared,
+                                gb_error *error)
 {
-    *state = NULL;
+    *prepared = NULL;
     const gb_method_parameters *p = setup->parameters;
     int bins = p->bins ? p->bins : DEFAULT_BINS;
     if (bins < 1 || bins > 64)
@@ -175,11 +216,26 @@ static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_
     s->bin_filter = p->visibility_filter;
     gb_result result = build_depth_maps(s, setup, bins, error);
     if (result == GB_OK)
-        result = upload_depth_maps(s, setup->scene, error);
-    gb_implicit_links_free(&s->links);  /* on the GPU now */
-    if (result == GB_OK)
-        result = gb_gl_program("flc-iv element ids", elements_vertex_shader,
-                               elements_fragment_shader, &s->elements_program, error);
+        result = pack_depth_maps(s, setup->scene, error);
+    if (result != GB_OK) {
+        flc_iv_discard(s);
+        return result;
+    }
+    *prepared = s;
+    return GB_OK;
+}
+
+/* Takes setup->prepared over (freed here also when this fails). */
+static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_error *error)
+{
+    *state = NULL;
+    flc_iv_state *s = setup->prepared;
+    gb_result result = s ? GB_OK : flc_iv_prepare(setup, (void **)&s, error);
+    if (result != GB_OK)
+        return result;
+    upload_depth_maps(s);
+    result = gb_gl_program("flc-iv element ids", elements_vertex_shader,
+                           elements_fragment_shader, &s->elements_program, error);
     gb_flc_visibility visibility = {visibility_shader, bind_visibility, s};
     if (result == GB_OK)
         result = gb_flc_create(setup, &visibility, &s->flc, error);
@@ -212,13 +268,19 @@ static void draw_element_ids(flc_iv_state *s, const gb_indirect_frame *frame)
 static int flc_iv_draw(void *state, const gb_indirect_frame *frame)
 {
     flc_iv_state *s = state;
-    GLint output = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
-    draw_element_ids(s, frame);
-    glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
-    glViewport(0, 0, frame->width, frame->height);
-    glEnable(GL_BLEND);
-    glBlendFunc(GL_ONE, GL_ONE);
+    if (frame->part == 0) {
+        GLint output = 0;
+        glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
+        GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+        glDisable(GL_SCISSOR_TEST);
+        draw_element_ids(s, frame);
+        if (scissor)
+            glEnable(GL_SCISSOR_TEST);
+        glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
+        glViewport(0, 0, frame->width, frame->height);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_ONE, GL_ONE);
+    }
     return gb_flc_draw(s->flc, frame);
 }
 
@@ -226,4 +288,6 @@ const gb_indirect_method gb_flc_iv_method = {
     .create = flc_iv_create,
     .draw = flc_iv_draw,
     .destroy = flc_iv_destroy,
+    .prepare = flc_iv_prepare,
+    .discard = flc_iv_discard,
 };

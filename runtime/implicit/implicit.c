@@ -1,19 +1,32 @@
 /* implicit.c — implicit visibility (Dong 2007) as a GI method of the
  * runtime (indirect_method.h).
  *
- * create  Algorithm 1 steps 1-2 (elements, hierarchy) and a first build of
- *         the links (steps 4-7); the finer mesh to the GPU.
- * draw    each frame, on the CPU: steps 4-7 again (UpdateElements, the
- *         links in bins) while the last build took under
- *         GB_IMPLICIT_FRAME_SECONDS — gbview's scenes do not move, so above
- *         that the last links, which a rebuild would give again, are kept —
- *         then steps 8-11 (the light). The elements' incident radiance
- *         E / pi (environment and bounces) on each side is uploaded as two
- *         vertex attributes and interpolated over the finer mesh's
- *         triangles (the paper's display, 4.3.1) into the method's own
- *         target with its own depth test, a fragment taking the side it
- *         shows (a back face its element's back); then a full-screen pass adds Kd (the G-buffer's,
- *         texture included) times it onto the output.
+ * prepare  on the CPU, without GL (any thread): Algorithm 1 steps 1-2
+ *          (elements, hierarchy), the bins, the environment in them and a
+ *          first build of the links (steps 4-7), which report to the
+ *          setup's progress and stop when it asks. The result is the
+ *          method's state with its GL half empty.
+ * create   takes prepare's result over (or runs prepare itself first when
+ *          the setup has none) and makes the GL half: programs, the finer
+ *          mesh on the GPU, the target.
+ * draw     at part 0 of an image, on the CPU: steps 4-7 again
+ *          (UpdateElements, the links in bins) while the last build took
+ *          under GB_IMPLICIT_FRAME_SECONDS — gbview's scenes do not move, so
+ *          above that the last links, which a rebuild would give again, are
+ *          kept — then steps 8-11 (the light). That is every image when the
+ *          frame has no budget (headless rendering, tests, the report:
+ *          bench/implicit.sh measures this loop). In the window (a budget)
+ *          the scene and its lights are static, so that loop would give
+ *          each image the first one's solution: the first image computes it
+ *          and later ones keep it. The elements' incident radiance E / pi
+ *          (environment and bounces) on each side is uploaded as two vertex
+ *          attributes and interpolated over the finer mesh's triangles (the
+ *          paper's display, 4.3.1) into the method's own target with its own
+ *          depth test, a fragment taking the side it shows (a back face its
+ *          element's back), the scissor test off: the whole view, drawn
+ *          again when the solution or the view changed. At every part, a
+ *          full-screen pass adds Kd (the G-buffer's, texture included)
+ *          times it onto the output, within the part's band.
  */
 #include "implicit.h"
 
@@ -42,6 +55,7 @@ typedef struct implicit_state {
     void *progress_user;
     double build_seconds;       /* the last Update + links */
     gb_implicit_step_times times;
+    /* The GL half, which create makes. */
     GLuint position_buffer, incident_buffer, index_buffer, vertex_array;
     GLuint mesh_program, compose_program, empty_vertex_array;
     gb_gl_target incident;      /* RGBA32F incident radiance, with its depth */
@@ -84,6 +98,21 @@ static void make_mesh(implicit_state *s)
     glVertexArrayElementBuffer(s->vertex_array, s->index_buffer);
 }
 
+/* prepare's half: what the CPU holds. */
+static void implicit_discard(void *prepared)
+{
+    implicit_state *s = prepared;
+    if (!s)
+        return;
+    gb_implicit_solution_free(&s->solution);
+    free(s->vertex_incident);
+    gb_implicit_links_free(&s->links);
+    free(s->environment);
+    gb_implicit_bins_free(&s->bins);
+    gb_implicit_model_free(&s->model);
+    free(s);
+}
+
 static void implicit_destroy(void *state)
 {
     implicit_state *s = state;
@@ -98,13 +127,7 @@ static void implicit_destroy(void *state)
     if (s->compose_program)
         glDeleteProgram(s->compose_program);
     gb_gl_target_release(&s->incident);
-    gb_implicit_solution_free(&s->solution);
-    free(s->vertex_incident);
-    gb_implicit_links_free(&s->links);
-    free(s->environment);
-    gb_implicit_bins_free(&s->bins);
-    gb_implicit_model_free(&s->model);
-    free(s);
+    implicit_discard(s);
 }
 
 static gb_result check_parameters(const gb_method_parameters *p, int *bins, int *bounces,
@@ -170,6 +193,11 @@ static gb_result build(implicit_state *s, int bins, gb_error *error)
         result = rebuild_links(s, error);
     if (result == GB_OK)
         result = gb_implicit_solution_create(&s->model, &s->solution, error);
+    if (result == GB_OK) {
+        s->vertex_incident = malloc(6 * (size_t)s->model.vertex_count * sizeof(float) + 1);
+        if (!s->vertex_incident)
+            result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    }
     return result;
 }
 
@@ -181,9 +209,11 @@ void gb_implicit_times(const void *method_state, gb_implicit_step_times *times)
         *times = s->times;
 }
 
-static gb_result implicit_create(const gb_indirect_setup *setup, void **state, gb_error *error)
+/* create's CPU half (the file's top comment): no GL call. */
+static gb_result implicit_prepare(const gb_indirect_setup *setup, void **prepared,
+                                  gb_error *error)
 {
-    *state = NULL;
+    *prepared = NULL;
     int bins, bounces;
     gb_result result = check_parameters(setup->parameters, &bins, &bounces, error);
     if (result != GB_OK)
@@ -197,14 +227,24 @@ static gb_result implicit_create(const gb_indirect_setup *setup, void **state, g
     s->progress = setup->progress;
     s->progress_user = setup->progress_user;
     result = build(s, bins, error);
-    if (result == GB_OK) {
-        s->vertex_incident = malloc(6 * (size_t)s->model.vertex_count * sizeof(float) + 1);
-        if (!s->vertex_incident)
-            result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    if (result != GB_OK) {
+        implicit_discard(s);
+        return result;
     }
-    if (result == GB_OK)
-        result = gb_gl_program("implicit mesh", mesh_vertex_shader, mesh_fragment_shader,
-                               &s->mesh_program, error);
+    *prepared = s;
+    return GB_OK;
+}
+
+/* Takes setup->prepared over (freed here also when this fails). */
+static gb_result implicit_create(const gb_indirect_setup *setup, void **state, gb_error *error)
+{
+    *state = NULL;
+    implicit_state *s = setup->prepared;
+    gb_result result = s ? GB_OK : implicit_prepare(setup, (void **)&s, error);
+    if (result != GB_OK)
+        return result;
+    result = gb_gl_program("implicit mesh", mesh_vertex_shader, mesh_fragment_shader,
+                           &s->mesh_program, error);
     if (result == GB_OK)
         result = gb_gl_program("implicit compose", gb_gl_fullscreen_vertex_shader,
                                compose_fragment_shader, &s->compose_program, error);
@@ -238,10 +278,10 @@ static void upload_incident(implicit_state *s)
                          s->vertex_incident);
 }
 
-/* The finer mesh, its incident radiance interpolated, into the own target. */
+/* The finer mesh, its incident radiance interpolated, into the own target
+ * (of the frame's size already). */
 static void draw_incident(implicit_state *s, const gb_indirect_frame *frame)
 {
-    gb_gl_target_resize(&s->incident, GL_RGBA32F, frame->width, frame->height);
     const float zero[4] = {0, 0, 0, 0};
     glClearNamedFramebufferfv(s->incident.framebuffer, GL_COLOR, 0, zero);
     gb_gl_target_begin_geometry(&s->incident);
@@ -252,13 +292,11 @@ static void draw_incident(implicit_state *s, const gb_indirect_frame *frame)
     glDisable(GL_DEPTH_TEST);
 }
 
-static int implicit_draw(void *state, const gb_indirect_frame *frame)
+/* Steps 4-11 on the CPU, their display to the GPU. The create made the
+ * first image's links; a failed rebuild keeps the last. */
+static void solve(implicit_state *s)
 {
-    implicit_state *s = state;
-    GLint output = 0;
-    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
     gb_error error;
-    /* The create made the first frame's links; a failed rebuild keeps the last. */
     if (s->times.frames > 0 && s->build_seconds < GB_IMPLICIT_FRAME_SECONDS &&
         rebuild_links(s, &error) == GB_OK)
         ++s->times.rebuilds;
@@ -267,7 +305,33 @@ static int implicit_draw(void *state, const gb_indirect_frame *frame)
     s->times.illuminate_ms += 1e3 * (gb_seconds() - start);
     ++s->times.frames;
     upload_incident(s);
-    draw_incident(s, frame);
+}
+
+/* Part 0's work: the solution (every image without a budget, the first
+ * one's kept with one: the top comment), and the incident target, which
+ * covers the whole view, so drawn with the scissor test off. */
+static void draw_view(implicit_state *s, const gb_indirect_frame *frame)
+{
+    int solved = frame->budget_ms <= 0.0 || s->times.frames == 0;
+    if (solved)
+        solve(s);
+    GLboolean scissor = glIsEnabled(GL_SCISSOR_TEST);
+    glDisable(GL_SCISSOR_TEST);
+    if (gb_gl_target_stale(&s->incident, GL_RGBA32F, frame->width, frame->height,
+                           frame->view_matrix->m, frame->projection->m) ||
+        solved)
+        draw_incident(s, frame);
+    if (scissor)
+        glEnable(GL_SCISSOR_TEST);
+}
+
+static int implicit_draw(void *state, const gb_indirect_frame *frame)
+{
+    implicit_state *s = state;
+    GLint output = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &output);
+    if (frame->part == 0)
+        draw_view(s, frame);
     glBindFramebuffer(GL_FRAMEBUFFER, (GLuint)output);
     glViewport(0, 0, frame->width, frame->height);
     glEnable(GL_BLEND);
@@ -283,4 +347,6 @@ const gb_indirect_method gb_implicit_method = {
     .create = implicit_create,
     .draw = implicit_draw,
     .destroy = implicit_destroy,
+    .prepare = implicit_prepare,
+    .discard = implicit_discard,
 };

@@ -32,9 +32,10 @@
  * gb_implicit_create_links (Create, Refine, PushdownLinks), then
  * gb_implicit_illuminate; gb_implicit_model_create (steps 1-2) runs once.
  * bench/implicit_steps.c times each step on a deforming model; the runtime
- * (implicit.c) rebuilds the links each frame while that costs less than
- * GB_IMPLICIT_FRAME_SECONDS (gbview's scenes do not move, so above it the
- * links of the last build, identical, are kept).
+ * (implicit.c) rebuilds the links each image of a frame with no budget
+ * while that costs less than GB_IMPLICIT_FRAME_SECONDS (gbview's scenes do
+ * not move, so above it the links of the last build, identical, are kept),
+ * and in the window solves the first image only (implicit.c says why).
  *
  * Light is diffuse (Kd of the material, no texture average, no gloss). The
  * display term of an element is its incident radiance E / pi from the
@@ -59,9 +60,10 @@
  * each frame while they took under this (the paper's frames: 0.11-0.22 s). */
 #define GB_IMPLICIT_FRAME_SECONDS 0.25
 
-/* Milliseconds of each step summed over the frames drawn (implicit.c). */
+/* Milliseconds of each step summed over the images solved (implicit.c). */
 typedef struct gb_implicit_step_times {
-    uint32_t frames, rebuilds;  /* frames drawn, of which links rebuilt */
+    uint32_t frames, rebuilds;  /* images solved (each image without a budget,
+                                   the first with one), of which links rebuilt */
     double update_ms, create_ms, refine_ms, illuminate_ms;
 } gb_implicit_step_times;
 void gb_implicit_times(const void *method_state, gb_implicit_step_times *times);
