@@ -314,6 +314,7 @@ static gb_result run_window(const gb_scene *scene, const arguments *a, gb_timing
     gb_renderer_options renderer = a->renderer;
     if (!a->budget_given)
         renderer.budget_ms = GB_WINDOW_DEFAULT_BUDGET_MS;
+    renderer.background_setup = 1;
     gb_window_options options = {
         .renderer = renderer,
         .log_frames = a->timings,

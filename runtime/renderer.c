@@ -3,6 +3,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "background_setup.h"
 #include "progress.h"
 
 static gb_result create_passes(gb_renderer *r, gb_error *error)
@@ -20,13 +21,16 @@ static gb_result create_passes(gb_renderer *r, gb_error *error)
     return result;
 }
 
-/* Creates the GI method's state the first time the method is used. */
-static gb_result prepare_method(gb_renderer *r, gb_method method, gb_error *error)
+/* The next refine draws a new image, and the shown one is final no more. */
+static void start_again(gb_renderer *r)
 {
-    const gb_indirect_method *indirect = gb_method_indirect(method);
-    if (!indirect || r->method_state[method])
-        return GB_OK;
-    gb_indirect_setup setup = {
+    r->restart = 1;
+    r->status.converged = 0;
+}
+
+static gb_indirect_setup setup_of(const gb_renderer *r)
+{
+    return (gb_indirect_setup){
         .scene = r->scene,
         .gpu_scene = &r->gpu_scene,
         .shadows = &r->shadows,
@@ -37,9 +41,65 @@ static gb_result prepare_method(gb_renderer *r, gb_method method, gb_error *erro
         .progress = r->options.progress,
         .progress_user = r->options.progress_user,
     };
-    gb_result result = indirect->create(&setup, &r->method_state[method], error);
+}
+
+/* The method's create, given what its prepare made (or NULL). */
+static gb_result create_method(gb_renderer *r, gb_method method, void *prepared,
+                               gb_error *error)
+{
+    gb_indirect_setup setup = setup_of(r);
+    setup.prepared = prepared;
+    gb_result result =
+        gb_method_indirect(method)->create(&setup, &r->method_state[method], error);
     if (result == GB_OK)
         result = gb_gl_check(r->errors, gb_method_name(method), error);
+    return result;
+}
+
+/* Drops the setup running on its thread, if any. */
+static void cancel_setup(gb_renderer *r)
+{
+    gb_background_setup_cancel(r->setup_job);
+    r->setup_job = NULL;
+    r->status.setup_fraction = -1.0;
+}
+
+/* Creates the GI method's state the first time the method is used: at once,
+ * or with background_setup its prepare on a thread (the frames meanwhile
+ * draw no indirect light, gb_renderer_refine creates it once prepared). */
+static gb_result prepare_method(gb_renderer *r, gb_method method, gb_error *error)
+{
+    const gb_indirect_method *indirect = gb_method_indirect(method);
+    if (r->setup_job && r->setup_method != method)
+        cancel_setup(r);
+    if (!indirect || r->method_state[method] || r->setup_job)
+        return GB_OK;
+    if (!r->options.background_setup || !indirect->prepare)
+        return create_method(r, method, NULL, error);
+    gb_indirect_setup setup = setup_of(r);
+    gb_result result = gb_background_setup_start(indirect, &setup, &r->setup_job, error);
+    r->setup_method = method;
+    r->status.setup_fraction = 0.0;
+    return result;
+}
+
+gb_result gb_renderer_poll_setup(gb_renderer *r, gb_error *error)
+{
+    int finished = 0;
+    if (!r->setup_job)
+        return GB_OK;
+    r->status.setup_fraction = gb_background_setup_progress(r->setup_job, &finished);
+    if (!finished)
+        return GB_OK;
+    void *prepared = NULL;
+    gb_result result = gb_background_setup_finish(r->setup_job, &prepared, error);
+    r->setup_job = NULL;
+    r->status.setup_fraction = -1.0;
+    if (result == GB_OK)
+        result = create_method(r, r->setup_method, prepared, error);
+    else
+        gb_method_indirect(r->setup_method)->discard(prepared);
+    start_again(r);
     return result;
 }
 
@@ -47,6 +107,7 @@ gb_result gb_renderer_create(const gb_scene *scene, const gb_renderer_options *o
                              gb_gl_errors *errors, gb_renderer *renderer, gb_error *error)
 {
     memset(renderer, 0, sizeof *renderer);
+    renderer->status.setup_fraction = -1.0;
     if (options->width <= 0 || options->height <= 0 || options->width > 16384 ||
         options->height > 16384)
         return gb_fail(error, GB_ERROR_ARGUMENT, "resolution %dx%d is not in 1..16384",
@@ -72,12 +133,6 @@ gb_result gb_renderer_create(const gb_scene *scene, const gb_renderer_options *o
     return GB_OK;
 }
 
-/* The next refine draws a new image, and the shown one is final no more. */
-static void start_again(gb_renderer *r)
-{
-    r->restart = 1;
-    r->status.converged = 0;
-}
 
 /* The G-buffer and the output at the full size divided by divisor. */
 static gb_result fit_size(gb_renderer *r, int divisor, gb_error *error)
@@ -231,7 +286,16 @@ static int draw_part(gb_renderer *r, const gb_view *view, int part, int parts)
 void gb_renderer_draw(gb_renderer *r, const gb_view *view)
 {
     r->frame_start = gb_seconds();
-    draw_part(r, view, 0, 1);
+    int state = draw_part(r, view, 0, 1);
+    int same = !r->restart && memcmp(view, &r->view, sizeof *view) == 0;
+    r->view = *view;
+    r->restart = 0;
+    r->status.divisor = 1;
+    r->status.part = 0;
+    r->status.parts = 1;
+    r->status.images = (same ? r->status.images : 0) + (state != GB_IMAGE_PROVISIONAL);
+    r->status.provisional = state == GB_IMAGE_PROVISIONAL;
+    r->status.converged = state == GB_IMAGE_FINAL;
 }
 
 /* The image drawn is complete: it becomes the shown one. state: the
@@ -368,6 +432,7 @@ gb_result gb_renderer_read(gb_renderer *renderer, gb_image *image, gb_error *err
 
 void gb_renderer_destroy(gb_renderer *renderer)
 {
+    cancel_setup(renderer);
     for (int m = 0; m < GB_METHOD_COUNT; ++m) {
         const gb_indirect_method *indirect = gb_method_indirect((gb_method)m);
         if (indirect && renderer->method_state[m])

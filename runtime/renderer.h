@@ -58,6 +58,8 @@ typedef struct gb_renderer_options {
                                    (gb_indirect_setup) */
     void *progress_user;
     double budget_ms;           /* gb_renderer_refine's frame budget (> 0) */
+    int background_setup;       /* a method's prepare (indirect_method.h) runs on
+                                   a thread: gb_renderer_poll_setup */
 } gb_renderer_options;
 
 /* Where gb_renderer_refine is, for the window's HUD. */
@@ -69,6 +71,7 @@ typedef struct gb_renderer_status {
     int provisional;            /* the shown image stands in while the method's
                                    setup goes on (octree's atlas) */
     int converged;              /* the shown image is final: nothing left to draw */
+    double setup_fraction;      /* of the method's setup on its thread, -1: none */
 } gb_renderer_status;
 
 typedef struct gb_renderer {
@@ -90,6 +93,8 @@ typedef struct gb_renderer {
     int part, parts;            /* its next part, and how many */
     double image_ms;            /* its parts' times so far */
     gb_renderer_status status;
+    struct gb_background_setup *setup_job;  /* the method's prepare on its thread */
+    gb_method setup_method;
     double frame_start;         /* gb_seconds() at the last draw */
     void *method_state[GB_METHOD_COUNT];    /* each GI method's, once created */
     uint32_t method_frames[GB_METHOD_COUNT];/* frames drawn with each method */
@@ -103,12 +108,16 @@ gb_result gb_renderer_resize(gb_renderer *renderer, int width, int height, gb_er
  * method's create error, e.g. a baked file it needs is missing) or the terms. */
 gb_result gb_renderer_set_method(gb_renderer *renderer, gb_method method, gb_error *error);
 void gb_renderer_set_terms(gb_renderer *renderer, gb_terms terms);
-/* Draws the whole image seen from view into the output. */
+/* Draws the whole image seen from view into the output (status as refine's). */
 void gb_renderer_draw(gb_renderer *renderer, const gb_view *view);
 /* Draws toward the image seen from view within options.budget_ms (above);
  * *changed nonzero when the image to present changed. */
 gb_result gb_renderer_refine(gb_renderer *renderer, const gb_view *view, int *changed,
                              gb_error *error);
+/* With background_setup: looks at the method's setup on its thread; once
+ * prepared, creates the method (its error, if it fails) and starts the
+ * image again. Until then the method draws no indirect light. */
+gb_result gb_renderer_poll_setup(gb_renderer *renderer, gb_error *error);
 /* Presents the image (refine's last complete one) in the window's
  * framebuffer of width x height, scaled to it. */
 void gb_renderer_present(gb_renderer *renderer, int width, int height);

@@ -15,6 +15,8 @@
 
 /* How long an idle window sleeps between looks at SIGINT, seconds. */
 static const double IDLE_WAIT_SECONDS = 0.25;
+/* ... and while a method's setup runs, between looks at its progress. */
+static const double SETUP_WAIT_SECONDS = 0.1;
 static const float RADIANS_PER_PIXEL = 0.004f;
 static const float WHEEL_SPEED_FACTOR = 1.25f;
 
@@ -60,6 +62,12 @@ static void report(window_state *s, const char *message)
 static void report_to(void *user, const char *message)
 {
     report(user, message);
+}
+
+/* A method's setup runs on its thread: the window shows its progress. */
+static int setting_up(const window_state *s)
+{
+    return s->renderer.status.setup_fraction >= 0.0;
 }
 
 /* An input arrived: the latency of the next present counts from here. */
@@ -257,6 +265,9 @@ static void log_frame(window_state *s, int moving, int presented, double now)
              s->renderer.timings.last_frame_wall_ms, now - s->start_time, st->divisor,
              st->part, st->parts, st->images, moving ? ", moving" : "",
              st->converged ? ", final" : "", presented ? ", presented" : "");
+    if (setting_up(s))
+        snprintf(line + strlen(line), sizeof line - strlen(line), ", setup %.0f %%",
+                 100.0 * st->setup_fraction);
     if (presented && s->input_time > 0.0)
         snprintf(line + strlen(line), sizeof line - strlen(line), ", latency %.1f ms",
                  1e3 * (now - s->input_time));
@@ -295,10 +306,14 @@ static void make_hud_text(const window_state *s, char *text, size_t size)
     describe_image(s, image, sizeof image);
     const gb_renderer *r = &s->renderer;
     gb_vec3 eye = s->view.position;
+    char setup[96] = "";
+    if (setting_up(s))
+        snprintf(setup, sizeof setup, "\n%s: setting up, %.0f %% (direct light meanwhile)",
+                 gb_method_name(r->options.method), 100.0 * r->status.setup_fraction);
     snprintf(text, size,
-             "%s - %s\n%.1f ms a frame, %.1f fps, budget %.0f ms\n%s\n"
+             "%s - %s%s\n%.1f ms a frame, %.1f fps, budget %.0f ms\n%s\n"
              "eye %.4g %.4g %.4g, speed %.3g\nH: keys",
-             gb_method_name(r->options.method), gb_terms_name(r->options.terms),
+             gb_method_name(r->options.method), gb_terms_name(r->options.terms), setup,
              r->timings.last_frame_wall_ms, s->frame_seconds > 0.0 ? 1.0 / s->frame_seconds : 0.0,
              r->options.budget_ms, image, eye.x, eye.y, eye.z, s->speed);
 }
@@ -336,8 +351,6 @@ static gb_result draw(window_state *s, int *changed, gb_error *error)
     if (s->renderer.options.budget_ms > 0.0)
         return gb_renderer_refine(&s->renderer, &s->view, changed, error);
     gb_renderer_draw(&s->renderer, &s->view);
-    s->renderer.status = (gb_renderer_status){.divisor = 1, .parts = 1,
-                                              .images = s->renderer.status.images + 1};
     *changed = 1;
     return GB_OK;
 }
@@ -345,8 +358,8 @@ static gb_result draw(window_state *s, int *changed, gb_error *error)
 /* Waits for input when there is nothing to draw, else only looks. */
 static void wait_or_poll(window_state *s)
 {
-    if (s->renderer.status.converged && !s->redraw && s->renderer.options.budget_ms > 0.0)
-        glfwWaitEventsTimeout(IDLE_WAIT_SECONDS);
+    if (s->renderer.status.converged && !s->redraw)
+        glfwWaitEventsTimeout(setting_up(s) ? SETUP_WAIT_SECONDS : IDLE_WAIT_SECONDS);
     else
         glfwPollEvents();
     if (interrupted)
@@ -368,9 +381,9 @@ static int done(const window_state *s)
  * the view nor anything else asked for another. */
 static int idle(const window_state *s, int moving)
 {
-    return s->renderer.options.budget_ms > 0.0 && s->renderer.status.converged &&
-           !s->renderer.restart && !moving;
+    return s->renderer.status.converged && !s->renderer.restart && !moving;
 }
+
 
 /* One turn of the loop: input, then the next slice of the image, shown when
  * it changed. */
@@ -382,6 +395,8 @@ static gb_result run_frame(window_state *s, double seconds, gb_error *error)
     if (width <= 0 || height <= 0)
         return GB_OK;   /* minimised */
     gb_result result = gb_renderer_resize(&s->renderer, width, height, error);
+    if (result == GB_OK)
+        result = gb_renderer_poll_setup(&s->renderer, error);
     int moving = memcmp(&s->view, &s->renderer.view, sizeof s->view) != 0;
     int drawing = result == GB_OK && !idle(s, moving);
     if (drawing)

@@ -603,7 +603,7 @@ int gb_flc_draw(void *state, const gb_indirect_frame *frame)
     if (scissor)
         glEnable(GL_SCISSOR_TEST);
     /* The samples once this image's is in: refine until the cap. */
-    return s->accumulated + !last < GB_FLC_CONVERGED_SAMPLES;
+    return s->accumulated + !last < GB_FLC_CONVERGED_SAMPLES ? GB_IMAGE_REFINABLE : GB_IMAGE_FINAL;
 }
 
 void gb_flc_measure(void *state, int on)

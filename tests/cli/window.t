@@ -3,7 +3,8 @@
 # with a window manager (Xvfb, openbox) and xdotool's keys and mouse: the
 # fly camera, the mouse, C, M without a bake, T, H, P twice without
 # overwriting, and Esc, the close button and SIGINT ending it within one
-# frame, also in the middle of topo's parts and of implicit's links.
+# frame, also in the middle of topo's parts and of implicit's links (on
+# ../shared's Sponza).
 # The view is read back from B's bookmark line, the rest from --timings'
 # log (a line a frame, 'quit asked' once). No check depends on time: the
 # waits have limits against a hang only. Prints TAP.
@@ -18,15 +19,26 @@ needs gbview voxelize thin segment
 for program in Xvfb openbox xdotool; do
     if ! command -v $program >/dev/null 2>&1; then
         missing "$program is not installed (make deps)"
-        tap_done
+        # --- Esc while implicit's links are built beside the frames (Sponza: tens
+# of seconds of links on two cores).
+start_gbview --resolution 160x90 --method implicit "$GB_ROOT/scenes/shared/sponza.scene"
+wait_for ', presented, setup [0-9]+ %' "$dir/log" 300
+ok $? "implicit's links: the window shows direct light and the setup's progress meanwhile"
+xdotool key Escape
+wait $pid
+ok $? "Esc during the links: exit status 0"
+ok "$([ "$(frames_after_quit)" -le 1 ]; echo $?)" "... after at most one more frame"
+
+tap_done
         exit
     fi
 done
 x_start || { missing "Xvfb did not start"; tap_done; exit; }
 
 # Starts gbview ARGS in $dir with its log in $dir/log; sets $pid and $wid.
+# timeout: a hang fails the test (status 124) rather than the whole suite.
 start_gbview() {
-    (cd "$dir" && exec "$GB_BIN/gbview" --timings "$@" >"$dir/log" 2>"$dir/err") &
+    (cd "$dir" && exec timeout 600 "$GB_BIN/gbview" --timings "$@" >"$dir/log" 2>"$dir/err") &
     pid=$!
     wid=$(gbview_window)
     xdotool windowactivate --sync "$wid" 2>/dev/null
@@ -137,5 +149,15 @@ kill -INT $pid
 wait $pid
 ok $? "SIGINT during topo's parts: exit status 0"
 ok "$([ "$(frames_after_quit)" -le 1 ]; echo $?)" "... after at most one more part"
+
+# --- Esc while implicit's links are built beside the frames (Sponza: tens
+# of seconds of links on two cores).
+start_gbview --resolution 160x90 --method implicit "$GB_ROOT/scenes/shared/sponza.scene"
+wait_for ', presented, setup [0-9]+ %' "$dir/log" 300
+ok $? "implicit's links: the window shows direct light and the setup's progress meanwhile"
+xdotool key Escape
+wait $pid
+ok $? "Esc during the links: exit status 0"
+ok "$([ "$(frames_after_quit)" -le 1 ]; echo $?)" "... after at most one more frame"
 
 tap_done

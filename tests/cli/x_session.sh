@@ -2,8 +2,9 @@
 # gbview's window as a user would (tests/cli/window.t, bench/viewer.sh).
 # Sourced; needs Debian's xvfb, openbox and xdotool (make deps).
 #
-#   x_start              starts Xvfb on a free display and openbox on it;
-#                        exports DISPLAY; x_stop (also at exit) ends both
+#   x_start              starts Xvfb on a free display and openbox on it,
+#                        and waits for openbox; exports DISPLAY; x_stop
+#                        (also at exit) ends both
 #   wait_for PATTERN FILE [SECONDS]
 #                        waits until a line of FILE matches PATTERN (grep -E);
 #                        false after SECONDS (default 120): a limit against a
@@ -24,9 +25,19 @@ x_start() {
     DISPLAY=:$(head -1 "$x_fd_file")
     export DISPLAY
     rm -f "$x_fd_file"
-    openbox >/dev/null 2>&1 &
+    # A window made while the window manager starts can wait for events
+    # that never come: go on once openbox says it is up.
+    x_wm_ready=$(mktemp -u)
+    openbox --startup "touch $x_wm_ready" >/dev/null 2>&1 &
     x_pids="$x_pids $!"
     trap 'x_stop' EXIT
+    waited=0
+    until [ -e "$x_wm_ready" ]; do
+        [ "$waited" -ge 300 ] && return 1
+        sleep 0.1
+        waited=$((waited + 1))
+    done
+    rm -f "$x_wm_ready"
 }
 
 x_stop() {
@@ -58,5 +69,5 @@ count_lines() {
 }
 
 gbview_window() {
-    xdotool search --sync --onlyvisible --name '^gbview ' 2>/dev/null | head -1
+    timeout 300 xdotool search --sync --onlyvisible --name '^gbview ' 2>/dev/null | head -1
 }
