@@ -378,14 +378,19 @@ static void prepare_generation(flc_state *s, GLuint program, const gb_indirect_f
                         s->patch_capacity);
 }
 
-/* Pass 1 over the VPL triangles [first, first + count). */
+/* Pass 1 over the VPL triangles [first, first + count), in dispatches of at
+ * most the 65 535 groups every GL 4.3 gives (4.2 M triangles a dispatch). */
 static void generate_vpls(flc_state *s, uint32_t first, uint32_t count)
 {
+    const uint32_t most = 65535u * GENERATE_GROUP;
     GLuint program = s->generate_program;
     glUseProgram(program);
-    glProgramUniform1ui(program, glGetUniformLocation(program, "first"), first);
-    glProgramUniform1ui(program, glGetUniformLocation(program, "triangle_count"), count);
-    glDispatchCompute((count + GENERATE_GROUP - 1) / GENERATE_GROUP, 1, 1);
+    for (uint32_t done = 0; done < count; done += most) {
+        uint32_t n = count - done < most ? count - done : most;
+        glProgramUniform1ui(program, glGetUniformLocation(program, "first"), first + done);
+        glProgramUniform1ui(program, glGetUniformLocation(program, "triangle_count"), n);
+        glDispatchCompute((n + GENERATE_GROUP - 1) / GENERATE_GROUP, 1, 1);
+    }
     glMemoryBarrier(GL_SHADER_STORAGE_BARRIER_BIT);
 }
 
