@@ -63,13 +63,6 @@ gb_result gb_method_check(gb_method method, gb_error *error)
                    gb_method_name(method), list);
 }
 
-gb_method gb_method_next(gb_method method)
-{
-    for (int step = 1; step <= GB_METHOD_COUNT; ++step) {
-        gb_method next = (gb_method)((method + step) % GB_METHOD_COUNT);
-        if (gb_method_implemented(next))
-            return next;
-    }
     return method;
 }
 

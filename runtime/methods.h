@@ -44,8 +44,6 @@ const gb_indirect_method *gb_method_indirect(gb_method method);
 int gb_method_implemented(gb_method method);
 /* GB_ERROR_UNSUPPORTED, naming the methods that are, when it is not. */
 gb_result gb_method_check(gb_method method, gb_error *error);
-/* The next implemented method after method, cycling. */
-gb_method gb_method_next(gb_method method);
 
 const char *gb_terms_name(gb_terms terms);
 

@@ -1,5 +1,5 @@
 /* timings.h — per-pass GPU times of the frame, which gbview prints with
- * --timings and shows in the window title. Each pass is a pair of
+ * --timings and shows in the window's HUD. Each pass is a pair of
  * GL_TIMESTAMP queries (glQueryCounter) rather than a GL_TIME_ELAPSED query,
  * whose first result llvmpipe reports from a zero start.
  *

@@ -49,7 +49,7 @@ typedef struct window_state {
     int quit_told;
     gb_hud hud;
     int hud_hidden, keys_shown;
-    char hud_text[512];         /* as last presented */
+    char hud_text[768];         /* as last presented */
     double frame_seconds;       /* between frames that drew, a running mean */
 } window_state;
 
@@ -310,12 +310,14 @@ static void make_hud_text(const window_state *s, char *text, size_t size)
     if (setting_up(s))
         snprintf(setup, sizeof setup, "\n%s: setting up, %.0f %% (direct light meanwhile)",
                  gb_method_name(r->options.method), 100.0 * r->status.setup_fraction);
+    char passes[256];
+    gb_timings_format_last(&r->timings, passes, sizeof passes);
     snprintf(text, size,
-             "%s - %s%s\n%.1f ms a frame, %.1f fps, budget %.0f ms\n%s\n"
+             "%s - %s%s\n%.1f fps, budget %.0f ms; last frame: %s\n%s\n"
              "eye %.4g %.4g %.4g, speed %.3g\nH: keys",
              gb_method_name(r->options.method), gb_terms_name(r->options.terms), setup,
-             r->timings.last_frame_wall_ms, s->frame_seconds > 0.0 ? 1.0 / s->frame_seconds : 0.0,
-             r->options.budget_ms, image, eye.x, eye.y, eye.z, s->speed);
+             s->frame_seconds > 0.0 ? 1.0 / s->frame_seconds : 0.0, r->options.budget_ms,
+             passes, image, eye.x, eye.y, eye.z, s->speed);
 }
 
 /* The HUD's text changed since it was last shown. */
