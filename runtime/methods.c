@@ -63,9 +63,6 @@ gb_result gb_method_check(gb_method method, gb_error *error)
                    gb_method_name(method), list);
 }
 
-    return method;
-}
-
 const char *gb_terms_name(gb_terms terms)
 {
     switch (terms) {
