@@ -48,6 +48,19 @@ static int whole_frame(const gb_scene *scene, gb_context *context, gb_method met
     return succeeded(result, &error);
 }
 
+/* One check: the renderer's image is the whole frame of view with terms. */
+static void check_whole_frame(const gb_scene *scene, gb_context *context, gb_renderer *renderer,
+                              gb_terms terms, const gb_view *view, const char *what)
+{
+    gb_image refined = {0}, whole = {0};
+    gb_error error;
+    int read = succeeded(gb_renderer_read(renderer, &refined, &error), &error) &&
+               whole_frame(scene, context, renderer->options.method, terms, view, &whole);
+    CHECK(read && same_pixels(&refined, &whole), what);
+    gb_image_free(&refined);
+    gb_image_free(&whole);
+}
+
 /* Refines view until the image is final; what the status showed on the way. */
 static int refine_until_final(gb_renderer *renderer, const gb_view *view, seen *s)
 {
@@ -74,7 +87,6 @@ static void check_method(const gb_scene *scene, gb_context *context, gb_method m
     view = start;
     gb_renderer_options options = options_of(method, GB_TERMS_BOTH, 0.05);
     gb_renderer renderer;
-    gb_image whole = {0}, refined = {0};
     if (!succeeded(gb_renderer_create(scene, &options, &context->errors, &renderer, &error),
                    &error)) {
         CHECK(0, "a renderer");
@@ -87,13 +99,8 @@ static void check_method(const gb_scene *scene, gb_context *context, gb_method m
     CHECK(final, what);
     snprintf(what, sizeof what, "%s, still: drawn in parts (%d)", name, still.most_parts);
     CHECK(still.most_parts > 1, what);
-    if (final && gb_renderer_read(&renderer, &refined, &error) == GB_OK &&
-        whole_frame(scene, context, method, GB_TERMS_BOTH, &view, &whole)) {
-        snprintf(what, sizeof what, "%s, still: the bytes of the whole frame", name);
-        CHECK(same_pixels(&refined, &whole), what);
-    }
-    gb_image_free(&refined);
-    gb_image_free(&whole);
+    snprintf(what, sizeof what, "%s, still: the bytes of the whole frame", name);
+    check_whole_frame(scene, context, &renderer, GB_TERMS_BOTH, &view, what);
 
     /* Moving for a few frames, then still. */
     seen moving = {0};
@@ -108,13 +115,10 @@ static void check_method(const gb_scene *scene, gb_context *context, gb_method m
     CHECK(moving.most_divisor > 1, what);
     CHECK(!renderer.status.converged, "moving: not final");
     final = refine_until_final(&renderer, &view, &moving);
-    if (final && gb_renderer_read(&renderer, &refined, &error) == GB_OK &&
-        whole_frame(scene, context, method, GB_TERMS_BOTH, &view, &whole)) {
-        snprintf(what, sizeof what, "%s, moved then still: the bytes of the whole frame", name);
-        CHECK(same_pixels(&refined, &whole), what);
-    }
-    gb_image_free(&refined);
-    gb_image_free(&whole);
+    snprintf(what, sizeof what, "%s, moved then still: final", name);
+    CHECK(final, what);
+    snprintf(what, sizeof what, "%s, moved then still: the bytes of the whole frame", name);
+    check_whole_frame(scene, context, &renderer, GB_TERMS_BOTH, &view, what);
 
     /* Another light term: drawn again, to its own whole frame. */
     gb_renderer_set_terms(&renderer, GB_TERMS_DIRECT);
@@ -122,13 +126,10 @@ static void check_method(const gb_scene *scene, gb_context *context, gb_method m
     final = refine_until_final(&renderer, &view, &terms);
     snprintf(what, sizeof what, "%s: T starts the image again (%d frames)", name, terms.frames);
     CHECK(terms.frames > 1, what);
-    if (final && gb_renderer_read(&renderer, &refined, &error) == GB_OK &&
-        whole_frame(scene, context, method, GB_TERMS_DIRECT, &view, &whole)) {
-        snprintf(what, sizeof what, "%s, direct terms: the bytes of the whole frame", name);
-        CHECK(same_pixels(&refined, &whole), what);
-    }
-    gb_image_free(&refined);
-    gb_image_free(&whole);
+    snprintf(what, sizeof what, "%s, direct terms: final", name);
+    CHECK(final, what);
+    snprintf(what, sizeof what, "%s, direct terms: the bytes of the whole frame", name);
+    check_whole_frame(scene, context, &renderer, GB_TERMS_DIRECT, &view, what);
     gb_renderer_destroy(&renderer);
 }
 
