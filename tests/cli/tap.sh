@@ -23,6 +23,11 @@
 #   expect_failure WHAT STATUS PATTERN ARGS...
 #                        runs $tool ARGS: two checks, exit status STATUS
 #                        and PATTERN (grep) on stderr
+#   topo_bake FOLDER SCENE VOXELS
+#                        voxelize -r VOXELS, thin --grid, segment --voxels
+#                        --grid, as make bake: what gbview --method topo
+#                        reads, in FOLDER (made) as NAME.*, NAME the
+#                        scene file's name; false if a step failed
 #   floor_obj FILE       writes a lone 4 x 4 floor at y = 0 (two triangles, no
 #                        material: Kd 0.8, the OBJ default) to FILE
 #   tap_done             prints the plan; returns nonzero if a check failed
@@ -92,6 +97,16 @@ expect_failure() {
     status=$?
     ok "$([ $status = "$want" ]; echo $?)" "$what: exit status $want (got $status)"
     ok "$(grep -q "$pattern" "$dir/err"; echo $?)" "$what: says '$pattern' on stderr"
+}
+
+topo_bake() {
+    topo_name=$(basename "$2")
+    topo_name=$1/${topo_name%.*}
+    mkdir -p "$1" &&
+        "$GB_BIN/voxelize" -q -r "$3" "$2" -o "$topo_name.vdb" &&
+        "$GB_BIN/thin" -q "$topo_name.vdb" -o "$topo_name.skel" --grid "$topo_name.grid.vdb" &&
+        "$GB_BIN/segment" -q "$topo_name.skel" --voxels "$topo_name.vdb" \
+            --grid "$topo_name.grid.vdb" -o "$topo_name.seg"
 }
 
 floor_obj() {

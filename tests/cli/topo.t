@@ -15,11 +15,7 @@ scene=$GB_ROOT/scenes/cornell/cornell.scene
 needs voxelize thin segment gbview reference imgdiff
 
 bake=$dir/bake
-mkdir "$bake"
-"$GB_BIN/voxelize" -q -r 48 "$scene" -o "$bake/cornell.vdb" &&
-    "$GB_BIN/thin" -q "$bake/cornell.vdb" -o "$bake/cornell.skel" --grid "$bake/cornell.grid.vdb" &&
-    "$GB_BIN/segment" -q "$bake/cornell.skel" --voxels "$bake/cornell.vdb" \
-        --grid "$bake/cornell.grid.vdb" -o "$bake/cornell.seg"
+topo_bake "$bake" "$scene" 48
 ok $? "bake: voxelize -r 48, thin --grid, segment --voxels --grid"
 
 small="--headless --resolution 96x96 --quiet --method topo --vpls 256"

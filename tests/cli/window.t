@@ -123,11 +123,7 @@ ok $? "the close button: exit status 0"
 
 # --- Esc in the middle of topo's parts.
 bake=$dir/bake
-mkdir "$bake"
-"$GB_BIN/voxelize" -q -r 48 "$scene" -o "$bake/cornell.vdb" &&
-    "$GB_BIN/thin" -q "$bake/cornell.vdb" -o "$bake/cornell.skel" --grid "$bake/cornell.grid.vdb" &&
-    "$GB_BIN/segment" -q "$bake/cornell.skel" --voxels "$bake/cornell.vdb" \
-        --grid "$bake/cornell.grid.vdb" -o "$bake/cornell.seg"
+topo_bake "$bake" "$scene" 48
 ok $? "bake for topo"
 start_gbview --resolution 256x256 --method topo --bake "$bake" --budget 5 "$scene"
 wait_for 'part [1-9][0-9]*/[0-9]+' "$dir/log" 120
