@@ -243,6 +243,7 @@ typedef struct state {
 static state get_state(void)
 {
     state s;
+    memset(&s, 0, sizeof s);  /* its padding too: the states are compared with memcmp */
     s.scissor = glIsEnabled(GL_SCISSOR_TEST);
     s.depth = glIsEnabled(GL_DEPTH_TEST);
     s.blend = glIsEnabled(GL_BLEND);
