@@ -133,7 +133,6 @@ gb_result gb_renderer_create(const gb_scene *scene, const gb_renderer_options *o
     return GB_OK;
 }
 
-
 /* The G-buffer and the output at the full size divided by divisor. */
 static gb_result fit_size(gb_renderer *r, int divisor, gb_error *error)
 {
@@ -208,7 +207,7 @@ static void draw_direct_light(gb_renderer *r, const gb_view *view)
  * scissor box; the method's gb_image_state. */
 static int draw_indirect_light(gb_renderer *r, const gb_view *view, const gb_mat4 *view_matrix,
                                const gb_mat4 *projection, int part, int parts,
-                               const int band[2])
+                               const int band[2], double budget_ms)
 {
     gb_method method = r->options.method;
     const gb_indirect_method *indirect = gb_method_indirect(method);
@@ -226,7 +225,7 @@ static int draw_indirect_light(gb_renderer *r, const gb_view *view, const gb_mat
         .part = part,
         .parts = parts,
         .band = {band[0], band[1]},
-        .budget_ms = parts > 1 || r->divisor > 1 ? r->options.budget_ms : 0.0,
+        .budget_ms = budget_ms,
         .timings = &r->timings,
     };
     gb_output_bind(&r->output);
@@ -253,9 +252,11 @@ static void band_of_part(int part, int parts, int height, int band[2])
 }
 
 /* One part of the image: at part 0 the shadow maps (once) and the G-buffer;
- * then the direct and the indirect light within the part's band. The
- * image's gb_image_state. */
-static int draw_part(gb_renderer *r, const gb_view *view, int part, int parts)
+ * then the direct and the indirect light within the part's band. budget_ms:
+ * the method's (indirect_method.h), 0 for whole images. The image's
+ * gb_image_state. */
+static int draw_part(gb_renderer *r, const gb_view *view, int part, int parts,
+                     double budget_ms)
 {
     int width = r->gbuffer.width, height = r->gbuffer.height;
     gb_mat4 view_matrix = gb_view_matrix(view);
@@ -277,7 +278,8 @@ static int draw_part(gb_renderer *r, const gb_view *view, int part, int parts)
         draw_direct_light(r, view);
     int state = GB_IMAGE_FINAL;
     if (r->options.terms != GB_TERMS_DIRECT)
-        state = draw_indirect_light(r, view, &view_matrix, &projection, part, parts, band);
+        state = draw_indirect_light(r, view, &view_matrix, &projection, part, parts, band,
+                                    budget_ms);
     glDisable(GL_SCISSOR_TEST);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return state;
@@ -286,7 +288,7 @@ static int draw_part(gb_renderer *r, const gb_view *view, int part, int parts)
 void gb_renderer_draw(gb_renderer *r, const gb_view *view)
 {
     r->frame_start = gb_seconds();
-    int state = draw_part(r, view, 0, 1);
+    int state = draw_part(r, view, 0, 1, 0.0);
     int same = !r->restart && memcmp(view, &r->view, sizeof *view) == 0;
     r->view = *view;
     r->restart = 0;
@@ -322,7 +324,7 @@ static int draw_parts(gb_renderer *r, const gb_view *view, int *state)
     double elapsed = 0.0, part_ms;
     do {
         double start = gb_seconds();
-        *state = draw_part(r, view, r->part, r->parts);
+        *state = draw_part(r, view, r->part, r->parts, r->options.budget_ms);
         glFinish();
         part_ms = 1e3 * (gb_seconds() - start);
         elapsed += part_ms;
