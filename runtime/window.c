@@ -372,10 +372,12 @@ static void wait_or_poll(window_state *s)
     }
 }
 
+/* --frames K: K images, or a final one, of the method itself (not the
+ * direct light shown while its setup runs). */
 static int done(const window_state *s)
 {
     const gb_renderer_status *st = &s->renderer.status;
-    return s->options->frames > 0 &&
+    return s->options->frames > 0 && !setting_up(s) &&
            (st->images >= (uint32_t)s->options->frames || st->converged);
 }
 
