@@ -264,7 +264,7 @@ static void log_frame(window_state *s, int moving, int presented, double now)
              "frame %u: %.1f ms, t %.3f s, 1/%d, part %d/%d, images %u%s%s%s", s->frames,
              s->renderer.timings.last_frame_wall_ms, now - s->start_time, st->divisor,
              st->part, st->parts, st->images, moving ? ", moving" : "",
-             st->converged ? ", final" : "", presented ? ", presented" : "");
+             st->converged && !setting_up(s) ? ", final" : "", presented ? ", presented" : "");
     if (setting_up(s))
         snprintf(line + strlen(line), sizeof line - strlen(line), ", setup %.0f %%",
                  100.0 * st->setup_fraction);
@@ -288,8 +288,10 @@ static void describe_image(const window_state *s, char *text, size_t size)
     const gb_renderer_status *st = &s->renderer.status;
     if (s->renderer.options.budget_ms <= 0.0)
         snprintf(text, size, "whole frames (--budget 0)");
-    else if (st->converged)
+    else if (st->converged && !setting_up(s))
         snprintf(text, size, "final%s", st->images > 1 ? " (samples)" : "");
+    else if (st->converged)
+        snprintf(text, size, "direct light, final");
     else if (st->provisional)
         snprintf(text, size, "a stand-in while the method's setup goes on");
     else if (st->parts > 1)

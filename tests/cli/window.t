@@ -141,6 +141,16 @@ wait $pid
 ok $? "SIGINT during topo's parts: exit status 0"
 ok "$([ "$(frames_after_quit)" -le 1 ]; echo $?)" "... after at most one more part"
 
+# --- --frames 1 -o with implicit: the saved image is implicit's, whole, not
+# the direct light shown while its links are built.
+"$GB_BIN/gbview" --headless --resolution 64x64 --method implicit "$scene" -o "$dir/implicit.exr"
+(cd "$dir" && exec env ${glx_driver:+LD_PRELOAD=$glx_driver} timeout 600 "$GB_BIN/gbview" \
+    --resolution 64x64 --method implicit --frames 1 -o "$dir/window.exr" "$scene" \
+    >"$dir/log" 2>"$dir/err")
+ok $? "implicit --frames 1 -o in a window: exit status 0"
+cmp -s "$dir/implicit.exr" "$dir/window.exr"
+ok $? "... and its image is the headless one, links and all"
+
 # --- Esc while implicit's links are built beside the frames (Sponza: tens
 # of seconds of links on two cores).
 start_gbview --resolution 160x90 --method implicit "$GB_ROOT/scenes/shared/sponza.scene"
