@@ -25,7 +25,8 @@
 #   and flc only, as the issue asks);
 # VIEWER_SIZES (default "512x512 1280x720"); VIEWER_METHODS (default
 #   "direct octree flc implicit topo flc-iv"); VIEWER_BUDGETS (default
-#   "default 0"); VIEWER_LIMIT seconds a run may wait for an image (600);
+#   "default 0"); VIEWER_FIRST_LIMIT seconds a run may wait for its first
+#   image (600), VIEWER_LIMIT for the final one (600);
 # VIEWER_BAKE: a folder of bakes NAME/ (default: made here with make bake).
 # Prints a Markdown table on stdout.
 
@@ -37,6 +38,7 @@ VIEWER_SIZES=${VIEWER_SIZES:-"512x512 1280x720"}
 VIEWER_METHODS=${VIEWER_METHODS:-"direct octree flc implicit topo flc-iv"}
 VIEWER_BUDGETS=${VIEWER_BUDGETS:-"default 0"}
 VIEWER_LIMIT=${VIEWER_LIMIT:-600}
+VIEWER_FIRST_LIMIT=${VIEWER_FIRST_LIMIT:-600}
 VIEWER_DRAG_SECONDS=${VIEWER_DRAG_SECONDS:-3}
 VIEWER_BAKE=${VIEWER_BAKE:-$dir/bakes}
 trap 'x_stop; rm -rf "$dir"' EXIT INT TERM
@@ -95,14 +97,14 @@ measure() {
     /usr/bin/time -f "%M" -o "$dir/time" "$GB_BIN/gbview" --timings --quiet "$@" \
         >"$dir/log" 2>"$dir/err" &
     pid=$!
-    if ! wait_for ', presented$|, presented, latency' "$dir/log" "$VIEWER_LIMIT"; then
+    if ! wait_for ', presented$|, presented, latency' "$dir/log" "$VIEWER_FIRST_LIMIT"; then
         kill $pid 2>/dev/null
         wait $pid 2>/dev/null
         if [ -z "$retried" ]; then  # once: see the README's note on a stuck window
             retried=1
             measure "$@"
         else
-            echo "| no image within ${VIEWER_LIMIT} s: $(tail -1 "$dir/err") | | | | | |"
+            echo "| no image within ${VIEWER_FIRST_LIMIT} s: $(tail -1 "$dir/err") | | | | | |"
         fi
         retried=
         return
