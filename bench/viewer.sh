@@ -41,7 +41,9 @@ VIEWER_LIMIT=${VIEWER_LIMIT:-600}
 VIEWER_FIRST_LIMIT=${VIEWER_FIRST_LIMIT:-600}
 VIEWER_DRAG_SECONDS=${VIEWER_DRAG_SECONDS:-3}
 VIEWER_BAKE=${VIEWER_BAKE:-$dir/bakes}
-trap 'x_stop; rm -rf "$dir"' EXIT INT TERM
+trap 'x_stop; rm -rf "$dir"' EXIT
+trap 'exit 130' INT
+trap 'exit 143' TERM
 x_start || { echo "viewer.sh: Xvfb did not start" >&2; exit 1; }
 
 # The bake of scene $1 in $VIEWER_BAKE/NAME (make bake, once; the large
