@@ -37,7 +37,13 @@ struct gb_octree_atlas {
     GLuint next;                /* the texture a gutter round writes, or 0 */
     int pass;                   /* the pass under way (pass_count: complete) */
     GLsizei row;                /* its first row not yet rendered */
-    double seconds_per_row;     /* the last slice's time per row, 0 before any */
+    /* A slice's time, fixed + rows x per_row: each slice draws every chart's
+     * triangles (the fixed part), its rows only bound their fragments. Two
+     * slices of different heights give both (measure_slice). */
+    double seconds_per_row;     /* 0 before any slice */
+    double fixed_seconds;
+    int last_rows;              /* the last slice's, and its time */
+    double last_seconds;
 };
 
 static const char render_vertex_shader[] =
@@ -260,17 +266,38 @@ static void render_slice(gb_octree_atlas *s, int rows)
 enum { FIRST_SLICE_ROWS = 16 };
 
 /* The rows of the next slice: the rest of the pass without a budget; else
- * as many as the budget left allows at the last slice's time per row (at
- * least one; FIRST_SLICE_ROWS before any slice was timed). */
+ * as many as the budget left allows after the slice's fixed part, and never
+ * fewer than make its rows cost as much as that part (a thinner slice would
+ * spend more on the part than on the rows; at least one; FIRST_SLICE_ROWS
+ * before any slice was timed). */
 static int slice_rows(const gb_octree_atlas *s, double budget_ms, double spent_seconds)
 {
     int left = s->height - s->row;
     if (budget_ms <= 0.0)
         return left;
-    double rows = s->seconds_per_row > 0.0
-                      ? (1e-3 * budget_ms - spent_seconds) / s->seconds_per_row
-                      : FIRST_SLICE_ROWS;
+    double rows = FIRST_SLICE_ROWS;
+    if (s->seconds_per_row > 0.0) {
+        double fits = (1e-3 * budget_ms - spent_seconds - s->fixed_seconds) / s->seconds_per_row;
+        double balanced = s->fixed_seconds / s->seconds_per_row;
+        rows = fits > balanced ? fits : balanced;
+    }
     return rows < 1.0 ? 1 : rows >= left ? left : (int)rows;
+}
+
+/* Updates the model of a slice's time with one that took seconds. */
+static void measure_slice(gb_octree_atlas *s, int rows, double seconds)
+{
+    if (s->last_rows > 0 && rows != s->last_rows) {
+        double per_row = (seconds - s->last_seconds) / (double)(rows - s->last_rows);
+        if (per_row > 0.0) {
+            s->seconds_per_row = per_row;
+            s->fixed_seconds = seconds > rows * per_row ? seconds - rows * per_row : 0.0;
+        }
+    } else if (s->seconds_per_row <= 0.0) {
+        s->seconds_per_row = seconds / rows;
+    }
+    s->last_rows = rows;
+    s->last_seconds = seconds;
 }
 
 int gb_octree_atlas_complete(const gb_octree_atlas *s)
@@ -295,7 +322,7 @@ int gb_octree_atlas_render(gb_octree_atlas *s, double budget_ms)
         render_slice(s, rows);
         if (budget_ms > 0.0) {
             glFinish();
-            s->seconds_per_row = (gb_seconds() - slice_start) / rows;
+            measure_slice(s, rows, gb_seconds() - slice_start);
         }
     } while (!gb_octree_atlas_complete(s) &&
              (budget_ms <= 0.0 || 1e3 * (gb_seconds() - start) < budget_ms));
