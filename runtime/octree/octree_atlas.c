@@ -265,11 +265,15 @@ static void render_slice(gb_octree_atlas *s, int rows)
 /* The rows of the first slice timed. */
 enum { FIRST_SLICE_ROWS = 16 };
 
+/* A slice with a budget is at most this share of the atlas's rows: each
+ * pass is cut into that many slices at least, whatever the clock says. */
+enum { SLICES_A_PASS = 8 };
+
 /* The rows of the next slice: the rest of the pass without a budget; else
  * as many as the budget left allows after the slice's fixed part, and never
  * fewer than make its rows cost as much as that part (a thinner slice would
- * spend more on the part than on the rows; at least one; FIRST_SLICE_ROWS
- * before any slice was timed). */
+ * spend more on the part than on the rows); at most 1/SLICES_A_PASS of the
+ * atlas, at least one row; FIRST_SLICE_ROWS before any slice was timed. */
 static int slice_rows(const gb_octree_atlas *s, double budget_ms, double spent_seconds)
 {
     int left = s->height - s->row;
@@ -281,6 +285,8 @@ static int slice_rows(const gb_octree_atlas *s, double budget_ms, double spent_s
         double balanced = s->fixed_seconds / s->seconds_per_row;
         rows = fits > balanced ? fits : balanced;
     }
+    double most = (double)s->height / SLICES_A_PASS;
+    rows = rows < most ? rows : most;
     return rows < 1.0 ? 1 : rows >= left ? left : (int)rows;
 }
 
