@@ -285,36 +285,40 @@ static int draw_part(gb_renderer *r, const gb_view *view, int part, int parts,
     return state;
 }
 
+/* The status of a complete image at full / divisor: state, the method's
+ * gb_image_state. */
+static void count_image(gb_renderer *r, int divisor, int state)
+{
+    r->status.divisor = divisor;
+    if (divisor > 1)
+        r->status.images = 0;
+    else if (state != GB_IMAGE_PROVISIONAL)
+        ++r->status.images;
+    r->status.provisional = state == GB_IMAGE_PROVISIONAL;
+    r->status.converged = divisor == 1 && state == GB_IMAGE_FINAL;
+}
+
 void gb_renderer_draw(gb_renderer *r, const gb_view *view)
 {
     r->frame_start = gb_seconds();
     int state = draw_part(r, view, 0, 1, 0.0);
-    int same = !r->restart && memcmp(view, &r->view, sizeof *view) == 0;
+    if (r->restart || memcmp(view, &r->view, sizeof *view) != 0)
+        r->status.images = 0;
     r->view = *view;
     r->restart = 0;
-    r->status.divisor = 1;
     r->status.part = 0;
     r->status.parts = 1;
-    r->status.images = (same ? r->status.images : 0) + (state != GB_IMAGE_PROVISIONAL);
-    r->status.provisional = state == GB_IMAGE_PROVISIONAL;
-    r->status.converged = state == GB_IMAGE_FINAL;
+    count_image(r, 1, state);
 }
 
-/* The image drawn is complete: it becomes the shown one. state: the
- * method's gb_image_state. */
+/* The image drawn is complete: it becomes the shown one. */
 static void show_image(gb_renderer *r, int state)
 {
     gb_output drawn = r->output;
     r->output = r->shown;
     r->shown = drawn;
     r->part = 0;
-    r->status.divisor = r->divisor;
-    if (r->divisor > 1)
-        r->status.images = 0;
-    else if (state != GB_IMAGE_PROVISIONAL)
-        ++r->status.images;
-    r->status.provisional = state == GB_IMAGE_PROVISIONAL;
-    r->status.converged = r->divisor == 1 && state == GB_IMAGE_FINAL;
+    count_image(r, r->divisor, state);
 }
 
 /* The next parts of the image being drawn (planned at its part 0) while
