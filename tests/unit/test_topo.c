@@ -1,9 +1,10 @@
 /* test_topo.c — the CPU passes of the topological method (runtime/topo/topo.h):
- * VPLs traced from the lights (count, validity, determinism, energy), the
- * gate cone tests, IUGC (one visibility cluster per geometry cluster, the
- * spheres bound their fragments) and LA on two rooms joined by a door: a
- * VPL in room A reaches room B only inside the cone through the door gate;
- * three rooms: room C only through both doors' cones; a VPL at a door
+ * VPLs traced from the lights (count, validity, determinism, energy: a
+ * point light, a sun, area lights), the gate cone tests, IUGC (one
+ * visibility cluster per geometry cluster, the spheres bound their
+ * fragments) and LA on two rooms joined by a door: a VPL in room A
+ * reaches room B only inside the cone through the door gate; three rooms:
+ * room C only through both doors' cones; a VPL at a door
  * lights through the disk only; the lookup off a tilted wall never lands in
  * the wall's voxels; a gate fitted to its opening lets light through its
  * edge (the fit itself: test_segment);
@@ -92,6 +93,35 @@ static void test_vpls_sun(void)
     scene_done(&scene);
     CHECK_NEAR(vpl_power(&scene, 8000, 2, 1, "sun: traced"), 150.0, 0.05 * 150.0,
                "sun: VPL powers sum to E x area x albedo");
+    gb_scene_free(&scene);
+}
+
+/* Area lights in a closed grey box of albedo 1/2: two emissive panels (Kd
+ * 1/2 as well, so every surface a path hits reflects half of what arrives)
+ * of radiance Ke emit Phi = pi sum Ke area (a Lambertian emitter's exitance
+ * is pi Ke), here pi (4 x 1/4 + 1 x 1/2) = 1.5 pi, from the scene's numbers
+ * alone; the VPLs' power then sums to Phi (a + a^2 + ...) = Phi in
+ * expectation, as for the point light above. */
+static void test_vpls_area_lights(void)
+{
+    gb_scene scene = {0};
+    uint32_t grey = add_grey(&scene, 0.5f, 0.0f);
+    uint32_t bright = add_grey(&scene, 0.5f, 4.0f), dim = add_grey(&scene, 0.5f, 1.0f);
+    add_box(&scene, (float[3]){-1, -1, -1}, (float[3]){1, 1, 1}, 1, grey);
+    const float panel[4][3] = {{-0.25f, 0.9f, -0.25f}, {0.25f, 0.9f, -0.25f},
+                               {0.25f, 0.9f, 0.25f}, {-0.25f, 0.9f, 0.25f}};
+    const float strip[4][3] = {{-0.9f, -0.5f, -0.25f}, {-0.9f, 0.5f, -0.25f},
+                               {-0.9f, 0.5f, 0.25f}, {-0.9f, -0.5f, 0.25f}};
+    const float centre[3] = {0, 0, 0};
+    add_quad_facing(&scene, panel, centre, bright);   /* area 1/4, facing down */
+    add_quad_facing(&scene, strip, centre, dim);      /* area 1/2, facing +x */
+    set_camera(&scene, (float[3]){0, 0, 0.9f}, (float[3]){0, 0, 0}, 60.0f, 16, 16);
+    scene_done(&scene);
+    double phi = M_PI * (4.0 * 0.25 + 1.0 * 0.5);
+    double sum = vpl_power(&scene, 20000, 3, 1, "area lights: traced");
+    printf("# area lights: VPL powers sum to %.4f, analytic Phi = %.4f\n", sum, phi);
+    CHECK_NEAR(sum, phi, 0.06 * phi,
+               "area lights: VPL powers sum to pi sum Ke area (albedo 1/2, closed box)");
     gb_scene_free(&scene);
 }
 
@@ -529,6 +559,7 @@ int main(void)
     test_vpls_cornell();
     test_vpls_energy();
     test_vpls_sun();
+    test_vpls_area_lights();
     test_cones();
     test_two_rooms_assignment();
     test_routes();
