@@ -9,7 +9,9 @@
  * the wall's voxels; a gate fitted to its opening lets light through its
  * edge (the fit itself: test_segment);
  * LA on the GPU gives the CPU's lists, and the GPU's visibility cluster of
- * each fragment is the CPU's (headless GL: a failed check without it). */
+ * each fragment is the CPU's; IL's bounded 1/r^2 under a VPL close to a
+ * floor against the formula by hand (headless GL: a failed check without
+ * it). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -475,6 +477,120 @@ static void test_la_cpu_equals_gpu(void)
     gb_context_destroy(&context);
 }
 
+/* ---- IL's bounded geometric term ---------------------------------------
+ * A grey floor (Kd 1/2, y = 0, facing +y) seen straight down from height
+ * CLAMP_EYE, and one VPL of power CLAMP_POWER at height CLAMP_HEIGHT above
+ * its centre, facing down. By hand, at a floor point rho from the VPL's
+ * foot, d^2 = rho^2 + h^2 and both cosines are h / d: the VPL sends
+ * P (h/d) / pi (vpl.h), the floor reflects Kd / pi of the irradiance, and
+ * IL bounds 1/d^2 by 1/max(d, r_clamp)^2 (Kollig & Keller 2004), so
+ *   L = Kd P h^2 / (pi^2 d^2 max(d^2, r_clamp^2)).
+ * r_clamp is five times h: under the VPL the bound cuts L by up to 25. */
+enum { CLAMP_SIZE = 64 };
+static const float CLAMP_EYE = 1.0f, CLAMP_FOV = 60.0f, CLAMP_HEIGHT = 0.05f,
+                   CLAMP_RADIUS = 0.25f, CLAMP_POWER = 2.0f;
+
+static void build_lit_floor(gb_scene *scene)
+{
+    memset(scene, 0, sizeof *scene);
+    uint32_t grey = add_grey(scene, 0.5f, 0.0f);
+    const float floor[4][3] = {{-2, 0, -2}, {2, 0, -2}, {2, 0, 2}, {-2, 0, 2}};
+    add_quad_facing(scene, floor, (float[3]){0, 1, 0}, grey);
+    set_camera(scene, (float[3]){0, CLAMP_EYE, 0}, (float[3]){0, 0, 0}, CLAMP_FOV, CLAMP_SIZE,
+               CLAMP_SIZE);
+    scene_done(scene);
+}
+
+/* The hand formula above at pixel (x, y): the pinhole's ray through the
+ * pixel's centre meets the floor rho = EYE tan(fov / 2) |ndc| from the
+ * VPL's foot (the image is square, the VPL under the eye). */
+static double clamped_radiance(int x, int y)
+{
+    double nx = 2.0 * (x + 0.5) / CLAMP_SIZE - 1.0, ny = 2.0 * (y + 0.5) / CLAMP_SIZE - 1.0;
+    double reach = CLAMP_EYE * tan(0.5 * CLAMP_FOV * M_PI / 180.0);
+    double h2 = (double)CLAMP_HEIGHT * CLAMP_HEIGHT, r2 = (double)CLAMP_RADIUS * CLAMP_RADIUS;
+    double d2 = reach * reach * (nx * nx + ny * ny) + h2;
+    return 0.5 * CLAMP_POWER * h2 / (M_PI * M_PI * d2 * fmax(d2, r2));
+}
+
+/* IL alone (every VPL, no gate) of the one VPL on the floor's G-buffer,
+ * read back as RGBA into pixels (CLAMP_SIZE^2 x 4). */
+static gb_result gather_floor(const gb_scene *scene, float *pixels, gb_error *error)
+{
+    gb_vpl vpl = {{0, CLAMP_HEIGHT, 0}, {0, -1, 0}, {CLAMP_POWER, CLAMP_POWER, CLAMP_POWER}};
+    gb_vpl_set vpls = {scene->hash, 1, &vpl};
+    gb_segmentation s = {0};
+    gb_topo_gates gates = {0};
+    gb_gpu_scene gpu = {0};
+    gb_gbuffer gbuffer = {0};
+    gb_topo_gather_pass gather = {0};
+    gb_gl_target target = {0};
+    gb_view view;
+    glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE);
+    gb_result result = gb_gpu_scene_create(scene, &gpu, error);
+    if (result == GB_OK)
+        result = gb_gbuffer_create(CLAMP_SIZE, CLAMP_SIZE, &gbuffer, error);
+    if (result == GB_OK)
+        result = gb_scene_view(scene, 0, &view, error);
+    if (result == GB_OK)
+        result = gb_topo_gather_create(&vpls, &s, &gates, CLAMP_RADIUS, &gather, error);
+    if (result == GB_OK) {
+        gb_mat4 world_to_view = gb_view_matrix(&view);
+        gb_mat4 projection = gb_view_projection(&view, CLAMP_SIZE, CLAMP_SIZE);
+        gb_gbuffer_draw(&gbuffer, &gpu, &world_to_view, &projection);
+        gb_topo_frame_input frame = gb_topo_frame_input_of_view(&view, CLAMP_SIZE, CLAMP_SIZE);
+        gb_gl_target_resize(&target, GL_RGBA32F, CLAMP_SIZE, CLAMP_SIZE);
+        glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+        glViewport(0, 0, CLAMP_SIZE, CLAMP_SIZE);
+        glDisable(GL_DEPTH_TEST);
+        glDisable(GL_BLEND);
+        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        glClear(GL_COLOR_BUFFER_BIT);
+        gb_gbuffer_bind(&gbuffer);
+        gb_topo_gather_draw(&gather, frame.view_to_world, frame.tan_half_fov, frame.near, 1);
+        glGetTextureImage(target.color, 0, GL_RGBA, GL_FLOAT,
+                          CLAMP_SIZE * CLAMP_SIZE * 4 * sizeof *pixels, pixels);
+    }
+    gb_gl_target_release(&target);
+    gb_topo_gather_destroy(&gather);
+    gb_gbuffer_destroy(&gbuffer);
+    gb_gpu_scene_destroy(&gpu);
+    return result;
+}
+
+/* IL's image of the VPL over the floor against the hand formula, pixel by
+ * pixel: independent of the shader (it knows neither the G-buffer nor the
+ * shader's reconstruction). The pattern is radially symmetric about the
+ * image's centre, so the image's orientation does not matter. */
+static void test_gather_clamp(void)
+{
+    gb_context context;
+    if (!gpu_context(&context, "IL clamp"))
+        return;
+    gb_scene scene;
+    build_lit_floor(&scene);
+    static float pixels[CLAMP_SIZE * CLAMP_SIZE * 4];
+    gb_error error;
+    gb_result result = gather_floor(&scene, pixels, &error);
+    if (result != GB_OK)
+        printf("#   %s\n", error.message);
+    CHECK(result == GB_OK, "IL clamp: one VPL over a floor gathered");
+    double worst = 0.0, peak = 0.0, expected_peak = 0.0;
+    for (int y = 0; result == GB_OK && y < CLAMP_SIZE; ++y)
+        for (int x = 0; x < CLAMP_SIZE; ++x) {
+            double expected = clamped_radiance(x, y), got = pixels[4 * (y * CLAMP_SIZE + x) + 1];
+            worst = fmax(worst, fabs(got - expected) / expected);
+            peak = fmax(peak, got);
+            expected_peak = fmax(expected_peak, expected);
+        }
+    printf("# IL clamp: brightest pixel %.5f, by hand %.5f; worst relative error %.2g\n", peak,
+           expected_peak, worst);
+    CHECK(result == GB_OK && worst < 0.01,
+          "IL clamp: every pixel within 1 % of Kd P h^2 / (pi^2 d^2 max(d, r_clamp)^2)");
+    gb_scene_free(&scene);
+    gb_context_destroy(&context);
+}
+
 static void oct_decode(float x, float y, float n[3])
 {
     n[0] = x;
@@ -569,5 +685,6 @@ int main(void)
     test_iugc();
     test_la_cpu_equals_gpu();
     test_cluster_lookup_gpu();
+    test_gather_clamp();
     return tap_done();
 }
