@@ -3,6 +3,7 @@
  * synthetic directions (bundles, degenerate input, irradiance conserved);
  * VDL count chosen by spread; the spread of rings and of a cosine-weighted
  * hemisphere against their analytic values, known clusters recovered,
+ * centroids of unequally weighted directions at the minimisers by hand,
  * k-means restarts never worse; photons of one and two suns on a plane
  * clustered into VDLs of the analytic direction and irradiance; bytes the
  * same whatever the threads; a part's halo holds every photon within R of
@@ -422,6 +423,72 @@ static void test_known_clusters(void)
                  "... as VDLs of spread <= 2.5 degrees, K_max 8: bisection over k finds 5");
     CHECK(spread <= 2.5, "... spreading under 2.5 degrees (4 clusters merge the two light "
           "bundles: about 3.3)");
+    gb_vdl_workspace_free(&w);
+}
+
+/* Directions at angles theta_i in one plane, weights w_i: Σ w |d - c|² =
+ * Σ w (2 - 2 cos(theta_i - theta)) is least where Σ w sin(theta_i - theta)
+ * = 0, tan theta = Σ w sin theta_i / Σ w cos theta_i (by hand, not
+ * kmeans.c's normalised sum). Group A: +z (power 9) and 40 degrees from it
+ * toward +x (power 1), so theta = atan2(sin 40, 9 + cos 40) = 3.77 degrees
+ * from +z; group B: -z (power 1) and 40 degrees from it toward +y (power
+ * 4), 32.33 degrees. Unweighted means would put both at 20 degrees. */
+static void weighted_groups(gb_vdl_workspace *w, float expected[2][3])
+{
+    const double t = 40.0 * PI / 180.0;
+    const float a0[3] = {0, 0, 1}, a1[3] = {(float)sin(t), 0, (float)cos(t)};
+    const float b0[3] = {0, 0, -1}, b1[3] = {0, (float)sin(t), -(float)cos(t)};
+    const float nine[3] = {3, 3, 3}, one[3] = {0.5f, 0.25f, 0.25f}, four[3] = {1, 2, 1};
+    gb_random rng = gb_random_make(17, 0);
+    add_bundle(w, a0, 1, 0.0f, nine, &rng);
+    add_bundle(w, a1, 1, 0.0f, one, &rng);
+    add_bundle(w, b0, 1, 0.0f, one, &rng);
+    add_bundle(w, b1, 1, 0.0f, four, &rng);
+    double ta = atan2(sin(t), 9.0 + cos(t)), tb = atan2(4.0 * sin(t), 1.0 + 4.0 * cos(t));
+    const float a[3] = {(float)sin(ta), 0, (float)cos(ta)};
+    const float b[3] = {0, (float)sin(tb), -(float)cos(tb)};
+    memcpy(expected[0], a, sizeof a);
+    memcpy(expected[1], b, sizeof b);
+}
+
+/* The centroids k-means makes of weighted_groups, and the VDLs of the
+ * same photons, against the minimisers worked out by hand there; the VDLs'
+ * irradiance is each group's power over pi r² (r = 1). */
+static void test_weighted_centroids(void)
+{
+    gb_vdl_workspace w;
+    CHECK(empty_workspace(&w, 4), "workspace");
+    float expected[2][3];
+    weighted_groups(&w, expected);
+    gb_kmeans_options o = {.restarts = 4};
+    gb_random seed = gb_random_make(18, 0);
+    uint32_t made = gb_kmeans_directions(w.directions, w.weights, w.count, 2, &o, &seed,
+                                         w.centroids, w.assignment, w.scratch);
+    uint32_t a = w.assignment[0], b = w.assignment[2];
+    CHECK(made == 2 && a != b && w.assignment[1] == a && w.assignment[3] == b,
+          "weighted groups, k = 2: each group one cluster");
+    double off_a = angle_degrees(&w.centroids[3 * a], expected[0]);
+    double off_b = angle_degrees(&w.centroids[3 * b], expected[1]);
+    printf("# weighted centroids: %.4f and %.4f degrees from the minimisers by hand\n", off_a,
+           off_b);
+    CHECK(off_a < 0.1 && off_b < 0.1, "... centroids at the power-weighted minimisers of "
+          "Σ w |d - c|² (3.77 and 32.33 degrees into each group), within 0.1 degree");
+    gb_light_octree_vdl vdls[8];
+    double spread;
+    w.kmeans.restarts = 4;
+    seed = gb_random_make(18, 1);
+    CHECK_EQ_INT(gb_vdls_from_photons(&w, 1.0f, 20.0f, &seed, vdls, &spread), 2,
+                 "... as VDLs of spread <= 20 degrees: two");
+    float da[3], db[3];
+    gb_photon_unpack_direction(vdls[0].direction, da);
+    gb_photon_unpack_direction(vdls[1].direction, db);
+    printf("# weighted VDLs: %.4f and %.4f degrees from the minimisers by hand\n",
+           angle_degrees(da, expected[0]), angle_degrees(db, expected[1]));
+    CHECK(angle_degrees(da, expected[0]) < 0.1 && angle_degrees(db, expected[1]) < 0.1,
+          "... brightest (A) first, each along its group's minimiser (within 0.1 degree)");
+    CHECK(fabs(vdls[0].irradiance[0] - 3.5 / PI) < 1e-5 &&
+              fabs(vdls[1].irradiance[1] - 2.25 / PI) < 1e-5,
+          "... irradiance: the group's power / (pi r²)");
     gb_vdl_workspace_free(&w);
 }
 
@@ -874,6 +941,7 @@ int main(void)
     test_spread_of_rings();
     test_cosine_hemisphere();
     test_known_clusters();
+    test_weighted_centroids();
     test_one_sun();
     test_two_suns_and_determinism();
     test_bad_inputs();
