@@ -73,6 +73,74 @@ static double add_pixel(const gb_image *a, const gb_image *b, int channels, size
     return pixel_linear / channels;
 }
 
+static double pixel_rms(const gb_image *a, const gb_image *b, int channels, size_t p)
+{
+    sums s = {0};
+    return sqrt(add_pixel(a, b, channels, p, &s));
+}
+
+/* r(p) of image_error.h: the pixel's relative squared error, mean over the
+ * channels. */
+static double pixel_relative(const gb_image *a, const gb_image *b, int channels, size_t p)
+{
+    sums s = {0};
+    add_pixel(a, b, channels, p, &s);
+    return s.relative / channels;
+}
+
+typedef double pixel_measure(const gb_image *a, const gb_image *b, int channels, size_t p);
+
+/* measure of each compared pixel (compared of them), in pixel order, in a
+ * new array; NULL when out of memory. */
+static double *compared_values(const gb_image *image, const gb_image *reference,
+                               const gb_image *mask, int channels, uint64_t compared,
+                               pixel_measure *measure)
+{
+    double *values = malloc(compared * sizeof *values);
+    if (!values)
+        return NULL;
+    size_t count = (size_t)image->width * (size_t)image->height, n = 0;
+    for (size_t p = 0; p < count; ++p)
+        if (pixel_counts(mask, p))
+            values[n++] = measure(image, reference, channels, p);
+    return values;
+}
+
+static int compare_doubles(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The mean of the n values but the k largest (k < n); sorts values. */
+static double mean_without_largest(double *values, size_t n, size_t k)
+{
+    qsort(values, n, sizeof *values, compare_doubles);
+    double sum = 0.0;
+    for (size_t i = 0; i < n - k; ++i)
+        sum += values[i];
+    return sum / (double)(n - k);
+}
+
+/* relative_mse_trimmed and trimmed_pixel_count of out, whose pixel_count,
+ * channel_count and relative_mse are set. */
+static gb_result trim_relative(const gb_image *image, const gb_image *reference,
+                               const gb_image *mask, gb_image_error *out, gb_error *error)
+{
+    uint64_t k = out->pixel_count / 1000;
+    out->trimmed_pixel_count = k;
+    out->relative_mse_trimmed = out->relative_mse;
+    if (k == 0 || isnan(out->relative_mse))
+        return GB_OK;
+    double *r = compared_values(image, reference, mask, out->channel_count, out->pixel_count,
+                                pixel_relative);
+    if (!r)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory");
+    out->relative_mse_trimmed = mean_without_largest(r, out->pixel_count, k);
+    free(r);
+    return GB_OK;
+}
+
 gb_result gb_image_error_compute(const gb_image *image, const gb_image *reference,
                                  const gb_image *mask, gb_image_error *out, gb_error *error)
 {
@@ -100,6 +168,21 @@ gb_result gb_image_error_compute(const gb_image *image, const gb_image *referenc
     out->relative_mse = s.relative / n;
     out->psnr = out->mse_srgb8 > 0.0 ? 10.0 * log10(255.0 * 255.0 / out->mse_srgb8) : INFINITY;
     out->max_error = s.max_error;
+    return trim_relative(image, reference, mask, out, error);
+}
+
+/* The 99th percentile (nearest rank) of the compared pixels' errors. */
+static gb_result percentile_99(const gb_image *image, const gb_image *reference,
+                               const gb_image *mask, int channels, uint64_t compared,
+                               double *scale, gb_error *error)
+{
+    double *errors = compared_values(image, reference, mask, channels, compared, pixel_rms);
+    if (!errors)
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory");
+    qsort(errors, compared, sizeof *errors, compare_doubles);
+    size_t rank = (size_t)ceil(0.99 * (double)compared);
+    *scale = errors[rank > 0 ? rank - 1 : 0];
+    free(errors);
     return GB_OK;
 }
 
@@ -115,37 +198,6 @@ static void heat_colour(double t, float rgb[3])
     double f = t * 4.0 - i;
     for (int c = 0; c < 3; ++c)
         rgb[c] = (float)srgb_decode(HEAT_STOPS[i][c] * (1.0 - f) + HEAT_STOPS[i + 1][c] * f);
-}
-
-static double pixel_rms(const gb_image *a, const gb_image *b, int channels, size_t p)
-{
-    sums s = {0};
-    return sqrt(add_pixel(a, b, channels, p, &s));
-}
-
-static int compare_doubles(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The 99th percentile (nearest rank) of the compared pixels' errors. */
-static gb_result percentile_99(const gb_image *image, const gb_image *reference,
-                               const gb_image *mask, int channels, uint64_t compared,
-                               double *scale, gb_error *error)
-{
-    double *errors = malloc(compared * sizeof *errors);
-    if (!errors)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "out of memory");
-    size_t count = (size_t)image->width * (size_t)image->height, n = 0;
-    for (size_t p = 0; p < count; ++p)
-        if (pixel_counts(mask, p))
-            errors[n++] = pixel_rms(image, reference, channels, p);
-    qsort(errors, n, sizeof *errors, compare_doubles);
-    size_t rank = (size_t)ceil(0.99 * (double)n);
-    *scale = errors[rank > 0 ? rank - 1 : 0];
-    free(errors);
-    return GB_OK;
 }
 
 gb_result gb_image_error_heatmap(const gb_image *image, const gb_image *reference,

@@ -19,6 +19,12 @@ static const char usage[] =
     "  relative_mse  mean of (a - b)^2 / (b^2 + 0.01), b the reference\n"
     "  psnr          10 log10(255^2 / mse_srgb8) in dB (inf when equal)\n"
     "  max_error     the largest per-pixel RMS error, linear\n"
+    "  relative_mse_trimmed\n"
+    "                relative_mse with the pixels of largest relative error left\n"
+    "                out: floor(pixels / 1000) of them (0.1 % of the compared\n"
+    "                pixels, rounded down: none below 1000), a pixel's relative\n"
+    "                error being the mean over its channels of (a - b)^2 / (b^2 +\n"
+    "                0.01); ties at the cut do not change it. At most relative_mse\n"
     "\n"
     "      --mask FILE           compare only where FILE is not black (< 0.5)\n"
     "      --heatmap OUT.png     write the per-pixel error as colours, black (none)\n"
@@ -89,6 +95,7 @@ static void print_error(const gb_image_error *e)
     else
         printf("psnr %.4f\n", e->psnr);
     printf("max_error %.6g\n", e->max_error);
+    printf("relative_mse_trimmed %.6g\n", e->relative_mse_trimmed);
 }
 
 static gb_result write_heatmap(const arguments *a, const gb_image *image,
