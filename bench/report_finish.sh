@@ -2,11 +2,17 @@
 # report_finish.sh REPORT BIN SWEEP — the last step of make report: gathers
 # REPORT/points/*.csv in sweep order (REPORT/points.tsv) into results.csv,
 # the references and their noise floors into references.csv, each scene's
-# Pareto front (least error against reference --mode full for the frame
-# time) into pareto.csv, each topo bake's segment --evaluate into
+# Pareto front (least relative_mse_trimmed against reference --mode full,
+# imgdiff's relative MSE with the 0.1 % largest pixel errors left out, for
+# the time to the image) into pareto.csv, each topo bake's segment --evaluate into
 # segments.csv, the plots (gnuplot, PNG and SVG) into plots/, the page
 # index.html and the README's tables readme-table.md and
 # readme-segment-table.md.
+#
+# Each point gets the direct pass's error of its scene and size (the column
+# direct_pass_rel_mse of the direct point with the same full reference,
+# bench/report_point.sh) and direct_share, that error over the point's
+# full_rel_mse: how much of the point's error its direct pass alone makes.
 #
 # A reference's comparison is void when its noise floor (relative MSE
 # between its seed-0 and seed-1 images) is not below the smallest error
@@ -14,11 +20,25 @@
 set -e
 report=$1 bin=$2 sweep=$3
 cd "$report"
-header="scene,scene_hash,method,point,resolution,frames,spp,vplspp,navg,tiling,bins,bounces,vpls,visibility,voxels,photons,depth,vdls,bake,bake_wall_s,bake_cpu_s,voxelize_wall_s,voxelize_cpu_s,voxelize_rss_kib,thin_wall_s,thin_cpu_s,thin_rss_kib,segment_wall_s,segment_cpu_s,segment_rss_kib,photons_wall_s,photons_cpu_s,photons_rss_kib,cluster_wall_s,cluster_cpu_s,cluster_rss_kib,bake_bytes,gbview_rss_kib,frame_ms,frame_first_ms,passes_ms,full_ref,full_rel_mse,full_mse_srgb8,full_psnr,full_max_error,full_floor_rel_mse,full_floor_mse_srgb8,full_within_2x_floor,own_ref,own_rel_mse,own_mse_srgb8,own_psnr,own_max_error,own_floor_rel_mse,own_floor_mse_srgb8,own_within_2x_floor,time_ms,status"
+header="scene,scene_hash,method,point,resolution,frames,spp,vplspp,navg,tiling,bins,bounces,vpls,visibility,voxels,photons,depth,vdls,bake,bake_wall_s,bake_cpu_s,voxelize_wall_s,voxelize_cpu_s,voxelize_rss_kib,thin_wall_s,thin_cpu_s,thin_rss_kib,segment_wall_s,segment_cpu_s,segment_rss_kib,photons_wall_s,photons_cpu_s,photons_rss_kib,cluster_wall_s,cluster_cpu_s,cluster_rss_kib,bake_bytes,gbview_rss_kib,frame_ms,frame_first_ms,passes_ms,full_ref,full_rel_mse,full_mse_srgb8,full_psnr,full_max_error,full_floor_rel_mse,full_floor_mse_srgb8,full_within_2x_floor,own_ref,own_rel_mse,own_mse_srgb8,own_psnr,own_max_error,own_floor_rel_mse,own_floor_mse_srgb8,own_within_2x_floor,time_ms,status,full_rel_mse_trimmed,own_rel_mse_trimmed,direct_pass_rel_mse,direct_share"
+# Columns (results.csv): 42 full_ref, 43 full_rel_mse, 51 own_rel_mse, 58
+# time_ms, 59 status, 60 full_rel_mse_trimmed, 61 own_rel_mse_trimmed, 62
+# direct_pass_rel_mse (the direct points': bench/report_point.sh; the others'
+# copied here from the direct point of the same full reference, the first in
+# the sweep), 63 direct_share = 62 / 43.
 {
     echo "$header"
     cut -f 1 points.tsv | while read -r id; do cat "points/$id.csv"; done
-} >results.csv.tmp
+} | awk -F, -v OFS=, '
+    { row[NR] = $0 }
+    NR > 1 && $3 == "direct" && $59 == "ok" && !($42 in pass) { pass[$42] = $62 }
+    END {
+        print row[1]
+        for (i = 2; i <= NR; i++) { $0 = row[i]
+            if ($59 == "ok" && $62 == "" && ($42 in pass)) $62 = pass[$42]
+            $63 = ($62 != "" && $43 + 0 > 0) ? sprintf("%.4g", $62 / $43) : ""
+            print }
+    }' >results.csv.tmp
 
 # The references: floor and the smallest error compared with each.
 {
@@ -47,12 +67,13 @@ settings='function settings(m,   s) {
     return s " " $5
 }'
 
-# Pareto front per scene: by frame ms, each point with less full error than
-# every faster one.
+# Pareto front per scene: by ms to the image, each point with a smaller
+# full_rel_mse_trimmed than every faster one. pareto.csv's columns 1-8 are
+# as they were when the front was by full_rel_mse; 9 and 10 follow.
 awk -F, "$settings"'
-    NR > 1 && $59 == "ok" { n++; sc[n] = $1; ms[n] = $58 + 0; err[n] = $43 + 0; m[n] = $3; set[n] = settings($3); id[n] = $4; own[n] = $51; bk[n] = $20 }
+    NR > 1 && $59 == "ok" { n++; sc[n] = $1; ms[n] = $58 + 0; err[n] = $60 + 0; plain[n] = $43; m[n] = $3; set[n] = settings($3); id[n] = $4; own[n] = $51; bk[n] = $20; share[n] = $63 }
     END {
-        print "scene,method,settings,time_ms,full_rel_mse,own_rel_mse,bake_wall_s,point"
+        print "scene,method,settings,time_ms,full_rel_mse,own_rel_mse,bake_wall_s,point,full_rel_mse_trimmed,direct_share"
         for (i = 1; i <= n; i++) if (!(sc[i] in done)) {
             done[sc[i]] = 1; k = 0
             for (j = 1; j <= n; j++) if (sc[j] == sc[i]) idx[++k] = j
@@ -60,7 +81,7 @@ awk -F, "$settings"'
             best = ""
             for (a = 1; a <= k; a++) { j = idx[a]
                 if (best == "" || err[j] < best) { best = err[j]
-                    printf "%s,%s,%s,%s,%s,%s,%s,%s\n", sc[j], m[j], set[j], ms[j], err[j], own[j], bk[j], id[j] } }
+                    printf "%s,%s,%s,%s,%s,%s,%s,%s,%s,%s\n", sc[j], m[j], set[j], ms[j], plain[j], own[j], bk[j], id[j], err[j], share[j] } }
         }
     }' results.csv.tmp >pareto.csv.tmp
 # segment --evaluate of each topo bake (bake/CONFIG/segment-evaluate.txt).
@@ -87,10 +108,10 @@ plots_ok=1
 if command -v gnuplot >/dev/null; then
     for s in $scenes; do
         for m in direct topo octree flc implicit flc-iv; do
-            awk -F, -v s="$s" -v m="$m" 'NR > 1 && $59 == "ok" && $1 == s && $3 == m { print $58, $43, ($20 == "" ? 0 : $20) }' results.csv \
+            awk -F, -v s="$s" -v m="$m" 'NR > 1 && $59 == "ok" && $1 == s && $3 == m { print $58, $60, ($20 == "" ? 0 : $20) }' results.csv \
                 >"plots/$s-$m.dat"
         done
-        awk -F, -v s="$s" 'NR > 1 && $1 == s { print $4, $5 }' pareto.csv >"plots/$s-pareto.dat"
+        awk -F, -v s="$s" 'NR > 1 && $1 == s { print $4, $9 }' pareto.csv >"plots/$s-pareto.dat"
     done
     awk -F, 'NR > 1 && $3 == "topo" && $20 != "" && !seen[$19]++ { print $15, $20, $37 }' results.csv | sort -n >plots/voxels.dat
     awk -F, 'NR > 1 && $3 == "octree" && $20 != "" && !seen[$19]++ { print $16, $20, $37 }' results.csv | sort -n >plots/photons.dat
@@ -111,7 +132,7 @@ set output 'plots/$s-error-frame.$term'
 set title "$s: error against reference --mode full, for the frame time"
 set logscale xy
 set xlabel 'ms to the image (wall; flc, flc-iv: frames x frame ms)'
-set ylabel 'relative MSE'
+set ylabel 'relative MSE, the 0.1 % largest pixel errors left out'
 set key outside right
 plot $plot, 'plots/$s-pareto.dat' using 1:2 with steps linewidth 2 linecolor rgb 'black' title 'Pareto front'
 set output 'plots/$s-error-bake.$term'
@@ -163,11 +184,11 @@ awk -F, -v sweep="$sweep" -v date="$date" -v load="$load" '
     file == 1 && FNR > 1 { rows[++n] = $0 }
     END {
         printf "`make report SWEEP=%s` (bench/report_finish.sh from results.csv), %s, load average %s at the end. ", sweep, date, load
-        print "Each scene'"'"'s Pareto front: the points no faster point beats on relative MSE against `reference --mode full`; ms to the image, wall, on llvmpipe (flc and flc-iv: their frames times the frame ms).\n"
-        print "| scene | method | settings | ms to the image | rel. MSE vs full | rel. MSE vs own reference | bake s |"
-        print "|---|---|---|---:|---:|---:|---:|"
+        print "Each scene'"'"'s Pareto front: the points no faster point beats on relative MSE against `reference --mode full` with the 0.1 % largest per-pixel errors left out (imgdiff'"'"'s `relative_mse_trimmed`); ms to the image, wall, on llvmpipe (flc and flc-iv: their frames times the frame ms). Direct share: the error the direct pass alone makes (the `direct` point'"'"'s, weighed against the full solution) over the point'"'"'s relative MSE.\n"
+        print "| scene | method | settings | ms to the image | trimmed rel. MSE vs full | rel. MSE vs full | rel. MSE vs own reference | direct share | bake s |"
+        print "|---|---|---|---:|---:|---:|---:|---:|---:|"
         for (i = 1; i <= n; i++) { split(rows[i], f, ",")
-            printf "| %s | %s | %s | %.1f | %.5f | %.5f | %s |\n", f[1], f[2], f[3], f[4], f[5], f[6], (f[7] == "" ? "-" : f[7]) }
+            printf "| %s | %s | %s | %.1f | %.5f | %.5f | %.5f | %s | %s |\n", f[1], f[2], f[3], f[4], f[9], f[5], f[6], (f[10] == "" ? "-" : sprintf("%.2f", f[10])), (f[7] == "" ? "-" : f[7]) }
     }' pareto.csv >readme-table.md
 
 # The README's segment table, from segments.csv.
@@ -202,6 +223,14 @@ ms to the image: the frame ms, times the frames for flc and flc-iv, which accumu
 Timings were taken while other jobs may have shared the cores; the assertions of tests/cli/report.t never read them.
 Data: <a href="results.csv">results.csv</a>, <a href="references.csv">references.csv</a>, <a href="pareto.csv">pareto.csv</a>.
 Rows whose status is not ok (a failed or timed-out render) have no errors and are left out of the plots and fronts.</p>
+<p>Relative MSE is the mean over the pixels and channels of (a - b)² / (b² + 0.01), so a few pixels can decide it (a shadow edge of the direct pass, a light leak).
+<br><b>Trimmed</b> (<code>relative_mse_trimmed</code> of <code>imgdiff</code>): the same mean with the floor(pixels / 1000) pixels of largest relative error (mean over their channels) left out
+(0.1 %: 4 of a 64×64 frame, 9 of 96×96); the Pareto fronts, their plots and the budgets use it against the full reference.
+<br><b>Direct share</b> (<code>direct_share</code>): the direct pass's error over the point's relative MSE (both against the full reference). The direct pass's error is measured once per scene and size,
+on the <code>direct</code> point: the full reference plus (its frame − <code>reference --mode direct</code>) compared with the full reference,
+the error a frame with this direct pass and a perfect indirect term would have. Every method draws the same direct pass, so a share near 1 says
+the point's error is the direct pass's, not its indirect term's; none when the sweep has no <code>direct</code> point of that scene and size.
+(The direct-only frame's own error against the full reference is the <code>direct</code> row's relative MSE: mostly the missing indirect light.)</p>
 EOF
     echo "<h2>Noise floors of the references</h2>"
     awk -F, 'NR > 1 && $10 == "void" { printf "<p class=\"void\">comparison void: reference %s (noise floor %s) is not below the smallest error compared with it (%s)</p>\n", $1, $7, $9 }' references.csv
@@ -211,14 +240,18 @@ EOF
     for s in $scenes; do
         echo "<h2>$s</h2>"
         for budget in 50 200 1000; do
-            awk -F, -v s="$s" -v b="$budget" 'NR > 1 && $1 == s && $4 + 0 <= b { best = $2 ", " $3 ", " $4 " ms, rel. MSE " $5 }
+            awk -F, -v s="$s" -v b="$budget" 'NR > 1 && $1 == s && $4 + 0 <= b { best = $2 ", " $3 ", " $4 " ms, trimmed rel. MSE " $9 " (rel. MSE " $5 ")" }
                 END { printf "<p>best under %d ms a frame: %s</p>\n", b, (best == "" ? "none in the sweep" : best) }' pareto.csv
         done
         if [ $plots_ok = 1 ]; then
             echo "<p><img src=\"plots/$s-error-frame.svg\" width=\"600\"> <img src=\"plots/$s-error-bake.svg\" width=\"600\"></p>"
         fi
-        echo "<table><tr><th>point</th><th>frame</th><th>reference (full)</th><th>heatmap</th><th>ms to the image</th><th>rel. MSE full</th><th>own</th><th>status</th></tr>"
-        awk -F, -v s="$s" 'NR > 1 && $1 == s { printf "<tr><td>%s</td><td><img class=\"px\" src=\"img/%s.png\"></td><td><img class=\"px\" src=\"ref/%s-seed0.png\"></td><td><img class=\"px\" src=\"img/%s-heat.png\"></td><td>%s</td><td>%s%s</td><td>%s%s</td><td>%s</td></tr>\n", $4, $4, $42, $4, $58, $43, ($49 == 1 ? " (within 2× floor)" : ""), $51, ($57 == 1 ? " (within 2× floor)" : ""), $59 }' results.csv
+        echo "<p>Pareto front (by trimmed relative MSE against the full reference):</p>"
+        echo "<table><tr><th>method</th><th>settings</th><th>ms to the image</th><th>trimmed rel. MSE full</th><th>rel. MSE full</th><th>own</th><th>direct share</th><th>bake s</th></tr>"
+        awk -F, -v s="$s" 'NR > 1 && $1 == s { printf "<tr><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td><td>%s</td></tr>\n", $2, $3, $4, $9, $5, $6, $10, $7 }' pareto.csv
+        echo "</table><p>Every point:</p>"
+        echo "<table><tr><th>point</th><th>frame</th><th>reference (full)</th><th>heatmap</th><th>ms to the image</th><th>trimmed rel. MSE full</th><th>rel. MSE full</th><th>own</th><th>own trimmed</th><th>direct share</th><th>status</th></tr>"
+        awk -F, -v s="$s" 'NR > 1 && $1 == s { printf "<tr><td>%s</td><td><img class=\"px\" src=\"img/%s.png\"></td><td><img class=\"px\" src=\"ref/%s-seed0.png\"></td><td><img class=\"px\" src=\"img/%s-heat.png\"></td><td>%s</td><td>%s</td><td>%s%s</td><td>%s%s</td><td>%s</td><td>%s</td><td>%s</td></tr>\n", $4, $4, $42, $4, $58, $60, $43, ($49 == 1 ? " (within 2× floor)" : ""), $51, ($57 == 1 ? " (within 2× floor)" : ""), $61, $63, $59 }' results.csv
         echo "</table>"
     done
     if [ $plots_ok = 1 ]; then

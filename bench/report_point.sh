@@ -8,8 +8,16 @@
 # (compared with OWNREF, the method's own reference); direct's own
 # comparison is its frame against reference --mode direct. Writes
 # REPORT/points/ID.csv (one row, the columns of bench/report_finish.sh's
-# header), REPORT/img/ID.png (the frame), ID-heat.png (imgdiff --heatmap
-# against FULLREF) and appends "render ID" to REPORT/render.log.
+# header but the last, direct_share, which report_finish.sh adds),
+# REPORT/img/ID.png (the frame), ID-heat.png (imgdiff --heatmap against
+# FULLREF) and appends "render ID" to REPORT/render.log.
+#
+# direct_pass_rel_mse, for a direct point only (report_finish.sh copies it
+# to the other points of its scene and size): FULLREF + (frame - OWNREF) is
+# the full solution with the direct pass's error added, OWNREF being the
+# direct reference; its relative MSE against FULLREF is the direct pass's
+# error on the scale of the full solution, the error a frame with this
+# direct pass and a perfect indirect term would have.
 set -e
 report=$1 bin=$2 id=$3 name=$4 scene=$5 method=$6 res=$7 frames=$8 bake=$9
 shift 9
@@ -34,7 +42,7 @@ if [ "$status" != ok ]; then
     params=$(awk -F '\t' -v id="$id" '$1 == id { s = $5; for (i = 6; i <= 18; i++) s = s "," $i; print s; exit }' \
         "$report/points.tsv")
     echo "report: $id: $status" >&2
-    echo "$name,,$method,$id,$params,$bake$(printf ',%.0s' $(seq 1 38)),$status" >"$report/points/$id.csv"
+    echo "$name,,$method,$id,$params,$bake$(printf ',%.0s' $(seq 1 38)),$status,,," >"$report/points/$id.csv"
     exit 0
 fi
 if [ "$method" = direct ]; then
@@ -49,6 +57,11 @@ oiiotool "$img/$id.exr" --colorconvert linear sRGB -o "$img/$id.png" 2>/dev/null
 "$bin/imgdiff" --heatmap "$img/$id-heat.png" "$img/$id.exr" "$report/ref/$fullref-seed0.exr" \
     >"$img/$id.full.diff"
 "$bin/imgdiff" "$img/$id.own.exr" "$report/ref/$ownref-seed0.exr" >"$img/$id.own.diff"
+if [ "$method" = direct ]; then
+    oiiotool "$report/ref/$fullref-seed0.exr" "$img/$id.exr" --add "$report/ref/$ownref-seed0.exr" \
+        --sub -d float -o "$img/$id.direct-pass.exr"
+    "$bin/imgdiff" "$img/$id.direct-pass.exr" "$report/ref/$fullref-seed0.exr" >"$img/$id.direct-pass.diff"
+fi
 
 # key value file -> the value of the line "key value"
 field() { awk -v k="$1" '$1 == k { print $2; exit }' "$2"; }
@@ -99,6 +112,9 @@ errors() { # DIFF FLOOR REF
 }
 full_cols=$(errors "$img/$id.full.diff" "$report/ref/$fullref.floor" "$fullref")
 own_cols=$(errors "$img/$id.own.diff" "$report/ref/$ownref.floor" "$ownref")
+trimmed_cols=$(field relative_mse_trimmed "$img/$id.full.diff"),$(field relative_mse_trimmed "$img/$id.own.diff")
+direct_pass=
+[ "$method" = direct ] && direct_pass=$(field relative_mse "$img/$id.direct-pass.diff")
 
 # The parameters as points.tsv has them (columns 5..18).
 params=$(awk -F '\t' -v id="$id" '$1 == id { s = $5; for (i = 6; i <= 18; i++) s = s "," $i; print s; exit }' \
@@ -107,6 +123,6 @@ params=$(awk -F '\t' -v id="$id" '$1 == id { s = $5; for (i = 6; i <= 18; i++) s
 # the others show the same image each frame.
 time_ms=$frame_ms
 [ "$method" = flc ] || [ "$method" = flc-iv ] && time_ms=$(awk -v f="$frame_ms" -v k="$frames" 'BEGIN { printf "%.3f", f * k }')
-echo "$name,$hash,$method,$id,$params,$bake,$bake_wall,$bake_cpu$bake_cols,$bytes,$gbview_rss,$frame_ms,$frame_first_ms,\"$passes\",$full_cols,$own_cols,$time_ms,$status" \
+echo "$name,$hash,$method,$id,$params,$bake,$bake_wall,$bake_cpu$bake_cols,$bytes,$gbview_rss,$frame_ms,$frame_first_ms,\"$passes\",$full_cols,$own_cols,$time_ms,$status,$trimmed_cols,$direct_pass" \
     >"$report/points/$id.csv.tmp"
 mv "$report/points/$id.csv.tmp" "$report/points/$id.csv"

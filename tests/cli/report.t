@@ -8,9 +8,14 @@
 # better than after 1; octree and implicit better than direct light alone
 # against the full reference; every reference's noise floor below the
 # smallest error compared with it, or the report says the comparison is
-# void; segment --evaluate of each topo bake, better than chance on the two
-# rooms; the plots, gallery and page written; a second make report renders
-# nothing; a bad sweep line stops with its file and line. Prints TAP.
+# void; relative_mse_trimmed worked out again from the images (oiiotool)
+# for every comparison, and below relative_mse; the direct pass's error and
+# share beside each point of a scene with a direct point; the Pareto fronts
+# by the trimmed figure (a doctored point whose few bad pixels make the
+# worst relative MSE but the best trimmed one ends its front); segment
+# --evaluate of each topo bake, better than chance on the two rooms; the
+# plots, gallery and page written; a second make report renders nothing; a
+# bad sweep line stops with its file and line. Prints TAP.
 #
 # GB_BIN: the folder of the tools (default build/bin); GB_ROOT: the repository.
 
@@ -56,9 +61,85 @@ bad=$(awk -F, -v st="$(col status)" 'NR > 1 && $st != "ok" { print $4 }' "$csv")
 ok "$([ -z "$bad" ] && [ "$(wc -l <"$csv")" -gt 1 ]; echo $?)" "every point rendered (status ok)${bad:+ (not: $bad)}"
 
 finite=$(awk -F, -v h="$(head -n 1 "$csv")" '
-    BEGIN { n = split(h, name, ","); for (i = 1; i <= n; i++) if (name[i] ~ /_(rel_mse|mse_srgb8|psnr|max_error)$/) want[i] = 1 }
+    BEGIN { n = split(h, name, ","); for (i = 1; i <= n; i++) if (name[i] ~ /_(rel_mse|mse_srgb8|psnr|max_error|rel_mse_trimmed)$/ && name[i] != "direct_pass_rel_mse") want[i] = 1 }
     NR > 1 { for (i in want) if ($i !~ /^[0-9.]+(e[-+]?[0-9]+)?$/) { print $4 " " name[i] "=" $i; exit } }' "$csv")
 ok "$([ -z "$finite" ]; echo $?)" "every error is a finite number${finite:+ (not: $finite)}"
+
+# relative_mse_trimmed, worked out here from the images for each point's
+# two comparisons: oiiotool writes (a - b)^2 / (b^2 + 0.01), awk takes each
+# pixel's mean over the channels, leaves out the floor(n / 1000) largest
+# and averages the rest. At most relative_mse (below it here: every point
+# has some pixels far off).
+# trimmed IMAGE REFERENCE: that figure
+trimmed() {
+    oiiotool "$1" "$2" --sub --dup --mul "$2" --dup --mul --addc 0.01 --div -d float -o "$dir/rel.exr" &&
+        oiiotool --dumpdata "$dir/rel.exr" | awk '/Pixel/ { printf "%.9g\n", ($(NF - 2) + $(NF - 1) + $NF) / 3 }' |
+        sort -g | awk '{ v[NR] = $1 } END { k = int(NR / 1000); for (i = 1; i <= NR - k; i++) t += v[i]; printf "%.9g", t / (NR - k) }'
+}
+wrong=
+while IFS=, read -r id fullref full full_t ownref own own_t; do
+    for c in "full $report/img/$id.exr $fullref $full $full_t" "own $report/img/$id.own.exr $ownref $own $own_t"; do
+        set -- $c
+        expected=$(trimmed "$2" "$report/ref/$3-seed0.exr")
+        awk -v got="$5" -v e="$expected" -v plain="$4" \
+            'BEGIN { exit !(got != "" && (got - e < 0 ? e - got : got - e) <= 1e-5 * e && got + 0 < plain + 0) }' ||
+            wrong="$wrong $id:$1=$5(here $expected, relative_mse $4)"
+    done
+done <<EOF2
+$(awk -F, -v h="$(head -n 1 "$csv")" 'BEGIN { n = split(h, name, ","); for (i = 1; i <= n; i++) c[name[i]] = i }
+    NR > 1 { print $4 "," $c["full_ref"] "," $c["full_rel_mse"] "," $c["full_rel_mse_trimmed"] "," $c["own_ref"] "," $c["own_rel_mse"] "," $c["own_rel_mse_trimmed"] }' "$csv")
+EOF2
+ok "$([ -z "$wrong" ] && [ "$(wc -l <"$csv")" -gt 1 ]; echo $?)" \
+    "full_ and own_rel_mse_trimmed: as worked out from the images, below relative_mse${wrong:+ (not:$wrong)}"
+
+# The direct pass's error: on the direct point, against the full reference,
+# below its error against the direct reference (the same differences over
+# a brighter reference) and below the direct-only frame's own error (that
+# misses the indirect light). Every point of the scene carries it, and
+# direct_share = it / full_rel_mse; the two rooms have no direct point.
+pass=$(err cornell direct . direct_pass_rel_mse)
+direct_own=$(err cornell direct . own_rel_mse)
+direct_full=$(err cornell direct . full_rel_mse)
+awk -v p="$pass" -v o="$direct_own" -v f="$direct_full" 'BEGIN { exit !(p != "" && p + 0 > 0 && p + 0 < o + 0 && p + 0 < f + 0) }'
+ok $? "Cornell: the direct pass's error against the full reference ($pass) above 0, below the direct point's own ($direct_own) and its full error ($direct_full)"
+shares=$(awk -F, -v h="$(head -n 1 "$csv")" 'BEGIN { n = split(h, name, ","); for (i = 1; i <= n; i++) c[name[i]] = i }
+    NR > 1 && $3 == "direct" { pass[$1] = $c["direct_pass_rel_mse"] }
+    NR > 1 { row[NR] = $0 }
+    END { for (r = 2; r <= NR; r++) { $0 = row[r]; p = $c["direct_pass_rel_mse"]; s = $c["direct_share"]
+        if (!($1 in pass)) { if (p != "" || s != "") print $4; continue }
+        want = pass[$1] / $c["full_rel_mse"]
+        if (p != pass[$1] || (s - want < 0 ? want - s : s - want) > 1e-3 * want) print $4 } }' "$csv" | tr '\n' ' ')
+ok "$([ -z "$shares" ]; echo $?)" \
+    "direct_pass_rel_mse and direct_share (= it / full_rel_mse) on each point of the scenes with a direct point, none on the others${shares:+ (not: $shares)}"
+
+# The Pareto fronts are by full_rel_mse_trimmed: along each scene's front,
+# by ms to the image, it decreases; every other point of the scene is beaten
+# by a front point at most as slow with at most its trimmed error.
+pareto=$report/pareto.csv
+front=$(awk -F, -v t="$(col time_ms)" -v e="$(col full_rel_mse_trimmed)" -v st="$(col status)" '
+    FNR == 1 { file++; next }
+    file == 1 { on[$8] = 1; n[$1]++; fms[$1, n[$1]] = $4 + 0; fe[$1, n[$1]] = $9 + 0
+        if (n[$1] > 1 && !($4 + 0 >= fms[$1, n[$1] - 1] && $9 + 0 < fe[$1, n[$1] - 1])) print "order:" $8 }
+    file == 2 && $st == "ok" && !($4 in on) { beaten = 0
+        for (i = 1; i <= n[$1]; i++) if (fms[$1, i] <= $t + 0 && fe[$1, i] <= $e + 0) beaten = 1
+        if (!beaten) print "unbeaten:" $4 }' "$pareto" "$csv" | tr '\n' ' ')
+ok "$([ -z "$front" ] && [ "$(wc -l <"$pareto")" -gt 1 ]; echo $?)" \
+    "pareto.csv: each front by full_rel_mse_trimmed, every other point beaten${front:+ (not: $front)}"
+# The same report with one point doctored: the Cornell box's slowest point
+# given the largest relative MSE of all (a few pixels far off) but the
+# smallest trimmed one. By the trimmed figure it ends the front.
+cp -r "$report" "$dir/doctored"
+slow=$(awk -F, -v t="$(col time_ms)" 'NR > 1 && $1 == "cornell" && $t + 0 >= max { max = $t + 0; id = $4 } END { print id }' "$csv")
+awk -F, -v OFS=, -v p="$(col full_rel_mse)" -v q="$(col full_rel_mse_trimmed)" '{ $p = 1; $q = 1e-06; print }' \
+    "$report/points/$slow.csv" >"$dir/doctored/points/$slow.csv"
+(cd "$GB_ROOT" && sh bench/report_finish.sh "$dir/doctored" "$GB_BIN" doctored) >/dev/null 2>&1
+last=$(awk -F, '$1 == "cornell" { id = $8 } END { print id }' "$dir/doctored/pareto.csv")
+ok "$([ -n "$slow" ] && [ "$last" = "$slow" ]; echo $?)" \
+    "a point with the largest relative MSE but the smallest trimmed one ends its scene's front ($slow; last: $last)"
+
+grep -q "Pareto front (by trimmed relative MSE" "$report/index.html" && grep -q "relative_mse_trimmed" "$report/index.html" &&
+    grep -q "direct_share" "$report/index.html"
+ok $? "index.html: the front tables, what relative_mse_trimmed and direct_share are"
 
 bake=$(awk -F, -v w="$(col bake_wall_s)" -v b="$(col bake_bytes)" \
     'NR > 1 && ($3 == "topo" || $3 == "octree") && ($w == "" || $b + 0 <= 0) { print $4 }' "$csv")
