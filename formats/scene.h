@@ -77,6 +77,9 @@ typedef struct gb_scene {
 
     uint32_t light_count;       /* point, spot and directional lights */
     gb_light *lights;
+    uint32_t environment_light_count; /* of them, the last that stand for the
+                                   environment (common/environment_lights.h;
+                                   0 as loaded) */
     uint32_t camera_count;      /* at least 1: a default is derived from the bounds */
     gb_camera *cameras;
     float environment[3];       /* radiance of the background (no map) */

@@ -69,6 +69,7 @@ static void make_emitter(const gb_scene *scene, uint32_t t, double probability, 
     e->position[0] = p.x, e->position[1] = p.y, e->position[2] = p.z;
     e->normal[0] = normal.x, e->normal[1] = normal.y, e->normal[2] = normal.z;
     double scale = gb_triangle_area(scene, t) / (count * probability);
+    e->area = (float)scale;
     const float *Ke = scene->materials[scene->triangle_material[t]].Ke;
     for (int c = 0; c < 3; ++c)
         e->intensity[c] = (float)(Ke[c] * scale);

@@ -11,8 +11,13 @@
  * I0 = Ke area / (count p), p the probability of choosing that triangle, so
  * that the points' total power equals the lights' (pi |Ke| area summed).
  * Each gets a shadow map of its own (shadow_maps.h). The error shrinks as
- * count grows: penumbrae become count overlapping hard shadows, and
- * surfaces near a light see count points instead of a surface.
+ * count grows: penumbrae become count overlapping hard shadows.
+ * Near a light a point's 1/r^2 would grow without bound where the surface
+ * it stands for gives at most pi Ke: each point also carries the area it
+ * stands for, area / (count p), and lights as a disc of that area does
+ * on its axis, I cos / (r^2 + area / pi) (exact for a receiver facing a
+ * uniform disc; the chandelier of the staircase lit its own arms 1.7x
+ * too bright without it).
  */
 #ifndef GB_AREA_LIGHTS_H
 #define GB_AREA_LIGHTS_H
@@ -26,6 +31,7 @@ typedef struct gb_point_emitter {
     float position[3];
     float normal[3];            /* unit: the emitting side */
     float intensity[3];         /* I0, W/sr along the normal */
+    float area;                 /* the emitting area it stands for */
 } gb_point_emitter;
 
 /* *emitters (malloc'ed, the caller frees) gets count points, or none when

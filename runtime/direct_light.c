@@ -5,6 +5,7 @@
 
 #include "gbuffer.h"
 #include "gl_util.h"
+#include "shadow_cascades.h"
 
 static const char fragment_shader[] =
 #include "runtime/direct_light.frag.glsl.inc"
@@ -53,6 +54,8 @@ static void set_uniforms(GLuint program, GLuint environment_map, const gb_direct
     glProgramUniform1i(program, glGetUniformLocation(program, "shadows"), in->shadows_enabled);
     glProgramUniform1f(program, glGetUniformLocation(program, "cube_texel"),
                        2.0f / (float)in->shadows->cube_size);
+    glProgramUniform1i(program, glGetUniformLocation(program, "cascade_count"),
+                       GB_SHADOW_CASCADES);
 }
 
 void gb_direct_light_draw(gb_direct_light *pass, const gb_direct_inputs *inputs)

@@ -8,9 +8,12 @@ struct PlaneLight { mat4 world_to_clip; vec4 position_kind; vec4 direction_texel
                     vec4 intensity; vec4 cone; };
 layout(std430, binding = 1) readonly buffer PointLights { PointLight point_lights[]; };
 layout(std430, binding = 2) readonly buffer PlaneLights { PlaneLight plane_lights[]; };
+struct Cascade { mat4 world_to_clip; vec4 far_texel; };
+layout(std430, binding = 3) readonly buffer Cascades { Cascade cascades[]; };
 #include "runtime/gbuffer_textures.glsl"
 layout(binding = 8) uniform samplerCubeArrayShadow shadow_cubes;
 layout(binding = 9) uniform sampler2DArrayShadow shadow_planes;
+layout(binding = 11) uniform sampler2DArrayShadow shadow_cascades;
 layout(binding = 10) uniform sampler2D environment_map;
 uniform vec3 environment;
 uniform bool has_environment_map;
@@ -18,6 +21,7 @@ uniform int point_count;
 uniform int plane_count;
 uniform bool shadows;
 uniform float cube_texel;
+uniform int cascade_count;      // a directional light's cascades
 out vec4 radiance;
 #include "runtime/gbuffer_octahedral.glsl"
 #include "runtime/brdf.glsl"
@@ -31,13 +35,21 @@ vec3 reflected(Surface s, vec3 wi, vec3 E) {
     vec3 f = brdf_eval(s.Kd, s.Ks, s.Ns, dot(s.n, s.wo), n_dot_wi, dot(s.wo, wi));
     return f * E * n_dot_wi;
 }
-float point_visibility(int i, Surface s, float distance) {
+// The receiver's offsets for a map of world texel size texel lit at
+// cos_light: SLOPE_NORMAL_OFFSET texels along the normal times the sine
+// of the incidence, and SLOPE_DEPTH_BIAS texels of depth times its
+// tangent, what a texel's footprint spans along the light.
+vec2 slope_offsets(float texel, float cos_light) {
+    float cosine = clamp(cos_light, 1e-3, 1.0), sine = sqrt(1.0 - cosine * cosine);
+    return texel * vec2(SLOPE_NORMAL_OFFSET * sine, SLOPE_DEPTH_BIAS * min(sine / cosine, 10.0));
+}
+float point_visibility(int i, Surface s, float distance, float cos_light) {
     if (!shadows)
         return 1.0;
     PointLight l = point_lights[i];
-    vec3 p = s.position + s.ng * (NORMAL_OFFSET * cube_texel * distance);
-    vec3 d = p - l.position_range.xyz;
-    float reference = length(d) / l.position_range.w - DEPTH_BIAS;
+    vec2 offsets = slope_offsets(cube_texel * distance, cos_light);
+    vec3 d = s.position + s.ng * offsets.x - l.position_range.xyz;
+    float reference = (length(d) - offsets.y) / l.position_range.w - DEPTH_BIAS;
     return texture(shadow_cubes, vec4(d, float(i)), reference);
 }
 vec3 point_light(int i, Surface s) {
@@ -51,15 +63,38 @@ vec3 point_light(int i, Surface s) {
         I *= max(0.0, -dot(l.normal.xyz, wi));
     if (dot(s.ng, wi) <= 0.0 || I == vec3(0.0))
         return vec3(0.0);
-    return reflected(s, wi, I * inverse_square(r2)) * point_visibility(i, s, r);
+    return reflected(s, wi, I / (r2 + l.normal.w)) * point_visibility(i, s, r, dot(s.ng, wi));
 }
-float plane_visibility(int i, Surface s, float texel) {
+// The map through world_to_clip at layer of sampler maps, the receiver
+// moved by NORMAL_OFFSET texels (world size texel).
+float map_visibility(sampler2DArrayShadow maps, mat4 world_to_clip, int layer, Surface s,
+                     float texel) {
+    vec3 p = s.position + s.ng * (NORMAL_OFFSET * texel);
+    vec4 clip = world_to_clip * vec4(p, 1.0);
+    vec3 ndc = clip.xyz / clip.w;
+    return texture(maps, vec4(0.5 * ndc.xy + 0.5, float(layer), ndc.z + DEPTH_BIAS));
+}
+// A directional light's cascade (shadow_cascades.h): the first whose
+// slice reaches the surface's depth along the view, with slope_offsets.
+float cascade_visibility(int first, Surface s, float cos_light) {
+    float depth = dot(s.position - view_to_world[3].xyz, -view_to_world[2].xyz);
+    int c = 0;
+    while (c + 1 < cascade_count && depth > cascades[first + c].far_texel.x)
+        ++c;
+    Cascade k = cascades[first + c];
+    vec2 offsets = slope_offsets(k.far_texel.y, cos_light);
+    vec4 clip = k.world_to_clip * vec4(s.position + s.ng * offsets.x, 1.0);
+    vec3 ndc = clip.xyz / clip.w;
+    float bias = DEPTH_BIAS + offsets.y * k.far_texel.z;
+    return texture(shadow_cascades, vec4(0.5 * ndc.xy + 0.5, float(first + c), ndc.z + bias));
+}
+float plane_visibility(int i, Surface s, float texel, float cos_light) {
     if (!shadows)
         return 1.0;
-    vec3 p = s.position + s.ng * (NORMAL_OFFSET * texel);
-    vec4 clip = plane_lights[i].world_to_clip * vec4(p, 1.0);
-    vec3 ndc = clip.xyz / clip.w;
-    return texture(shadow_planes, vec4(0.5 * ndc.xy + 0.5, float(i), ndc.z + DEPTH_BIAS));
+    int cascade = int(plane_lights[i].cone.z);
+    if (cascade >= 0)
+        return cascade_visibility(cascade * cascade_count, s, cos_light);
+    return map_visibility(shadow_planes, plane_lights[i].world_to_clip, i, s, texel);
 }
 vec3 plane_light(int i, Surface s) {
     PlaneLight l = plane_lights[i];
@@ -68,7 +103,7 @@ vec3 plane_light(int i, Surface s) {
     if (l.position_kind.w > 0.5) {
         if (dot(s.ng, -d) <= 0.0)
             return vec3(0.0);
-        return reflected(s, -d, l.intensity.rgb) * plane_visibility(i, s, texel);
+        return reflected(s, -d, l.intensity.rgb) * plane_visibility(i, s, texel, dot(s.ng, -d));
     }
     vec3 to_light = l.position_kind.xyz - s.position;
     float r2 = dot(to_light, to_light);
@@ -79,7 +114,7 @@ vec3 plane_light(int i, Surface s) {
         return vec3(0.0);
     float axial = max(dot(d, -to_light), 0.0);
     return reflected(s, wi, l.intensity.rgb * falloff * inverse_square(r2))
-           * plane_visibility(i, s, texel * axial);
+           * plane_visibility(i, s, texel * axial, 1.0);
 }
 // The background toward the pixel: formats/environment.h's lat-long
 // lookup (row 0 is +y; the middle column looks along -z).

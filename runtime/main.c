@@ -9,6 +9,7 @@
 
 #include "bake.h"
 #include "cli.h"
+#include "environment_lights.h"
 #include "flc/flc.h"
 #include "headless.h"
 #include "image.h"
@@ -43,8 +44,14 @@ static const char usage[] =
     "                          missing or bad one is reported and skipped\n"
     "      --area-samples N    shadowed point emitters approximating the area\n"
     "                          lights, power-weighted (default 16; 0: none)\n"
+    "      --environment-lights N  directional lights, with shadow maps, standing\n"
+    "                          for the environment's light on surfaces (median\n"
+    "                          cut; default 64; 0: none, the sky only seen)\n"
     "      --shadow-size N     side of the 2-D shadow maps; cube faces get half\n"
     "                          (default 1024)\n"
+    "      --cascade-size N    side of each of the 4 maps fitted to the view for\n"
+    "                          a directional light (default 2048; 0: none, the\n"
+    "                          scene-wide map only)\n"
     "      --supersample S     headless: S x S samples a pixel, averaged (default\n"
     "                          1), the box filter of `reference`\n"
     "      --no-shadows        debug: every light fully visible\n"
@@ -92,6 +99,7 @@ typedef struct arguments {
     gb_method method;
     gb_renderer_options renderer;
     long camera, frames, supersample;
+    int environment_lights;
     int budget_given;
     int headless, timings, quiet;
 } arguments;
@@ -101,7 +109,9 @@ enum {
     OPTION_TIMINGS,
     OPTION_BAKE,
     OPTION_AREA_SAMPLES,
+    OPTION_ENVIRONMENT_LIGHTS,
     OPTION_SHADOW_SIZE,
+    OPTION_CASCADE_SIZE,
     OPTION_NO_SHADOWS,
     OPTION_SUPERSAMPLE,
     OPTION_FLC_NAVG,
@@ -132,7 +142,9 @@ static const struct option long_options[] = {
     GB_CLI_FLAG("timings", OPTION_TIMINGS),
     GB_CLI_VALUE("bake", OPTION_BAKE),
     GB_CLI_VALUE("area-samples", OPTION_AREA_SAMPLES),
+    GB_CLI_VALUE("environment-lights", OPTION_ENVIRONMENT_LIGHTS),
     GB_CLI_VALUE("shadow-size", OPTION_SHADOW_SIZE),
+    GB_CLI_VALUE("cascade-size", OPTION_CASCADE_SIZE),
     GB_CLI_FLAG("no-shadows", OPTION_NO_SHADOWS),
     GB_CLI_VALUE("supersample", OPTION_SUPERSAMPLE),
     GB_CLI_VALUE("navg", OPTION_FLC_NAVG),
@@ -197,6 +209,15 @@ static int parse_renderer_option(int option, const char *value, arguments *a)
                             &a->renderer.shadow.area_samples);
         if (status == 0 && a->renderer.shadow.area_samples == 0)
             a->renderer.shadow.area_samples = -1;  /* the renderer's "none" */
+        return status;
+    case OPTION_ENVIRONMENT_LIGHTS:
+        return gb_cli_int("gbview", "environment-lights", value, 0, 1024,
+                          &a->environment_lights);
+    case OPTION_CASCADE_SIZE:
+        status = gb_cli_int("gbview", "cascade-size", value, 0, 16384,
+                            &a->renderer.shadow.cascade_size);
+        if (status == 0 && a->renderer.shadow.cascade_size == 0)
+            a->renderer.shadow.cascade_size = -1;  /* the renderer's "none" */
         return status;
     case OPTION_SHADOW_SIZE: return gb_cli_int("gbview", "shadow-size", value, 16, 16384,
                                               &a->renderer.shadow.size);
@@ -378,10 +399,13 @@ static gb_result run(void *context, gb_error *error)
         result = gb_scene_load(a->scene_path, &scene_options, &scene, error);
     if (result != GB_OK)
         return result;
-    if (!a->quiet)  /* with no light every method draws black, as it should */
-        gb_scene_warn("gbview", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     gb_bake *bake;
     result = open_bake(&scene, a, &bake, error);
+    /* after the bake, whose files name the scene's own lights */
+    if (result == GB_OK)
+        result = gb_scene_add_environment_lights(&scene, (uint32_t)a->environment_lights, error);
+    if (result == GB_OK && !a->quiet)  /* with no light every method draws black, as it should */
+        gb_scene_warn("gbview", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     a->renderer.bake = bake;
     setup_bar bar = {.quiet = a->quiet};
     a->renderer.progress = report_setup;
@@ -395,5 +419,6 @@ static gb_result run(void *context, gb_error *error)
 
 int main(int argc, char **argv)
 {
-    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
+    return gb_cli_main(&command, argc, argv, run,
+                       &(arguments){.environment_lights = GB_DEFAULT_ENVIRONMENT_LIGHTS});
 }

@@ -180,12 +180,15 @@ void gb_renderer_set_terms(gb_renderer *renderer, gb_terms terms)
     start_again(renderer);
 }
 
-static void draw_shadow_maps(gb_renderer *r)
+/* The maps once, and the cascades for view. */
+static void draw_shadow_maps(gb_renderer *r, const gb_view *view)
 {
-    if (r->shadows.drawn || r->options.no_shadows)
+    if (r->options.no_shadows)
         return;
     gb_timings_begin(&r->timings, GB_PASS_SHADOW_MAPS);
     gb_shadow_maps_draw(&r->shadows, &r->gpu_scene);
+    gb_shadow_maps_fit_view(&r->shadows, r->scene, &r->gpu_scene, view, r->gbuffer.width,
+                            r->gbuffer.height);
     gb_timings_end(&r->timings, GB_PASS_SHADOW_MAPS);
 }
 
@@ -262,7 +265,7 @@ static int draw_part(gb_renderer *r, const gb_view *view, int part, int parts,
     gb_mat4 view_matrix = gb_view_matrix(view);
     gb_mat4 projection = gb_view_projection(view, width, height);
     if (part == 0) {
-        draw_shadow_maps(r);
+        draw_shadow_maps(r, view);
         gb_timings_begin(&r->timings, GB_PASS_GBUFFER);
         gb_gbuffer_draw(&r->gbuffer, &r->gpu_scene, &view_matrix, &projection);
         gb_timings_end(&r->timings, GB_PASS_GBUFFER);

@@ -8,8 +8,9 @@
 
 #include "area_lights.h"
 #include "mat4.h"
+#include "shadow_cascades.h"
 
-enum { POINT_FLOATS = 12, PLANE_FLOATS = 32 };
+enum { POINT_FLOATS = 12, PLANE_FLOATS = 32, CASCADE_FLOATS = 20 };
 
 static const char cube_vertex_shader[] =
 #include "runtime/shadow_maps_cube.vert.glsl.inc"
@@ -59,8 +60,10 @@ static void put3(float *out, const float *v)
     out[0] = v[0], out[1] = v[1], out[2] = v[2];
 }
 
+/* normal: an area light's emitter's, NULL for a point light; area: the
+ * emitter's (area_lights.h). */
 static void put_point(const gb_scene *scene, const float position[3], const float intensity[3],
-                      const float *normal, float *out)
+                      const float *normal, float area, float *out)
 {
     put3(out, position);
     out[3] = range_from(scene, gb_vec3_load(position));
@@ -68,6 +71,7 @@ static void put_point(const gb_scene *scene, const float position[3], const floa
     out[7] = normal ? 1.0f : 0.0f;
     if (normal)
         put3(out + 8, normal);
+    out[11] = area / 3.14159265358979f;
 }
 
 /* An axis far from forward: the up of a light's view. */
@@ -132,7 +136,9 @@ static gb_mat4 spot_matrix(const gb_scene *scene, const gb_light *light, int siz
     return gb_mat4_multiply(&projection, &view);
 }
 
-static void put_plane(const gb_scene *scene, const gb_light *light, int size, float *out)
+/* cascade: the light's first cascade, or -1. */
+static void put_plane(const gb_scene *scene, const gb_light *light, int size, int cascade,
+                      float *out)
 {
     float texel = 0.0f;
     gb_mat4 matrix = light->type == GB_LIGHT_DIRECTIONAL
@@ -147,6 +153,16 @@ static void put_plane(const gb_scene *scene, const gb_light *light, int size, fl
     put3(out + 24, light->intensity);
     out[28] = light->cone_angle;
     out[29] = light->falloff_angle;
+    out[30] = (float)cascade;
+}
+
+/* Whether light i of the scene gets cascades: a directional light of the
+ * scene's own, when the options allow them. */
+static int has_cascades(const gb_scene *scene, const gb_shadow_options *options, uint32_t i)
+{
+    return !(options && options->cascade_size < 0) &&
+           scene->lights[i].type == GB_LIGHT_DIRECTIONAL &&
+           i < scene->light_count - scene->environment_light_count;
 }
 
 /* How far an area light's emitter sits off its triangle, toward its front:
@@ -177,17 +193,20 @@ static gb_result fill_lights(const gb_scene *scene, const gb_shadow_options *opt
         scene->lights[i].type == GB_LIGHT_POINT ? ++points : ++planes;
     maps->point_data = calloc((size_t)points * POINT_FLOATS + 1, sizeof(float));
     maps->plane_data = calloc((size_t)planes * PLANE_FLOATS + 1, sizeof(float));
-    if (!maps->point_data || !maps->plane_data) {
+    maps->cascade_data =
+        calloc((size_t)planes * GB_SHADOW_CASCADES * CASCADE_FLOATS + 1, sizeof(float));
+    if (!maps->point_data || !maps->plane_data || !maps->cascade_data) {
         free(emitters);
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "shadow maps: out of memory");
     }
     for (uint32_t i = 0; i < scene->light_count; ++i) {
         const gb_light *light = &scene->lights[i];
         if (light->type == GB_LIGHT_POINT)
-            put_point(scene, light->position, light->intensity, NULL,
+            put_point(scene, light->position, light->intensity, NULL, 0.0f,
                       &maps->point_data[POINT_FLOATS * maps->point_count++]);
         else
             put_plane(scene, light, maps->plane_size,
+                      has_cascades(scene, options, i) ? (int)maps->cascaded_count++ : -1,
                       &maps->plane_data[PLANE_FLOATS * maps->plane_count++]);
     }
     for (uint32_t i = 0; i < emitter_count; ++i) {
@@ -195,7 +214,7 @@ static gb_result fill_lights(const gb_scene *scene, const gb_shadow_options *opt
         float p[3], lift = emitter_lift(scene, e->position);
         for (int c = 0; c < 3; ++c)
             p[c] = e->position[c] + lift * e->normal[c];
-        put_point(scene, p, e->intensity, e->normal,
+        put_point(scene, p, e->intensity, e->normal, e->area,
                   &maps->point_data[POINT_FLOATS * maps->point_count++]);
     }
     free(emitters);
@@ -237,6 +256,14 @@ static gb_result make_gpu_objects(gb_shadow_maps *maps, gb_error *error)
                                         GL_LEQUAL);
     maps->plane_array = make_depth_array(GL_TEXTURE_2D_ARRAY, maps->plane_size, planes,
                                          GL_GEQUAL);
+    int cascades = GB_SHADOW_CASCADES * (maps->cascaded_count ? (int)maps->cascaded_count : 1);
+    maps->cascade_array = make_depth_array(GL_TEXTURE_2D_ARRAY,
+                                           maps->cascaded_count ? maps->cascade_size : 1,
+                                           cascades, GL_GEQUAL);
+    glCreateBuffers(1, &maps->cascade_buffer);
+    glNamedBufferStorage(maps->cascade_buffer,
+                         (GLsizeiptr)(cascades * CASCADE_FLOATS * sizeof(float)), NULL,
+                         GL_DYNAMIC_STORAGE_BIT);
     glCreateFramebuffers(1, &maps->framebuffer);
     glNamedFramebufferDrawBuffer(maps->framebuffer, GL_NONE);
     glNamedFramebufferReadBuffer(maps->framebuffer, GL_NONE);
@@ -255,6 +282,8 @@ gb_result gb_shadow_maps_create(const gb_scene *scene, const gb_shadow_options *
     int size = options && options->size > 0 ? options->size : GB_DEFAULT_SHADOW_SIZE;
     maps->plane_size = size;
     maps->cube_size = size / 2 > 16 ? size / 2 : 16;
+    maps->cascade_size = options && options->cascade_size > 0 ? options->cascade_size
+                                                               : GB_DEFAULT_CASCADE_SIZE;
     gb_result result = fill_lights(scene, options, maps, error);
     if (result == GB_OK)
         result = make_gpu_objects(maps, error);
@@ -292,16 +321,37 @@ static void draw_cube(gb_shadow_maps *maps, const gb_gpu_scene *scene, uint32_t 
     }
 }
 
-static void draw_plane(gb_shadow_maps *maps, const gb_gpu_scene *scene, uint32_t light)
+/* Draws the scene through matrix (16 floats) into layer of array. */
+static void draw_plane(gb_shadow_maps *maps, const gb_gpu_scene *scene, const float *matrix,
+                       GLuint array, uint32_t layer)
 {
-    gb_mat4 matrix;
-    memcpy(matrix.m, &maps->plane_data[PLANE_FLOATS * light], sizeof matrix.m);
-    set_matrix(maps->plane_program, "view_projection", &matrix);
-    glNamedFramebufferTextureLayer(maps->framebuffer, GL_DEPTH_ATTACHMENT, maps->plane_array,
-                                   0, (GLint)light);
+    gb_mat4 m;
+    memcpy(m.m, matrix, sizeof m.m);
+    set_matrix(maps->plane_program, "view_projection", &m);
+    glNamedFramebufferTextureLayer(maps->framebuffer, GL_DEPTH_ATTACHMENT, array, 0,
+                                   (GLint)layer);
     static const float far = 0.0f;   /* reversed depth */
     glClearNamedFramebufferfv(maps->framebuffer, GL_DEPTH, 0, &far);
     gb_gpu_scene_draw(scene, 0);
+}
+
+/* The state every 2-D map is drawn in, at size x size. */
+static void begin_planes(const gb_shadow_maps *maps, int size)
+{
+    glBindFramebuffer(GL_FRAMEBUFFER, maps->framebuffer);
+    glEnable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glDisable(GL_CULL_FACE);
+    glDisable(GL_BLEND);
+    glViewport(0, 0, size, size);
+    glDepthFunc(GL_GREATER);
+    glUseProgram(maps->plane_program);
+}
+
+static void end_maps(void)
+{
+    glDisable(GL_DEPTH_TEST);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
 void gb_shadow_maps_draw(gb_shadow_maps *maps, const gb_gpu_scene *scene)
@@ -318,14 +368,53 @@ void gb_shadow_maps_draw(gb_shadow_maps *maps, const gb_gpu_scene *scene)
     glUseProgram(maps->cube_program);
     for (uint32_t i = 0; i < maps->point_count; ++i)
         draw_cube(maps, scene, i);
-    glViewport(0, 0, maps->plane_size, maps->plane_size);
-    glDepthFunc(GL_GREATER);
-    glUseProgram(maps->plane_program);
+    begin_planes(maps, maps->plane_size);
     for (uint32_t i = 0; i < maps->plane_count; ++i)
-        draw_plane(maps, scene, i);
-    glDisable(GL_DEPTH_TEST);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        draw_plane(maps, scene, &maps->plane_data[PLANE_FLOATS * i], maps->plane_array, i);
+    end_maps();
     maps->drawn = 1;
+}
+
+static int same_view(const gb_shadow_maps *maps, const gb_view *view, int width, int height)
+{
+    return maps->fitted_width == width && maps->fitted_height == height &&
+           !memcmp(&maps->fitted_view, view, sizeof *view);
+}
+
+void gb_shadow_maps_fit_view(gb_shadow_maps *maps, const gb_scene *scene,
+                             const gb_gpu_scene *gpu_scene, const gb_view *view, int width,
+                             int height)
+{
+    if (!maps->cascaded_count || same_view(maps, view, width, height))
+        return;
+    float splits[GB_SHADOW_CASCADES + 1];
+    gb_cascade_splits(view->near, gb_cascade_view_far(view, scene), GB_SHADOW_CASCADES,
+                      GB_CASCADE_LOG_SHARE, splits);
+    for (uint32_t i = 0; i < maps->plane_count; ++i) {
+        const float *plane = &maps->plane_data[PLANE_FLOATS * i];
+        if (plane[30] < 0.0f)
+            continue;
+        for (int c = 0; c < GB_SHADOW_CASCADES; ++c) {
+            gb_cascade k = gb_cascade_fit(view, (float)width / (float)height, splits[c],
+                                          splits[c + 1], gb_vec3_load(plane + 20), scene,
+                                          maps->cascade_size);
+            float *out = &maps->cascade_data[CASCADE_FLOATS *
+                                             ((size_t)plane[30] * GB_SHADOW_CASCADES + c)];
+            memcpy(out, k.world_to_clip.m, sizeof k.world_to_clip.m);
+            out[16] = k.far, out[17] = k.texel, out[18] = 1.0f / k.depth_range;
+        }
+    }
+    uint32_t layers = maps->cascaded_count * GB_SHADOW_CASCADES;
+    glNamedBufferSubData(maps->cascade_buffer, 0,
+                         (GLsizeiptr)(layers * CASCADE_FLOATS * sizeof(float)),
+                         maps->cascade_data);
+    begin_planes(maps, maps->cascade_size);
+    for (uint32_t layer = 0; layer < layers; ++layer)
+        draw_plane(maps, gpu_scene, &maps->cascade_data[CASCADE_FLOATS * layer],
+                   maps->cascade_array, layer);
+    end_maps();
+    maps->fitted_view = *view;
+    maps->fitted_width = width, maps->fitted_height = height;
 }
 
 void gb_shadow_maps_bind(const gb_shadow_maps *maps)
@@ -334,13 +423,15 @@ void gb_shadow_maps_bind(const gb_shadow_maps *maps)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GB_SSBO_PLANE_LIGHTS, maps->plane_buffer);
     glBindTextureUnit(GB_UNIT_SHADOW_CUBES, maps->cube_array);
     glBindTextureUnit(GB_UNIT_SHADOW_PLANES, maps->plane_array);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GB_SSBO_SHADOW_CASCADES, maps->cascade_buffer);
+    glBindTextureUnit(GB_UNIT_SHADOW_CASCADES, maps->cascade_array);
 }
 
 void gb_shadow_maps_destroy(gb_shadow_maps *maps)
 {
-    GLuint buffers[] = {maps->point_buffer, maps->plane_buffer};
-    GLuint textures[] = {maps->cube_array, maps->plane_array};
-    for (int i = 0; i < 2; ++i) {
+    GLuint buffers[] = {maps->point_buffer, maps->plane_buffer, maps->cascade_buffer};
+    GLuint textures[] = {maps->cube_array, maps->plane_array, maps->cascade_array};
+    for (int i = 0; i < 3; ++i) {
         if (buffers[i])
             glDeleteBuffers(1, &buffers[i]);
         if (textures[i])
@@ -354,5 +445,6 @@ void gb_shadow_maps_destroy(gb_shadow_maps *maps)
         glDeleteProgram(maps->plane_program);
     free(maps->point_data);
     free(maps->plane_data);
+    free(maps->cascade_data);
     memset(maps, 0, sizeof *maps);
 }

@@ -56,7 +56,7 @@ vec3 point_irradiance(int i, vec3 p, vec3 ng) {
     float cosine = dot(ng, wi);
     if (cosine <= 0.0 || I == vec3(0.0))
         return vec3(0.0);
-    return I * (cosine / r2) * point_visibility(i, p, ng, r);
+    return I * (cosine / (r2 + l.normal.w)) * point_visibility(i, p, ng, r);
 }
 float plane_visibility(int i, vec3 p, vec3 ng, float texel) {
     if (!shadows)

@@ -9,8 +9,9 @@
  *              traced), or unshadowed when the links were made without
  *              the scene's lights;
  *   display    starts with the environment's share of the direct light
- *              (the runtime's direct pass leaves the sky's reflection to
- *              the GI method), then adds each bounce;
+ *              when the direct pass leaves it out (a scene without
+ *              environment lights, common/environment_lights.h), then
+ *              adds each bounce;
  *   bounces    ComputeIlluminateLeafNodes: every element gathers the
  *              outgoing radiance of the nodes it links to; PullupEnergy:
  *              every internal node takes the area-weighted mean of its
@@ -37,6 +38,7 @@
 #include <string.h>
 
 #include "brdf.h"
+#include "implicit_environment.h"
 #include "threads.h"
 
 /* The value of node n's side (implicit_model.h's layout). */
@@ -79,7 +81,7 @@ static void light_irradiance(const gb_scene *scene, const gb_implicit_node *node
                              int two_sided, const uint8_t *visible, float E[GB_IMPLICIT_SIDES][3])
 {
     memset(E, 0, GB_IMPLICIT_SIDES * sizeof E[0]);
-    for (uint32_t i = 0; i < scene->light_count; ++i) {
+    for (uint32_t i = 0; i < gb_implicit_light_count(scene); ++i) {
         const gb_light *light = &scene->lights[i];
         if (visible && !visible[i])
             continue;
@@ -173,7 +175,7 @@ static void direct_light(const gb_scene *scene, const gb_implicit_model *model,
     size_t elements = model->element_count;
     for (uint32_t e = 0; e < elements; ++e) {
         float E[GB_IMPLICIT_SIDES][3];
-        const uint8_t *visible = links->light_visible && links->light_count == scene->light_count
+        const uint8_t *visible = links->light_visible && links->light_count == gb_implicit_light_count(scene)
                                      ? &links->light_visible[(size_t)e * links->light_count]
                                      : NULL;
         const gb_implicit_node *node = &model->nodes[e];
@@ -209,7 +211,10 @@ void gb_implicit_illuminate(const gb_scene *scene, const gb_implicit_model *mode
     direct_light(scene, model, links, s);
     reflect(model, s->direct, s->radiance);
     size_t values = 3 * GB_IMPLICIT_SIDES * (size_t)model->element_count;
-    memcpy(s->display, s->sky, values * sizeof(float));
+    if (scene->environment_light_count)
+        memset(s->display, 0, values * sizeof(float));
+    else
+        memcpy(s->display, s->sky, values * sizeof(float));
     for (int bounce = 0; bounce < bounces; ++bounce) {
         compute_illuminate_leaf_nodes(model, links, s->radiance, s->gathered);
         for (size_t i = 0; i < values; ++i)
