@@ -52,6 +52,9 @@ typedef struct flc_iv_state {
                                    bins.count, rounded up to pairs) and */
     float *centres;             /* the elements' centres (4 floats each), until
                                    create uploads them */
+    uint32_t *vertex_shown;     /* the finer mesh's vertex_count x 2: the element
+                                   shown on the front and on the back of each
+                                   vertex's (implicit_hidden.h), until uploaded */
     /* The GL half, which create makes. */
     GLuint depths_buffer, centres_buffer;
     GLuint position_buffer, element_buffer, index_buffer, vertex_array, elements_program;
@@ -66,6 +69,7 @@ static void flc_iv_discard(void *prepared)
         return;
     free(s->depths);
     free(s->centres);
+    free(s->vertex_shown);
     gb_implicit_links_free(&s->links);
     gb_implicit_bins_free(&s->bins);
     gb_implicit_model_free(&s->model);
@@ -148,6 +152,28 @@ static gb_result pack_depth_maps(flc_iv_state *s, const gb_scene *scene, gb_erro
     return GB_OK;
 }
 
+/* Each vertex's element as shown on each side (implicit_hidden.h): a
+ * hidden side, whose depth map hides every VPL (the ceiling's elements
+ * under the Cornell box's light, 0.5 mm deep a bin), takes the nearest
+ * element of its surface that is seen, so that the finer triangles
+ * reaching out from under the light are not black. */
+static gb_result vertex_elements(flc_iv_state *s, gb_error *error)
+{
+    const gb_implicit_model *m = &s->model;
+    uint32_t *shown = malloc(2 * (size_t)m->element_count * sizeof *shown + 1);
+    s->vertex_shown = malloc(2 * (size_t)m->vertex_count * sizeof *s->vertex_shown + 1);
+    gb_result result = shown && s->vertex_shown
+                           ? gb_implicit_shown_elements(m, shown, NULL, NULL, error)
+                           : gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "flc-iv: out of memory");
+    for (uint32_t v = 0; result == GB_OK && v < m->vertex_count; ++v)
+        for (int side = 0; side < GB_IMPLICIT_SIDES; ++side) {
+            size_t r = (size_t)side * m->element_count;
+            s->vertex_shown[2 * (size_t)v + side] = shown[r + m->vertex_element[v]];
+        }
+    free(shown);
+    return result;
+}
+
 /* The packed maps to the GPU; the CPU's copies freed. */
 static void upload_depth_maps(flc_iv_state *s)
 {
@@ -168,8 +194,10 @@ static void upload_mesh(flc_iv_state *s)
     glNamedBufferStorage(s->position_buffer, 3 * (GLsizeiptr)m->vertex_count * sizeof(float),
                          m->vertices, 0);
     glCreateBuffers(1, &s->element_buffer);
-    glNamedBufferStorage(s->element_buffer, (GLsizeiptr)m->vertex_count * sizeof(uint32_t),
-                         m->vertex_element, 0);
+    glNamedBufferStorage(s->element_buffer, 2 * (GLsizeiptr)m->vertex_count * sizeof(uint32_t),
+                         s->vertex_shown, 0);
+    free(s->vertex_shown);
+    s->vertex_shown = NULL;
     glCreateBuffers(1, &s->index_buffer);
     glNamedBufferStorage(s->index_buffer, 3 * (GLsizeiptr)m->triangle_count * sizeof(uint32_t),
                          m->triangles, 0);
@@ -178,10 +206,14 @@ static void upload_mesh(flc_iv_state *s)
     glEnableVertexArrayAttrib(s->vertex_array, 0);
     glVertexArrayAttribFormat(s->vertex_array, 0, 3, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(s->vertex_array, 0, 0);
-    glVertexArrayVertexBuffer(s->vertex_array, 1, s->element_buffer, 0, sizeof(uint32_t));
-    glEnableVertexArrayAttrib(s->vertex_array, 1);
-    glVertexArrayAttribIFormat(s->vertex_array, 1, 1, GL_UNSIGNED_INT, 0);
-    glVertexArrayAttribBinding(s->vertex_array, 1, 1);
+    /* attributes 1 and 2: the element shown on the front, on the back */
+    glVertexArrayVertexBuffer(s->vertex_array, 1, s->element_buffer, 0, 2 * sizeof(uint32_t));
+    for (GLuint i = 1; i < 3; ++i) {
+        glEnableVertexArrayAttrib(s->vertex_array, i);
+        glVertexArrayAttribIFormat(s->vertex_array, i, 1, GL_UNSIGNED_INT,
+                                   (i - 1) * sizeof(uint32_t));
+        glVertexArrayAttribBinding(s->vertex_array, i, 1);
+    }
     glVertexArrayElementBuffer(s->vertex_array, s->index_buffer);
 }
 
@@ -217,6 +249,8 @@ static gb_result flc_iv_prepare(const gb_indirect_setup *setup, void **prepared,
     gb_result result = build_depth_maps(s, setup, bins, error);
     if (result == GB_OK)
         result = pack_depth_maps(s, setup->scene, error);
+    if (result == GB_OK)
+        result = vertex_elements(s, error);
     if (result != GB_OK) {
         flc_iv_discard(s);
         return result;

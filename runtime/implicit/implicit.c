@@ -47,6 +47,9 @@ typedef struct implicit_state {
     gb_implicit_solution solution;
     float *vertex_incident;     /* model.vertex_count * 6: its element's display,
                                    front then back */
+    uint32_t *shown;            /* 2 * element_count: the element shown for each
+                                   side (implicit_hidden.h), made once: gbview's
+                                   scenes do not move */
     float *environment;         /* bins.count * 3 from the scene's map, or NULL */
     int bounces;
     int paper_rules;            /* the links by 4.2.2's rules alone (--paper-rules) */
@@ -106,6 +109,7 @@ static void implicit_discard(void *prepared)
         return;
     gb_implicit_solution_free(&s->solution);
     free(s->vertex_incident);
+    free(s->shown);
     gb_implicit_links_free(&s->links);
     free(s->environment);
     gb_implicit_bins_free(&s->bins);
@@ -185,6 +189,11 @@ static gb_result build(implicit_state *s, int bins, gb_error *error)
 {
     gb_result result =
         gb_implicit_model_create(s->scene, 0.0f, GB_IMPLICIT_ELEMENT_CELL, &s->model, error);
+    if (result == GB_OK) {
+        s->shown = malloc(2 * (size_t)s->model.element_count * sizeof *s->shown + 1);
+        result = s->shown ? gb_implicit_shown_elements(&s->model, s->shown, NULL, NULL, error)
+                          : gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
+    }
     if (result == GB_OK)
         result = gb_implicit_bins_create(bins, &s->bins, error);
     if (result == GB_OK)
@@ -260,7 +269,10 @@ static gb_result implicit_create(const gb_indirect_setup *setup, void **state, g
 }
 
 /* Each vertex's element's display, front and back, to the GPU; an element
- * of a closed part shows its front on both (gb_implicit_node_two_sided). */
+ * of a closed part shows its front on both (gb_implicit_node_two_sided), a
+ * hidden side that of the element shown in its place (implicit_hidden.h:
+ * the ceiling's elements under the Cornell box's light, which would darken
+ * the finer triangles reaching out from under it). */
 static void upload_incident(implicit_state *s)
 {
     const gb_implicit_model *m = &s->model;
@@ -269,10 +281,11 @@ static void upload_incident(implicit_state *s)
         size_t e = m->vertex_element[v];
         int back = gb_implicit_node_two_sided(m, &m->nodes[e]) ? GB_IMPLICIT_BACK
                                                                 : GB_IMPLICIT_FRONT;
-        for (int side = 0; side < GB_IMPLICIT_SIDES; ++side)
+        for (int side = 0; side < GB_IMPLICIT_SIDES; ++side) {
+            size_t r = (side ? back : side) * (size_t)m->element_count;
             memcpy(&s->vertex_incident[6 * (size_t)v + 3 * side],
-                   &display[3 * ((side ? back : side) * (size_t)m->element_count + e)],
-                   3 * sizeof(float));
+                   &display[3 * (r + s->shown[r + e])], 3 * sizeof(float));
+        }
     }
     glNamedBufferSubData(s->incident_buffer, 0, 6 * (GLsizeiptr)m->vertex_count * sizeof(float),
                          s->vertex_incident);

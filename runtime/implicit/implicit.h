@@ -12,6 +12,8 @@
  *                         PushdownLinks (4.2.2 - 4.2.4)
  *   implicit_bounce.c     ComputeIlluminateLeafNodes, PullupEnergy (4.3, 4.4)
  *   implicit_environment.c  a lat-long environment map into the bins (4.4)
+ *   implicit_hidden.c     sides of elements under another surface, and the
+ *                         element displayed in their place (an addition)
  *
  * Elements. The paper's models are tessellated finely; scenes here are not
  * (the Cornell box has 4 vertices a wall), so each triangle is first cut
@@ -51,6 +53,7 @@
 #include "implicit_bounce.h"
 #include "implicit_elements.h"
 #include "implicit_environment.h"
+#include "implicit_hidden.h"
 #include "implicit_hierarchy.h"
 #include "implicit_links.h"
 #include "implicit_model.h"

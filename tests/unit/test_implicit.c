@@ -17,6 +17,7 @@
 #include "progress.h"
 #include "scene_builder.h"
 #include "tap.h"
+#include "tap_printf.h"
 
 /* Furnace (closed unit cube, every wall Le = 1, Kd = RHO, elements of
  * 1/10): E / pi is 1 from the walls, the first bounce's is RHO. The loss is
@@ -1221,6 +1222,93 @@ static void test_environment_map(void)
     gb_implicit_bins_free(&bins);
 }
 
+/* Hidden sides (implicit_hidden.h): a grey 4 x 4 ceiling at y = 1 facing
+ * down and a 1.3 x 1.0 panel `gap` under it, both facing down, elements of
+ * 1/4 (the ceiling cut into 23 x 23: vertices 4/23 apart, none on the
+ * panel's edges). With the Cornell box's gap (0.5 mm of 556: 0.0036 here,
+ * under GB_IMPLICIT_HIDDEN_DISTANCE x 0.25), the ceiling's elements whose
+ * centre lies over the panel, counted here from their coordinates, are
+ * exactly its hidden fronts, and each shows a ceiling element outside the
+ * panel, not hidden; those next to the panel's edge one a grid diagonal
+ * away at most. The panel's backs (up, an open part) are all hidden and,
+ * having no seen neighbour, show themselves; its fronts are seen. A panel
+ * 0.2 under the ceiling hides nothing, nor does one in the ceiling's
+ * plane (a coplanar twin: each would hide the other). */
+static void check_hidden(float gap, int hides, const char *what)
+{
+    const float lo[2] = {-0.6f, -0.55f}, hi[2] = {0.7f, 0.45f}, y = 1.0f - gap;
+    const float ceiling[4][3] = {{-2, 1, -2}, {2, 1, -2}, {2, 1, 2}, {-2, 1, 2}};
+    const float panel[4][3] = {{lo[0], y, lo[1]}, {hi[0], y, lo[1]}, {hi[0], y, hi[1]},
+                               {lo[0], y, hi[1]}};
+    const float down[3] = {0, -10, 0};
+    gb_scene scene = {0};
+    add_quad_facing(&scene, ceiling, down, add_grey(&scene, 0.5f, 0.0f));
+    add_quad_facing(&scene, panel, down, add_grey(&scene, 0.5f, 1.0f));
+    scene_done(&scene);
+    gb_implicit_model m;
+    gb_error error;
+    if (!CHECKF(gb_implicit_model_create(&scene, 0.25f, 0.0f, &m, &error) == GB_OK,
+                "%s: model built", what)) {
+        gb_scene_free(&scene);
+        return;
+    }
+    uint32_t n = m.element_count, count = 0;
+    uint32_t *shown = malloc(2 * (size_t)n * sizeof *shown);
+    uint8_t *hidden = malloc(2 * (size_t)n);
+    CHECKF(gb_implicit_shown_elements(&m, shown, hidden, &count, &error) == GB_OK,
+           "%s: shown elements made", what);
+    const float step = 4.0f / 23.0f;
+    uint32_t over = 0, panel_elements = 0, wrong = 0, far = 0, panel_wrong = 0;
+    for (uint32_t e = 0; e < n; ++e) {
+        const float *p = m.nodes[e].position;
+        if (m.nodes[e].segment != m.triangle_segment[0]) {     /* the panel's */
+            ++panel_elements;
+            /* front seen and itself; back hidden (when hiding) and itself */
+            panel_wrong += hidden[e] || shown[e] != e || shown[n + e] != e ||
+                           hidden[n + e] != (uint8_t)(hides && gap > 0.0f);
+            continue;
+        }
+        int inside = p[0] > lo[0] && p[0] < hi[0] && p[2] > lo[1] && p[2] < hi[1];
+        over += inside;
+        int want = hides && inside;
+        if (hidden[e] != want) {
+            ++wrong;
+            continue;
+        }
+        if (!want) {
+            wrong += shown[e] != e;
+            continue;
+        }
+        const float *q = m.nodes[shown[e]].position;
+        int outside = !(q[0] > lo[0] && q[0] < hi[0] && q[2] > lo[1] && q[2] < hi[1]);
+        wrong += hidden[shown[e]] || !outside || m.nodes[shown[e]].segment != m.nodes[e].segment;
+        /* next to an edge: within one step of it along x or z */
+        int edge = p[0] - lo[0] < step || hi[0] - p[0] < step || p[2] - lo[1] < step ||
+                   hi[1] - p[2] < step;
+        float d = sqrtf((p[0] - q[0]) * (p[0] - q[0]) + (p[2] - q[2]) * (p[2] - q[2]));
+        far += edge && d > 1.0001f * sqrtf(2.0f) * step;
+    }
+    printf("# %s: %u ceiling elements over the panel, %u hidden sides\n", what, over, count);
+    CHECKF(over > 10, "%s: ceiling elements over the panel (%u)", what, over);
+    CHECK_EQ_INTF(wrong, 0, "%s: the ceiling's hidden fronts are those over the panel, each "
+                            "showing a seen ceiling element outside it", what);
+    CHECK_EQ_INTF(far, 0, "%s: next to the panel's edge, a neighbour shown", what);
+    CHECK_EQ_INTF(panel_wrong, 0, "%s: the panel's fronts seen, its backs %s", what,
+                  hides && gap > 0.0f ? "hidden" : "seen");
+    CHECK_EQ_INTF(count, hides ? over + panel_elements : 0, "%s: hidden sides", what);
+    free(shown);
+    free(hidden);
+    gb_implicit_model_free(&m);
+    gb_scene_free(&scene);
+}
+
+static void test_hidden(void)
+{
+    check_hidden(0.5f / 556.0f * 4.0f, 1, "panel 0.5 mm under a ceiling");
+    check_hidden(0.2f, 0, "panel 0.2 under a ceiling");
+    check_hidden(0.0f, 0, "panel in the ceiling's plane");
+}
+
 static void test_cornell(const char *root)
 {
     char path[4096];
@@ -1357,6 +1445,7 @@ int main(void)
     test_one_vertex();
     test_dynamic_update();
     test_environment_map();
+    test_hidden();
     test_cornell(root);
     return tap_done();
 }
