@@ -148,8 +148,10 @@ static gb_result topo_create(const gb_indirect_setup *setup, void **state, gb_er
         result = gb_topo_cluster_pass_create(t->segmentation, t->voxel_clusters,
                                              &t->cluster_pass, error);
     if (result == GB_OK)
-        result = gb_topo_gather_create(&t->vpls, t->segmentation, &t->gates,
-                                       (float)t->segmentation->voxel_size, &t->gather, error);
+        result = gb_topo_gather_create(
+            &t->vpls, t->segmentation, &t->gates,
+            gb_topo_vsl_radius(setup->scene, t->vpls.count, (float)t->segmentation->voxel_size),
+            &t->gather, error);
     if (result == GB_OK)
         result = gb_topo_la_gpu_create(&t->vpls, t->vpl_cluster, &t->gates, &t->la_gpu, error);
     const char *iugc = getenv("GB_TOPO_IUGC");

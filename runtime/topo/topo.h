@@ -223,13 +223,19 @@ typedef struct gb_topo_gather_pass {
     GLuint vpl_buffer, gate_buffer, route_buffer, group_buffer, range_buffer, entry_buffer;
     GLsizeiptr range_size, entry_size;
     uint32_t vpl_count;
-    float clamp_distance;
+    float vsl_radius;
 } gb_topo_gather_pass;
 
-/* clamp_distance: the geometric term's 1/r^2 uses max(r, clamp_distance). */
+/* vsl_radius: R of the VPLs as virtual spherical lights (topo_gather.c),
+ * the geometric term's 1/r^2 replaced by Omega(r) / (pi R^2). */
 gb_result gb_topo_gather_create(const gb_vpl_set *vpls, const gb_segmentation *segmentation,
-                                const gb_topo_gates *gates, float clamp_distance,
+                                const gb_topo_gates *gates, float vsl_radius,
                                 gb_topo_gather_pass *pass, gb_error *error);
+/* R for vpl_count VPLs on the scene's surfaces: sqrt(S area / (pi
+ * vpl_count)), S = GB_TOPO_VSL_SHARE, the radius of the disc S of them
+ * would cover if they tiled the surfaces evenly, at least voxel_size. */
+float gb_topo_vsl_radius(const gb_scene *scene, uint32_t vpl_count, float voxel_size);
+#define GB_TOPO_VSL_SHARE 16.0
 /* Draws the indirect light into the bound framebuffer (additive blending
  * set by the renderer); every_vpl: GB_TOPO_NONE. */
 void gb_topo_gather_draw(const gb_topo_gather_pass *pass, const float view_to_world[16],

@@ -5,11 +5,23 @@
  * shadow. A VPL is stored once, with the group of routes from its cluster
  * to the fragment's: one route containing the fragment lights it.
  *
- * The geometric term G = cos(VPL) cos(x) / r^2 is bounded as in instant
- * radiosity with bounded contributions (Kollig & Keller 2004, the paper's
- * [Keller 1997] follow-up): 1/r^2 becomes 1/max(r, r_clamp)^2, r_clamp one
- * voxel of the bake, which removes the bright spots near VPLs (and the
- * energy within r_clamp of each, which the reference keeps). */
+ * The geometric term G = cos(VPL) cos(x) / r^2 is that of a virtual
+ * spherical light (Hasan, Krivanek, Walter, Bala 2009): the VPL's power
+ * spread over a sphere of radius R, seen from x through its solid angle
+ *   Omega(r) = 2 pi (1 - sqrt(1 - R^2 / r^2)), the hemisphere for r <= R,
+ * so that 1/r^2 becomes Omega / (pi R^2): 1/r^2 far away (within 1 % past
+ * r = 5 R), 2 / R^2 within R, smooth and increasing in between. The
+ * cosines stay those of the centre's direction (VSLs integrate them over
+ * the cone; the closed form keeps the gather one term a VPL). Instant
+ * radiosity's bound 1/max(r, r_clamp)^2 (Kollig & Keller 2004), which this
+ * replaces, with r_clamp one voxel left bright splotches where VPLs lie
+ * near the surfaces they light (the box's corners) and removed the energy
+ * within r_clamp; the sphere spreads it over its surroundings instead.
+ * R is gb_topo_vsl_radius: the disc GB_TOPO_VSL_SHARE VPLs would cover if
+ * they tiled the scene's surfaces evenly, at least one voxel: a sphere that
+ * spans several VPLs' share of the surface blurs one VPL near a wall into
+ * its neighbours' light instead of a spot (one share left the spots, half
+ * as bright). */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -82,8 +94,29 @@ static GLuint gate_buffer(const gb_segmentation *s)
     return buffer;
 }
 
+float gb_topo_vsl_radius(const gb_scene *scene, uint32_t vpl_count, float voxel_size)
+{
+    double area = 0.0;
+    for (uint32_t t = 0; t < scene->triangle_count; ++t) {
+        const float *a = &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t]];
+        const float *b = &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + 1]];
+        const float *c = &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + 2]];
+        double u[3], v[3];
+        for (int k = 0; k < 3; ++k) {
+            u[k] = (double)b[k] - a[k];
+            v[k] = (double)c[k] - a[k];
+        }
+        double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                       u[0] * v[1] - u[1] * v[0]};
+        area += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    }
+    double radius =
+        vpl_count > 0 ? sqrt(GB_TOPO_VSL_SHARE * area / (M_PI * vpl_count)) : 0.0;
+    return (float)fmax(radius, (double)voxel_size);
+}
+
 gb_result gb_topo_gather_create(const gb_vpl_set *vpls, const gb_segmentation *s,
-                                const gb_topo_gates *gates, float clamp_distance,
+                                const gb_topo_gates *gates, float vsl_radius,
                                 gb_topo_gather_pass *pass, gb_error *error)
 {
     memset(pass, 0, sizeof *pass);
@@ -101,7 +134,7 @@ gb_result gb_topo_gather_create(const gb_vpl_set *vpls, const gb_segmentation *s
     if (!pass->vpl_buffer || !pass->gate_buffer || !pass->route_buffer || !pass->group_buffer)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "IL: out of memory");
     pass->vpl_count = vpls->count;
-    pass->clamp_distance = clamp_distance;
+    pass->vsl_radius = vsl_radius;
     return GB_OK;
 }
 
@@ -111,8 +144,8 @@ void gb_topo_gather_draw(const gb_topo_gather_pass *pass, const float view_to_wo
     GLuint p = pass->program;
     glUseProgram(p);
     gb_gbuffer_set_view(p, view_to_world, tan_half_fov, near);
-    glProgramUniform1f(p, glGetUniformLocation(p, "clamp_distance2"),
-                       pass->clamp_distance * pass->clamp_distance);
+    glProgramUniform1f(p, glGetUniformLocation(p, "vsl_radius2"),
+                       pass->vsl_radius * pass->vsl_radius);
     glProgramUniform1i(p, glGetUniformLocation(p, "vpl_count"), (GLint)pass->vpl_count);
     glProgramUniform1i(p, glGetUniformLocation(p, "every_vpl"), every_vpl);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, pass->vpl_buffer);

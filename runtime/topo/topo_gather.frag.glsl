@@ -1,8 +1,9 @@
 // IL (Noël & Biri 2014, §V.D): each fragment gathers the VPLs LA assigned
 // to its geometry cluster (clusters.y), a VPL stored with a route group
 // only when the fragment is in the cone from the VPL through the gates of
-// one of its routes (the implicit shadow); G's 1/r^2 bounded by
-// 1/max(r, r_clamp)^2 (topo_gather.c).
+// one of its routes (the implicit shadow); each VPL a virtual spherical
+// light of radius R (Hasan et al. 2009): G's 1/r^2 becomes the solid angle
+// of the sphere over pi R^2 (topo_gather.c).
 #version 450 core
 struct VPL { vec4 position; vec4 normal; vec4 power; };
 layout(std430, binding = 3) readonly buffer VPLs { VPL vpls[]; };
@@ -13,7 +14,7 @@ layout(std430, binding = 6) readonly buffer Entries { uvec2 entries[]; };
 layout(std430, binding = 10) readonly buffer Routes { uvec4 routes[]; };
 layout(std430, binding = 11) readonly buffer Groups { uvec4 groups[]; };
 #include "runtime/gbuffer_textures.glsl"
-uniform float clamp_distance2;
+uniform float vsl_radius2;     // R^2
 uniform int vpl_count;
 uniform bool every_vpl;
 out vec4 radiance;
@@ -50,6 +51,13 @@ bool in_group(vec3 p, uint group, vec3 x) {
             return true;
     return false;
 }
+// Omega(d) / (pi R^2), Omega = 2 pi (1 - sqrt(1 - R^2 / d^2)) the solid
+// angle of the sphere at distance d, the whole hemisphere within it:
+// 2 / (d^2 + d sqrt(d^2 - R^2)) for d > R (no cancellation), 2 / R^2 within.
+float vsl_kernel(float d2) {
+    return d2 <= vsl_radius2 ? 2.0 / vsl_radius2
+                             : 2.0 / (d2 + sqrt(d2 * (d2 - vsl_radius2)));
+}
 vec3 vpl_light(uint i, Surface s) {
     VPL l = vpls[i];
     vec3 to_vpl = l.position.xyz - s.position;
@@ -62,7 +70,7 @@ vec3 vpl_light(uint i, Surface s) {
     if (emission <= 0.0 || dot(s.ng, wi) <= 0.0)
         return vec3(0.0);
     vec3 f = brdf_eval(s.Kd, s.Ks, s.Ns, dot(s.n, s.wo), n_dot_wi, dot(s.wo, wi));
-    return f * l.power.rgb * (emission * n_dot_wi / max(d2, clamp_distance2));
+    return f * l.power.rgb * (emission * n_dot_wi * vsl_kernel(d2));
 }
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy);

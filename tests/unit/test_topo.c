@@ -483,9 +483,13 @@ static void test_la_cpu_equals_gpu(void)
  * its centre, facing down. By hand, at a floor point rho from the VPL's
  * foot, d^2 = rho^2 + h^2 and both cosines are h / d: the VPL sends
  * P (h/d) / pi (vpl.h), the floor reflects Kd / pi of the irradiance, and
- * IL bounds 1/d^2 by 1/max(d, r_clamp)^2 (Kollig & Keller 2004), so
- *   L = Kd P h^2 / (pi^2 d^2 max(d^2, r_clamp^2)).
- * r_clamp is five times h: under the VPL the bound cuts L by up to 25. */
+ * IL makes the VPL a virtual spherical light of radius R (Hasan et al.
+ * 2009): 1/d^2 becomes the solid angle the sphere subtends,
+ * Omega = 2 pi (1 - cos alpha) with sin alpha = R / d (2 pi, the
+ * hemisphere, for d <= R), over pi R^2, so
+ *   L = Kd P h^2 Omega(d) / (pi^3 d^2 R^2).
+ * R (CLAMP_RADIUS) is five times h: under the VPL the sphere cuts L by
+ * 12.5 from the unbounded 1/d^2, and doubles the old 1/max(d, R)^2. */
 enum { CLAMP_SIZE = 64 };
 static const float CLAMP_EYE = 1.0f, CLAMP_FOV = 60.0f, CLAMP_HEIGHT = 0.05f,
                    CLAMP_RADIUS = 0.25f, CLAMP_POWER = 2.0f;
@@ -510,7 +514,8 @@ static double clamped_radiance(int x, int y)
     double reach = CLAMP_EYE * tan(0.5 * CLAMP_FOV * M_PI / 180.0);
     double h2 = (double)CLAMP_HEIGHT * CLAMP_HEIGHT, r2 = (double)CLAMP_RADIUS * CLAMP_RADIUS;
     double d2 = reach * reach * (nx * nx + ny * ny) + h2;
-    return 0.5 * CLAMP_POWER * h2 / (M_PI * M_PI * d2 * fmax(d2, r2));
+    double omega = d2 <= r2 ? 2.0 * M_PI : 2.0 * M_PI * (1.0 - sqrt(1.0 - r2 / d2));
+    return 0.5 * CLAMP_POWER * h2 * omega / (M_PI * M_PI * M_PI * d2 * r2);
 }
 
 /* IL alone (every VPL, no gate) of the one VPL on the floor's G-buffer,
@@ -586,7 +591,8 @@ static void test_gather_clamp(void)
     printf("# IL clamp: brightest pixel %.5f, by hand %.5f; worst relative error %.2g\n", peak,
            expected_peak, worst);
     CHECK(result == GB_OK && worst < 0.01,
-          "IL clamp: every pixel within 1 % of Kd P h^2 / (pi^2 d^2 max(d, r_clamp)^2)");
+          "IL clamp: every pixel within 1 % of Kd P h^2 Omega(d) / (pi^3 d^2 R^2), a "
+          "spherical light of radius R");
     gb_scene_free(&scene);
     gb_context_destroy(&context);
 }
