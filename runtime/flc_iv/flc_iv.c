@@ -33,6 +33,10 @@ static const char elements_vertex_shader[] =
 #include "runtime/flc_iv/flc_iv_elements.vert.glsl.inc"
     ;
 
+static const char elements_geometry_shader[] =
+#include "runtime/flc_iv/flc_iv_elements.geom.glsl.inc"
+    ;
+
 static const char elements_fragment_shader[] =
 #include "runtime/flc_iv/flc_iv_elements.frag.glsl.inc"
     ;
@@ -58,7 +62,9 @@ typedef struct flc_iv_state {
     /* The GL half, which create makes. */
     GLuint depths_buffer, centres_buffer;
     GLuint position_buffer, element_buffer, index_buffer, vertex_array, elements_program;
-    gb_gl_target element_ids;   /* R32UI, with its depth */
+    gb_gl_target element_ids;   /* RGBA32UI, with its depth: the three elements
+                                   of the triangle seen, the weights of the
+                                   last two (flc_iv_elements.frag.glsl) */
 } flc_iv_state;
 
 /* prepare's half: what the CPU holds. */
@@ -268,8 +274,13 @@ static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_
     if (result != GB_OK)
         return result;
     upload_depth_maps(s);
-    result = gb_gl_program("flc-iv element ids", elements_vertex_shader,
-                           elements_fragment_shader, &s->elements_program, error);
+    const char *vertex[] = {elements_vertex_shader, NULL};
+    const char *geometry[] = {elements_geometry_shader, NULL};
+    const char *fragment[] = {elements_fragment_shader, NULL};
+    const gb_gl_stage stages[] = {{GL_VERTEX_SHADER, vertex},
+                                  {GL_GEOMETRY_SHADER, geometry},
+                                  {GL_FRAGMENT_SHADER, fragment}};
+    result = gb_gl_program_stages("flc-iv element ids", stages, 3, &s->elements_program, error);
     gb_flc_visibility visibility = {visibility_shader, bind_visibility, s};
     if (result == GB_OK)
         result = gb_flc_create(setup, &visibility, &s->flc, error);
@@ -282,14 +293,14 @@ static gb_result flc_iv_create(const gb_indirect_setup *setup, void **state, gb_
     return GB_OK;
 }
 
-/* The element seen at each pixel, NO_ELEMENT where none is; drawn again
+/* The elements seen at each pixel, NO_ELEMENT where none is; drawn again
  * only when the view or the size changed (the scene is static). */
 static void draw_element_ids(flc_iv_state *s, const gb_indirect_frame *frame)
 {
-    if (!gb_gl_target_stale(&s->element_ids, GL_R32UI, frame->width, frame->height,
+    if (!gb_gl_target_stale(&s->element_ids, GL_RGBA32UI, frame->width, frame->height,
                             frame->view_matrix->m, frame->projection->m))
         return;
-    const GLuint none[4] = {NO_ELEMENT, 0, 0, 0};
+    const GLuint none[4] = {NO_ELEMENT, NO_ELEMENT, NO_ELEMENT, 0};
     glClearNamedFramebufferuiv(s->element_ids.framebuffer, GL_COLOR, 0, none);
     gb_gl_target_begin_geometry(&s->element_ids);
     glUseProgram(s->elements_program);

@@ -4,7 +4,7 @@
 // the next two axes over |d[axis]|.
 layout(std430, binding = 11) readonly buffer Depths { uint depths[]; };  // two a word
 layout(std430, binding = 12) readonly buffer Centres { vec4 element_centres[]; };
-layout(binding = 12) uniform usampler2D element_ids;
+layout(binding = 12) uniform usampler2D element_ids;  // 3 elements, 2 weights
 uniform int bins_n;
 uniform int bin_filter;          // 0 bilinear, 1 nearest
 uniform float bias_bin;          // GB_FLC_IV_BIAS_BIN / N
@@ -24,10 +24,8 @@ float seen(uint e, int face, ivec2 cell, float r) {
     return r <= bin_depth(e, bin) * (1.0 + bias_bin) + bias_element ? 1.0 : 0.0;
 }
 
-float flc_visibility(ivec2 pixel, vec3 x, vec3 y) {
-    uint e = texelFetch(element_ids, pixel, 0).r;
-    if (e == 0xffffffffu)
-        return 1.0;
+// The VPL at y seen from element e's centre, through its bins.
+float element_visibility(uint e, vec3 y) {
     vec3 d = y - element_centres[e].xyz;
     float r = length(d);
     int axis = 0;
@@ -48,4 +46,25 @@ float flc_visibility(ivec2 pixel, vec3 x, vec3 y) {
     return mix(mix(seen(e, face, i, r), seen(e, face, i + ivec2(1, 0), r), f.x),
                mix(seen(e, face, i + ivec2(0, 1), r), seen(e, face, i + ivec2(1, 1), r), f.x),
                f.y);
+}
+
+// The elements of the pixel's triangle weighed by its barycentric
+// coordinates (flc_iv_elements), as implicit visibility interpolates its
+// display: the edges of the finer triangles and of the elements do not show.
+// An element shared by two corners is tested once, with both weights.
+float flc_visibility(ivec2 pixel, vec3 x, vec3 y) {
+    uvec4 texel = texelFetch(element_ids, pixel, 0);
+    if (texel.x == 0xffffffffu)
+        return 1.0;
+    vec2 b = unpackUnorm2x16(texel.w);
+    vec3 w = vec3(max(0.0, 1.0 - b.x - b.y), b);
+    if (texel.y == texel.x) { w.x += w.y; w.y = 0.0; }
+    if (texel.z == texel.x) { w.x += w.z; w.z = 0.0; }
+    else if (texel.z == texel.y) { w.y += w.z; w.z = 0.0; }
+    float v = w.x > 0.0 ? w.x * element_visibility(texel.x, y) : 0.0;
+    if (w.y > 0.0)
+        v += w.y * element_visibility(texel.y, y);
+    if (w.z > 0.0)
+        v += w.z * element_visibility(texel.z, y);
+    return v / max(w.x + w.y + w.z, 1e-6);
 }
