@@ -55,7 +55,7 @@ static void set_uniforms(GLuint program, GLuint environment_map, const gb_direct
     glProgramUniform1f(program, glGetUniformLocation(program, "cube_texel"),
                        2.0f / (float)in->shadows->cube_size);
     glProgramUniform1i(program, glGetUniformLocation(program, "cascade_count"),
-                       GB_SHADOW_CASCADES);
+                       in->cascades ? GB_SHADOW_CASCADES : 0);
 }
 
 void gb_direct_light_draw(gb_direct_light *pass, const gb_direct_inputs *inputs)

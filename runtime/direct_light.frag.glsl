@@ -21,7 +21,7 @@ uniform int point_count;
 uniform int plane_count;
 uniform bool shadows;
 uniform float cube_texel;
-uniform int cascade_count;      // a directional light's cascades
+uniform int cascade_count;      // a directional light's cascades; 0: not fitted
 out vec4 radiance;
 #include "runtime/gbuffer_octahedral.glsl"
 #include "runtime/brdf.glsl"
@@ -92,7 +92,7 @@ float plane_visibility(int i, Surface s, float texel, float cos_light) {
     if (!shadows)
         return 1.0;
     int cascade = int(plane_lights[i].cone.z);
-    if (cascade >= 0)
+    if (cascade >= 0 && cascade_count > 0)
         return cascade_visibility(cascade * cascade_count, s, cos_light);
     return map_visibility(shadow_planes, plane_lights[i].world_to_clip, i, s, texel);
 }

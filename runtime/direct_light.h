@@ -35,6 +35,9 @@ typedef struct gb_direct_inputs {
     const gb_view *view;
     float environment[3];
     int shadows_enabled;        /* 0: every light fully visible (a debug mode) */
+    int cascades;               /* 0: directional lights through their
+                                   scene-wide maps (the cascades are not
+                                   fitted to this view) */
 } gb_direct_inputs;
 
 /* environment_map: the scene's loaded map (copied to the GPU), or NULL. */

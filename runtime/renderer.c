@@ -180,15 +180,16 @@ void gb_renderer_set_terms(gb_renderer *renderer, gb_terms terms)
     start_again(renderer);
 }
 
-/* The maps once, and the cascades for view. */
+/* The maps once, and the cascades for view unless it moves. */
 static void draw_shadow_maps(gb_renderer *r, const gb_view *view)
 {
     if (r->options.no_shadows)
         return;
     gb_timings_begin(&r->timings, GB_PASS_SHADOW_MAPS);
     gb_shadow_maps_draw(&r->shadows, &r->gpu_scene);
-    gb_shadow_maps_fit_view(&r->shadows, r->scene, &r->gpu_scene, view, r->gbuffer.width,
-                            r->gbuffer.height);
+    if (!r->moving)
+        gb_shadow_maps_fit_view(&r->shadows, r->scene, &r->gpu_scene, view, r->gbuffer.width,
+                                r->gbuffer.height);
     gb_timings_end(&r->timings, GB_PASS_SHADOW_MAPS);
 }
 
@@ -199,6 +200,7 @@ static void draw_direct_light(gb_renderer *r, const gb_view *view)
         .shadows = &r->shadows,
         .view = view,
         .shadows_enabled = !r->options.no_shadows,
+        .cascades = !r->moving,
     };
     memcpy(inputs.environment, r->scene->environment, sizeof inputs.environment);
     gb_timings_begin(&r->timings, GB_PASS_DIRECT_LIGHT);
@@ -304,6 +306,7 @@ static void count_image(gb_renderer *r, int divisor, int state)
 void gb_renderer_draw(gb_renderer *r, const gb_view *view)
 {
     r->frame_start = gb_seconds();
+    r->moving = 0;
     int state = draw_part(r, view, 0, 1, 0.0);
     if (r->restart || memcmp(view, &r->view, sizeof *view) != 0)
         r->status.images = 0;
@@ -349,6 +352,7 @@ static gb_result plan_image(gb_renderer *r, int moving, gb_error *error)
                                                    r->options.height)
                          : (r->status.divisor > 1 ? r->status.divisor / 2 : 1);
     gb_result result = fit_size(r, divisor, error);
+    r->moving = moving;
     r->part = 0;
     r->parts = moving ? 1
                       : gb_frame_budget_parts(&r->budget, r->gbuffer.width, r->gbuffer.height);

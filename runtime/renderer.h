@@ -90,6 +90,9 @@ typedef struct gb_renderer {
     int restart;                /* the next refine draws a new image: the view,
                                    size, method or terms changed */
     int divisor;                /* of the image being drawn */
+    int moving;                 /* it is drawn while the view moves: the
+                                   directional lights' scene-wide maps, not
+                                   cascades redrawn every frame */
     int part, parts;            /* its next part, and how many */
     double image_ms;            /* its parts' times so far */
     gb_renderer_status status;
