@@ -23,10 +23,23 @@
 #include "scene.h"
 
 enum {
-    GB_DEFAULT_ENVIRONMENT_LIGHTS = 64,
+    GB_MOST_ENVIRONMENT_LIGHTS = 64,   /* what a scene lit by its sky alone gets */
     GB_ENVIRONMENT_GRID_WIDTH = 64,     /* a constant colour's lat-long cells */
     GB_ENVIRONMENT_GRID_HEIGHT = 32,
 };
+
+/* The environment's share of the light power entering the scene, in 0..1,
+ * the conventions of tools/photons/emission.h (R the bounding sphere's
+ * radius): the environment 4 pi L pi R^2 (L its mean radiance), a
+ * directional light E pi R^2, a point light 4 pi I, a spot 2 pi I (1 - cos
+ * cone), the area lights pi Ke A; all by luminance. 0 for a black sky. */
+double gb_environment_share(const gb_scene *scene);
+
+/* How many lights stand for the environment by default: most times its
+ * share, rounded up (64 on a scene lit by its sky alone; 6 on Sponza,
+ * whose sun and point light outshine its sky: each light costs the direct
+ * pass as much as the sun). */
+uint32_t gb_environment_light_count(const gb_scene *scene, uint32_t most);
 
 /* Fills lights[0 .. *made) with at most count directional lights (fewer
  * when the environment has fewer cells; none when it is black). */

@@ -46,7 +46,9 @@ static const char usage[] =
     "                          lights, power-weighted (default 16; 0: none)\n"
     "      --environment-lights N  directional lights, with shadow maps, standing\n"
     "                          for the environment's light on surfaces (median\n"
-    "                          cut; default 64; 0: none, the sky only seen)\n"
+    "                          cut; default 64 times the sky's share of the\n"
+    "                          light power: 64 for a scene lit by its sky\n"
+    "                          alone; 0: none, the sky only seen)\n"
     "      --shadow-size N     side of the 2-D shadow maps; cube faces get half\n"
     "                          (default 1024)\n"
     "      --cascade-size N    side of each of the 4 maps fitted to the view for\n"
@@ -99,7 +101,7 @@ typedef struct arguments {
     gb_method method;
     gb_renderer_options renderer;
     long camera, frames, supersample;
-    int environment_lights;
+    int environment_lights;     /* -1: by the environment's share of the light */
     int budget_given;
     int headless, timings, quiet;
 } arguments;
@@ -402,8 +404,11 @@ static gb_result run(void *context, gb_error *error)
     gb_bake *bake;
     result = open_bake(&scene, a, &bake, error);
     /* after the bake, whose files name the scene's own lights */
+    uint32_t sky = a->environment_lights >= 0
+                       ? (uint32_t)a->environment_lights
+                       : gb_environment_light_count(&scene, GB_MOST_ENVIRONMENT_LIGHTS);
     if (result == GB_OK)
-        result = gb_scene_add_environment_lights(&scene, (uint32_t)a->environment_lights, error);
+        result = gb_scene_add_environment_lights(&scene, sky, error);
     if (result == GB_OK && !a->quiet)  /* with no light every method draws black, as it should */
         gb_scene_warn("gbview", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     a->renderer.bake = bake;
@@ -420,5 +425,5 @@ static gb_result run(void *context, gb_error *error)
 int main(int argc, char **argv)
 {
     return gb_cli_main(&command, argc, argv, run,
-                       &(arguments){.environment_lights = GB_DEFAULT_ENVIRONMENT_LIGHTS});
+                       &(arguments){.environment_lights = -1});
 }

@@ -30,12 +30,12 @@ static void test_constant_sky(void)
     memset(&scene, 0, sizeof scene);
     float L[3] = {0.5f, 1.0f, 2.0f};
     memcpy(scene.environment, L, sizeof L);
-    gb_light lights[GB_DEFAULT_ENVIRONMENT_LIGHTS];
+    gb_light lights[GB_MOST_ENVIRONMENT_LIGHTS];
     uint32_t made = 0;
     gb_error error;
-    CHECK(gb_environment_lights(&scene, GB_DEFAULT_ENVIRONMENT_LIGHTS, lights, &made, &error) ==
+    CHECK(gb_environment_lights(&scene, GB_MOST_ENVIRONMENT_LIGHTS, lights, &made, &error) ==
               GB_OK, "constant sky: lights");
-    CHECK_EQ_INT(made, GB_DEFAULT_ENVIRONMENT_LIGHTS, "constant sky: as many lights as asked");
+    CHECK_EQ_INT(made, GB_MOST_ENVIRONMENT_LIGHTS, "constant sky: as many lights as asked");
     for (int c = 0; c < 3; ++c) {
         double total = 0.0;
         for (uint32_t i = 0; i < made; ++i)
@@ -106,8 +106,31 @@ static void test_appended(void)
     free(scene.lights);
 }
 
+/* The sky's share of the power, by hand: a sky of luminance 1 around a
+ * scene of bounding radius R = 1 sends 4 pi^2; a directional light of
+ * luminance 4 sends 4 pi: a share of pi / (pi + 1). */
+static void test_share(void)
+{
+    gb_scene scene;
+    memset(&scene, 0, sizeof scene);
+    float half = 1.0f / sqrtf(3.0f);    /* a cube whose diagonal is 2 */
+    for (int k = 0; k < 3; ++k)
+        scene.bounds_min[k] = -half, scene.bounds_max[k] = half;
+    CHECK_NEAR(gb_environment_share(&scene), 0.0, 0.0, "share: a black sky has none");
+    scene.environment[0] = scene.environment[1] = scene.environment[2] = 1.0f;
+    CHECK_NEAR(gb_environment_share(&scene), 1.0, 1e-9, "share: a sky alone has all");
+    CHECK_EQ_INT(gb_environment_light_count(&scene, 64), 64, "count: a sky alone gets the most");
+    gb_light sun = {.type = GB_LIGHT_DIRECTIONAL, .direction = {0, -1, 0}, .intensity = {4, 4, 4}};
+    scene.lights = &sun;
+    scene.light_count = 1;
+    CHECK_NEAR(gb_environment_share(&scene), PI / (PI + 1.0), 1e-6, "share: sky against a sun");
+    CHECK_EQ_INT(gb_environment_light_count(&scene, 64), (int)ceil(64 * PI / (PI + 1.0)),
+                 "count: 64 times the share, rounded up");
+}
+
 int main(void)
 {
+    test_share();
     test_constant_sky();
     test_one_bright_texel();
     test_appended();
