@@ -132,6 +132,8 @@ static int ray_meets(const gb_implicit_model *m, uint32_t t, const float o[3], c
     double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
                    e1[0] * e2[1] - e1[1] * e2[0]};
     double n_length = sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    if (!(n_length > 0.0))      /* a degenerate triangle meets nothing */
+        return 0;
     double facing = (n[0] * d[0] + n[1] * d[1] + n[2] * d[2]) / n_length;
     if (!(fabs(facing) >= cos(GB_IMPLICIT_HIDDEN_DEGREES * 3.14159265358979323846 / 180.0)))
         return 0;
