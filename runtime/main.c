@@ -196,31 +196,32 @@ static int parse_terms(const char *value, gb_terms *terms)
 }
 
 /* The options of the methods and of the renderer; 0, else the exit status. */
+/* A count in 0..most into *out, 0 given as -1: the renderer's "none" (its 0
+ * is the default). 0, else the exit status. */
+static int parse_count_or_none(const char *name, const char *value, int most, int *out)
+{
+    int status = gb_cli_int("gbview", name, value, 0, most, out);
+    if (status == 0 && *out == 0)
+        *out = -1;
+    return status;
+}
+
 static int parse_renderer_option(int option, const char *value, arguments *a)
 {
     static const char *const visibilities[] = {"full", "clusters", "none"};
     static const char *const bin_filters[] = {"bilinear", "nearest"};
     gb_method_parameters *p = &a->renderer.parameters;
-    int status;
     switch (option) {
     case 'r':
         return gb_cli_size("gbview", "resolution", value, GB_CLI_MAX_IMAGE_SIDE,
                            &a->renderer.width, &a->renderer.height);
     case OPTION_AREA_SAMPLES:
-        status = gb_cli_int("gbview", "area-samples", value, 0, 4096,
-                            &a->renderer.shadow.area_samples);
-        if (status == 0 && a->renderer.shadow.area_samples == 0)
-            a->renderer.shadow.area_samples = -1;  /* the renderer's "none" */
-        return status;
+        return parse_count_or_none("area-samples", value, 4096, &a->renderer.shadow.area_samples);
     case OPTION_ENVIRONMENT_LIGHTS:
         return gb_cli_int("gbview", "environment-lights", value, 0, 1024,
                           &a->environment_lights);
     case OPTION_CASCADE_SIZE:
-        status = gb_cli_int("gbview", "cascade-size", value, 0, 16384,
-                            &a->renderer.shadow.cascade_size);
-        if (status == 0 && a->renderer.shadow.cascade_size == 0)
-            a->renderer.shadow.cascade_size = -1;  /* the renderer's "none" */
-        return status;
+        return parse_count_or_none("cascade-size", value, 16384, &a->renderer.shadow.cascade_size);
     case OPTION_SHADOW_SIZE: return gb_cli_int("gbview", "shadow-size", value, 16, 16384,
                                               &a->renderer.shadow.size);
     case OPTION_VPLS: return gb_cli_int("gbview", "vpls", value, 1, 1 << 24, &p->vpls);

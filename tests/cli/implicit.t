@@ -73,47 +73,15 @@ else
     missing "$reference not built"
 fi
 
-# A 1 x 1 x 1 box on a 4 x 4 ground plane, environment 1 1 1, no light: the
-# direct pass draws only the background, the method the sky through the
-# empty bins (section 4.4) and the bounces. 64x64, 2x2 supersampled, one
+# A 1 x 1 x 1 box on a 4 x 4 ground plane, environment 1 1 1, no light
+# (box_under_sky): the direct pass draws the sky's light through its
+# directional lights (with --environment-lights 0 only the background, and
+# implicit the sky through the empty bins, section 4.4), the method the
+# bounces. 64x64, 2x2 supersampled, one
 # bounce against reference --mode full --bounces 2 (the sky reflected once,
 # then once more) at 64 spp. Measured: relative MSE 0.0011 (the direct
 # pass alone, surfaces black: 0.51).
-cat >"$dir/box.obj" <<'EOF'
-mtllib box.mtl
-v -2 0 -2
-v 2 0 -2
-v 2 0 2
-v -2 0 2
-v -0.5 0 -0.5
-v 0.5 0 -0.5
-v 0.5 0 0.5
-v -0.5 0 0.5
-v -0.5 1 -0.5
-v 0.5 1 -0.5
-v 0.5 1 0.5
-v -0.5 1 0.5
-usemtl ground
-f 1 4 3 2
-usemtl box
-f 9 12 11 10
-f 9 10 6 5
-f 10 11 7 6
-f 11 12 8 7
-f 12 9 5 8
-EOF
-cat >"$dir/box.mtl" <<'EOF'
-newmtl ground
-Kd 0.5 0.5 0.5
-newmtl box
-Kd 0.6 0.3 0.2
-EOF
-cat >"$dir/box.scene" <<'EOF'
-gibake-scene 1
-mesh box.obj
-environment 1 1 1
-camera position 2.5 2.5 3.5 target 0 0.3 0 up 0 1 0 fov 45 resolution 64 64
-EOF
+box_under_sky "$dir"
 
 # sky_checks WHAT IMAGE REFERENCE OTHER OTHER-NAME N CHECK: two checks, the
 # relative MSE of IMAGE against REFERENCE (reference --mode full --bounces 2)

@@ -30,6 +30,9 @@
 #                        scene file's name; false if a step failed
 #   floor_obj FILE       writes a lone 4 x 4 floor at y = 0 (two triangles, no
 #                        material: Kd 0.8, the OBJ default) to FILE
+#   box_under_sky FOLDER writes FOLDER/box.scene (.obj, .mtl): a 1 x 1 x 1 box
+#                        (Kd 0.6 0.3 0.2) on a 4 x 4 ground (Kd 0.5) under
+#                        a white sky, no light, a 64 x 64 camera
 #   tap_done             prints the plan; returns nonzero if a check failed
 
 GB_ROOT=$(cd "${GB_ROOT:-.}" && pwd) || exit 1
@@ -109,6 +112,43 @@ topo_bake() {
             --grid "$topo_name.grid.vdb" -o "$topo_name.seg"
 }
 
+box_under_sky() {
+    cat >"$1/box.obj" <<'EOF'
+mtllib box.mtl
+v -2 0 -2
+v 2 0 -2
+v 2 0 2
+v -2 0 2
+v -0.5 0 -0.5
+v 0.5 0 -0.5
+v 0.5 0 0.5
+v -0.5 0 0.5
+v -0.5 1 -0.5
+v 0.5 1 -0.5
+v 0.5 1 0.5
+v -0.5 1 0.5
+usemtl ground
+f 1 4 3 2
+usemtl box
+f 9 12 11 10
+f 9 10 6 5
+f 10 11 7 6
+f 11 12 8 7
+f 12 9 5 8
+EOF
+    cat >"$1/box.mtl" <<'EOF'
+newmtl ground
+Kd 0.5 0.5 0.5
+newmtl box
+Kd 0.6 0.3 0.2
+EOF
+    cat >"$1/box.scene" <<'EOF'
+gibake-scene 1
+mesh box.obj
+environment 1 1 1
+camera position 2.5 2.5 3.5 target 0 0.3 0 up 0 1 0 fov 45 resolution 64 64
+EOF
+}
 floor_obj() {
     cat >"$1" <<'EOF'
 v -2 0 -2
