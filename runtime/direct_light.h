@@ -3,13 +3,14 @@
  * shadow maps and writes linear HDR radiance into the bound framebuffer:
  *   emitters seen directly (the G-buffer's emission)
  *   + light reflected once from every point, spot, directional light and
- *     area-light emitter, times its shadow-map visibility
+ *     area-light emitter, times its shadow-map visibility (a directional
+ *     light through its cascades when the view is still, shadow_maps.h)
  * and the environment's radiance where no surface was drawn. The light of
- * the environment reflected by surfaces is left out: unshadowed, as an
- * ambient Kd L_env, it doubled the error to the reference on Sponza (whose
- * court is mostly enclosed), and shadowing it is a GI method's business. The BRDF and
- * light conventions are common/brdf.h's, mirrored in GLSL function for
- * function (brdf.glsl; the pass is direct_light.frag.glsl).
+ * the environment reflected by surfaces comes in as the scene's
+ * directional lights that stand for it (common/environment_lights.h), with
+ * their shadows. The BRDF and light conventions are common/brdf.h's,
+ * mirrored in GLSL function for function (brdf.glsl; the pass is
+ * direct_light.frag.glsl).
  *
  * Create → draw each frame → destroy (also on a zeroed one).
  */
