@@ -71,15 +71,11 @@ typedef struct gb_implicit_link_options {
 
 enum { GB_IMPLICIT_LINK_THREADS = 2 };
 
-/* The node of a link's source (links->source), and the side of it seen. */
+/* The node of a link's source (links->source); sources from node_count on
+ * are nodes' backs. */
 static inline uint32_t gb_implicit_source_node(const gb_implicit_model *model, uint32_t source)
 {
     return source >= model->node_count ? source - model->node_count : source;
-}
-
-static inline int gb_implicit_source_side(const gb_implicit_model *model, uint32_t source)
-{
-    return source >= model->node_count ? GB_IMPLICIT_BACK : GB_IMPLICIT_FRONT;
 }
 
 /* Steps 5-7 for a static scene. bin_targets, when not NULL, receives the

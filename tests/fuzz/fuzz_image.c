@@ -25,7 +25,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "../../tools/imgdiff/image_error.h"
+#include "image_error.h"
 #include "image.h"
 #include "scene.h"
 

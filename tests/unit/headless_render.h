@@ -23,7 +23,7 @@
 #include <stdlib.h>
 
 #include "../../runtime/headless.h"
-#include "../../tools/imgdiff/image_error.h"
+#include "image_error.h"
 #include "../../tools/reference/reference.h"
 #include "scene.h"
 

@@ -22,7 +22,7 @@
 #include "../../tools/cluster/octree.h"
 #include "../../tools/cluster/vdl.h"
 #include "../../tools/photons/photons.h"
-#include "../../tools/voxelize/triangle_box_overlap.h"
+#include "triangle_box_overlap.h"
 #include "light_octree.h"
 #include "scene_builder.h"
 #include "tap.h"

@@ -1,8 +1,8 @@
-/* imgdiff's measures (tools/imgdiff/image_error.[ch]) on images whose
+/* imgdiff's measures (common/image_error.[ch]) on images whose
  * errors are worked out by hand. */
 #include <math.h>
 
-#include "../../tools/imgdiff/image_error.h"
+#include "image_error.h"
 #include "tap.h"
 
 static gb_image make_image(int width, int height, int channels, const float *values)

@@ -4,7 +4,7 @@
  * determinism over thread counts. */
 #include "tap.h"
 #include "../../tools/voxelize/distance.h"
-#include "../../tools/voxelize/triangle_box_overlap.h"
+#include "triangle_box_overlap.h"
 #include "../../tools/voxelize/voxelize.h"
 #include "voxel_grids.h"
 

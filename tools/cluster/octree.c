@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../voxelize/triangle_box_overlap.h"
+#include "triangle_box_overlap.h"
 #include "array_reserve.h"
 
 /* A triangle touching a cell: sorted by cell then triangle, so that the
@@ -42,15 +42,6 @@ void gb_octree_leaf_cell(const gb_octree_leaves *leaves, uint32_t i, uint32_t ce
 float gb_octree_leaf_edge(const gb_octree_leaves *leaves)
 {
     return leaves->size / (float)(1u << leaves->depth);
-}
-
-void gb_octree_leaf_centre(const gb_octree_leaves *leaves, uint32_t i, float centre[3])
-{
-    uint32_t cell[3];
-    gb_octree_leaf_cell(leaves, i, cell);
-    double edge = (double)leaves->size / (double)(1u << leaves->depth);
-    for (int k = 0; k < 3; ++k)
-        centre[k] = (float)(leaves->origin[k] + ((double)cell[k] + 0.5) * edge);
 }
 
 /* The cube around the scene's bounds, a little larger so that no vertex lies

@@ -1,7 +1,7 @@
 /* octree.h — the geometric octree of vivianloc-2007 §4.1 ("built on the
  * whole scene, using a geometric subdivision criterion"): the cells of a
  * 2^δ grid over the scene's bounding cube that some triangle touches (exact
- * triangle/box overlap, tools/voxelize/triangle_box_overlap.h), each with the
+ * triangle/box overlap, common/triangle_box_overlap.h), each with the
  * area-weighted average normal of the triangles touching it (§5.3.1: "a voxel
  * has no normal ... approximated as an average amongst the intersecting
  * geometry"), and the node pool that reaches them in δ fetches.
@@ -37,9 +37,8 @@ gb_result gb_octree_build(const gb_scene *scene, uint32_t depth, gb_octree_leave
 gb_result gb_octree_nodes(const gb_octree_leaves *leaves, gb_light_octree_node **nodes,
                           uint32_t *node_count, gb_error *error);
 
-/* Leaf i's integer cell and centre, and the edge of a leaf. */
+/* Leaf i's integer cell, and the edge of a leaf. */
 void gb_octree_leaf_cell(const gb_octree_leaves *leaves, uint32_t i, uint32_t cell[3]);
-void gb_octree_leaf_centre(const gb_octree_leaves *leaves, uint32_t i, float centre[3]);
 float gb_octree_leaf_edge(const gb_octree_leaves *leaves);
 
 void gb_octree_leaves_free(gb_octree_leaves *leaves);

@@ -1,4 +1,4 @@
-/* imgdiff — how far an image is from a reference (tools/imgdiff/image_error.h). */
+/* imgdiff — how far an image is from a reference (common/image_error.h). */
 
 #include <getopt.h>
 #include <math.h>

@@ -6,7 +6,7 @@
 #include <string.h>
 #include <stdlib.h>
 
-#include "../imgdiff/image_error.h"
+#include "image_error.h"
 #include "mapped_file.h"
 #include "png_bytes.h"
 

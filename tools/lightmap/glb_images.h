@@ -7,7 +7,7 @@
  *                 sRGB spends the 8 bits evenly in relative terms, so the
  *                 dim parts of the map keep their precision; the PNG read
  *                 back is compared with the lightmap (relative MSE,
- *                 tools/imgdiff/image_error.h) and that figure returned.
+ *                 common/image_error.h) and that figure returned.
  *   a texture     a map_Kd file as it is when it is a PNG or a JPEG (by its
  *                 first bytes), else read and encoded as PNG (image.h).
  *

@@ -97,9 +97,8 @@ enum { GB_REFERENCE_TILE_SIZE = 16 };
 gb_result gb_reference_merge_tiles(const gb_image *tiles, const char *const *names,
                                    uint32_t count, gb_image *merged, gb_error *error);
 
-/* "full", "direct", "indirect1", "indirect1-unshadowed", "vpl". */
-const char *gb_reference_mode_name(gb_reference_mode mode);
-/* GB_ERROR_ARGUMENT for an unknown name. */
+/* The mode named "full", "direct", "indirect1", "indirect1-unshadowed" or
+ * "vpl"; GB_ERROR_ARGUMENT for an unknown name. */
 gb_result gb_reference_mode_parse(const char *name, gb_reference_mode *mode, gb_error *error);
 
 #endif

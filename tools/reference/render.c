@@ -35,11 +35,6 @@ static const char *const MODE_NAMES[] = {
 };
 enum { MODE_COUNT = sizeof MODE_NAMES / sizeof MODE_NAMES[0] };
 
-const char *gb_reference_mode_name(gb_reference_mode mode)
-{
-    return (unsigned)mode < MODE_COUNT ? MODE_NAMES[mode] : "unknown";
-}
-
 gb_result gb_reference_mode_parse(const char *name, gb_reference_mode *mode, gb_error *error)
 {
     for (unsigned i = 0; i < MODE_COUNT; ++i)

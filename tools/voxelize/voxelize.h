@@ -10,7 +10,7 @@
  * the world origin (1e6) or very small (1e-4) voxelizes as well as a unit one.
  *
  * Surface: a voxel is surface iff a triangle touches its closed box (exact
- * separating-axis test, tools/voxelize/triangle_box_overlap.h), so no
+ * separating-axis test, common/triangle_box_overlap.h), so no
  * 6-connected path of empty voxels crosses a wall, however thin or oriented.
  * Distance (tools/voxelize/distance.h): exact Euclidean distance transform,
  * from voxel centre to voxel centre, in world units.
