@@ -67,6 +67,7 @@ void gb_direct_light_draw(gb_direct_light *pass, const gb_direct_inputs *inputs)
     glBindTextureUnit(10, pass->environment_map);
     gb_gbuffer_bind(inputs->gbuffer);
     gb_shadow_maps_bind(inputs->shadows);
+    gb_shadow_maps_bind_cascades(inputs->shadows);
     gb_gl_draw_fullscreen(pass->empty_vertex_array);
 }
 

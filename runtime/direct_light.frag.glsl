@@ -3,24 +3,14 @@
 // through its shadow map (shadow_maps.h), plus the emission seen; the
 // background where no surface was drawn.
 #version 450 core
-struct PointLight { vec4 position_range; vec4 intensity_one_sided; vec4 normal; };
-struct PlaneLight { mat4 world_to_clip; vec4 position_kind; vec4 direction_texel;
-                    vec4 intensity; vec4 cone; };
-layout(std430, binding = 1) readonly buffer PointLights { PointLight point_lights[]; };
-layout(std430, binding = 2) readonly buffer PlaneLights { PlaneLight plane_lights[]; };
+#include "runtime/lights.glsl"
 struct Cascade { mat4 world_to_clip; vec4 far_texel; };
 layout(std430, binding = 3) readonly buffer Cascades { Cascade cascades[]; };
 #include "runtime/gbuffer_textures.glsl"
-layout(binding = 8) uniform samplerCubeArrayShadow shadow_cubes;
-layout(binding = 9) uniform sampler2DArrayShadow shadow_planes;
 layout(binding = 11) uniform sampler2DArrayShadow shadow_cascades;
 layout(binding = 10) uniform sampler2D environment_map;
 uniform vec3 environment;
 uniform bool has_environment_map;
-uniform int point_count;
-uniform int plane_count;
-uniform bool shadows;
-uniform float cube_texel;
 uniform int cascade_count;      // a directional light's cascades; 0: not fitted
 out vec4 radiance;
 #include "runtime/gbuffer_octahedral.glsl"

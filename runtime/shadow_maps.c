@@ -423,6 +423,10 @@ void gb_shadow_maps_bind(const gb_shadow_maps *maps)
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GB_SSBO_PLANE_LIGHTS, maps->plane_buffer);
     glBindTextureUnit(GB_UNIT_SHADOW_CUBES, maps->cube_array);
     glBindTextureUnit(GB_UNIT_SHADOW_PLANES, maps->plane_array);
+}
+
+void gb_shadow_maps_bind_cascades(const gb_shadow_maps *maps)
+{
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, GB_SSBO_SHADOW_CASCADES, maps->cascade_buffer);
     glBindTextureUnit(GB_UNIT_SHADOW_CASCADES, maps->cascade_array);
 }

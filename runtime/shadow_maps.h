@@ -106,6 +106,9 @@ void gb_shadow_maps_fit_view(gb_shadow_maps *maps, const gb_scene *scene,
                              const gb_gpu_scene *gpu_scene, const gb_view *view, int width,
                              int height);
 void gb_shadow_maps_bind(const gb_shadow_maps *maps);
+/* The cascades too, for the direct pass alone (their binding is another
+ * pass's buffer elsewhere: FLC's triangles). */
+void gb_shadow_maps_bind_cascades(const gb_shadow_maps *maps);
 void gb_shadow_maps_destroy(gb_shadow_maps *maps);
 
 #endif

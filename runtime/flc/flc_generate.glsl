@@ -9,29 +9,19 @@
 // buffer; Commands the two indirect draws, [0, 4) the tessellation's (3
 // vertices a patch), [4, 8) the divergent VPLs' splatting. Needs flc.c's
 // prelude (MAX_SUBDIVISION, MAX_TESS_LEVEL).
-struct PointLight { vec4 position_range; vec4 intensity_one_sided; vec4 normal; };
-struct PlaneLight { mat4 world_to_clip; vec4 position_kind; vec4 direction_texel;
-                    vec4 intensity; vec4 cone; };
+#include "runtime/lights.glsl"
 struct Triangle { vec4 p0_material; vec4 p1_key; vec4 p2_area; };
 #include "runtime/flc/flc_vpl.glsl"
-layout(std430, binding = 1) readonly buffer PointLights { PointLight point_lights[]; };
-layout(std430, binding = 2) readonly buffer PlaneLights { PlaneLight plane_lights[]; };
 layout(std430, binding = 3) readonly buffer Triangles { Triangle triangles[]; };
 layout(std430, binding = 4) readonly buffer Albedos { vec4 albedos[]; };
 layout(std430, binding = 5) writeonly buffer Vpls { Vpl vpls[]; };
 layout(std430, binding = 6) buffer Patches { uvec4 patches[]; };
 layout(std430, binding = 7) buffer Commands { uint commands[8]; };
-layout(binding = 8) uniform samplerCubeArrayShadow shadow_cubes;
-layout(binding = 9) uniform sampler2DArrayShadow shadow_planes;
 uniform uint u_rand;
 uniform bool keep_all;
 uniform float S_bar[16];
 uniform float S[16];
 uniform uint tiles;
-uniform int point_count;
-uniform int plane_count;
-uniform float cube_texel;
-uniform bool shadows;
 #include "runtime/shadow_bias.glsl"
 #include "runtime/flc/flc_common.glsl"
 #include "runtime/spot_falloff.glsl"
