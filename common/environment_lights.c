@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "environment.h"
+#include "vec3.h"
 
 static const double PI = 3.14159265358979323846;
 
@@ -33,7 +34,7 @@ static double cell_solid_angle(const environment_grid *g, int row)
 
 static double luminance(const float *rgb)
 {
-    return 0.2126 * rgb[0] + 0.7152 * rgb[1] + 0.0722 * rgb[2];
+    return gb_vec3_luminance(gb_vec3_load(rgb));
 }
 
 static gb_result make_grid(const gb_scene *scene, environment_grid *g, gb_error *error)
@@ -229,7 +230,7 @@ double gb_environment_share(const gb_scene *scene)
     double dz = scene->bounds_max[2] - scene->bounds_min[2];
     double R2 = 0.25 * (dx * dx + dy * dy + dz * dz);
     double sky = 4.0 * PI * fmax(mean_environment(scene), 0.0) * PI * R2, others = 0.0;
-    for (uint32_t i = 0; i < scene->light_count - scene->environment_light_count; ++i) {
+    for (uint32_t i = 0; i < gb_scene_own_light_count(scene); ++i) {
         const gb_light *l = &scene->lights[i];
         double I = fmax(luminance(l->intensity), 0.0);
         if (l->type == GB_LIGHT_DIRECTIONAL)

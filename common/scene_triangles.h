@@ -1,6 +1,7 @@
-/* scene_triangles.h — a scene triangle's corners and normals, one
- * definition for the reference renderer, the runtime and the bakers (the
- * front normal is the side that emits: common/brdf.h, "Sides").
+/* scene_triangles.h — a scene triangle's corners and normals, and the
+ * corners of the scene's bounds, one definition for the reference
+ * renderer, the runtime and the bakers (the front normal is the side that
+ * emits: common/brdf.h, "Sides").
  *
  *   gb_vec3 face = gb_triangle_normal(scene, t);        // unit, cross(v1 - v0, v2 - v0)
  *   gb_vec3 n = gb_corner_normal(scene, t, k, face);    // the mesh's, or face
@@ -14,6 +15,15 @@
 
 #include "scene.h"
 #include "vec3.h"
+
+/* Corner k (0..7) of the scene's bounds: bit 0 of k picks x's max, bit 1
+ * y's, bit 2 z's. */
+static inline gb_vec3 gb_scene_bounds_corner(const gb_scene *scene, int k)
+{
+    return gb_vec3_make(k & 1 ? scene->bounds_max[0] : scene->bounds_min[0],
+                        k & 2 ? scene->bounds_max[1] : scene->bounds_min[1],
+                        k & 4 ? scene->bounds_max[2] : scene->bounds_min[2]);
+}
 
 /* Corner k (0, 1, 2) of triangle t. */
 static inline gb_vec3 gb_triangle_corner(const gb_scene *scene, uint32_t t, int k)

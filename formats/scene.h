@@ -79,7 +79,8 @@ typedef struct gb_scene {
     gb_light *lights;
     uint32_t environment_light_count; /* of them, the last that stand for the
                                    environment (common/environment_lights.h;
-                                   0 as loaded) */
+                                   0 as loaded): the scene's own are the
+                                   first light_count - environment_light_count */
     uint32_t camera_count;      /* at least 1: a default is derived from the bounds */
     gb_camera *cameras;
     float environment[3];       /* radiance of the background (no map) */
@@ -102,6 +103,12 @@ typedef struct gb_scene {
     uint32_t undefined_material_count; /* OBJ usemtl names that no MTL defines:
                                           each got the default material */
 } gb_scene;
+
+/* The scene's own lights, lights[0 .. this): those the scene file named. */
+static inline uint32_t gb_scene_own_light_count(const gb_scene *scene)
+{
+    return scene->light_count - scene->environment_light_count;
+}
 
 typedef struct gb_scene_options {
     int load_textures;          /* 0 (default): check map_Kd and the environment

@@ -16,8 +16,7 @@
  * it stands for gives at most pi Ke: each point also carries the area it
  * stands for, area / (count p), and lights as a disc of that area does
  * on its axis, I cos / (r^2 + area / pi) (exact for a receiver facing a
- * uniform disc; the chandelier of the staircase lit its own arms 1.7x
- * too bright without it).
+ * uniform disc; far from the light, r^2 >> area, it is the point's 1/r^2).
  */
 #ifndef GB_AREA_LIGHTS_H
 #define GB_AREA_LIGHTS_H

@@ -55,14 +55,13 @@ vec3 point_light(int i, Surface s) {
         return vec3(0.0);
     return reflected(s, wi, I / (r2 + l.normal.w)) * point_visibility(i, s, r, dot(s.ng, wi));
 }
-// The map through world_to_clip at layer of sampler maps, the receiver
-// moved by NORMAL_OFFSET texels (world size texel).
-float map_visibility(sampler2DArrayShadow maps, mat4 world_to_clip, int layer, Surface s,
-                     float texel) {
-    vec3 p = s.position + s.ng * (NORMAL_OFFSET * texel);
+// The map through world_to_clip at layer of sampler maps, seen from the
+// (offset) receiver p, its depth moved by bias.
+float map_visibility(sampler2DArrayShadow maps, mat4 world_to_clip, int layer, vec3 p,
+                     float bias) {
     vec4 clip = world_to_clip * vec4(p, 1.0);
     vec3 ndc = clip.xyz / clip.w;
-    return texture(maps, vec4(0.5 * ndc.xy + 0.5, float(layer), ndc.z + DEPTH_BIAS));
+    return texture(maps, vec4(0.5 * ndc.xy + 0.5, float(layer), ndc.z + bias));
 }
 // A directional light's cascade (shadow_cascades.h): the first whose
 // slice reaches the surface's depth along the view, with slope_offsets.
@@ -73,10 +72,8 @@ float cascade_visibility(int first, Surface s, float cos_light) {
         ++c;
     Cascade k = cascades[first + c];
     vec2 offsets = slope_offsets(k.far_texel.y, cos_light);
-    vec4 clip = k.world_to_clip * vec4(s.position + s.ng * offsets.x, 1.0);
-    vec3 ndc = clip.xyz / clip.w;
-    float bias = DEPTH_BIAS + offsets.y * k.far_texel.z;
-    return texture(shadow_cascades, vec4(0.5 * ndc.xy + 0.5, float(first + c), ndc.z + bias));
+    return map_visibility(shadow_cascades, k.world_to_clip, first + c,
+                          s.position + s.ng * offsets.x, DEPTH_BIAS + offsets.y * k.far_texel.z);
 }
 float plane_visibility(int i, Surface s, float texel, float cos_light) {
     if (!shadows)
@@ -84,7 +81,8 @@ float plane_visibility(int i, Surface s, float texel, float cos_light) {
     int cascade = int(plane_lights[i].cone.z);
     if (cascade >= 0 && cascade_count > 0)
         return cascade_visibility(cascade * cascade_count, s, cos_light);
-    return map_visibility(shadow_planes, plane_lights[i].world_to_clip, i, s, texel);
+    return map_visibility(shadow_planes, plane_lights[i].world_to_clip, i,
+                          s.position + s.ng * (NORMAL_OFFSET * texel), DEPTH_BIAS);
 }
 vec3 plane_light(int i, Surface s) {
     PlaneLight l = plane_lights[i];

@@ -2,19 +2,16 @@
 
 #include <math.h>
 
-static gb_vec3 bounds_corner(const gb_scene *scene, int k)
-{
-    return gb_vec3_make(k & 1 ? scene->bounds_max[0] : scene->bounds_min[0],
-                        k & 2 ? scene->bounds_max[1] : scene->bounds_min[1],
-                        k & 4 ? scene->bounds_max[2] : scene->bounds_min[2]);
-}
+#include "light_frame.h"
+#include "scene_triangles.h"
 
 float gb_cascade_view_far(const gb_view *view, const gb_scene *scene)
 {
     float far = 2.0f * view->near;
-    for (int k = 0; k < 8; ++k)
-        far = fmaxf(far, gb_vec3_dot(gb_vec3_sub(bounds_corner(scene, k), view->position),
-                                     view->forward));
+    for (int k = 0; k < 8; ++k) {
+        gb_vec3 to_corner = gb_vec3_sub(gb_scene_bounds_corner(scene, k), view->position);
+        far = fmaxf(far, gb_vec3_dot(to_corner, view->forward));
+    }
     return far;
 }
 
@@ -54,21 +51,19 @@ gb_cascade gb_cascade_fit(const gb_view *view, float aspect, float z0, float z1,
     float radius = 0.0f;
     for (int k = 0; k < 8; ++k)
         radius = fmaxf(radius, gb_vec3_length(gb_vec3_sub(corners[k], centre)));
-    gb_vec3 forward = gb_vec3_normalize(direction);
-    gb_vec3 hint = fabsf(forward.y) < 0.9f ? gb_vec3_make(0, 1, 0) : gb_vec3_make(1, 0, 0);
-    gb_vec3 right = gb_vec3_normalize(gb_vec3_cross(forward, hint));
-    gb_vec3 up = gb_vec3_cross(right, forward);
+    gb_light_frame f = gb_light_frame_make(gb_vec3_make(0, 0, 0), direction,
+                                           gb_light_up_hint(gb_vec3_normalize(direction)));
     float texel = 2.0f * radius / (float)size;
     /* the centre in the light's frame, on whole texels */
-    float x = texel * floorf(gb_vec3_dot(centre, right) / texel);
-    float y = texel * floorf(gb_vec3_dot(centre, up) / texel);
+    float x = texel * floorf(gb_vec3_dot(centre, f.right) / texel);
+    float y = texel * floorf(gb_vec3_dot(centre, f.up) / texel);
     float nearest = INFINITY, farthest = -INFINITY;
     for (int k = 0; k < 8; ++k) {
-        float along = gb_vec3_dot(bounds_corner(scene, k), forward);
+        float along = gb_vec3_dot(gb_scene_bounds_corner(scene, k), f.forward);
         nearest = fminf(nearest, along), farthest = fmaxf(farthest, along);
     }
     float margin = 1e-3f * (farthest - nearest) + 1e-20f;
-    gb_mat4 light_view = gb_mat4_view(gb_vec3_make(0, 0, 0), forward, right, up);
+    gb_mat4 light_view = gb_light_frame_view(&f);
     gb_mat4 projection = gb_mat4_orthographic(x - radius, x + radius, y - radius, y + radius,
                                               nearest - margin, farthest + margin);
     return (gb_cascade){gb_mat4_multiply(&projection, &light_view), z1, texel,

@@ -7,7 +7,9 @@
 #include "gl_util.h"
 
 #include "area_lights.h"
+#include "light_frame.h"
 #include "mat4.h"
+#include "scene_triangles.h"
 #include "shadow_cascades.h"
 
 enum { POINT_FLOATS = 12, PLANE_FLOATS = 32, CASCADE_FLOATS = 20 };
@@ -34,16 +36,9 @@ static const float cube_faces[6][2][3] = {
     {{0, -1, 0}, {0, 0, -1}}, {{0, 0, 1}, {0, -1, 0}}, {{0, 0, -1}, {0, -1, 0}},
 };
 
-static gb_vec3 bounds_corner(const gb_scene *scene, int k)
-{
-    return gb_vec3_make(k & 1 ? scene->bounds_max[0] : scene->bounds_min[0],
-                        k & 2 ? scene->bounds_max[1] : scene->bounds_min[1],
-                        k & 4 ? scene->bounds_max[2] : scene->bounds_min[2]);
-}
-
 static float scene_diagonal(const gb_scene *scene)
 {
-    return gb_vec3_length(gb_vec3_sub(bounds_corner(scene, 7), bounds_corner(scene, 0)));
+    return gb_vec3_length(gb_vec3_sub(gb_scene_bounds_corner(scene, 7), gb_scene_bounds_corner(scene, 0)));
 }
 
 /* The distance from p to the farthest corner of the bounds, a little more. */
@@ -51,7 +46,7 @@ static float range_from(const gb_scene *scene, gb_vec3 p)
 {
     float range = 0.0f;
     for (int k = 0; k < 8; ++k)
-        range = fmaxf(range, gb_vec3_length(gb_vec3_sub(bounds_corner(scene, k), p)));
+        range = fmaxf(range, gb_vec3_length(gb_vec3_sub(gb_scene_bounds_corner(scene, k), p)));
     return 1.01f * range + 1e-3f * scene_diagonal(scene) + 1e-20f;
 }
 
@@ -74,43 +69,20 @@ static void put_point(const gb_scene *scene, const float position[3], const floa
     out[11] = area / 3.14159265358979f;
 }
 
-/* An axis far from forward: the up of a light's view. */
-static gb_vec3 some_up(gb_vec3 forward)
-{
-    return fabsf(forward.y) < 0.9f ? gb_vec3_make(0, 1, 0) : gb_vec3_make(1, 0, 0);
-}
-
-typedef struct light_frame {
-    gb_vec3 position, forward, right, up;
-} light_frame;
-
-static light_frame make_frame(gb_vec3 position, gb_vec3 forward, gb_vec3 up_hint)
-{
-    light_frame f = {position, gb_vec3_normalize(forward), {0, 0, 0}, {0, 0, 0}};
-    f.right = gb_vec3_normalize(gb_vec3_cross(f.forward, up_hint));
-    f.up = gb_vec3_cross(f.right, f.forward);
-    return f;
-}
-
-static gb_mat4 frame_view(const light_frame *f)
-{
-    return gb_mat4_view(f->position, f->forward, f->right, f->up);
-}
-
 /* Orthographic over the scene's bounds seen along direction. */
 static gb_mat4 directional_matrix(const gb_scene *scene, gb_vec3 direction, int size,
                                   float *texel)
 {
     float diagonal = scene_diagonal(scene);
     gb_vec3 centre =
-        gb_vec3_scale(gb_vec3_add(bounds_corner(scene, 0), bounds_corner(scene, 7)), 0.5f);
+        gb_vec3_scale(gb_vec3_add(gb_scene_bounds_corner(scene, 0), gb_scene_bounds_corner(scene, 7)), 0.5f);
     gb_vec3 forward = gb_vec3_normalize(direction);
-    light_frame f = make_frame(gb_vec3_sub(centre, gb_vec3_scale(forward, diagonal)),
-                               forward, some_up(forward));
-    gb_mat4 view = frame_view(&f);
+    gb_light_frame f = gb_light_frame_make(gb_vec3_sub(centre, gb_vec3_scale(forward, diagonal)),
+                               forward, gb_light_up_hint(forward));
+    gb_mat4 view = gb_light_frame_view(&f);
     gb_vec3 low = {INFINITY, INFINITY, INFINITY}, high = {-INFINITY, -INFINITY, -INFINITY};
     for (int k = 0; k < 8; ++k) {
-        gb_vec3 p = gb_mat4_transform_point(&view, bounds_corner(scene, k));
+        gb_vec3 p = gb_mat4_transform_point(&view, gb_scene_bounds_corner(scene, k));
         low = gb_vec3_make(fminf(low.x, p.x), fminf(low.y, p.y), fminf(low.z, p.z));
         high = gb_vec3_make(fmaxf(high.x, p.x), fmaxf(high.y, p.y), fmaxf(high.z, p.z));
     }
@@ -127,8 +99,8 @@ static gb_mat4 spot_matrix(const gb_scene *scene, const gb_light *light, int siz
 {
     gb_vec3 position = gb_vec3_load(light->position);
     gb_vec3 forward = gb_vec3_normalize(gb_vec3_load(light->direction));
-    light_frame f = make_frame(position, forward, some_up(forward));
-    gb_mat4 view = frame_view(&f);
+    gb_light_frame f = gb_light_frame_make(position, forward, gb_light_up_hint(forward));
+    gb_mat4 view = gb_light_frame_view(&f);
     float fov = fminf(2.0f * fmaxf(light->cone_angle, light->falloff_angle) + 2.0f, 170.0f);
     float range = range_from(scene, position);
     gb_mat4 projection = gb_mat4_perspective(fov, 1.0f, 1e-4f * range, range);
@@ -162,7 +134,7 @@ static int has_cascades(const gb_scene *scene, const gb_shadow_options *options,
 {
     return !(options && options->cascade_size < 0) &&
            scene->lights[i].type == GB_LIGHT_DIRECTIONAL &&
-           i < scene->light_count - scene->environment_light_count;
+           i < gb_scene_own_light_count(scene);
 }
 
 /* How far an area light's emitter sits off its triangle, toward its front:
@@ -308,9 +280,9 @@ static void draw_cube(gb_shadow_maps *maps, const gb_gpu_scene *scene, uint32_t 
                        position.y, position.z);
     glProgramUniform1f(program, glGetUniformLocation(program, "range"), range);
     for (int face = 0; face < 6; ++face) {
-        light_frame f = make_frame(position, gb_vec3_load(cube_faces[face][0]),
+        gb_light_frame f = gb_light_frame_make(position, gb_vec3_load(cube_faces[face][0]),
                                    gb_vec3_load(cube_faces[face][1]));
-        gb_mat4 view = frame_view(&f);
+        gb_mat4 view = gb_light_frame_view(&f);
         gb_mat4 view_projection = gb_mat4_multiply(&projection, &view);
         set_matrix(program, "view_projection", &view_projection);
         glNamedFramebufferTextureLayer(maps->framebuffer, GL_DEPTH_ATTACHMENT,

@@ -3,7 +3,10 @@
  *   direct     each element gathers Le from the emitters it links to (area
  *              lights are geometry whose outgoing radiance starts non-zero)
  *              and the environment's radiance through its empty bins, plus
- *              point, spot and directional lights with implicit shadows:
+ *              the scene's own point, spot and directional lights
+ *              (gb_scene_own_light_count: not those standing for the
+ *              environment in the direct pass, which would count the sky
+ *              twice) with implicit shadows:
  *              a light counts when the element's bin toward it holds no
  *              link nearer than the light (links->light_visible; no ray is
  *              traced), or unshadowed when the links were made without
@@ -38,7 +41,6 @@
 #include <string.h>
 
 #include "brdf.h"
-#include "implicit_environment.h"
 #include "threads.h"
 
 /* The value of node n's side (implicit_model.h's layout). */
@@ -81,7 +83,7 @@ static void light_irradiance(const gb_scene *scene, const gb_implicit_node *node
                              int two_sided, const uint8_t *visible, float E[GB_IMPLICIT_SIDES][3])
 {
     memset(E, 0, GB_IMPLICIT_SIDES * sizeof E[0]);
-    for (uint32_t i = 0; i < gb_implicit_light_count(scene); ++i) {
+    for (uint32_t i = 0; i < gb_scene_own_light_count(scene); ++i) {
         const gb_light *light = &scene->lights[i];
         if (visible && !visible[i])
             continue;
@@ -175,7 +177,8 @@ static void direct_light(const gb_scene *scene, const gb_implicit_model *model,
     size_t elements = model->element_count;
     for (uint32_t e = 0; e < elements; ++e) {
         float E[GB_IMPLICIT_SIDES][3];
-        const uint8_t *visible = links->light_visible && links->light_count == gb_implicit_light_count(scene)
+        const uint8_t *visible = links->light_visible &&
+                                         links->light_count == gb_scene_own_light_count(scene)
                                      ? &links->light_visible[(size_t)e * links->light_count]
                                      : NULL;
         const gb_implicit_node *node = &model->nodes[e];

@@ -16,13 +16,4 @@
 gb_result gb_implicit_environment_bins(const gb_implicit_bins *bins, const gb_texture *map,
                                        float scale, float *radiance, gb_error *error);
 
-/* The lights implicit shadows and gathers: the scene's own. The environment
- * reaches the elements through their empty bins (4.4), never through the
- * directional lights that stand for it in the direct pass
- * (common/environment_lights.h), which would count it twice. */
-static inline uint32_t gb_implicit_light_count(const gb_scene *scene)
-{
-    return scene->light_count - scene->environment_light_count;
-}
-
 #endif

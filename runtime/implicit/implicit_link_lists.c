@@ -7,7 +7,6 @@
 #include <stdlib.h>
 
 #include "brdf.h"
-#include "implicit_environment.h"
 #include "vec3.h"
 
 typedef struct bin_link {
@@ -118,7 +117,7 @@ static void light_visibility(const gb_implicit_slots *l, const gb_scene *scene, 
                              uint8_t *visible)
 {
     const gb_implicit_node *node = &l->model->nodes[e];
-    for (uint32_t i = 0; i < gb_implicit_light_count(scene); ++i) {
+    for (uint32_t i = 0; i < gb_scene_own_light_count(scene); ++i) {
         const gb_light *light = &scene->lights[i];
         float d[3], distance = INFINITY;
         for (int k = 0; k < 3; ++k)
@@ -194,7 +193,7 @@ static gb_result compact(const gb_implicit_slots *l, gb_implicit_links *links,
         links->environment_irradiance = malloc(3 * (receivers + 1) * sizeof(float));
     bin_link *scratch = malloc(l->bins->count * sizeof *scratch);
     const gb_scene *scene = l->lights;
-    links->light_count = scene ? gb_implicit_light_count(scene) : 0;
+    links->light_count = scene ? gb_scene_own_light_count(scene) : 0;
     if (links->light_count)
         links->light_visible = malloc((size_t)elements * links->light_count);
     gb_result result = GB_OK;
