@@ -97,19 +97,8 @@ static GLuint gate_buffer(const gb_segmentation *s)
 float gb_topo_vsl_radius(const gb_scene *scene, uint32_t vpl_count, float voxel_size)
 {
     double area = 0.0;
-    for (uint32_t t = 0; t < scene->triangle_count; ++t) {
-        const float *a = &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t]];
-        const float *b = &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + 1]];
-        const float *c = &scene->positions[3 * (size_t)scene->indices[3 * (size_t)t + 2]];
-        double u[3], v[3];
-        for (int k = 0; k < 3; ++k) {
-            u[k] = (double)b[k] - a[k];
-            v[k] = (double)c[k] - a[k];
-        }
-        double n[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
-                       u[0] * v[1] - u[1] * v[0]};
-        area += 0.5 * sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
-    }
+    for (uint32_t t = 0; t < scene->triangle_count; ++t)
+        area += gb_triangle_area(scene, t);
     double radius =
         vpl_count > 0 ? sqrt(GB_TOPO_VSL_SHARE * area / (M_PI * vpl_count)) : 0.0;
     return (float)fmax(radius, (double)voxel_size);
