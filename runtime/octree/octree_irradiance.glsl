@@ -3,7 +3,7 @@
 // trilinear between the leaf centres over those with VDLs (the holes of
 // Fig. 16c), octree.h's convention. The display (octree_display.frag.glsl)
 // and the render into the atlas (octree_atlas_render.frag.glsl) include it;
-// formats/light_octree_shading.c is its CPU twin. The includer sets the
+// common/light_octree_shading.c is its CPU twin. The includer sets the
 // buffers (octree.c's upload) and the uniforms origin, cell_size, depth.
 layout(std430, binding = 0) readonly buffer Nodes { uint nodes[]; };
 layout(std430, binding = 1) readonly buffer Leaves { uint leaves[]; };

@@ -1,5 +1,5 @@
 /* test_light_octree_shading.c — gb_light_octree_irradiance
- * (formats/light_octree_shading.h), the CPU twin of the octree display's
+ * (common/light_octree_shading.h), the CPU twin of the octree display's
  * interpolate() (runtime/octree/octree_irradiance.glsl), on a hand-made
  * octree over a floor whose leaves each hold three VDLs: one lit from
  * above (irradiance growing across the leaves), one grazing (|n_leaf·ω|
