@@ -3,10 +3,10 @@
 // (flc_generate.comp.glsl) and the divergent one's geometry shader after the
 // tessellation (flc_tess.geom.glsl). The lights; Alg. 1 (flc_level); and
 // make_vpl, the VPL of one triangle or none: u_i by Alg. 2, y_i jittered
-// over the triangle, the radiosity B = rho E of each side. E(t_i) follows
-// direct_light.frag.glsl's lights and shadow-map bias, as irradiance on a
-// side of the triangle (its geometric normal). Patches is the divergent
-// buffer; Commands the two indirect draws, [0, 4) the tessellation's (3
+// over the triangle, the radiosity B = rho E of each side, E(t_i) the
+// irradiance of incident_light.glsl's lights on a side of the triangle
+// (its geometric normal), shadowed as the direct pass does but through the
+// scene-wide maps. Patches is the divergent buffer; Commands the two indirect draws, [0, 4) the tessellation's (3
 // vertices a patch), [4, 8) the divergent VPLs' splatting. Needs flc.c's
 // prelude (MAX_SUBDIVISION, MAX_TESS_LEVEL).
 #include "runtime/lights.glsl"
@@ -22,66 +22,16 @@ uniform bool keep_all;
 uniform float S_bar[16];
 uniform float S[16];
 uniform uint tiles;
-#include "runtime/shadow_bias.glsl"
 #include "runtime/flc/flc_common.glsl"
 #include "runtime/spot_falloff.glsl"
-float point_visibility(int i, vec3 p, vec3 ng, float distance) {
-    if (!shadows)
-        return 1.0;
-    PointLight l = point_lights[i];
-    vec3 q = p + ng * (NORMAL_OFFSET * cube_texel * distance);
-    vec3 d = q - l.position_range.xyz;
-    float reference = length(d) / l.position_range.w - DEPTH_BIAS;
-    return texture(shadow_cubes, vec4(d, float(i)), reference);
-}
-vec3 point_irradiance(int i, vec3 p, vec3 ng) {
-    PointLight l = point_lights[i];
-    vec3 to_light = l.position_range.xyz - p;
-    float r2 = dot(to_light, to_light);
-    float r = sqrt(r2);
-    vec3 wi = to_light / r;
-    vec3 I = l.intensity_one_sided.rgb;
-    if (l.intensity_one_sided.w > 0.5)
-        I *= max(0.0, -dot(l.normal.xyz, wi));
-    float cosine = dot(ng, wi);
-    if (cosine <= 0.0 || I == vec3(0.0))
-        return vec3(0.0);
-    return I * (cosine / (r2 + l.normal.w)) * point_visibility(i, p, ng, r);
-}
-float plane_visibility(int i, vec3 p, vec3 ng, float texel) {
-    if (!shadows)
-        return 1.0;
-    vec4 clip = plane_lights[i].world_to_clip * vec4(p + ng * (NORMAL_OFFSET * texel), 1.0);
-    vec3 ndc = clip.xyz / clip.w;
-    return texture(shadow_planes, vec4(0.5 * ndc.xy + 0.5, float(i), ndc.z + DEPTH_BIAS));
-}
-vec3 plane_irradiance(int i, vec3 p, vec3 ng) {
-    PlaneLight l = plane_lights[i];
-    vec3 d = l.direction_texel.xyz;
-    float texel = l.direction_texel.w;
-    if (l.position_kind.w > 0.5) {
-        float cosine = dot(ng, -d);
-        if (cosine <= 0.0)
-            return vec3(0.0);
-        return l.intensity.rgb * cosine * plane_visibility(i, p, ng, texel);
-    }
-    vec3 to_light = l.position_kind.xyz - p;
-    float r2 = dot(to_light, to_light);
-    vec3 wi = to_light / sqrt(r2);
-    float falloff = spot_falloff(dot(d, -wi), l.cone.x, l.cone.y);
-    float cosine = dot(ng, wi);
-    if (falloff <= 0.0 || cosine <= 0.0)
-        return vec3(0.0);
-    float axial = max(dot(d, -to_light), 0.0);
-    return l.intensity.rgb * (falloff * cosine / r2)
-           * plane_visibility(i, p, ng, texel * axial);
-}
+#include "runtime/incident_light.glsl"
+// The irradiance on the side ng of a triangle at p, from every light.
 vec3 irradiance(vec3 p, vec3 ng) {
-    vec3 E = vec3(0.0);
+    vec3 E = vec3(0.0), wi;
     for (int i = 0; i < point_count; ++i)
-        E += point_irradiance(i, p, ng);
+        E += point_incident(i, p, ng, wi) * max(dot(ng, wi), 0.0);
     for (int i = 0; i < plane_count; ++i)
-        E += plane_irradiance(i, p, ng);
+        E += plane_incident(i, p, ng, wi) * max(dot(ng, wi), 0.0);
     return E;
 }
 // Alg. 1
