@@ -60,14 +60,14 @@ static gb_result measure(const gb_scene *scene, const run *r, gb_error *error)
         gb_flc_times(renderer->method_state[GB_METHOD_FLC], &t);
         double n = t.frames ? t.frames : 1;
         const gb_timings *timings = &renderer->timings;
-        const gb_method_parameters *p = &r->parameters;
-        int levels = p->flc_levels > 0 ? p->flc_levels : GB_FLC_DEFAULT_LEVELS;
+        const gb_flc_parameters *p = &r->parameters.flc;
+        int levels = p->levels > 0 ? p->levels : GB_FLC_DEFAULT_LEVELS;
         char level_text[16];
-        snprintf(level_text, sizeof level_text, p->flc_levels == GB_FLC_NO_DECIMATION ? "all"
+        snprintf(level_text, sizeof level_text, p->levels == GB_FLC_NO_DECIMATION ? "all"
                                                                                        : "%d",
                  levels);
         printf("%5.0f %6d %6s %8u+%-7u %8.1f %8.1f %9.1f %9.1f %8.1f %9.1f %9.1f %9.0f %9.1f\n",
-               p->flc_n_avg > 0 ? p->flc_n_avg : GB_FLC_DEFAULT_N_AVG, p->flc_tiling,
+               p->n_avg > 0 ? p->n_avg : GB_FLC_DEFAULT_N_AVG, p->tiling,
                level_text, t.regular_triangles, t.divergent_triangles,
                gb_timings_mean_ms(timings, GB_PASS_GBUFFER),
                gb_timings_mean_ms(timings, GB_PASS_SHADOW_MAPS), t.regular_ms / n,
@@ -97,17 +97,17 @@ int main(int argc, char **argv)
     for (int i = 4; i < argc; ++i) {
         const char *a = argv[i], *value = i + 1 < argc ? argv[i + 1] : NULL;
         if (!strcmp(a, "--no-decimation"))
-            r.parameters.flc_levels = GB_FLC_NO_DECIMATION;
+            r.parameters.flc.levels = GB_FLC_NO_DECIMATION;
         else if (!strcmp(a, "--indirect"))
             r.terms = GB_TERMS_INDIRECT;
         else if (!value)
             return usage();
         else if (!strcmp(a, "--navg"))
-            r.parameters.flc_n_avg = (float)atof(value), ++i;
+            r.parameters.flc.n_avg = (float)atof(value), ++i;
         else if (!strcmp(a, "--tiling"))
-            r.parameters.flc_tiling = atoi(value), ++i;
+            r.parameters.flc.tiling = atoi(value), ++i;
         else if (!strcmp(a, "--levels"))
-            r.parameters.flc_levels = atoi(value), ++i;
+            r.parameters.flc.levels = atoi(value), ++i;
         else if (!strcmp(a, "-o"))
             r.output = value, ++i;
         else

@@ -48,27 +48,24 @@
 #include "timings.h"
 #include "view.h"
 
-/* The parameters of every method, set from gbview's options; a zero field
- * means the method's default. Each method adds its own fields here. */
-typedef struct gb_method_parameters {
-    int vpls;                   /* topo: number of VPLs (--vpls) */
-    const char *write_vpls;     /* topo: write the VPL set here (--write-vpls) */
-    int topo_visibility;        /* topo: gb_topo_visibility, full (0), clusters, none */
-    int bins;                   /* implicit, flc-iv: cube-map bins per face edge (--bins) */
-    int visibility_filter;      /* flc-iv: GB_FLC_IV_BILINEAR (0) or _NEAREST (--bin-filter) */
-    int bounces;                /* implicit: 1 or 2 (--bounces) */
-    int paper_rules;            /* implicit: 1 for the links by the paper's rules
-                                   alone, faster and coarser (--paper-rules) */
-    float flc_mu;               /* flc: mu > 1 of S_k = S0 mu^k, Eq. 17 (--mu; 2) */
-    float flc_n_avg;            /* flc: N_avg of Eq. 1 (--navg; 256) */
-    float flc_epsilon;          /* flc: the distance clamp epsilon, world units
-                                   (--epsilon; 0.01 x the scene's radius) */
-    int flc_tiling;             /* flc: 4^tiling interleaved tiles (--tiling; 0) */
-    int flc_levels;             /* flc: N + 1, the number of levels (--levels; 6) */
-    const char *atlas;          /* octree: show it through this atlas file (--atlas);
-                                   "none": the walk; NULL: the bake's NAME.atlas
-                                   when it has one, else the walk */
-} gb_method_parameters;
+/* Every method's parameters, as gbview's options set them
+ * (method_parameters.h). */
+typedef struct gb_method_parameters gb_method_parameters;
+
+/* A method's gbview options, declared in its folder (topo/topo_options.c
+ * ...) as an array ended by an entry whose name is NULL, and listed with
+ * the method in methods.c: gbview's main() makes its --help lines,
+ * getopt's table and the parsing from them. parse stores value (NULL for a
+ * flag) into the method's field of parameters and returns GB_EXIT_SUCCESS
+ * or, after a usage error printed by common/cli.h's functions (tool
+ * "gbview", the option's name), GB_EXIT_USAGE. Every string is static. */
+typedef struct gb_method_option {
+    const char *name;           /* --NAME, without the dashes */
+    const char *value_name;     /* "N" of "--NAME N"; NULL for a flag */
+    const char *help;           /* its --help text after the option's column:
+                                   lines ended by '\n' */
+    int (*parse)(const char *name, const char *value, gb_method_parameters *parameters);
+} gb_method_option;
 
 typedef struct gb_indirect_setup {
     const gb_scene *scene;

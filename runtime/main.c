@@ -21,7 +21,8 @@
 #include "timings.h"
 #include "window.h"
 
-static const char usage[] =
+/* The help before the methods' options (indirect_method.h) and after. */
+static const char usage_head[] =
     "usage: gbview [options] SCENE\n"
     "Shows SCENE (.scene or a mesh) with its global illumination in a window, or\n"
     "with --headless renders it without a display (EGL, Mesa surfaceless) into -o.\n"
@@ -58,34 +59,11 @@ static const char usage[] =
     "                          1), the box filter of `reference`\n"
     "      --no-shadows        debug: every light fully visible\n"
     "      --terms T           both (default), direct or indirect: the light drawn\n"
-    "      --vpls N            topo: VPLs traced from the lights (default 1024:\n"
-    "                          the paper's Table 1 is real time under 512 and\n"
-    "                          interactive to a few thousand)\n"
-    "      --write-vpls FILE   topo: write the VPL set (for reference --vpl FILE)\n"
-    "      --topo-visibility V topo: full (clusters and gates, default), clusters\n"
-    "                          (gates off) or none (no shadows on indirect)\n"
-    "      --navg N            flc: N_avg, VPLs lighting a pixel (Eq. 1; default 256,\n"
-    "                          within the paper's 64..1024 for quality or speed)\n"
-    "      --mu M              flc: level growth, S_k = S0 M^k (Eq. 17; default 2)\n"
-    "      --levels L          flc: N + 1 levels of VPLs (default 6, at most 16)\n"
-    "      --epsilon E         flc: distance clamp, world units (default 1% of the\n"
-    "                          scene's radius)\n"
-    "      --tiling T          flc: splat into 4^T interleaved tiles (default 0)\n"
-    "      --no-decimation     flc: every triangle a VPL (the estimator without\n"
-    "                          light cuts, for comparison)\n"
-    "      --bins N            implicit, flc-iv: 6 x N x N cube-map bins (8, 12\n"
-    "                          default, 16; 12: the paper's compromise of speed\n"
-    "                          and quality)\n"
-    "      --bin-filter F      flc-iv: bilinear (default: the four nearest bins'\n"
-    "                          tests weighed) or nearest (one bin)\n"
-    "      --bounces N         implicit: bounces of indirect light (1 default, 2)\n"
-    "      --paper-rules       implicit: the links by the paper's rules alone\n"
-    "                          (subdivide at a whole bin, no discs): several\n"
-    "                          times faster to build, coarser shadows\n"
-    "      --atlas FILE        octree: render it into this atlas (from `atlas`) once\n"
-    "                          and show it through it, one fetch a pixel (default:\n"
-    "                          the bake's NAME.atlas if there is one; none: the\n"
-    "                          octree walk at every pixel)\n"
+    "      --budget MS         in the window, a frame's milliseconds (default 50):\n"
+    "                          each frame draws the parts of the image that fit,\n"
+    "                          and the image is shown when whole; 0: whole images\n";
+
+static const char usage_tail[] =
     "  -q, --quiet             no warnings, no progress bar (the links of implicit\n"
     "                          and flc-iv show one on a terminal)\n"
     "  -h, --help              this help\n"
@@ -116,25 +94,13 @@ enum {
     OPTION_CASCADE_SIZE,
     OPTION_NO_SHADOWS,
     OPTION_SUPERSAMPLE,
-    OPTION_FLC_NAVG,
-    OPTION_FLC_MU,
-    OPTION_FLC_LEVELS,
-    OPTION_FLC_EPSILON,
-    OPTION_FLC_NO_DECIMATION,
-    OPTION_FLC_TILING,
-    OPTION_VPLS,
     OPTION_TERMS,
-    OPTION_WRITE_VPLS,
-    OPTION_TOPO_VISIBILITY,
-    OPTION_BINS,
-    OPTION_BOUNCES,
-    OPTION_BIN_FILTER,
-    OPTION_PAPER_RULES,
-    OPTION_ATLAS,
     OPTION_BUDGET,
+    OPTION_METHOD_FIRST = 512,  /* + k: the k-th of method_options */
 };
 
-static const struct option long_options[] = {
+/* gbview's own options; main() appends the methods'. */
+static const struct option own_options[] = {
     GB_CLI_FLAG("headless", OPTION_HEADLESS),
     GB_CLI_VALUE("camera", 'c'),
     GB_CLI_VALUE("method", 'm'),
@@ -149,39 +115,9 @@ static const struct option long_options[] = {
     GB_CLI_VALUE("cascade-size", OPTION_CASCADE_SIZE),
     GB_CLI_FLAG("no-shadows", OPTION_NO_SHADOWS),
     GB_CLI_VALUE("supersample", OPTION_SUPERSAMPLE),
-    GB_CLI_VALUE("navg", OPTION_FLC_NAVG),
-    GB_CLI_VALUE("mu", OPTION_FLC_MU),
-    GB_CLI_VALUE("levels", OPTION_FLC_LEVELS),
-    GB_CLI_VALUE("epsilon", OPTION_FLC_EPSILON),
-    GB_CLI_VALUE("tiling", OPTION_FLC_TILING),
-    GB_CLI_FLAG("no-decimation", OPTION_FLC_NO_DECIMATION),
-    GB_CLI_VALUE("vpls", OPTION_VPLS),
     GB_CLI_VALUE("terms", OPTION_TERMS),
-    GB_CLI_VALUE("write-vpls", OPTION_WRITE_VPLS),
-    GB_CLI_VALUE("topo-visibility", OPTION_TOPO_VISIBILITY),
-    GB_CLI_VALUE("bins", OPTION_BINS),
-    GB_CLI_VALUE("bounces", OPTION_BOUNCES),
-    GB_CLI_VALUE("bin-filter", OPTION_BIN_FILTER),
-    GB_CLI_FLAG("paper-rules", OPTION_PAPER_RULES),
-    GB_CLI_VALUE("atlas", OPTION_ATLAS),
     GB_CLI_VALUE("budget", OPTION_BUDGET),
-    GB_CLI_OPTIONS_END,
 };
-
-/* The options of flc (runtime/flc/flc.h); 0, else the exit status. */
-static int parse_flc_option(int option, const char *value, arguments *a)
-{
-    gb_method_parameters *p = &a->renderer.parameters;
-    switch (option) {
-    case OPTION_FLC_NAVG: return gb_cli_float("gbview", "navg", value, 1.0, 1e6, &p->flc_n_avg);
-    case OPTION_FLC_MU: return gb_cli_float("gbview", "mu", value, 1.01, 1e3, &p->flc_mu);
-    case OPTION_FLC_EPSILON:
-        return gb_cli_float("gbview", "epsilon", value, 1e-30, 1e30, &p->flc_epsilon);
-    case OPTION_FLC_LEVELS: return gb_cli_int("gbview", "levels", value, 1, 16, &p->flc_levels);
-    case OPTION_FLC_NO_DECIMATION: p->flc_levels = GB_FLC_NO_DECIMATION; return 0;
-    default: return gb_cli_int("gbview", "tiling", value, 0, 4, &p->flc_tiling);
-    }
-}
 
 static int parse_terms(const char *value, gb_terms *terms)
 {
@@ -206,57 +142,32 @@ static int parse_count_or_none(const char *name, const char *value, int most, in
     return status;
 }
 
-static int parse_renderer_option(int option, const char *value, arguments *a)
-{
-    static const char *const visibilities[] = {"full", "clusters", "none"};
-    static const char *const bin_filters[] = {"bilinear", "nearest"};
-    gb_method_parameters *p = &a->renderer.parameters;
-    switch (option) {
-    case 'r':
-        return gb_cli_size("gbview", "resolution", value, GB_CLI_MAX_IMAGE_SIDE,
-                           &a->renderer.width, &a->renderer.height);
-    case OPTION_AREA_SAMPLES:
-        return parse_count_or_none("area-samples", value, 4096, &a->renderer.shadow.area_samples);
-    case OPTION_ENVIRONMENT_LIGHTS:
-        return gb_cli_int("gbview", "environment-lights", value, 0, 1024,
-                          &a->environment_lights);
-    case OPTION_CASCADE_SIZE:
-        return parse_count_or_none("cascade-size", value, 16384, &a->renderer.shadow.cascade_size);
-    case OPTION_SHADOW_SIZE: return gb_cli_int("gbview", "shadow-size", value, 16, 16384,
-                                              &a->renderer.shadow.size);
-    case OPTION_VPLS: return gb_cli_int("gbview", "vpls", value, 1, 1 << 24, &p->vpls);
-    case OPTION_TERMS: return parse_terms(value, &a->renderer.terms);
-    case OPTION_BINS: return gb_cli_int("gbview", "bins", value, 1, 64, &p->bins);
-    case OPTION_BOUNCES: return gb_cli_int("gbview", "bounces", value, 1, 8, &p->bounces);
-    case OPTION_PAPER_RULES: p->paper_rules = 1; return 0;
-    case OPTION_BIN_FILTER:
-        return gb_cli_choice("gbview", "bin-filter", value, bin_filters, 2,
-                             &p->visibility_filter);
-    default:
-        return gb_cli_choice("gbview", "topo-visibility", value, visibilities, 3,
-                             &p->topo_visibility);
-    }
-}
+/* The methods' options (indirect_method.h), in the order of gb_method, and
+ * how many: option code OPTION_METHOD_FIRST + k is method_options[k]. */
+enum { MOST_METHOD_OPTIONS = 64 };
+static const gb_method_option *method_options[MOST_METHOD_OPTIONS];
+static int method_option_count;
 
 /* One option into a; 0, else the exit status. */
 static int parse_option(int option, const char *value, void *context)
 {
     arguments *a = context;
+    gb_renderer_options *r = &a->renderer;
     gb_error error;
-    if (option >= OPTION_FLC_NAVG && option <= OPTION_FLC_TILING)
-        return parse_flc_option(option, value, a);
+    if (option >= OPTION_METHOD_FIRST) {
+        const gb_method_option *o = method_options[option - OPTION_METHOD_FIRST];
+        return o->parse(o->name, value, &r->parameters);
+    }
     switch (option) {
     case OPTION_HEADLESS: a->headless = 1; return 0;
-    case OPTION_TIMINGS: a->timings = a->renderer.finish_passes = 1; return 0;
+    case OPTION_TIMINGS: a->timings = r->finish_passes = 1; return 0;
     case OPTION_BAKE: a->bake = value; return 0;
-    case OPTION_NO_SHADOWS: a->renderer.no_shadows = 1; return 0;
-    case OPTION_WRITE_VPLS: a->renderer.parameters.write_vpls = value; return 0;
-    case OPTION_ATLAS: a->renderer.parameters.atlas = value; return 0;
+    case OPTION_NO_SHADOWS: r->no_shadows = 1; return 0;
     case 'o': a->output = value; return 0;
     case 'q': a->quiet = 1; return 0;
     case OPTION_BUDGET:
         a->budget_given = 1;
-        return gb_cli_number("gbview", "budget", value, 0.0, 1e6, &a->renderer.budget_ms);
+        return gb_cli_number("gbview", "budget", value, 0.0, 1e6, &r->budget_ms);
     case OPTION_SUPERSAMPLE:
         return gb_cli_integer("gbview", "supersample", value, 1, 16, &a->supersample);
     case 'c': return gb_cli_integer("gbview", "camera", value, 0, 1 << 30, &a->camera);
@@ -265,8 +176,21 @@ static int parse_option(int option, const char *value, void *context)
         if (gb_method_parse(value, &a->method, &error) == GB_OK)
             return 0;
         return gb_cli_usage_error("gbview", "%s", error.message);
-    default: return parse_renderer_option(option, value, a);
+    case 'r':
+        return gb_cli_size("gbview", "resolution", value, GB_CLI_MAX_IMAGE_SIDE, &r->width,
+                           &r->height);
+    case OPTION_AREA_SAMPLES:
+        return parse_count_or_none("area-samples", value, 4096, &r->shadow.area_samples);
+    case OPTION_ENVIRONMENT_LIGHTS:
+        return gb_cli_int("gbview", "environment-lights", value, 0, 1024,
+                          &a->environment_lights);
+    case OPTION_CASCADE_SIZE:
+        return parse_count_or_none("cascade-size", value, 16384, &r->shadow.cascade_size);
+    case OPTION_SHADOW_SIZE:
+        return gb_cli_int("gbview", "shadow-size", value, 16, 16384, &r->shadow.size);
+    case OPTION_TERMS: return parse_terms(value, &r->terms);
     }
+    abort(); /* an option of the table without its case */
 }
 
 /* The method chosen, if this build has it: GB_CLI_GO_ON, else a usage error. */
@@ -287,14 +211,12 @@ static int check_operands(int count, char **operands, void *context)
     if (count != 1)
         return gb_cli_usage_error("gbview", "expected one SCENE");
     a->scene_path = operands[0];
-    if (a->headless && !a->output && !a->timings && !a->renderer.parameters.write_vpls)
+    if (a->headless && !a->output && !a->timings && !a->renderer.parameters.topo.write_vpls)
         return gb_cli_usage_error("gbview", "--headless writes nothing without -o FILE, "
                                             "--timings or --write-vpls");
     return check_method(a);
 }
 
-static const gb_cli_command command = {"gbview", usage, long_options, parse_option,
-                                       check_operands};
 
 /* The bake of a->bake (*bake NULL without --bake): its files are read when
  * a method asks for them, and a method that needs a missing or bad one
@@ -365,7 +287,7 @@ static gb_result render(const gb_scene *scene, const arguments *a, gb_error *err
 /* Before the work: the image and the VPL set can be written. */
 static gb_result check_outputs(const arguments *a, gb_error *error)
 {
-    const char *vpls = a->renderer.parameters.write_vpls;
+    const char *vpls = a->renderer.parameters.topo.write_vpls;
     gb_result result = a->output ? gb_image_check_output(a->output, error) : GB_OK;
     if (result == GB_OK && vpls)
         result = gb_output_file_check(vpls, error);
@@ -423,8 +345,55 @@ static gb_result run(void *context, gb_error *error)
     return result;
 }
 
+/* One option's help at usage + length, as usage_head's: the option
+ * in a column of HELP_COLUMN, then help, its later lines indented to that
+ * column. The new length. */
+enum { HELP_COLUMN = 26 };
+static int append_option_help(char *usage, size_t size, int length, const gb_method_option *o)
+{
+    int start = length;
+    length += snprintf(usage + length, size - length, "      --%s%s%s", o->name,
+                       o->value_name ? " " : "", o->value_name ? o->value_name : "");
+    int column = length - start < HELP_COLUMN ? HELP_COLUMN - (length - start) : 2;
+    for (const char *line = o->help; *line;) {
+        const char *end = strchr(line, '\n');
+        int n = end ? (int)(end - line) : (int)strlen(line);
+        length += snprintf(usage + length, size - length, "%*s%.*s\n", column, "", n, line);
+        column = HELP_COLUMN;
+        line += end ? n + 1 : n;
+    }
+    return length;
+}
+
+/* The methods' options after own_options in options (GB_CLI_OPTIONS_END
+ * last), and their help lines between usage_head and usage_tail in usage. */
+static void add_method_options(struct option *options, char *usage, size_t size)
+{
+    static const struct option end[] = {GB_CLI_OPTIONS_END};
+    size_t own = sizeof own_options / sizeof own_options[0];
+    memcpy(options, own_options, sizeof own_options);
+    int length = snprintf(usage, size, "%s", usage_head);
+    for (int m = 0; m < GB_METHOD_COUNT; ++m)
+        for (const gb_method_option *o = gb_method_options((gb_method)m); o && o->name; ++o) {
+            int k = method_option_count++;
+            method_options[k] = o;
+            options[own + k] = (struct option){o->name, o->value_name ? required_argument
+                                                                      : no_argument,
+                                               NULL, OPTION_METHOD_FIRST + k};
+            length = append_option_help(usage, size, length, o);
+        }
+    memcpy(options + own + method_option_count, end, sizeof end);
+    snprintf(usage + length, size - length, "%s", usage_tail);
+}
+
 int main(int argc, char **argv)
 {
+    static struct option options[sizeof own_options / sizeof own_options[0] +
+                                 MOST_METHOD_OPTIONS + 4];
+    static char usage[8192];
+    add_method_options(options, usage, sizeof usage);
+    const gb_cli_command command = {.tool = "gbview", .usage = usage, .options = options,
+                                    .option = parse_option, .operands = check_operands};
     return gb_cli_main(&command, argc, argv, run,
                        &(arguments){.environment_lights = -1});
 }

@@ -1,3 +1,4 @@
+/* methods.c — the table of the runtime's GI methods (methods.h). */
 #include "methods.h"
 #include "flc/flc.h"
 #include "flc_iv/flc_iv.h"
@@ -7,39 +8,60 @@
 
 #include <string.h>
 
-static const char *const method_names[GB_METHOD_COUNT] = {
-    "direct", "topo", "octree", "flc", "implicit", "flc-iv",
+/* One line a method, in gb_method's order: its name (--method, the
+ * window's M key), its indirect light (NULL: direct light alone) and its
+ * options (indirect_method.h; NULL: none). A new method adds its line. */
+static const struct {
+    const char *name;
+    const gb_indirect_method *indirect;
+    const gb_method_option *options;
+} methods[GB_METHOD_COUNT] = {
+    [GB_METHOD_DIRECT] = {"direct", NULL, NULL},
+    [GB_METHOD_TOPO] = {"topo", &gb_topo_method, gb_topo_options},
+    [GB_METHOD_OCTREE] = {"octree", &gb_octree_method, gb_octree_options},
+    [GB_METHOD_FLC] = {"flc", &gb_flc_method, gb_flc_options},
+    [GB_METHOD_IMPLICIT] = {"implicit", &gb_implicit_method, gb_implicit_options},
+    [GB_METHOD_FLC_IV] = {"flc-iv", &gb_flc_iv_method, gb_flc_iv_options},
 };
 
 const char *gb_method_name(gb_method method)
 {
-    return method >= 0 && method < GB_METHOD_COUNT ? method_names[method] : "?";
+    return method >= 0 && method < GB_METHOD_COUNT ? methods[method].name : "?";
+}
+
+/* The names of the methods (those this build has, when implemented_only),
+ * ", " between them. */
+static void list_methods(int implemented_only, char *list, size_t size)
+{
+    list[0] = '\0';
+    for (int m = 0; m < GB_METHOD_COUNT; ++m)
+        if (!implemented_only || gb_method_implemented((gb_method)m)) {
+            if (list[0])
+                strncat(list, ", ", size - strlen(list) - 1);
+            strncat(list, methods[m].name, size - strlen(list) - 1);
+        }
 }
 
 gb_result gb_method_parse(const char *name, gb_method *method, gb_error *error)
 {
     for (int m = 0; m < GB_METHOD_COUNT; ++m)
-        if (strcmp(name, method_names[m]) == 0) {
+        if (strcmp(name, methods[m].name) == 0) {
             *method = (gb_method)m;
             return GB_OK;
         }
-    return gb_fail(error, GB_ERROR_ARGUMENT,
-                   "unknown method '%s' (methods: direct, topo, octree, flc, implicit, flc-iv)", name);
+    char list[128];
+    list_methods(0, list, sizeof list);
+    return gb_fail(error, GB_ERROR_ARGUMENT, "unknown method '%s' (methods: %s)", name, list);
 }
-
-/* One entry a method: its indirect light, NULL until it lands. */
-static const gb_indirect_method *const indirect_methods[GB_METHOD_COUNT] = {
-    [GB_METHOD_DIRECT] = NULL,
-    [GB_METHOD_TOPO] = &gb_topo_method,
-    [GB_METHOD_OCTREE] = &gb_octree_method,
-    [GB_METHOD_FLC] = &gb_flc_method,
-    [GB_METHOD_IMPLICIT] = &gb_implicit_method,
-    [GB_METHOD_FLC_IV] = &gb_flc_iv_method,
-};
 
 const gb_indirect_method *gb_method_indirect(gb_method method)
 {
-    return method >= 0 && method < GB_METHOD_COUNT ? indirect_methods[method] : NULL;
+    return method >= 0 && method < GB_METHOD_COUNT ? methods[method].indirect : NULL;
+}
+
+const gb_method_option *gb_method_options(gb_method method)
+{
+    return method >= 0 && method < GB_METHOD_COUNT ? methods[method].options : NULL;
 }
 
 int gb_method_implemented(gb_method method)
@@ -51,13 +73,8 @@ gb_result gb_method_check(gb_method method, gb_error *error)
 {
     if (gb_method_implemented(method))
         return GB_OK;
-    char list[128] = "";
-    for (int m = 0; m < GB_METHOD_COUNT; ++m)
-        if (gb_method_implemented((gb_method)m)) {
-            if (list[0])
-                strncat(list, ", ", sizeof list - strlen(list) - 1);
-            strncat(list, method_names[m], sizeof list - strlen(list) - 1);
-        }
+    char list[128];
+    list_methods(1, list, sizeof list);
     return gb_fail(error, GB_ERROR_UNSUPPORTED,
                    "method '%s' is not available in this build (available: %s)",
                    gb_method_name(method), list);

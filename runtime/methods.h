@@ -8,8 +8,10 @@
  *   flc       Forward Light Cuts (Laurent 2016)
  *   implicit  implicit visibility (Dong 2007)
  *   flc-iv    FLC shadowed by implicit visibility's bins (no seed paper)
- * Each GI method lands in its own folder under runtime/ (runtime/topo/ ...)
- * and lists its gb_indirect_method (indirect_method.h) in methods.c.
+ * Each GI method lives in its own folder under runtime/ (runtime/topo/ ...)
+ * with its gb_indirect_method (indirect_method.h), its options and
+ * parameters (indirect_method.h), and has one line in methods.c's table,
+ * one in gb_method and one in method_parameters.h.
  */
 #ifndef GB_METHODS_H
 #define GB_METHODS_H
@@ -40,6 +42,9 @@ gb_result gb_method_parse(const char *name, gb_method *method, gb_error *error);
 /* The method's indirect light, or NULL for direct and for methods this
  * build lacks. */
 const gb_indirect_method *gb_method_indirect(gb_method method);
+/* The method's options (indirect_method.h), ended by a NULL name, or NULL
+ * when it has none. */
+const gb_method_option *gb_method_options(gb_method method);
 /* Nonzero when this build can render method. */
 int gb_method_implemented(gb_method method);
 /* GB_ERROR_UNSUPPORTED, naming the methods that are, when it is not. */

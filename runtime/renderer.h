@@ -33,6 +33,7 @@
 #include "gl_util.h"
 #include "gpu_scene.h"
 #include "image.h"
+#include "method_parameters.h"
 #include "methods.h"
 #include "output.h"
 #include "progress.h"

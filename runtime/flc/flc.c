@@ -8,6 +8,7 @@
 
 #include "gbuffer.h"
 #include "gl_util.h"
+#include "method_parameters.h"
 #include "progress.h"
 
 /* The seed of v_rand (per vertex, at load) and of u_rand (per frame). */
@@ -87,7 +88,7 @@ typedef struct flc_state {
     gb_flc_pass_times times;
 } flc_state;
 
-void gb_flc_scene_levels(const gb_scene *scene, const gb_method_parameters *parameters,
+void gb_flc_scene_levels(const gb_scene *scene, const gb_flc_parameters *parameters,
                          gb_flc_levels *levels)
 {
     double diagonal = 0.0;
@@ -96,11 +97,11 @@ void gb_flc_scene_levels(const gb_scene *scene, const gb_method_parameters *para
         diagonal += side * side;
     }
     double R_scene = 0.5 * sqrt(diagonal);
-    double N_avg = parameters->flc_n_avg > 0.0f ? parameters->flc_n_avg : GB_FLC_DEFAULT_N_AVG;
-    double mu = parameters->flc_mu > 1.0f ? parameters->flc_mu : GB_FLC_DEFAULT_MU;
-    int count = parameters->flc_levels > 0 ? parameters->flc_levels : GB_FLC_DEFAULT_LEVELS;
+    double N_avg = parameters->n_avg > 0.0f ? parameters->n_avg : GB_FLC_DEFAULT_N_AVG;
+    double mu = parameters->mu > 1.0f ? parameters->mu : GB_FLC_DEFAULT_MU;
+    int count = parameters->levels > 0 ? parameters->levels : GB_FLC_DEFAULT_LEVELS;
     gb_flc_levels_make(GB_FLC_D_NEAR_FRACTION * R_scene, N_avg, mu, count - 1, levels);
-    levels->keep_all = parameters->flc_levels == GB_FLC_NO_DECIMATION;
+    levels->keep_all = parameters->levels == GB_FLC_NO_DECIMATION;
 }
 
 /* "#version 450 core" and the constants the GLSL shares with
@@ -290,14 +291,14 @@ static float default_epsilon(const gb_flc_levels *levels)
 gb_result gb_flc_create(const gb_indirect_setup *setup, const gb_flc_visibility *visibility,
                         void **state, gb_error *error)
 {
-    const gb_method_parameters *parameters = setup->parameters;
-    if (parameters->flc_tiling < 0 || parameters->flc_tiling > GB_FLC_MAX_TILING)
+    const gb_flc_parameters *parameters = &setup->parameters->flc;
+    if (parameters->tiling < 0 || parameters->tiling > GB_FLC_MAX_TILING)
         return gb_fail(error, GB_ERROR_ARGUMENT, "flc: tiling %d is not in 0..%d",
-                       parameters->flc_tiling, GB_FLC_MAX_TILING);
-    if (parameters->flc_levels > GB_FLC_MAX_LEVELS ||
-        (parameters->flc_levels < 0 && parameters->flc_levels != GB_FLC_NO_DECIMATION))
+                       parameters->tiling, GB_FLC_MAX_TILING);
+    if (parameters->levels > GB_FLC_MAX_LEVELS ||
+        (parameters->levels < 0 && parameters->levels != GB_FLC_NO_DECIMATION))
         return gb_fail(error, GB_ERROR_ARGUMENT, "flc: %d levels: at most %d",
-                       parameters->flc_levels, GB_FLC_MAX_LEVELS);
+                       parameters->levels, GB_FLC_MAX_LEVELS);
     flc_state *s = calloc(1, sizeof *s);
     if (!s)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "flc: out of memory");
@@ -305,9 +306,9 @@ gb_result gb_flc_create(const gb_indirect_setup *setup, const gb_flc_visibility 
     s->visibility.glsl = unshadowed_shader;
     if (visibility)
         s->visibility = *visibility;
-    s->tiling = parameters->flc_tiling;
+    s->tiling = parameters->tiling;
     gb_flc_scene_levels(setup->scene, parameters, &s->levels);
-    s->epsilon = parameters->flc_epsilon > 0.0f ? parameters->flc_epsilon
+    s->epsilon = parameters->epsilon > 0.0f ? parameters->epsilon
                                                 : default_epsilon(&s->levels);
     gb_result result = build_programs(s, error);
     if (result == GB_OK)

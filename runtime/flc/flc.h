@@ -71,6 +71,18 @@ enum { GB_FLC_CONVERGED_SAMPLES = 256 };
 
 extern const gb_indirect_method gb_flc_method;
 
+/* flc's gbview options (flc_options.c); zero fields: the defaults. */
+typedef struct gb_flc_parameters {
+    float mu;                   /* mu > 1 of S_k = S0 mu^k, Eq. 17 (--mu; 2) */
+    float n_avg;                /* N_avg of Eq. 1 (--navg; 256) */
+    float epsilon;              /* the distance clamp epsilon, world units
+                                   (--epsilon; 0.01 x the scene's radius) */
+    int tiling;                 /* 4^tiling interleaved tiles (--tiling; 0) */
+    int levels;                 /* N + 1, the number of levels (--levels; 6), or
+                                   GB_FLC_NO_DECIMATION (--no-decimation) */
+} gb_flc_parameters;
+extern const gb_method_option gb_flc_options[];
+
 /* A visibility term for the splatting, for methods built on FLC
  * (runtime/flc_iv/): glsl defines
  *   float flc_visibility(ivec2 pixel, vec3 x, vec3 y)
@@ -94,7 +106,7 @@ void gb_flc_destroy(void *state);
 /* The levels of scene for parameters (zero fields: defaults), R_scene half
  * the diagonal of its bounds; flc_levels GB_FLC_NO_DECIMATION: the default
  * count of levels with keep_all set. */
-void gb_flc_scene_levels(const gb_scene *scene, const gb_method_parameters *parameters,
+void gb_flc_scene_levels(const gb_scene *scene, const gb_flc_parameters *parameters,
                          gb_flc_levels *levels);
 
 /* Per-pass times (the paper's Table 1), summed over the frames drawn while

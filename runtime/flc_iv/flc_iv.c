@@ -20,6 +20,7 @@
 #include "flc/flc.h"
 #include "gl_util.h"
 #include "implicit/implicit.h"
+#include "method_parameters.h"
 
 enum {
     SSBO_DEPTHS = 11,
@@ -245,13 +246,13 @@ static gb_result flc_iv_prepare(const gb_indirect_setup *setup, void **prepared,
 {
     *prepared = NULL;
     const gb_method_parameters *p = setup->parameters;
-    int bins = p->bins ? p->bins : DEFAULT_BINS;
+    int bins = p->implicit.bins ? p->implicit.bins : DEFAULT_BINS;
     if (bins < 1 || bins > 64)
         return gb_fail(error, GB_ERROR_ARGUMENT, "flc-iv: bins %d is not in 1..64", bins);
     flc_iv_state *s = calloc(1, sizeof *s);
     if (!s)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "flc-iv: out of memory");
-    s->bin_filter = p->visibility_filter;
+    s->bin_filter = p->flc_iv.bin_filter;
     gb_result result = build_depth_maps(s, setup, bins, error);
     if (result == GB_OK)
         result = pack_depth_maps(s, setup->scene, error);

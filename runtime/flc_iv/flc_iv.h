@@ -38,9 +38,15 @@
 #define GB_FLC_IV_BIAS_ELEMENT 1.0f
 #define GB_FLC_IV_DEPTH_FAR 65534.0f
 
-/* gb_method_parameters.visibility_filter */
 enum { GB_FLC_IV_BILINEAR = 0, GB_FLC_IV_NEAREST = 1 };
 
 extern const gb_indirect_method gb_flc_iv_method;
+
+/* flc-iv's own gbview option (flc_iv_options.c); it reads flc's and
+ * implicit's parameters besides. */
+typedef struct gb_flc_iv_parameters {
+    int bin_filter;             /* GB_FLC_IV_BILINEAR (0) or _NEAREST (--bin-filter) */
+} gb_flc_iv_parameters;
+extern const gb_method_option gb_flc_iv_options[];
 
 #endif

@@ -35,6 +35,7 @@
 
 #include "gl_util.h"
 #include "indirect_method.h"
+#include "method_parameters.h"
 #include "progress.h"
 
 enum { UNIT_INCIDENT = 10, DEFAULT_BINS = 12, DEFAULT_BOUNCES = 1 };
@@ -134,7 +135,7 @@ static void implicit_destroy(void *state)
     implicit_discard(s);
 }
 
-static gb_result check_parameters(const gb_method_parameters *p, int *bins, int *bounces,
+static gb_result check_parameters(const gb_implicit_parameters *p, int *bins, int *bounces,
                                   gb_error *error)
 {
     *bins = p && p->bins ? p->bins : DEFAULT_BINS;
@@ -224,7 +225,7 @@ static gb_result implicit_prepare(const gb_indirect_setup *setup, void **prepare
 {
     *prepared = NULL;
     int bins, bounces;
-    gb_result result = check_parameters(setup->parameters, &bins, &bounces, error);
+    gb_result result = check_parameters(setup->parameters ? &setup->parameters->implicit : NULL, &bins, &bounces, error);
     if (result != GB_OK)
         return result;
     implicit_state *s = calloc(1, sizeof *s);
@@ -232,7 +233,7 @@ static gb_result implicit_prepare(const gb_indirect_setup *setup, void **prepare
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "implicit: out of memory");
     s->scene = setup->scene;
     s->bounces = bounces;
-    s->paper_rules = setup->parameters && setup->parameters->paper_rules;
+    s->paper_rules = setup->parameters && setup->parameters->implicit.paper_rules;
     s->progress = setup->progress;
     s->progress_user = setup->progress_user;
     result = build(s, bins, error);

@@ -58,6 +58,7 @@
 #include "implicit_links.h"
 #include "implicit_model.h"
 #include "implicit_update.h"
+#include "indirect_method.h"
 
 /* implicit.c: the GI method listed in methods.c. It runs steps 4-7 again
  * each frame while they took under this (the paper's frames: 0.11-0.22 s). */
@@ -71,7 +72,16 @@ typedef struct gb_implicit_step_times {
 } gb_implicit_step_times;
 void gb_implicit_times(const void *method_state, gb_implicit_step_times *times);
 
-struct gb_indirect_method;
-extern const struct gb_indirect_method gb_implicit_method;
+extern const gb_indirect_method gb_implicit_method;
+
+/* implicit's gbview options (implicit_options.c), which flc-iv reads too;
+ * zero fields: the defaults. */
+typedef struct gb_implicit_parameters {
+    int bins;                   /* cube-map bins per face edge (--bins; 12) */
+    int bounces;                /* 1 or 2 (--bounces; 1) */
+    int paper_rules;            /* 1: the links by the paper's rules alone,
+                                   faster and coarser (--paper-rules) */
+} gb_implicit_parameters;
+extern const gb_method_option gb_implicit_options[];
 
 #endif

@@ -10,6 +10,7 @@
 #include "gl_util.h"
 #include "indirect_method.h"
 #include "light_octree.h"
+#include "method_parameters.h"
 #include "octree_atlas.h"
 
 enum { SSBO_NODES = 0, SSBO_LEAVES = 1, SSBO_VDLS = 2 };
@@ -86,7 +87,7 @@ static void bind_buffers(const octree_state *s)
 static gb_result find_atlas(const gb_indirect_setup *setup, gb_atlas *own,
                             const gb_atlas **atlas, gb_error *error)
 {
-    const char *path = setup->parameters->atlas;
+    const char *path = setup->parameters->octree.atlas;
     *atlas = NULL;
     if (path && strcmp(path, "none") == 0)
         return GB_OK;

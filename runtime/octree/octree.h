@@ -46,8 +46,17 @@
 #ifndef GB_OCTREE_H
 #define GB_OCTREE_H
 
-struct gb_indirect_method;
-extern const struct gb_indirect_method gb_octree_method;
+#include "indirect_method.h"
+
+extern const gb_indirect_method gb_octree_method;
+
+/* octree's gbview option (octree_options.c). */
+typedef struct gb_octree_parameters {
+    const char *atlas;          /* show it through this atlas file (--atlas);
+                                   "none": the walk; NULL: the bake's NAME.atlas
+                                   when it has one, else the walk */
+} gb_octree_parameters;
+extern const gb_method_option gb_octree_options[];
 
 /* The atlas of a state gb_octree_method's create made (octree_atlas.h), or
  * NULL when it shows the walk: for tests. */

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "indirect_method.h"
+#include "method_parameters.h"
 #include "progress.h"
 #include "topo.h"
 
@@ -93,11 +94,11 @@ static gb_result load_clusters(topo_state *t, const gb_bake *bake, gb_error *err
 
 static gb_result make_vpls(topo_state *t, const gb_indirect_setup *setup, gb_error *error)
 {
-    int count = setup->parameters->vpls > 0 ? setup->parameters->vpls : DEFAULT_VPLS;
+    int count = setup->parameters->topo.vpls > 0 ? setup->parameters->topo.vpls : DEFAULT_VPLS;
     gb_result result = gb_topo_vpls_generate(setup->scene, (uint32_t)count, VPL_SEED, &t->vpls,
                                              error);
-    if (result == GB_OK && setup->parameters->write_vpls)
-        result = gb_vpl_write(setup->parameters->write_vpls, &t->vpls, error);
+    if (result == GB_OK && setup->parameters->topo.write_vpls)
+        result = gb_vpl_write(setup->parameters->topo.write_vpls, &t->vpls, error);
     if (result == GB_OK && !(t->vpl_cluster = malloc((t->vpls.count + 1u) * sizeof(int32_t))))
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "topo: out of memory");
     for (uint32_t i = 0; result == GB_OK && i < t->vpls.count; ++i)
@@ -133,14 +134,14 @@ static gb_result topo_create(const gb_indirect_setup *setup, void **state, gb_er
     gb_result result = need_bake(setup->bake, error);
     if (result != GB_OK)
         return result;
-    if (setup->parameters->topo_visibility < GB_TOPO_FULL ||
-        setup->parameters->topo_visibility > GB_TOPO_NONE)
+    if (setup->parameters->topo.visibility < GB_TOPO_FULL ||
+        setup->parameters->topo.visibility > GB_TOPO_NONE)
         return gb_fail(error, GB_ERROR_ARGUMENT, "topo: bad visibility mode %d",
-                       setup->parameters->topo_visibility);
+                       setup->parameters->topo.visibility);
     topo_state *t = calloc(1, sizeof *t);
     if (!t)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "topo: out of memory");
-    t->visibility = (gb_topo_visibility)setup->parameters->topo_visibility;
+    t->visibility = (gb_topo_visibility)setup->parameters->topo.visibility;
     result = load_clusters(t, setup->bake, error);
     if (result == GB_OK)
         result = make_vpls(t, setup, error);

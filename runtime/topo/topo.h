@@ -53,6 +53,14 @@ typedef enum gb_topo_visibility {
     GB_TOPO_NONE,               /* every VPL everywhere: no shadows on indirect */
 } gb_topo_visibility;
 
+/* topo's gbview options (topo_options.c); zero fields: the defaults. */
+typedef struct gb_topo_parameters {
+    int vpls;                   /* VPLs traced from the lights (--vpls) */
+    const char *write_vpls;     /* write the VPL set here (--write-vpls) */
+    int visibility;             /* a gb_topo_visibility (--topo-visibility) */
+} gb_topo_parameters;
+extern const gb_method_option gb_topo_options[];
+
 enum { GB_TOPO_NO_GATE = 0xffffffffu };
 
 /* ---- VPLs (topo_vpls.c) ------------------------------------------------

@@ -104,6 +104,25 @@ expect_failure "a bad resolution" 2 "^gbview: --resolution: '0x5' is not WxH wit
 
 "$tool" --help >"$dir/out"
 ok "$([ $? = 0 ] && grep -q "^usage: gbview" "$dir/out"; echo $?)" "--help on stdout, status 0"
+# The methods' options, declared in their folders (runtime/*/..._options.c),
+# each once in the help and parsed as common/cli.h says.
+for option in vpls write-vpls topo-visibility atlas navg mu levels epsilon tiling \
+    no-decimation bins bounces paper-rules bin-filter; do
+    listed=$(grep -c "^      --$option[ =]" "$dir/out")
+    ok "$([ "$listed" = 1 ]; echo $?)" "--help lists --$option once (got $listed)"
+done
+expect_failure "implicit's --bins out of range" 2 \
+    "^gbview: --bins: '0' is not an integer in 1\.\.64$" $small --bins 0 "$scene" -o "$dir/x.png"
+expect_failure "flc's --levels out of range" 2 \
+    "^gbview: --levels: '17' is not an integer in 1\.\.16$" $small --levels 17 "$scene" -o "$dir/x.png"
+expect_failure "topo's --topo-visibility not a choice" 2 \
+    "^gbview: --topo-visibility: 'some' is not one of full, clusters, none$" \
+    $small --topo-visibility some "$scene" -o "$dir/x.png"
+expect_failure "flc-iv's --bin-filter not a choice" 2 \
+    "^gbview: --bin-filter: 'cubic' is not one of bilinear, nearest$" \
+    $small --bin-filter cubic "$scene" -o "$dir/x.png"
+expect_failure "implicit's flag --paper-rules given a value" 2 \
+    "option '--paper-rules' takes no value" $small --paper-rules=1 "$scene" -o "$dir/x.png"
 "$tool" --version >"$dir/out"
 ok "$([ $? = 0 ] && grep -q "gbview (gibake)" "$dir/out"; echo $?)" "--version"
 

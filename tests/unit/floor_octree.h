@@ -208,7 +208,7 @@ static inline int floor_octree_render(const gb_scene *scene, const gb_light_octr
         gb_headless_options options = {
             .renderer = {.method = GB_METHOD_OCTREE, .terms = GB_TERMS_INDIRECT,
                          .width = size, .height = size, .bake = bake,
-                         .parameters = {.atlas = atlas ? atlas_path : "none"}},
+                         .parameters = {.octree = {.atlas = atlas ? atlas_path : "none"}}},
         };
         ok = render_headless(scene, &options, image);
     }

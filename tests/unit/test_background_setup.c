@@ -217,7 +217,7 @@ static void test_no_prepare(void)
  * would show). */
 static void test_implicit_prepared(method_view *v)
 {
-    gb_method_parameters parameters = {.bins = 8, .bounces = 2};
+    gb_method_parameters parameters = {.implicit = {.bins = 8, .bounces = 2}};
     gb_indirect_setup setup = method_view_setup(v, &parameters);
     gb_image plain, prepared_image;
     if (!CHECK(method_render(v, &gb_implicit_method, &setup, 1, 1, 0.0, &plain),

@@ -121,12 +121,12 @@ static void test_levels(void)
     for (int i = 0; i < 1000; ++i)
         kept &= gb_flc_level(&l, (float)i / 1000.0f, 1e-3f * l.S0) == l.N;
     CHECK(kept, "no decimation (keep_all): every triangle kept, at level N");
-    gb_method_parameters parameters = {.flc_levels = GB_FLC_NO_DECIMATION};
+    gb_flc_parameters parameters = {.levels = GB_FLC_NO_DECIMATION};
     gb_scene scene;
     memset(&scene, 0, sizeof scene);
     build_cornell_box(&scene, SIZE, SIZE);
     gb_flc_levels defaults, none;
-    gb_flc_scene_levels(&scene, &(gb_method_parameters){0}, &defaults);
+    gb_flc_scene_levels(&scene, &(gb_flc_parameters){0}, &defaults);
     gb_flc_scene_levels(&scene, &parameters, &none);
     CHECK(none.keep_all && !defaults.keep_all && none.N == defaults.N &&
               none.S_bar[none.N] == defaults.S_bar[defaults.N],
@@ -220,7 +220,7 @@ static uint64_t gl_triangles(uint32_t m)
 static void check_subdivision(const gb_scene *scene, const char *name)
 {
     gb_flc_levels l;
-    gb_method_parameters parameters = {0};
+    gb_flc_parameters parameters = {0};
     gb_flc_scene_levels(scene, &parameters, &l);
     gb_flc_triangles list;
     gb_error error;
@@ -333,7 +333,7 @@ static int render_flc_levels(const gb_scene *scene, int frames, int tiling, int 
     gb_headless_options options = {
         .renderer = {.width = SIZE, .height = SIZE, .method = GB_METHOD_FLC,
                      .terms = GB_TERMS_INDIRECT,
-                     .parameters = {.flc_tiling = tiling, .flc_levels = levels}},
+                     .parameters = {.flc = {.tiling = tiling, .levels = levels}}},
         .frames = frames,
     };
     return render_headless(scene, &options, image);
@@ -434,7 +434,7 @@ static int measured_frames(const gb_scene *scene, int levels, gb_flc_pass_times 
     }
     gb_renderer_options options = {.width = SIZE, .height = SIZE, .method = GB_METHOD_FLC,
                                    .terms = GB_TERMS_INDIRECT,
-                                   .parameters = {.flc_levels = levels}};
+                                   .parameters = {.flc = {.levels = levels}}};
     gb_renderer renderer;
     gb_result result = gb_renderer_create(scene, &options, &context.errors, &renderer, &error);
     for (int i = 0; i < 3 && result == GB_OK; ++i) {
@@ -458,7 +458,7 @@ static int measured_frames(const gb_scene *scene, int levels, gb_flc_pass_times 
 static uint64_t tessellated_count(const gb_scene *scene, int levels)
 {
     gb_flc_levels l;
-    gb_flc_scene_levels(scene, &(gb_method_parameters){.flc_levels = levels}, &l);
+    gb_flc_scene_levels(scene, &(gb_flc_parameters){.levels = levels}, &l);
     uint64_t count = 0;
     for (uint32_t t = 0; t < scene->triangle_count; ++t) {
         uint32_t c, m;
@@ -508,7 +508,7 @@ static void test_extreme_render(void)
     gb_image image;
     gb_headless_options options = {
         .renderer = {.method = GB_METHOD_FLC, .terms = GB_TERMS_INDIRECT,
-                     .parameters = {.flc_n_avg = 64}},
+                     .parameters = {.flc = {.n_avg = 64}}},
         .frames = 2,
     };
     if (CHECK(render_headless(&scene, &options, &image),

@@ -27,7 +27,8 @@ enum { SIZE = 64, IMAGES = 2, PARTS = 3, CAP_SIZE = 8 };
 
 /* Every method's parameters here: 6 x 8 x 8 bins (quicker links than the
  * default), flc's N_avg above. */
-static const gb_method_parameters test_parameters = {.bins = 8, .flc_n_avg = FLC_N_AVG};
+static const gb_method_parameters test_parameters = {.implicit = {.bins = 8},
+                                                     .flc = {.n_avg = FLC_N_AVG}};
 
 typedef struct method_case {
     const char *name;
@@ -36,7 +37,7 @@ typedef struct method_case {
 } method_case;
 
 /* The regular (and divergent) VPL triangles flc makes of scene. */
-static uint32_t flc_regular(const gb_scene *scene, const gb_method_parameters *parameters,
+static uint32_t flc_regular(const gb_scene *scene, const gb_flc_parameters *parameters,
                             uint32_t *divergent)
 {
     gb_flc_levels levels;
@@ -163,7 +164,7 @@ int main(void)
     gb_scene scene;
     if (!CHECK(load_cornell(&scene), "the Cornell box loads"))
         return tap_done();
-    uint32_t divergent, regular = flc_regular(&scene, &test_parameters, &divergent);
+    uint32_t divergent, regular = flc_regular(&scene, &test_parameters.flc, &divergent);
     printf("# flc, N_avg %g: %u regular VPL triangles, %u divergent\n", FLC_N_AVG, regular,
            divergent);
     CHECK(regular >= PARTS && divergent > 0,

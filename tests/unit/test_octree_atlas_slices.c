@@ -78,7 +78,7 @@ typedef struct rig {
  * path) or by the walk ("none"); NULL with the reason printed. */
 static void *create_state(const rig *r, const char *atlas)
 {
-    gb_method_parameters parameters = {.atlas = atlas};
+    gb_method_parameters parameters = {.octree = {.atlas = atlas}};
     gb_indirect_setup setup = {
         .scene = r->scene, .gpu_scene = &r->renderer.gpu_scene,
         .shadows = &r->renderer.shadows, .bake = r->bake, .parameters = &parameters,
