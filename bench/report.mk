@@ -1,8 +1,8 @@
 # report.mk — make report: every method's speed against its error, from a
-# sweep file (included by the Makefile; README, "make report").
+# sweep file (included by the Makefile; docs/usage.md, "make report").
 #
 #   make report [SWEEP=f] [FAST=1] [REPORT=dir] [BIN=dir]   -> $(REPORT)/index.html
-#   make readme-figures                                      the README's tables
+#   make readme-figures                                      the report's tables in docs/figures.md
 #
 # bench/report_rules.sh turns the sweep into $(REPORT)/rules.mk: one rule per
 # bake configuration (a recursive make of the bake rules above into
@@ -58,5 +58,5 @@ endif
 
 readme-figures:
 	+$(MAKE) report
-	sh bench/report_readme.sh $(REPORT)/readme-table.md README.md report
-	sh bench/report_readme.sh $(REPORT)/readme-segment-table.md README.md segment
+	sh bench/report_readme.sh $(REPORT)/readme-table.md docs/figures.md report
+	sh bench/report_readme.sh $(REPORT)/readme-segment-table.md docs/figures.md segment

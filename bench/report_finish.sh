@@ -6,7 +6,7 @@
 # imgdiff's relative MSE with the 0.1 % largest pixel errors left out, for
 # the time to the image) into pareto.csv, each topo bake's segment --evaluate into
 # segments.csv, the plots (gnuplot, PNG and SVG) into plots/, the page
-# index.html and the README's tables readme-table.md and
+# index.html and the tables of docs/figures.md, readme-table.md and
 # readme-segment-table.md.
 #
 # Each point gets the direct pass's error of its scene and size (the column
@@ -176,7 +176,7 @@ else
     echo "report_finish.sh: gnuplot not found (Debian gnuplot-nox): no plots" >&2
 fi
 
-# The README table: each scene's Pareto front and the best under budgets.
+# docs/figures.md's report table: each scene's Pareto front and the best under budgets.
 date=$(date -u +%Y-%m-%d)
 load=$(cut -d ' ' -f 1-3 /proc/loadavg 2>/dev/null || echo '?')
 awk -F, -v sweep="$sweep" -v date="$date" -v load="$load" '
@@ -191,7 +191,7 @@ awk -F, -v sweep="$sweep" -v date="$date" -v load="$load" '
             printf "| %s | %s | %s | %.1f | %.5f | %.5f | %.5f | %s | %s |\n", f[1], f[2], f[3], f[4], f[9], f[5], f[6], (f[10] == "" ? "-" : sprintf("%.2f", f[10])), (f[7] == "" ? "-" : f[7]) }
     }' pareto.csv >readme-table.md
 
-# The README's segment table, from segments.csv.
+# docs/figures.md's segment table, from segments.csv.
 awk -F, -v sweep="$sweep" -v date="$date" '
     NR == 1 { next }
     { rows[++n] = $0 }

@@ -1,8 +1,9 @@
 #!/bin/sh
-# report_readme.sh TABLE README [NAME] — puts TABLE (one of make report's
-# readme-*.md) into README between the lines <!-- NAME:begin --> and
-# <!-- NAME:end --> (NAME: report by default), replacing what was there.
-# README is left as it was if a marker is missing or TABLE is empty.
+# report_readme.sh TABLE FILE [NAME] — puts TABLE (one of make report's
+# readme-*.md) into FILE (make readme-figures: docs/figures.md) between the
+# lines <!-- NAME:begin --> and <!-- NAME:end --> (NAME: report by
+# default), replacing what was there. FILE is left as it was if a marker is
+# missing or TABLE is empty.
 set -e
 table=$1 readme=$2 name=${3:-report}
 begin="<!-- $name:begin -->" end="<!-- $name:end -->"

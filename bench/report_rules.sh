@@ -98,7 +98,7 @@ $1 == "set" {
             bakes[bake] = 1
             printf "report-bake/%s:\n\t+$(MAKE) --no-print-directory REPORT_STAGE= REPORT_BAKE=1 TIME_BAKE=1 $(REPORT_OLD_TOOLS) BAKE=$(REPORT)/bake/%s SCENE=%s VOXELIZE_FLAGS=\"-r %s\" %s $(REPORT)/bake/%s/%s.grid.vdb\n\n", bake, bake, file, p["voxels"], bakefile, bake, base
             bakelist = bakelist " report-bake/" bake
-            # segment --evaluate of this bake (for the segment table of the README).
+            # segment --evaluate of this bake (for the segment table of docs/figures.md).
             evaluation = "$(REPORT)/bake/" bake "/segment-evaluate.txt"
             printf "%s: %s $(REPORT)/bake/%s/%s.grid.vdb $(call report_tool,segment)\n\t$(BIN)/segment --evaluate --quiet --pairs 100000 --seed 0 %s %s $(REPORT)/bake/%s/%s.grid.vdb >$@.tmp && mv $@.tmp $@\n\n", evaluation, bakefile, bake, base, file, bakefile, bake, base
             evaluations = evaluations " " evaluation

@@ -1,6 +1,6 @@
 #!/bin/sh
 # sweep_voxels.sh — a parameter sweep with nothing but make and a shell loop
-# (README, "make bake"): one scene baked at several voxel resolutions, each
+# (docs/usage.md, "make bake"): one scene baked at several voxel resolutions, each
 # into its own BAKE folder side by side, then each bake's clusters and gates
 # and segment --evaluate's precision and recall. Rerun it and only what
 # changed is baked again.

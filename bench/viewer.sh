@@ -102,7 +102,7 @@ measure() {
     if ! wait_for ', presented$|, presented, latency' "$dir/log" "$VIEWER_FIRST_LIMIT"; then
         kill $pid 2>/dev/null
         wait $pid 2>/dev/null
-        if [ -z "$retried" ]; then  # once: see the README's note on a stuck window
+        if [ -z "$retried" ]; then  # once: a run that shows no image is tried once more
             retried=1
             measure "$@"
         else

@@ -1,78 +1,25 @@
 /* implicit_links.c — the hierarchical link structure (Dong 2007, 4.2):
- *
  * CreateHierarchicalLinks links the root of all with itself (every pair of
- * its children, recursively: implicit_hierarchy.c's tree over the
- * segments' roots, which stands for the paper's pairs of charts). A node
- * of several segments has no side it faces: the tests along its normal
- * below pass for it. Before a link
- * between A and B is made, the two rules of 4.2.2:
- *   1. when B seen from A covers more solid angle (area / r^2) than the bin
- *      the link falls in, B is subdivided (and A seen from B alike; the
- *      larger one first). Here "more than GB_IMPLICIT_SPLIT = 0.1 of the
- *      bin": with the paper's whole bin, a cluster's centre and a smaller
- *      node in the same bin compete by centre distance, and an area light
- *      0.5 mm under the Cornell box's ceiling lost a fifth of its light to
- *      ceiling clusters (hierarchical against brute force: relative RMS
- *      0.42 at 1, 0.22 at 0.25, 0.085 at 0.1, element size 40 mm);
- *   2. each bin keeps only its shortest link: a longer one is not stored.
- * Links are stored at both ends, each in its own bin. Surfaces reflect on
- * both sides (common/brdf.h, as the reference renders them), so an
- * element's bins cover the whole sphere of directions: those above its
- * plane are its front's, those below its back's (implicit_link_lists.c
- * makes a list of each), and a link may see the other node's front or its
- * back. The paper's models are closed and consistently wound, many scenes
- * are not: the staircase's far wall faces out of the scene, and its room
- * sees it, and gathers through it, from behind. Only the elements of an
- * open part of the mesh have a back (implicit_closed_parts.h): a closed
- * part's back faces into the volume it closes, and its bins are those
- * above its plane alone, as in the paper. Pairs that cannot see each
- * other (all of B's box and disc within A's plane, the lowest and highest
- * points of A's box along A's normal, nor A's within B's) are not linked,
- * which keeps a planar segment from linking with itself; a disc that
- * reaches out of the other's plane is linked even when its centre does
- * not (an element on the edge of a wall).
- * Decided here: a pair is "mixed" where the side of A that has B and the
- * side of B that A sees differ (A's front sees B's back, or A's back B's
- * front; A in B's plane sees neither). On a closed model wound
- * consistently that happens only past a
- * convex edge, where a disc reaching over A's plane stands for no surface
- * (the box's neighbouring face): there B's disc covers half its radius
- * (BACK_SHRINK), and the pair is split by rule 1 at 0.3 of a bin
- * (ONE_WAY_SPLIT). Both rules are symmetric: a model with every normal
- * flipped (a room wound outward) links as the model does.
- *
- * One addition to the paper: a link stored in the one bin of its centre
- * leaves holes: a leaf element wider than a bin, or a node that straddles
- * bins, covers bins it is not stored in, and those would see "the
- * environment" or a farther node through it (the leaks of the paper's 5.1
- * on coarse meshes). So every link is also stored in the bins B's disc
- * covers: a disc of under COVER_EXACTLY bins at points spread over it (a
- * sunflower pattern: 3 points a bin it covers plus one, at least 3); a
- * nearer one in every bin whose centre direction meets it
- * (implicit_disc_bins.h), the disc widened to the circle through the
- * corners of the square of its area, so that the discs of one surface
- * leave no gaps. Points spread evenly over a near disc fall sparsely in
- * the directions that matter: a cornice 5 mm under the ceiling sees the
- * ceiling through half its hemisphere, almost all of it through the few
- * millimetres of the nearest disc, and those bins saw the sky (the living
- * room came out brighter than its windows' sky).
- * A bin that holds a link sees that node, even when the node's centre lies
- * behind the element's plane (its disc reaches in front: the ceiling
- * beside a cornice).
- *
- * RefineHierarchicalLinks and PushdownLinks run as one breadth-first pass
- * (4.2.4: "can be combined"): each node, parents first, hands every bin's
- * link to its children that hold no shorter one; a child's longer link is
- * replaced. The leaves end with every link that reaches them, which
- * implicit_link_lists.c compacts into per-element lists, one link a source
- * node (the bins that hold the same node add their weights).
+ * children of implicit_hierarchy.c's tree, recursively) under the paper's
+ * two rules of 4.2.2: (1) B is subdivided when it covers more than
+ * GB_IMPLICIT_SPLIT of the bin its link falls in, (2) each bin keeps only
+ * its shortest link. Links are stored at both ends; an open part's
+ * element has bins on both sides of its plane (a link may see a front or a
+ * back, implicit_closed_parts.h); a "mixed" pair, one end's front seeing
+ * the other's back, keeps BACK_SHRINK of its disc and splits at
+ * ONE_WAY_SPLIT. Beyond the paper, every link is also stored in each bin
+ * its disc covers (implicit_disc_bins.h), so that no bin sees through a
+ * surface. RefineHierarchicalLinks and PushdownLinks run as one
+ * breadth-first pass (4.2.4).
  *
  * Threads: the recursion's first levels are unfolded into independent
- * pairs (tasks), which the threads take in any order. A bin keeps the
- * smallest of the words its links pack (distance, then node:
- * gb_implicit_pack_link),
- * written by compare-and-swap, so the links do not depend on the order of
- * the stores or on the thread count.
+ * pairs; a bin keeps the smallest packed (distance, node) word
+ * (gb_implicit_pack_link), set by compare-and-swap, so the links do not
+ * depend on the order of the stores or on the thread count.
+ *
+ * Why each rule and threshold is as it is, the cases the paper leaves open
+ * ("Decided here") and what each measured: docs/methods.md, "How the links
+ * are built", and docs/figures.md, "The link rules' thresholds".
  */
 #include "implicit_links.h"
 
@@ -98,11 +45,9 @@ enum { COVER_EXACTLY = 4, SPREAD_MAX = 3 * COVER_EXACTLY + 1 };
 #define DISC_WIDENING 1.2533141f
 /* A disc of a mixed pair (see the top) is stored over this fraction of its
  * radius, so that past a convex edge it does not hide the sky beyond its
- * surface. Measured when a link to a back only hid (6x12x12, against
- * reference --mode full): the staircase 0.055 (whole disc) / 0.051 (half)
- * / 0.050 (centre only); the box under the sky 0.0016 / 0.0011 / 0.0011.
- * Half keeps the disc's middle, where a near surface is seen through most
- * bins. */
+ * surface. Half keeps the disc's middle, where a near surface is seen
+ * through most bins (measured: docs/figures.md, "The link rules'
+ * thresholds"). */
 #define BACK_SHRINK 0.5f
 
 /* On several threads, unfolding stops at this many tasks: enough for two
@@ -111,17 +56,20 @@ enum { COVER_EXACTLY = 4, SPREAD_MAX = 3 * COVER_EXACTLY + 1 };
 enum { TASKS_WANTED = 4096 };
 
 /* CreateHierarchicalLinks' share of the progress reported: it takes 87-95 %
- * of the links' time (README, bench/implicit.sh and implicit_large.sh). */
+ * of the links' time (docs/figures.md, bench/implicit.sh and
+ * implicit_large.sh). */
 #define CREATE_SHARE 0.9
 
 /* Rule 1's threshold: B is subdivided when it covers more than this
- * fraction of a bin (see the top). */
+ * fraction of a bin. With the paper's whole bin, a cluster's centre and a
+ * smaller node in the same bin compete by centre distance, and an area
+ * light just under the Cornell box's ceiling lost a fifth of its light to
+ * the ceiling's clusters (docs/figures.md, "The link rules' thresholds"). */
 #define GB_IMPLICIT_SPLIT 0.1f
 /* The same for a mixed pair (see the top), which past a convex edge sees
- * little of the other. Measured on Table 1's closed model and the Cornell
- * box's hierarchical links against brute force (test_implicit, bound 2 %),
- * when such links only hid: at 0.1 the link time is about 1.2-1.6x that at
- * 0.3, RMS 0.28 %; at 0.3, 0.46 %; at 0.5, 0.84 %; at a whole bin, 2.5 %. */
+ * little of the other: coarser than GB_IMPLICIT_SPLIT for speed, within
+ * test_implicit's 2 % of brute force (docs/figures.md, "The link rules'
+ * thresholds"). */
 #define ONE_WAY_SPLIT 0.3f
 
 /* What every pair test or link of a node would compute again, made once

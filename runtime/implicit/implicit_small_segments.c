@@ -6,7 +6,7 @@
  * its own at least (Sponza: 41 591 elements). Such a piece is below what
  * the bins can tell apart, so its triangles are regrouped by material and
  * place, and the pieces in one cell make one segment and one element
- * (Sponza: 16 238 elements; bench/implicit_large.sh in the README gives
+ * (Sponza: 16 238 elements; bench/implicit_large.sh in docs/figures.md gives
  * the links' time and the error against the reference). One element, not
  * one a cell its vertices reach: a group's triangles are placed by
  * centroid, and their corners reach into the next cells, which made

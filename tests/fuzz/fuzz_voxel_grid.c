@@ -136,7 +136,7 @@ static void read_both(int fd, const unsigned char *bytes, size_t size, const cha
     }
 }
 
-/* A library leak the adapter cannot prevent (README, "fuzzing"): OpenVDB's
+/* A library leak the adapter cannot prevent (docs/figures.md, "fuzzing"): OpenVDB's
  * RootNode::readTopology allocates a child node, reads its topology, and
  * only then links it into the root; when the read throws (a corrupt
  * compressed chunk of tile values), that child and its subtree leak. Only a

@@ -25,28 +25,13 @@
  *   corner |UV angle - 3-D angle|.
  * - fill ratio = (sum over triangles of their UV area in texels) /
  *   (atlas width * height): the share of the atlas the triangles cover.
- * - The default cone, 70 degrees, measured on Sponza and the staircase at
- *   1024^2 (charts, fill ratio, mean angle distortion in degrees):
- *     cone 45: 5639, 0.380, 0.74 and 9237, 0.310, 2.6
- *     cone 60: 4710, 0.397, 0.79 and 7155, 0.351, 1.8
- *     cone 70: 3791, 0.437, 0.85 and 5859, 0.372, 1.5
- *     cone 80: 3743, 0.437, 1.00 and 5652, 0.366, 1.3
- *   Wider cones give fewer charts until LSCM's folds and the non-disc cuts
- *   take them back. The cone is tested against the seed's normal: the
- *   running area-weighted mean normal measured worse (Sponza 0.433,
- *   the staircase 0.355 at 70).
- * - GB_ATLAS_MAX_WASTE with GB_MIN_RECT_FILL (parameterize.h), fill
- *   ratios on Sponza and the staircase at a cone of 60: no limit 0.332
- *   and 0.186 (arcs of the staircase's rails leave their rects empty), a
- *   waste limit of 0.002 alone 0.394 and 0.317, every chart under half
- *   full split whatever its size 0.289 and 0.095 (the padding of the many
- *   small halves); at the default cone of 70, 0.0005 with 0.5 gives 0.437
- *   and 0.372, with 0.6 0.428 and 0.377, 0.001 with 0.5 0.433 and 0.371.
- * - The fill ratio is bounded by the file's rule that charts' rects,
- *   grown by the padding, do not overlap: every chart costs its rect
- *   (on Sponza its triangles cover about half of it) and a gutter of
- *   2P around it; Sponza's 3791 charts at P = 2 in 1024^2 give 0.437,
- *   its 3788 in 16384^2 0.645.
+ * - The default cone (70 degrees) and the waste limit (GB_ATLAS_MAX_WASTE
+ *   with GB_MIN_RECT_FILL, parameterize.h) were chosen by the charts, fill
+ *   ratio and distortion they give on Sponza and the staircase; the sweeps
+ *   are in docs/figures.md, "atlas: the default cone and the waste limit".
+ *   The fill ratio is bounded by the file's rule that charts' rects, grown
+ *   by the padding, do not overlap: every chart costs its rect and a
+ *   gutter of 2P around it.
  *
  * On GB_OK the caller owns *atlas (gb_atlas_free). Single-threaded and
  * deterministic: the same scene and options give the same bytes (from one
