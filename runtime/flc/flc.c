@@ -80,8 +80,8 @@ typedef struct flc_state {
     GLuint triangle_buffer, albedo_buffer, vpl_buffer, empty_vertex_array;
     GLuint patch_buffer, command_buffer;
     int width, height, tile_width, tile_height;
-    GLuint splat_texture, splat_framebuffer, accumulated_texture, accumulated_framebuffer;
-    uint32_t accumulated;           /* samples (images) in the accumulation */
+    gb_gl_target splat, accumulated;    /* the tiled splat buffer, the accumulation */
+    uint32_t samples;               /* images in the accumulation */
     gb_mat4 last_view, last_projection;
     gb_flc_visibility visibility;   /* the splatting's visibility term */
     int measuring;
@@ -219,47 +219,20 @@ static gb_result make_buffers(flc_state *s, uint64_t seed, gb_error *error)
     return GB_OK;
 }
 
-static void destroy_targets(flc_state *s)
-{
-    GLuint textures[] = {s->splat_texture, s->accumulated_texture};
-    GLuint framebuffers[] = {s->splat_framebuffer, s->accumulated_framebuffer};
-    for (int i = 0; i < 2; ++i) {
-        if (textures[i])
-            glDeleteTextures(1, &textures[i]);
-        if (framebuffers[i])
-            glDeleteFramebuffers(1, &framebuffers[i]);
-    }
-    s->splat_texture = s->accumulated_texture = 0;
-    s->splat_framebuffer = s->accumulated_framebuffer = 0;
-    s->width = s->height = 0;
-}
-
-static GLuint make_target(int width, int height, GLuint *texture)
-{
-    GLuint framebuffer;
-    *texture = gb_gl_texture_2d(GL_RGBA32F, width, height);
-    glCreateFramebuffers(1, &framebuffer);
-    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, *texture, 0);
-    glNamedFramebufferDrawBuffer(framebuffer, GL_COLOR_ATTACHMENT0);
-    return framebuffer;
-}
-
 /* The tiled splat buffer (4^tiling tiles of ceil(size / 2^tiling)) and the
  * accumulation, for a frame of width x height. */
 static void prepare_targets(flc_state *s, int width, int height)
 {
     if (width == s->width && height == s->height)
         return;
-    destroy_targets(s);
     int scale = 1 << s->tiling;
     s->width = width;
     s->height = height;
     s->tile_width = (width + scale - 1) / scale;
     s->tile_height = (height + scale - 1) / scale;
-    s->splat_framebuffer = make_target(s->tile_width * scale, s->tile_height * scale,
-                                       &s->splat_texture);
-    s->accumulated_framebuffer = make_target(width, height, &s->accumulated_texture);
-    s->accumulated = 0;
+    gb_gl_target_resize(&s->splat, GL_RGBA32F, s->tile_width * scale, s->tile_height * scale);
+    gb_gl_target_resize(&s->accumulated, GL_RGBA32F, width, height);
+    s->samples = 0;
 }
 
 void gb_flc_destroy(void *state)
@@ -267,7 +240,8 @@ void gb_flc_destroy(void *state)
     flc_state *s = state;
     if (!s)
         return;
-    destroy_targets(s);
+    gb_gl_target_release(&s->splat);
+    gb_gl_target_release(&s->accumulated);
     GLuint programs[] = {s->generate_program, s->splat_program, s->tess_program,
                          s->resolve_program, s->composite_program};
     for (int i = 0; i < 5; ++i)
@@ -416,7 +390,7 @@ static void set_splat_uniforms(const flc_state *s, const gb_indirect_frame *fram
 /* Pass 2's target, uniforms and bindings. */
 static void prepare_splatting(flc_state *s, const gb_indirect_frame *frame)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, s->splat_framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->splat.framebuffer);
     glViewport(0, 0, s->tile_width << s->tiling, s->tile_height << s->tiling);
     glUseProgram(s->splat_program);
     set_splat_uniforms(s, frame);
@@ -506,11 +480,11 @@ static double lap(const flc_state *s, double *start)
 /* Pass 3. */
 static void resolve(flc_state *s)
 {
-    glBindFramebuffer(GL_FRAMEBUFFER, s->accumulated_framebuffer);
+    glBindFramebuffer(GL_FRAMEBUFFER, s->accumulated.framebuffer);
     glViewport(0, 0, s->width, s->height);
     glUseProgram(s->resolve_program);
     set_tiles(s->resolve_program, s);
-    glBindTextureUnit(UNIT_SPLAT, s->splat_texture);
+    glBindTextureUnit(UNIT_SPLAT, s->splat.color);
     gb_gl_draw_fullscreen(s->empty_vertex_array);
 }
 
@@ -525,20 +499,20 @@ static void composite(flc_state *s, GLuint target)
 {
     bind_output(s, target);
     glUseProgram(s->composite_program);
-    set_float(s->composite_program, "inverse_count", 1.0f / (float)s->accumulated);
-    glBindTextureUnit(UNIT_ACCUMULATED, s->accumulated_texture);
+    set_float(s->composite_program, "inverse_count", 1.0f / (float)s->samples);
+    glBindTextureUnit(UNIT_ACCUMULATED, s->accumulated.color);
     gb_gl_draw_fullscreen(s->empty_vertex_array);
 }
 
 /* Starts the accumulation again when the view moved. */
 static void restart_if_moved(flc_state *s, const gb_indirect_frame *frame)
 {
-    if (s->accumulated && !memcmp(&s->last_view, frame->view_matrix, sizeof s->last_view) &&
+    if (s->samples && !memcmp(&s->last_view, frame->view_matrix, sizeof s->last_view) &&
         !memcmp(&s->last_projection, frame->projection, sizeof s->last_projection))
         return;
     static const float zero[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(s->accumulated_framebuffer, GL_COLOR, 0, zero);
-    s->accumulated = 0;
+    glClearNamedFramebufferfv(s->accumulated.framebuffer, GL_COLOR, 0, zero);
+    s->samples = 0;
     s->last_view = *frame->view_matrix;
     s->last_projection = *frame->projection;
 }
@@ -550,7 +524,7 @@ static void begin_sample(flc_state *s, const gb_indirect_frame *frame)
     prepare_targets(s, frame->width, frame->height);
     restart_if_moved(s, frame);
     static const float zero[4] = {0, 0, 0, 0};
-    glClearNamedFramebufferfv(s->splat_framebuffer, GL_COLOR, 0, zero);
+    glClearNamedFramebufferfv(s->splat.framebuffer, GL_COLOR, 0, zero);
     generate_regular(s, frame);
 }
 
@@ -563,7 +537,7 @@ static void end_sample(flc_state *s, const gb_indirect_frame *frame, GLuint targ
     run_divergent(s, frame);
     double divergent = lap(s, start);
     resolve(s);
-    ++s->accumulated;
+    ++s->samples;
     composite(s, target);
     if (!s->measuring)
         return;
@@ -609,7 +583,7 @@ int gb_flc_draw(void *state, const gb_indirect_frame *frame)
     if (scissor)
         glEnable(GL_SCISSOR_TEST);
     /* The samples once this image's is in: refine until the cap. */
-    return s->accumulated + !last < GB_FLC_CONVERGED_SAMPLES ? GB_IMAGE_REFINABLE : GB_IMAGE_FINAL;
+    return s->samples + !last < GB_FLC_CONVERGED_SAMPLES ? GB_IMAGE_REFINABLE : GB_IMAGE_FINAL;
 }
 
 void gb_flc_measure(void *state, int on)
