@@ -5,6 +5,7 @@
 #include <string.h>
 
 #include "environment.h"
+#include "light_emission.h"
 #include "vec3.h"
 
 static const double PI = 3.14159265358979323846;
@@ -208,42 +209,40 @@ gb_result gb_environment_lights(const gb_scene *scene, uint32_t count, gb_light 
     return result;
 }
 
-/* The luminance of the mean radiance of the environment over the sphere. */
-static double mean_environment(const gb_scene *scene)
+/* The mean radiance of the environment over the sphere. */
+static void mean_environment(const gb_scene *scene, float L[3])
 {
     const gb_texture *map = &scene->environment_texture;
-    if (!map->rgb || map->width <= 0 || map->height <= 0)
-        return luminance(scene->environment);
+    if (!map->rgb || map->width <= 0 || map->height <= 0) {
+        memcpy(L, scene->environment, 3 * sizeof *L);
+        return;
+    }
     environment_grid g = {.width = map->width, .height = map->height};
-    double sum = 0.0;
+    double sum[3] = {0.0, 0.0, 0.0};
     for (int row = 0; row < g.height; ++row)
         for (int column = 0; column < g.width; ++column)
-            sum += luminance(&map->rgb[3 * ((size_t)row * g.width + column)]) *
-                   cell_solid_angle(&g, row);
-    return sum / (4.0 * PI);
+            for (int c = 0; c < 3; ++c)
+                sum[c] += map->rgb[3 * ((size_t)row * g.width + column) + c] *
+                          cell_solid_angle(&g, row);
+    for (int c = 0; c < 3; ++c)
+        L[c] = (float)(sum[c] / (4.0 * PI));
 }
 
 double gb_environment_share(const gb_scene *scene)
 {
-    double dx = scene->bounds_max[0] - scene->bounds_min[0];
-    double dy = scene->bounds_max[1] - scene->bounds_min[1];
-    double dz = scene->bounds_max[2] - scene->bounds_min[2];
-    double R2 = 0.25 * (dx * dx + dy * dy + dz * dz);
-    double sky = 4.0 * PI * fmax(mean_environment(scene), 0.0) * PI * R2, others = 0.0;
+    gb_vec3 centre;
+    float R = gb_scene_bounding_sphere(scene, &centre), L[3];
+    mean_environment(scene, L);
+    double power[3];
+    gb_sky_power(L, R, power);
+    double sky = gb_power_luminance(power), others = 0.0;
     for (uint32_t i = 0; i < gb_scene_own_light_count(scene); ++i) {
-        const gb_light *l = &scene->lights[i];
-        double I = fmax(luminance(l->intensity), 0.0);
-        if (l->type == GB_LIGHT_DIRECTIONAL)
-            others += I * PI * R2;
-        else if (l->type == GB_LIGHT_POINT)
-            others += 4.0 * PI * I;
-        else
-            others += 2.0 * PI * I * (1.0 - cos(l->cone_angle * PI / 180.0));
+        gb_delta_light_power(&scene->lights[i], R, power);
+        others += gb_power_luminance(power);
     }
     for (uint32_t i = 0; i < scene->emissive_count; ++i) {
-        uint32_t t = scene->emissive_triangles[i];
-        others += PI * fmax(luminance(scene->materials[scene->triangle_material[t]].Ke), 0.0) *
-                  gb_triangle_area(scene, t);
+        gb_area_light_power(scene, scene->emissive_triangles[i], power);
+        others += gb_power_luminance(power);
     }
     return sky > 0.0 ? sky / (sky + others) : 0.0;
 }

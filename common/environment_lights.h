@@ -28,11 +28,10 @@ enum {
     GB_ENVIRONMENT_GRID_HEIGHT = 32,
 };
 
-/* The environment's share of the light power entering the scene, in 0..1,
- * the conventions of tools/photons/emission.h (R the bounding sphere's
- * radius): the environment 4 pi L pi R^2 (L its mean radiance), a
- * directional light E pi R^2, a point light 4 pi I, a spot 2 pi I (1 - cos
- * cone), the area lights pi Ke A; all by luminance. 0 for a black sky. */
+/* The environment's share of the light power entering the scene, in 0..1:
+ * the power of the sky (L its mean radiance) against that of the scene's
+ * own lights, all as common/light_emission.h weighs them, by luminance. 0
+ * for a black sky. */
 double gb_environment_share(const gb_scene *scene);
 
 /* How many lights stand for the environment by default: most times its

@@ -13,68 +13,42 @@ static double triangle_power(const gb_scene *scene, uint32_t t)
     return luminance > 0.0 ? (double)GB_PI * luminance * gb_triangle_area(scene, t) : 0.0;
 }
 
-static gb_result allocate_table(const gb_scene *scene, uint32_t count, gb_light_table *table,
-                                gb_error *error)
-{
-    table->triangles = malloc((count ? count : 1) * sizeof *table->triangles);
-    table->cdf = malloc(((size_t)count + 1) * sizeof *table->cdf);
-    table->area_pdf = calloc(scene->triangle_count ? scene->triangle_count : 1,
-                             sizeof *table->area_pdf);
-    if (!table->triangles || !table->cdf || !table->area_pdf) {
-        gb_light_table_free(table);
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "light table: out of memory");
-    }
-    return GB_OK;
-}
-
 gb_result gb_light_table_build(const gb_scene *scene, gb_light_table *table, gb_error *error)
 {
     *table = (gb_light_table){0};
-    gb_result result = allocate_table(scene, scene->emissive_count, table, error);
-    if (result != GB_OK)
-        return result;
-    table->cdf[0] = 0.0;
-    for (uint32_t i = 0; i < scene->emissive_count; ++i) {
+    uint32_t most = scene->emissive_count;
+    double *power = malloc((most ? most : 1) * sizeof *power);
+    table->triangles = malloc((most ? most : 1) * sizeof *table->triangles);
+    table->area_pdf = calloc(scene->triangle_count ? scene->triangle_count : 1,
+                             sizeof *table->area_pdf);
+    gb_result result = power && table->triangles && table->area_pdf
+                           ? GB_OK
+                           : gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "light table: out of memory");
+    for (uint32_t i = 0; result == GB_OK && i < most; ++i) {
         uint32_t t = scene->emissive_triangles[i];
-        double power = triangle_power(scene, t);
-        if (!(power > 0.0))
-            continue;
-        table->triangles[table->count] = t;
-        table->total_power += power;
-        table->cdf[++table->count] = table->total_power;
+        power[table->count] = triangle_power(scene, t);
+        if (power[table->count] > 0.0)
+            table->triangles[table->count++] = t;
     }
-    for (uint32_t i = 0; i < table->count; ++i) {
+    if (result == GB_OK)
+        result = gb_cumulative_distribution_build(power, table->count, &table->by_power, error);
+    for (uint32_t i = 0; result == GB_OK && i < table->count; ++i) {
         uint32_t t = table->triangles[i];
-        double pick = (table->cdf[i + 1] - table->cdf[i]) / table->total_power;
+        double pick = gb_cumulative_distribution_probability(&table->by_power, i);
         table->area_pdf[t] = (float)(pick / gb_triangle_area(scene, t));
     }
-    for (uint32_t i = 1; i <= table->count; ++i)
-        table->cdf[i] /= table->total_power;
-    if (table->count)
-        table->cdf[table->count] = 1.0;
-    return GB_OK;
+    free(power);
+    if (result != GB_OK)
+        gb_light_table_free(table);
+    return result;
 }
 
 void gb_light_table_free(gb_light_table *table)
 {
     free(table->triangles);
-    free(table->cdf);
+    gb_cumulative_distribution_free(&table->by_power);
     free(table->area_pdf);
     *table = (gb_light_table){0};
-}
-
-/* The i with cdf[i] <= u < cdf[i + 1]. */
-static uint32_t find_interval(const double *cdf, uint32_t count, double u)
-{
-    uint32_t low = 0, high = count;
-    while (high - low > 1) {
-        uint32_t middle = low + (high - low) / 2;
-        if (cdf[middle] <= u)
-            low = middle;
-        else
-            high = middle;
-    }
-    return low;
 }
 
 int gb_light_table_sample(const gb_light_table *table, const gb_surface_table *surfaces,
@@ -82,7 +56,7 @@ int gb_light_table_sample(const gb_light_table *table, const gb_surface_table *s
 {
     if (table->count == 0)
         return 0;
-    uint32_t t = table->triangles[find_interval(table->cdf, table->count, u_pick)];
+    uint32_t t = table->triangles[gb_cumulative_distribution_pick(&table->by_power, u_pick)];
     const gb_triangle_record *r = &surfaces->records[t];
     float root = sqrtf(u1);
     gb_vec3 p = gb_vec3_madd(gb_vec3_load(r->v0), gb_vec3_load(r->e1), u2 * root);

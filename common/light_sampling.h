@@ -13,6 +13,7 @@
 
 #include <stdint.h>
 
+#include "cumulative_distribution.h"
 #include "scene.h"
 #include "surface.h"
 #include "vec3.h"
@@ -20,9 +21,8 @@
 typedef struct gb_light_table {
     uint32_t count;             /* emissive triangles of nonzero power */
     uint32_t *triangles;        /* count: their indices in the scene */
-    double *cdf;                /* count + 1: cumulative power fraction, cdf[count] = 1 */
+    gb_cumulative_distribution by_power;   /* over triangles: pi luminance(Ke) area */
     float *area_pdf;            /* triangle_count: P(pick t) / area(t); 0 if t does not emit */
-    double total_power;         /* sum of pi luminance(Ke) area */
 } gb_light_table;
 
 typedef struct gb_area_light_sample {

@@ -3,6 +3,8 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "bisection.h"
+
 /* The linear value of 8-bit sRGB code k (IEC 61966-2-1). */
 static double srgb_decode(int k)
 {
@@ -10,18 +12,23 @@ static double srgb_decode(int k)
     return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
 }
 
+typedef struct code_query {
+    const float *table;
+    float value;
+} code_query;
+
+static int at_or_below_value(const void *user, size_t k)
+{
+    const code_query *query = user;
+    return query->table[k] <= query->value;
+}
+
 /* The code whose decoded value is nearest to value, by bisection on the
  * increasing table; -1 when value is more than 1e-4 (relative) from it. */
 static int nearest_code(const float table[256], float value)
 {
-    int low = 0, high = 255;
-    while (high - low > 1) {
-        int middle = (low + high) / 2;
-        if (table[middle] <= value)
-            low = middle;
-        else
-            high = middle;
-    }
+    code_query query = {table, value};
+    int low = (int)gb_bisection_last(255, at_or_below_value, &query), high = low + 1;
     int k = fabsf(table[high] - value) < fabsf(value - table[low]) ? high : low;
     return fabsf(table[k] - value) <= 1e-4f * fmaxf(table[k], 1e-3f) ? k : -1;
 }

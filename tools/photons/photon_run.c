@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <time.h>
 
-#include "emission.h"
+#include "light_emission.h"
 #include "flux_probes.h"
 #include "photons.h"
 #include "trace.h"
@@ -16,7 +16,7 @@ enum { CHUNK_PHOTONS = 4096 };
 
 typedef struct run_job {
     const gb_photons_tracer *tracer;
-    const gb_photon_emission *emission;
+    const gb_light_emission *emission;
     uint64_t emitted_count;     /* of the whole run: the powers' share */
     uint64_t seed;
     uint64_t first, end;        /* this shard's photon indices */
@@ -47,8 +47,8 @@ static int trace_chunk(void *context, uint64_t chunk)
         end = begin;
     for (uint64_t i = begin; i < end && !stop; ++i) {
         gb_random rng = gb_random_make(job->seed, i);
-        gb_photon_ray ray;
-        gb_photon_emission_sample(job->emission, job->emitted_count, &rng, &ray);
+        gb_emitted_ray ray;
+        gb_light_emission_sample(job->emission, job->emitted_count, &rng, &ray);
         stop = !gb_photons_trace_path(job->tracer, &ray, &rng, &job->chunks[chunk], &counters);
     }
     if (stop)
@@ -158,7 +158,7 @@ static void make_tracer(const gb_photons_options *o, gb_photons_tracer *tracer)
 }
 
 typedef struct run_tables {
-    gb_photon_emission emission;
+    gb_light_emission emission;
     gb_surface_table surfaces;
     gb_embree_scene *rays;
 } run_tables;
@@ -168,7 +168,7 @@ static void free_tables(run_tables *t)
     gb_embree_scene_destroy(t->rays);
     if (t->surfaces.records)
         gb_surface_table_free(&t->surfaces);
-    gb_photon_emission_free(&t->emission);
+    gb_light_emission_free(&t->emission);
 }
 
 /* The lights, the surfaces and the BVH. */
@@ -178,7 +178,7 @@ static gb_result build_tables(const gb_scene *scene, const gb_photons_options *o
     *t = (run_tables){0};
     gb_result result = gb_surface_table_build(scene, &t->surfaces, error);
     if (result == GB_OK)
-        result = gb_photon_emission_build(scene, &t->surfaces, &t->emission, error);
+        result = gb_light_emission_build(scene, &t->surfaces, GB_SKY_EMITTED, &t->emission, error);
     if (result == GB_OK)
         result = gb_embree_scene_create(scene, options->threads, &t->rays, error);
     if (result != GB_OK)

@@ -3,10 +3,11 @@
  * Yafaray, gibake traces it itself). The `photons` tool parses options and
  * calls gb_photons_trace, or gb_photons_merge for --merge.
  *
- * A run emits `count` photons from every light of the scene (emission.h),
- * follows each path (trace.h) and stores a photon at every hit after at least
- * one reflection (or at every hit with GB_PHOTON_STORE_ALL). The powers of
- * the photons a run emits sum to the scene's emitted power (in expectation).
+ * A run emits `count` photons from every light of the scene
+ * (common/light_emission.h), follows each path (trace.h) and stores a photon
+ * at every hit after at least one reflection (or at every hit with
+ * GB_PHOTON_STORE_ALL). The powers of the photons a run emits sum to the
+ * scene's emitted power (in expectation).
  *
  * Determinism: photon i (0 <= i < count) draws every random number from PCG32
  * stream i of the seed, whichever thread traces it, and the map lists photons

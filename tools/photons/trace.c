@@ -82,7 +82,7 @@ static int reflect(const gb_photons_tracer *tracer, gb_surface *surface, unsigne
     return 1;
 }
 
-int gb_photons_trace_path(const gb_photons_tracer *tracer, const gb_photon_ray *ray,
+int gb_photons_trace_path(const gb_photons_tracer *tracer, const gb_emitted_ray *ray,
                           gb_random *rng, gb_photons_sink *sink, gb_photons_counters *counters)
 {
     gb_vec3 origin = ray->origin, direction = ray->direction, power = ray->power;

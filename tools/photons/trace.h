@@ -24,7 +24,7 @@
 
 #include "embree_scene.h"
 #include "surface.h"
-#include "emission.h"
+#include "light_emission.h"
 #include "photon_map.h"
 #include "random.h"
 
@@ -62,7 +62,7 @@ typedef struct gb_photons_counters {
 
 /* Traces the path of ray, drawing from rng. Returns 0 only when the sink
  * cannot grow (out of memory). */
-int gb_photons_trace_path(const gb_photons_tracer *tracer, const gb_photon_ray *ray,
+int gb_photons_trace_path(const gb_photons_tracer *tracer, const gb_emitted_ray *ray,
                           gb_random *rng, gb_photons_sink *sink, gb_photons_counters *counters);
 
 void gb_photons_sink_free(gb_photons_sink *sink);

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bisection.h"
+
 static gb_result collect_node_cells(const gb_cubical_complex *complex, uint32_t **cells,
                                     uint32_t *count, uint32_t *edge_count, gb_error *error)
 {
@@ -29,18 +31,22 @@ static gb_result collect_node_cells(const gb_cubical_complex *complex, uint32_t 
     return GB_OK;
 }
 
+typedef struct cell_query {
+    const uint32_t *cells;
+    size_t cell;
+} cell_query;
+
+static int at_or_below_cell(const void *user, size_t i)
+{
+    const cell_query *query = user;
+    return query->cells[i] <= query->cell;
+}
+
 /* Index of cell in the increasing array cells (it is there). */
 static uint32_t node_of_cell(const uint32_t *cells, uint32_t count, size_t cell)
 {
-    uint32_t low = 0, high = count;
-    while (high - low > 1) {
-        uint32_t middle = low + (high - low) / 2;
-        if (cells[middle] <= cell)
-            low = middle;
-        else
-            high = middle;
-    }
-    return low;
+    cell_query query = {cells, cell};
+    return (uint32_t)gb_bisection_last(count, at_or_below_cell, &query);
 }
 
 /* The empty voxels around a corner (cell coordinates), as dense indices
