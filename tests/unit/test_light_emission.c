@@ -211,7 +211,9 @@ static void test_spot(void)
     }
     double expected = 2.0 * PI * ((1.0 - cos_falloff) + 0.5 * (cos_falloff - cos_cone));
     CHECK(in_cone, "spot: every direction in the cone");
-    CHECK_NEAR(power / expected, 1.0, 0.005, "spot: power the integral of the falloff");
+    CHECK_NEAR(power / expected, 1.0, 0.005, "spot: rays carry the integral of the falloff");
+    CHECK_NEAR(e.emission.power[0] / expected, 1.0, 1e-6,
+               "spot: weighed (picked) by the integral of the falloff");
     emitted_free(&e);
 }
 
