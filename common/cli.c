@@ -1,6 +1,7 @@
 /* cli.c — option values and usage errors of every tool (cli.h). */
 
 #include "cli.h"
+#include "cli_help.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -295,22 +296,87 @@ static void short_options_of(const struct option *options, char text[128])
     text[length] = '\0';
 }
 
-int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
-                   const struct option *options, gb_cli_option_function handle,
-                   void *arguments)
+/* The getopt table of a command: its own (gbview), or the entries' (at
+ * most GB_CLI_MAX_ENTRIES) then -h and -V. */
+enum { GB_CLI_MAX_ENTRIES = 64 };
+
+static const struct option *option_table(const gb_cli_command *command,
+                                         struct option table[GB_CLI_MAX_ENTRIES + 3])
 {
+    if (!command->entries)
+        return command->options;
+    size_t count = 0;
+    for (const gb_cli_entry *e = command->entries; e->name; ++e) {
+        if (count == GB_CLI_MAX_ENTRIES)
+            abort();    /* a table this long is a bug of the tool */
+        table[count++] = (struct option){e->name, e->value ? required_argument : no_argument,
+                                         NULL, e->code};
+    }
+    table[count++] = (struct option)GB_CLI_FLAG("help", 'h');
+    table[count++] = (struct option)GB_CLI_FLAG("version", 'V');
+    table[count] = (struct option){NULL, 0, NULL, 0};
+    return table;
+}
+
+static const gb_cli_entry *find_entry(const gb_cli_entry *entries, int code)
+{
+    for (const gb_cli_entry *e = entries; e && e->name; ++e)
+        if (e->code == code)
+            return e;
+    return NULL;
+}
+
+/* A shared option into shared; GB_EXIT_SUCCESS, else the usage status. */
+static int parse_shared(const char *tool, const gb_cli_entry *entry, const char *value,
+                        gb_cli_shared *shared)
+{
+    switch (entry->shared) {
+    case GB_CLI_SHARED_DEPFILE: shared->depfile = value; return GB_EXIT_SUCCESS;
+    case GB_CLI_SHARED_STATS: shared->stats = 1; return GB_EXIT_SUCCESS;
+    case GB_CLI_SHARED_QUIET: shared->quiet = 1; return GB_EXIT_SUCCESS;
+    case GB_CLI_SHARED_THREADS:
+        return gb_cli_int(tool, "threads", value, 1, entry->high, &shared->threads);
+    case GB_CLI_SHARED_SEED:
+        return gb_cli_unsigned(tool, "seed", value, 0, UINT64_MAX, &shared->seed);
+    case GB_CLI_OWN: break;
+    }
+    abort();            /* not a shared option: find_entry's caller checked */
+}
+
+static int print_help(const gb_cli_command *command)
+{
+    if (!command->entries)
+        return gb_cli_help(command->usage);
+    return gb_cli_help_entries(command->usage, command->entries, command->column);
+}
+
+/* Every tool's option loop: getopt_long over argv; -h prints the help, -V
+ * the version, a refused option is gb_cli_option_error; a shared option
+ * goes into the gb_cli_shared that starts arguments, every other to the
+ * tool's option function. GB_CLI_GO_ON when all were read (optind at the
+ * first operand), else the exit status. */
+static int read_options(const gb_cli_command *command, int argc, char **argv,
+                        void *arguments)
+{
+    struct option storage[GB_CLI_MAX_ENTRIES + 3];
+    const struct option *table = option_table(command, storage);
     char short_options[128];
-    short_options_of(options, short_options);
+    short_options_of(table, short_options);
     int option, status;
     opterr = 0;
-    while ((option = getopt_long(argc, argv, short_options, options, NULL)) != -1) {
+    while ((option = getopt_long(argc, argv, short_options, table, NULL)) != -1) {
+        const gb_cli_entry *entry = find_entry(command->entries, option);
         if (option == 'h')
-            return gb_cli_help(usage);
+            return print_help(command);
         if (option == 'V')
-            return gb_cli_version(tool);
+            return gb_cli_version(command->tool);
         if (option == '?')
-            return gb_cli_option_error(tool, argv, options);
-        if ((status = handle(option, optarg, arguments)) != GB_EXIT_SUCCESS)
+            return gb_cli_option_error(command->tool, argv, table);
+        if (entry && entry->shared != GB_CLI_OWN)
+            status = parse_shared(command->tool, entry, optarg, arguments);
+        else
+            status = command->option(option, optarg, arguments);
+        if (status != GB_EXIT_SUCCESS)
             return status;
     }
     return GB_CLI_GO_ON;
@@ -322,13 +388,18 @@ int gb_cli_failure(const char *tool, const gb_error *error)
     return GB_EXIT_FAILURE;
 }
 
+int gb_cli_parse(const gb_cli_command *command, int argc, char **argv, void *arguments)
+{
+    int status = read_options(command, argc, argv, arguments);
+    if (status == GB_CLI_GO_ON)
+        status = command->operands(argc - optind, argv + optind, arguments);
+    return status;
+}
+
 int gb_cli_main(const gb_cli_command *command, int argc, char **argv, gb_cli_run_function run,
                 void *arguments)
 {
-    int status = gb_cli_options(command->tool, command->usage, argc, argv, command->options,
-                                command->option, arguments);
-    if (status == GB_CLI_GO_ON)
-        status = command->operands(argc - optind, argv + optind, arguments);
+    int status = gb_cli_parse(command, argc, argv, arguments);
     if (status != GB_CLI_GO_ON)
         return status;
     gb_error error;

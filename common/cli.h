@@ -1,7 +1,8 @@
 /* cli.h — the option values and usage errors every tool's main() shares,
  * so that every command reports a bad value the same way (git's
- * parse-options habit). gb_cli_options runs getopt_long and hands each
- * option to the tool, which hands each value to one of these functions.
+ * parse-options habit). gb_cli_main runs getopt_long, parses the shared
+ * options itself (gb_cli_shared) and hands each other option to the tool,
+ * which hands each value to one of these functions.
  *
  * Exit codes, for every tool: 0 success, 1 failure (a file, the work),
  * 2 usage (a bad option, a bad value, a missing argument).
@@ -24,8 +25,9 @@
  * Nothing else here prints. The caller owns every string passed in; TOOL
  * is the bare name ("voxelize"), OPTION the long name without its dashes.
  *
- * A tool describes its command line in a gb_cli_command, and its main()
- * is one call, on arguments of its own that start zeroed:
+ * A tool describes its command line in a gb_cli_command (its options as
+ * gb_cli_entry, below), and its main() is one call, on arguments of its
+ * own that start zeroed (and start with a gb_cli_shared):
  *     return gb_cli_main(&command, argc, argv, run, &(arguments){0});
  */
 #ifndef GB_CLI_H
@@ -114,17 +116,76 @@ int gb_cli_version(const char *tool);
         {NULL, 0, NULL, 0}
 
 /* One option of a tool, its value (optarg) or NULL: stores it in the
- * tool's arguments and returns GB_EXIT_SUCCESS, or an exit status. */
+ * tool's arguments and returns GB_EXIT_SUCCESS, or an exit status. A code
+ * the tool has no case for is a bug of its table: it abort()s, never
+ * reads the value as some other option. */
 typedef int (*gb_cli_option_function)(int option, const char *value, void *arguments);
 
-/* Every tool's option loop: getopt_long over argv with options (ending
- * with GB_CLI_OPTIONS_END); -h prints usage, -V the version, a refused
- * option is gb_cli_option_error; every other option goes to handle.
- * Returns GB_CLI_GO_ON when all were read (optind at the first operand),
- * else the exit status to return. */
-int gb_cli_options(const char *tool, const char *usage, int argc, char **argv,
-                   const struct option *options, gb_cli_option_function handle,
-                   void *arguments);
+/* ---- the options every tool shares (git's parse-options habit) ----
+ * A tool lists its options, with their help, in a table of gb_cli_entry;
+ * the shared ones are entries of the macros below, placed where its help
+ * shows them. gb_cli_main parses those itself into the gb_cli_shared that
+ * starts the tool's arguments (its first member), with the same range and
+ * message in every tool, and hands every other option to the tool. The
+ * help is the usage head, then one line per entry in table order, then
+ * -h and -V (which gb_cli_main answers):
+ *     "  -j, --threads N" (or "      --seed N"), padded to the command's
+ *     column (two spaces at least), then the help, whose next lines
+ *     (after each '\n') start at the column.
+ *     static const gb_cli_entry entries[] = {
+ *         GB_CLI_OPTION('o', "output", "FILE", "the file to write"),
+ *         GB_CLI_OPTION(OPTION_MERGE, "merge", NULL, "join the parts"),
+ *         GB_CLI_THREADS(256, NULL),
+ *         GB_CLI_STATS("print counts and seconds"),
+ *         GB_CLI_DEPFILE(NULL),
+ *         GB_CLI_QUIET("no progress bar, no warnings"),
+ *         GB_CLI_ENTRIES_END,
+ *     };
+ * A NULL help is the shared option's usual line (below). A tool's own
+ * codes are letters (also the short option) or 256..GB_CLI_SHARED_CODE-1. */
+typedef struct gb_cli_shared {
+    const char *depfile;    /* --depfile FILE: a make rule of the output and
+                               every file read; NULL when not given */
+    int threads;            /* -j, --threads N, 1..the entry's most; 0 not given */
+    int stats;              /* -s, --stats: print what the run measured */
+    int quiet;              /* -q, --quiet: what it silences, the tool's help says */
+    uint64_t seed;          /* --seed N, 0..UINT64_MAX; 0 when not given */
+} gb_cli_shared;
+
+typedef enum gb_cli_shared_kind {
+    GB_CLI_OWN = 0,         /* the tool's option: goes to its option function */
+    GB_CLI_SHARED_DEPFILE,
+    GB_CLI_SHARED_THREADS,
+    GB_CLI_SHARED_STATS,
+    GB_CLI_SHARED_QUIET,
+    GB_CLI_SHARED_SEED,
+} gb_cli_shared_kind;
+
+/* The codes of the shared long options, past every tool's own. */
+enum { GB_CLI_SHARED_CODE = 0x10000, GB_CLI_CODE_DEPFILE, GB_CLI_CODE_SEED };
+
+typedef struct gb_cli_entry {
+    int code;                   /* a letter (also -x), or a value past 255 */
+    const char *name;           /* the long option without its dashes */
+    const char *value;          /* the value's name in the help ("FILE"); NULL: a flag */
+    const char *help;           /* its help; NULL: the shared option's usual one */
+    gb_cli_shared_kind shared;  /* GB_CLI_OWN, or which shared option */
+    int high;                   /* --threads: the most */
+} gb_cli_entry;
+
+#define GB_CLI_OPTION(code, name, value, help) {(code), (name), (value), (help), GB_CLI_OWN, 0}
+/* --depfile FILE; usual help "a make rule: the output and every file read (-MD)" */
+#define GB_CLI_DEPFILE(help)                                                                \
+    {GB_CLI_CODE_DEPFILE, "depfile", "FILE", (help), GB_CLI_SHARED_DEPFILE, 0}
+/* -j, --threads N, 1..high; usual help "threads (default: every core)" */
+#define GB_CLI_THREADS(high, help) {'j', "threads", "N", (help), GB_CLI_SHARED_THREADS, (high)}
+/* -s, --stats */
+#define GB_CLI_STATS(help) {'s', "stats", NULL, (help), GB_CLI_SHARED_STATS, 0}
+/* -q, --quiet */
+#define GB_CLI_QUIET(help) {'q', "quiet", NULL, (help), GB_CLI_SHARED_QUIET, 0}
+/* --seed VALUE (the value's name in the help); usual help "random seed (default 0)" */
+#define GB_CLI_SEED(value, help) {GB_CLI_CODE_SEED, "seed", (value), (help), GB_CLI_SHARED_SEED, 0}
+#define GB_CLI_ENTRIES_END {0, NULL, NULL, NULL, GB_CLI_OWN, 0}
 
 /* The work failed: prints "TOOL: MESSAGE" (error's) on stderr; returns
  * GB_EXIT_FAILURE. */
@@ -138,16 +199,25 @@ typedef int (*gb_cli_operands_function)(int count, char **operands, void *argume
  * written to writing them; fills error when it fails. */
 typedef gb_result (*gb_cli_run_function)(void *arguments, gb_error *error);
 
-/* A tool's command line: what gb_cli_main reads argv with. */
+/* A tool's command line: what gb_cli_main reads argv with. Either
+ * entries (and column), the help made from them, or (gbview, until its
+ * options move) options and usage the whole help. */
 typedef struct gb_cli_command {
     const char *tool;                   /* "cluster": every message starts with it */
-    const char *usage;                  /* the --help text */
-    const struct option *options;       /* ends with GB_CLI_OPTIONS_END */
+    const char *usage;                  /* the --help text; with entries its head, up
+                                           to the first option */
+    const struct option *options;       /* ends with GB_CLI_OPTIONS_END; NULL with entries */
     gb_cli_option_function option;      /* each option into the arguments */
     gb_cli_operands_function operands;  /* then the operands */
+    const gb_cli_entry *entries;        /* ends with GB_CLI_ENTRIES_END */
+    int column;                         /* where each entry's help starts */
 } gb_cli_command;
 
-/* Every tool's main(): gb_cli_options, then the operands, then run, each
+/* gb_cli_main's options and operands: GB_CLI_GO_ON when the tool can run,
+ * else the exit status to return (for a tool whose end is its own). */
+int gb_cli_parse(const gb_cli_command *command, int argc, char **argv, void *arguments);
+
+/* Every tool's main(): gb_cli_parse, then run, each
  * step only if the one before said GB_CLI_GO_ON. Returns the first other
  * status (GB_EXIT_SUCCESS after --help or --version, GB_EXIT_USAGE after a
  * usage error), gb_cli_failure when run fails, else GB_EXIT_SUCCESS once

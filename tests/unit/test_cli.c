@@ -2,6 +2,7 @@
  * table's entries (GB_CLI_VALUE, GB_CLI_FLAG, GB_CLI_OPTIONS_END, the short
  * options taken from the table), gb_cli_main's steps and exit statuses, the
  * failure line of gb_cli_failure, gb_cli_uint and gb_cli_number_keep_zero;
+ * the shared options (gb_cli_shared) and the help made from entries;
  * and gb_progress_begin_for (common/progress.h). Each call runs with stdout
  * and stderr in files, so that the messages are checked word for word. */
 #include "cli.h"
@@ -106,8 +107,8 @@ static gb_result run(void *context, gb_error *error)
     return GB_OK;
 }
 
-static const gb_cli_command command = {"demo", usage, long_options, parse_option,
-                                       check_operands};
+static const gb_cli_command command = {.tool = "demo", .usage = usage, .options = long_options,
+                                       .option = parse_option, .operands = check_operands};
 
 /* gb_cli_main on the words of line (at most 15, split at spaces), with a
  * fresh getopt; the words stay until the next call (a points into them). */
@@ -276,8 +277,91 @@ static void test_progress_begin_for(void)
     gb_progress_end(&progress);
 }
 
+/* ---- a tool of entries: the shared options parsed by cli, the help made ---- */
+
+typedef struct shared_arguments {
+    gb_cli_shared shared;
+    const char *output;
+} shared_arguments;
+
+static int shared_option(int option, const char *value, void *context)
+{
+    shared_arguments *a = context;
+    if (option != 'o')
+        abort();
+    a->output = value;
+    return GB_EXIT_SUCCESS;
+}
+
+static int shared_operands(int count, char **operands, void *context)
+{
+    (void)operands, (void)context;
+    return count == 0 ? GB_CLI_GO_ON : gb_cli_usage_error("demo", "no operand");
+}
+
+static const gb_cli_entry shared_entries[] = {
+    GB_CLI_OPTION('o', "output", "FILE", "the file\nto write"),
+    GB_CLI_SEED("N", NULL),
+    GB_CLI_THREADS(8, NULL),
+    GB_CLI_STATS("print counts"),
+    GB_CLI_DEPFILE(NULL),
+    GB_CLI_QUIET(NULL),
+    GB_CLI_ENTRIES_END,
+};
+
+static const gb_cli_command shared_command = {.tool = "demo", .usage = "usage: demo\n\n",
+                                              .option = shared_option,
+                                              .operands = shared_operands,
+                                              .entries = shared_entries, .column = 20};
+
+/* gb_cli_parse of shared_command on argv (NULL-ended). */
+static int parse_shared(char **argv, shared_arguments *a, captured *c)
+{
+    int argc = 0;
+    while (argv[argc])
+        ++argc;
+    optind = 0;
+    capture_begin();
+    int status = gb_cli_parse(&shared_command, argc, argv, a);
+    capture_end(c);
+    return status;
+}
+
+static void test_shared_options(void)
+{
+    shared_arguments a = {0};
+    captured c;
+    char *good[] = {"demo", "-o", "x", "--seed", "7", "-j", "8", "-s", "--depfile", "d", "-q",
+                    NULL};
+    CHECK_EQ_INT(parse_shared(good, &a, &c), GB_CLI_GO_ON, "the shared options parse");
+    CHECK(a.shared.seed == 7 && a.shared.threads == 8 && a.shared.stats && a.shared.quiet &&
+              a.shared.depfile && strcmp(a.shared.depfile, "d") == 0 && a.output,
+          "each shared option lands in gb_cli_shared, the tool's own in its arguments");
+    char *bad[] = {"demo", "-j", "9", NULL};
+    CHECK_EQ_INT(parse_shared(bad, &(shared_arguments){0}, &c), GB_EXIT_USAGE,
+                 "--threads above the entry's most: a usage error");
+    CHECK(strcmp(c.err, "demo: --threads: '9' is not an integer in 1..8\n"
+                        "Try 'demo --help' for more information.\n") == 0,
+          "... with gb_cli_int's message");
+    char *help[] = {"demo", "--help", NULL};
+    CHECK_EQ_INT(parse_shared(help, &(shared_arguments){0}, &c), GB_EXIT_SUCCESS, "--help: 0");
+    const char *want = "usage: demo\n\n"
+                       "  -o, --output FILE  the file\n"
+                       "                    to write\n"
+                       "      --seed N      random seed (default 0)\n"
+                       "  -j, --threads N   threads (default: every core)\n"
+                       "  -s, --stats       print counts\n"
+                       "      --depfile FILE  a make rule: the output and every file read (-MD)\n"
+                       "  -q, --quiet       no progress bar, no warnings\n"
+                       "  -h, --help        this help\n"
+                       "  -V, --version     the version\n";
+    CHECK(strcmp(c.out, want) == 0, "the help: head, each entry at the column (two spaces "
+                                    "at least), its next lines indented, then -h and -V");
+}
+
 int main(void)
 {
+    test_shared_options();
     test_main_runs();
     test_main_help_and_version();
     test_main_usage_errors();

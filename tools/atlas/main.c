@@ -2,7 +2,6 @@
  * (tools/atlas/atlas_build.h). Parses options, loads the scene, calls
  * gb_atlas_build, writes the file. */
 
-#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,42 +23,40 @@ static const char usage[] =
     "normal stays within --cone of the chart's first; each is cut until it is a\n"
     "disc. No two triangles overlap in the atlas (tested exactly before writing)\n"
     "and every triangle has a positive UV area.\n"
-    "\n"
-    "  -o, --output FILE        the atlas to write (required)\n"
-    "      --size N             an N x N atlas, at the largest texel density at\n"
-    "                           which the charts fit (default 1024)\n"
-    "      --texels-per-unit T  this texel density instead; the atlas is as large\n"
-    "                           as the charts need (at most 16384 a side)\n"
-    "      --padding P          texels of gutter around every chart (default 2)\n"
-    "      --cone DEGREES       largest angle between a chart's normals and its\n"
-    "                           first triangle's, 1..90 (default 70)\n"
-    "  -s, --stats              print charts, fill ratio (the triangles' UV area\n"
-    "                           in texels over the atlas's width x height), max and\n"
-    "                           mean angle distortion (degrees, per triangle corner:\n"
-    "                           |UV angle - 3-D angle|) and seconds\n"
-    "      --depfile FILE       a make rule: the output and every file read (-MD)\n"
-    "  -q, --quiet              no progress bar, no warnings\n"
-    "  -h, --help               this help\n"
-    "  -V, --version            the version\n";
+    "\n";
 
 typedef struct arguments {
+    gb_cli_shared shared;       /* first: the options every tool shares */
     gb_atlas_options atlas;
-    const char *scene, *output, *depfile;
-    int quiet, stats, size_given;
+    const char *scene, *output;
+    int size_given;
 } arguments;
 
-enum { OPTION_SIZE = 256, OPTION_TEXELS, OPTION_PADDING, OPTION_CONE, OPTION_DEPFILE };
+enum { OPTION_SIZE = 256, OPTION_TEXELS, OPTION_PADDING, OPTION_CONE };
 
-static const struct option long_options[] = {
-    GB_CLI_VALUE("output", 'o'),
-    GB_CLI_VALUE("size", OPTION_SIZE),
-    GB_CLI_VALUE("texels-per-unit", OPTION_TEXELS),
-    GB_CLI_VALUE("padding", OPTION_PADDING),
-    GB_CLI_VALUE("cone", OPTION_CONE),
-    GB_CLI_FLAG("stats", 's'),
-    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
-    GB_CLI_OPTIONS_END,
+static const gb_cli_entry entries[] = {
+    GB_CLI_OPTION('o', "output", "FILE", "the atlas to write (required)"),
+    GB_CLI_OPTION(OPTION_SIZE, "size", "N",
+                  "an N x N atlas, at the largest texel density at\n"
+                  "which the charts fit (default 1024)"),
+    GB_CLI_OPTION(OPTION_TEXELS, "texels-per-unit", "T",
+                  "this texel density instead; the atlas is as large\n"
+                  "as the charts need (at most 16384 a side)"),
+    GB_CLI_OPTION(OPTION_PADDING, "padding", "P",
+                  "texels of gutter around every chart (default 2)"),
+    GB_CLI_OPTION(OPTION_CONE, "cone", "DEGREES",
+                  "largest angle between a chart's normals and its\n"
+                  "first triangle's, 1..90 (default 70)"),
+    GB_CLI_STATS("print charts, fill ratio (the triangles' UV area\n"
+                 "in texels over the atlas's width x height), max and\n"
+                 "mean angle distortion (degrees, per triangle corner:\n"
+                 "|UV angle - 3-D angle|) and seconds"),
+    GB_CLI_DEPFILE(NULL),
+    GB_CLI_QUIET(NULL),
+    GB_CLI_ENTRIES_END,
 };
+
+static const gb_cli_command command; /* below; command.tool starts every message */
 
 /* One option into a; 0, else the exit status. */
 static int parse_option(int option, const char *text, void *context)
@@ -68,16 +65,16 @@ static int parse_option(int option, const char *text, void *context)
     gb_atlas_options *o = &a->atlas;
     switch (option) {
     case 'o': a->output = text; return 0;
-    case 'q': a->quiet = 1; return 0;
-    case 's': a->stats = 1; return 0;
-    case OPTION_DEPFILE: a->depfile = text; return 0;
     case OPTION_SIZE:
         a->size_given = 1;
-        return gb_cli_uint("atlas", "size", text, 8, GB_ATLAS_MAX_SIZE, &o->size);
+        return gb_cli_uint(command.tool, "size", text, 8, GB_ATLAS_MAX_SIZE, &o->size);
     case OPTION_TEXELS:
-        return gb_cli_number("atlas", "texels-per-unit", text, 1e-9, 1e9, &o->texels_per_unit);
-    case OPTION_PADDING: return gb_cli_uint("atlas", "padding", text, 0, 64, &o->padding);
-    default: return gb_cli_number("atlas", "cone", text, 1.0, 90.0, &o->cone_degrees);
+        return gb_cli_number(command.tool, "texels-per-unit", text, 1e-9, 1e9,
+                             &o->texels_per_unit);
+    case OPTION_PADDING: return gb_cli_uint(command.tool, "padding", text, 0, 64, &o->padding);
+    case OPTION_CONE:
+        return gb_cli_number(command.tool, "cone", text, 1.0, 90.0, &o->cone_degrees);
+    default: abort();   /* an entry with no case here */
     }
 }
 
@@ -86,15 +83,16 @@ static int check_operands(int count, char **operands, void *context)
 {
     arguments *a = context;
     if (count != 1 || !a->output)
-        return gb_cli_usage_error("atlas", "expected one SCENE and -o OUT.atlas");
+        return gb_cli_usage_error(command.tool, "expected one SCENE and -o OUT.atlas");
     if (a->size_given && a->atlas.texels_per_unit > 0.0)
-        return gb_cli_usage_error("atlas", "--size and --texels-per-unit exclude each other");
+        return gb_cli_usage_error(command.tool,
+                                  "--size and --texels-per-unit exclude each other");
     a->scene = operands[0];
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"atlas", usage, long_options, parse_option,
-                                       check_operands};
+static const gb_cli_command command = {"atlas", usage, NULL, parse_option,
+                                       check_operands, entries, 27};
 
 static void print_stats(const gb_atlas_stats *s, const gb_atlas *atlas, const char *output)
 {
@@ -120,7 +118,7 @@ static void print_stats(const gb_atlas_stats *s, const gb_atlas *atlas, const ch
 static gb_result make_atlas(arguments *a, const gb_scene *scene, gb_error *error)
 {
     gb_progress progress;
-    gb_progress_begin_for(&progress, "atlas", a->quiet, &a->atlas.progress,
+    gb_progress_begin_for(&progress, command.tool, a->shared.quiet, &a->atlas.progress,
                           &a->atlas.progress_user);
     gb_atlas atlas;
     gb_atlas_stats stats;
@@ -128,7 +126,7 @@ static gb_result make_atlas(arguments *a, const gb_scene *scene, gb_error *error
     gb_progress_end(&progress);
     if (result == GB_OK)
         result = gb_atlas_write(a->output, &atlas, error);
-    if (result == GB_OK && a->stats)
+    if (result == GB_OK && a->shared.stats)
         print_stats(&stats, &atlas, a->output);
     gb_atlas_free(&atlas);
     return result;
@@ -137,17 +135,18 @@ static gb_result make_atlas(arguments *a, const gb_scene *scene, gb_error *error
 static gb_result run(void *context, gb_error *error)
 {
     arguments *a = context;
-    gb_result result = gb_output_files_check((const char *[]){a->output, a->depfile}, 2, error);
+    gb_result result =
+        gb_output_files_check((const char *[]){a->output, a->shared.depfile}, 2, error);
     if (result != GB_OK)
         return result;
     gb_scene scene;
     result = gb_scene_load(a->scene, NULL, &scene, error);
-    if (result == GB_OK && !a->quiet)
-        gb_scene_warn("atlas", &scene, GB_WARN_GEOMETRY);
+    if (result == GB_OK && !a->shared.quiet)
+        gb_scene_warn(command.tool, &scene, GB_WARN_GEOMETRY);
     if (result == GB_OK)
         result = make_atlas(a, &scene, error);
-    if (result == GB_OK && a->depfile)
-        result = gb_depfile_write_scene(a->depfile, a->output, &scene, NULL, error);
+    if (result == GB_OK && a->shared.depfile)
+        result = gb_depfile_write_scene(a->shared.depfile, a->output, &scene, NULL, error);
     gb_scene_free(&scene);
     return result;
 }

@@ -1,6 +1,5 @@
 /* cluster — the light octree of a scene from its photon map (cluster.h). */
 
-#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,59 +20,54 @@ static const char usage[] =
     "Clusters the photon map IN.phot of SCENE into a light octree of virtual\n"
     "directional lights (vivianloc-2007; formats/FORMATS.md, \"Light octree\"). The\n"
     "file depends on the seed, never on --threads.\n"
-    "\n"
-    "  -o, --output FILE       the light octree to write\n"
-    "  -d, --depth N           octree depth (delta), 1..10 (default 6: 64^3 leaves;\n"
-    "                          the paper finds quality improving over delta 4..6)\n"
-    "  -k, --knn K             most photons gathered per leaf (default 300: the\n"
-    "                          paper's Fig. 17; its leaves held 50 to 500)\n"
-    "      --radius R          largest gathering radius, world units\n"
-    "                          (default 3 leaf edges)\n"
-    "      --vdls K_MAX        most VDLs per leaf, 1..64 (default 8)\n"
-    "      --max-spread DEG    fewest VDLs whose spread is at most DEG degrees\n"
-    "                          (default 15; 0: always K_MAX)\n"
-    "      --restarts N        k-means runs per leaf and k, the best kept, 1..64\n"
-    "                          (default 1)\n"
-    "      --seed N            k-means++ seed (default 0)\n"
-    "  -j, --threads N         threads (default: every core)\n"
-    "      --shard I/N         cluster only part I of N of the leaves (a range of\n"
-    "                          the leaf order; the others get no VDL), indexing\n"
-    "                          only the photons they can gather\n"
-    "      --merge             join the N parts given, in order 0/N .. N-1/N, into\n"
-    "                          the octree of the whole run, byte for byte\n"
-    "  -s, --stats             print leaves, VDLs, photons indexed and seconds\n"
-    "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
-    "  -q, --quiet             no progress bar, no warnings\n"
-    "  -h, --help              this help\n"
-    "  -V, --version           the version\n";
+    "\n";
 
 typedef struct arguments {
+    gb_cli_shared shared;       /* first: --seed, --threads, --stats, --depfile, -q */
     gb_cluster_options cluster;
-    const char *output, *scene, *photons, *depfile;
+    const char *output, *scene, *photons;
     char **parts;               /* --merge: the parts */
     int part_count;
-    int quiet, stats, merge;
+    int merge;
 } arguments;
 
-enum { OPTION_RADIUS = 256, OPTION_VDLS, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SEED,
-       OPTION_DEPFILE, OPTION_SHARD, OPTION_MERGE };
+enum { OPTION_RADIUS = 256, OPTION_VDLS, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SHARD,
+       OPTION_MERGE };
 
-static const struct option long_options[] = {
-    GB_CLI_VALUE("output", 'o'),
-    GB_CLI_VALUE("depth", 'd'),
-    GB_CLI_VALUE("knn", 'k'),
-    GB_CLI_VALUE("radius", OPTION_RADIUS),
-    GB_CLI_VALUE("vdls", OPTION_VDLS),
-    GB_CLI_VALUE("max-spread", OPTION_SPREAD),
-    GB_CLI_VALUE("restarts", OPTION_RESTARTS),
-    GB_CLI_VALUE("seed", OPTION_SEED),
-    GB_CLI_VALUE("threads", 'j'),
-    GB_CLI_FLAG("stats", 's'),
-    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
-    GB_CLI_VALUE("shard", OPTION_SHARD),
-    GB_CLI_FLAG("merge", OPTION_MERGE),
-    GB_CLI_OPTIONS_END,
+static const gb_cli_entry entries[] = {
+    GB_CLI_OPTION('o', "output", "FILE", "the light octree to write"),
+    GB_CLI_OPTION('d', "depth", "N",
+                  "octree depth (delta), 1..10 (default 6: 64^3 leaves;\n"
+                  "the paper finds quality improving over delta 4..6)"),
+    GB_CLI_OPTION('k', "knn", "K",
+                  "most photons gathered per leaf (default 300: the\n"
+                  "paper's Fig. 17; its leaves held 50 to 500)"),
+    GB_CLI_OPTION(OPTION_RADIUS, "radius", "R",
+                  "largest gathering radius, world units\n"
+                  "(default 3 leaf edges)"),
+    GB_CLI_OPTION(OPTION_VDLS, "vdls", "K_MAX", "most VDLs per leaf, 1..64 (default 8)"),
+    GB_CLI_OPTION(OPTION_SPREAD, "max-spread", "DEG",
+                  "fewest VDLs whose spread is at most DEG degrees\n"
+                  "(default 15; 0: always K_MAX)"),
+    GB_CLI_OPTION(OPTION_RESTARTS, "restarts", "N",
+                  "k-means runs per leaf and k, the best kept, 1..64\n"
+                  "(default 1)"),
+    GB_CLI_SEED("N", "k-means++ seed (default 0)"),
+    GB_CLI_THREADS(256, NULL),
+    GB_CLI_OPTION(OPTION_SHARD, "shard", "I/N",
+                  "cluster only part I of N of the leaves (a range of\n"
+                  "the leaf order; the others get no VDL), indexing\n"
+                  "only the photons they can gather"),
+    GB_CLI_OPTION(OPTION_MERGE, "merge", NULL,
+                  "join the N parts given, in order 0/N .. N-1/N, into\n"
+                  "the octree of the whole run, byte for byte"),
+    GB_CLI_STATS("print leaves, VDLs, photons indexed and seconds"),
+    GB_CLI_DEPFILE(NULL),
+    GB_CLI_QUIET(NULL),
+    GB_CLI_ENTRIES_END,
 };
+
+static const gb_cli_command command; /* below; command.tool starts every message */
 
 /* One option into a; 0, else the exit status. */
 static int parse_option(int option, const char *text, void *context)
@@ -83,27 +77,23 @@ static int parse_option(int option, const char *text, void *context)
     int status;
     switch (option) {
     case 'o': a->output = text; return 0;
-    case 'q': a->quiet = 1; return 0;
-    case 's': a->stats = 1; return 0;
-    case OPTION_DEPFILE: a->depfile = text; return 0;
     case OPTION_MERGE: a->merge = 1; return 0;
     case OPTION_SHARD:
-        return gb_cli_fraction("cluster", "shard", text, &o->part, &o->part_count);
+        return gb_cli_fraction(command.tool, "shard", text, &o->part, &o->part_count);
     case 'd':
-        return gb_cli_uint("cluster", "depth", text, 1, GB_LIGHT_OCTREE_MAX_DEPTH, &o->depth);
-    case 'k': return gb_cli_uint("cluster", "knn", text, 1, 100000, &o->knn);
-    case OPTION_RADIUS: return gb_cli_float("cluster", "radius", text, 1e-30, 1e30, &o->radius);
+        return gb_cli_uint(command.tool, "depth", text, 1, GB_LIGHT_OCTREE_MAX_DEPTH, &o->depth);
+    case 'k': return gb_cli_uint(command.tool, "knn", text, 1, 100000, &o->knn);
+    case OPTION_RADIUS: return gb_cli_float(command.tool, "radius", text, 1e-30, 1e30, &o->radius);
     case OPTION_VDLS:
-        return gb_cli_uint("cluster", "vdls", text, 1, GB_LIGHT_OCTREE_MAX_VDLS, &o->vdls_max);
+        return gb_cli_uint(command.tool, "vdls", text, 1, GB_LIGHT_OCTREE_MAX_VDLS, &o->vdls_max);
     case OPTION_SPREAD:
-        status = gb_cli_float("cluster", "max-spread", text, 0.0, 180.0, &o->max_spread);
+        status = gb_cli_float(command.tool, "max-spread", text, 0.0, 180.0, &o->max_spread);
         /* 0 means "always K_max", which the library spells as negative */
         if (status == 0 && o->max_spread == 0.0f)
             o->max_spread = -1.0f;
         return status;
-    case OPTION_RESTARTS: return gb_cli_uint("cluster", "restarts", text, 1, 64, &o->restarts);
-    case OPTION_SEED: return gb_cli_unsigned("cluster", "seed", text, 0, UINT64_MAX, &o->seed);
-    default: return gb_cli_int("cluster", "threads", text, 1, 256, &o->threads);
+    case OPTION_RESTARTS: return gb_cli_uint(command.tool, "restarts", text, 1, 64, &o->restarts);
+    default: abort();   /* an entry with no case here */
     }
 }
 
@@ -113,24 +103,26 @@ static int check_operands(int count, char **operands, void *context)
     arguments *a = context;
     if (a->merge) {
         if (count < 2 || !a->output)
-            return gb_cli_usage_error("cluster", "--merge: expected the parts PART0.lot "
+            return gb_cli_usage_error(command.tool, "--merge: expected the parts PART0.lot "
                                                  "PART1.lot ... and -o OUT.lot");
-        if (a->depfile || a->cluster.part_count || a->stats)
-            return gb_cli_usage_error("cluster", "--merge takes neither --depfile, --shard "
+        if (a->shared.depfile || a->cluster.part_count || a->shared.stats)
+            return gb_cli_usage_error(command.tool, "--merge takes neither --depfile, --shard "
                                                  "nor --stats");
         a->parts = operands;
         a->part_count = count;
         return GB_CLI_GO_ON;
     }
     if (!a->output || count != 2)
-        return gb_cli_usage_error("cluster", "expected SCENE IN.phot and -o OUT.lot");
+        return gb_cli_usage_error(command.tool, "expected SCENE IN.phot and -o OUT.lot");
     a->scene = operands[0];
     a->photons = operands[1];
+    a->cluster.seed = a->shared.seed;
+    a->cluster.threads = a->shared.threads;
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"cluster", usage, long_options, parse_option,
-                                       check_operands};
+static const gb_cli_command command = {"cluster", usage, NULL, parse_option,
+                                       check_operands, entries, 26};
 
 static void print_stats(const gb_cluster_stats *s, const char *output)
 {
@@ -158,7 +150,7 @@ static gb_result cluster(arguments *a, const gb_scene *scene, const gb_photon_ma
                          gb_error *error)
 {
     gb_progress progress;
-    gb_progress_begin_for(&progress, "cluster", a->quiet, &a->cluster.progress,
+    gb_progress_begin_for(&progress, command.tool, a->shared.quiet, &a->cluster.progress,
                           &a->cluster.progress_user);
     gb_light_octree octree;
     gb_cluster_stats stats;
@@ -166,7 +158,7 @@ static gb_result cluster(arguments *a, const gb_scene *scene, const gb_photon_ma
     gb_progress_end(&progress);
     if (result == GB_OK)
         result = gb_light_octree_write(a->output, &octree, error);
-    if (result == GB_OK && a->stats)
+    if (result == GB_OK && a->shared.stats)
         print_stats(&stats, a->output);
     gb_light_octree_free(&octree);
     return result;
@@ -201,23 +193,24 @@ static gb_result run(void *context, gb_error *error)
         gb_result checked = gb_output_file_check(a->output, error);
         return checked == GB_OK ? merge_parts(a, error) : checked;
     }
-    gb_result result = gb_output_files_check((const char *[]){a->output, a->depfile}, 2, error);
+    gb_result result =
+        gb_output_files_check((const char *[]){a->output, a->shared.depfile}, 2, error);
     if (result != GB_OK)
         return result;
     gb_scene scene;
     gb_photon_map map;
     memset(&map, 0, sizeof map);
     result = gb_scene_load(a->scene, NULL, &scene, error);
-    if (result == GB_OK && !a->quiet)  /* no light: an empty map, an octree of no VDL */
-        gb_scene_warn("cluster", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
+    if (result == GB_OK && !a->shared.quiet)  /* no light: an empty map, an octree of no VDL */
+        gb_scene_warn(command.tool, &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     if (result == GB_OK)
         result = gb_photon_map_read(a->photons, &map, error);
     if (result == GB_OK)
         result = gb_photon_map_check_scene(&map, scene.hash, a->photons, error);
     if (result == GB_OK)
         result = cluster(a, &scene, &map, error);
-    if (result == GB_OK && a->depfile)
-        result = gb_depfile_write_scene(a->depfile, a->output, &scene, a->photons, error);
+    if (result == GB_OK && a->shared.depfile)
+        result = gb_depfile_write_scene(a->shared.depfile, a->output, &scene, a->photons, error);
     gb_photon_map_free(&map);
     gb_scene_free(&scene);
     return result;

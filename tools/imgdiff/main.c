@@ -1,6 +1,5 @@
 /* imgdiff — how far an image is from a reference (common/image_error.h). */
 
-#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -25,24 +24,30 @@ static const char usage[] =
     "                pixels, rounded down: none below 1000), a pixel's relative\n"
     "                error being the mean over its channels of (a - b)^2 / (b^2 +\n"
     "                0.01); ties at the cut do not change it. At most relative_mse\n"
-    "\n"
-    "      --mask FILE           compare only where FILE is not black (< 0.5)\n"
-    "      --heatmap OUT.png     write the per-pixel error as colours, black (none)\n"
-    "                            to white (the 99th percentile, or --heatmap-scale)\n"
-    "      --heatmap-scale E     the linear error shown white\n"
-    "      --fail-above E        exit 1 when relative_mse is above E (a test's threshold)\n"
-    "  -q, --quiet               print nothing (the exit status tells)\n"
-    "  -h, --help                this help\n"
-    "  -V, --version             the version\n";
+    "\n";
 
 typedef struct arguments {
+    gb_cli_shared shared;       /* first: -q */
     const char *image, *reference, *mask, *heatmap;
     double heatmap_scale;
     double fail_above;          /* INFINITY: never fail on the error; NaN fails */
-    int quiet;
 } arguments;
 
 enum { OPTION_MASK = 256, OPTION_HEATMAP, OPTION_HEATMAP_SCALE, OPTION_FAIL_ABOVE };
+
+static const gb_cli_entry entries[] = {
+    GB_CLI_OPTION(OPTION_MASK, "mask", "FILE", "compare only where FILE is not black (< 0.5)"),
+    GB_CLI_OPTION(OPTION_HEATMAP, "heatmap", "OUT.png",
+                  "write the per-pixel error as colours, black (none)\n"
+                  "to white (the 99th percentile, or --heatmap-scale)"),
+    GB_CLI_OPTION(OPTION_HEATMAP_SCALE, "heatmap-scale", "E", "the linear error shown white"),
+    GB_CLI_OPTION(OPTION_FAIL_ABOVE, "fail-above", "E",
+                  "exit 1 when relative_mse is above E (a test's threshold)"),
+    GB_CLI_QUIET("print nothing (the exit status tells)"),
+    GB_CLI_ENTRIES_END,
+};
+
+static const gb_cli_command command; /* below; command.tool starts every message */
 
 /* The largest --heatmap-scale and --fail-above: any error a test can meet. */
 #define MAX_ERROR 1e30
@@ -53,36 +58,29 @@ static int parse_option(int option, const char *text, void *context)
     arguments *a = context;
     switch (option) {
     case OPTION_MASK: a->mask = text; return 0;
-    case 'q': a->quiet = 1; return 0;
     case OPTION_HEATMAP: a->heatmap = text; return 0;
     case OPTION_HEATMAP_SCALE:  /* 0 would show every error white */
-        return gb_cli_number("imgdiff", "heatmap-scale", text, 1e-30, MAX_ERROR,
+        return gb_cli_number(command.tool, "heatmap-scale", text, 1e-30, MAX_ERROR,
                              &a->heatmap_scale);
     case OPTION_FAIL_ABOVE:
-        return gb_cli_number("imgdiff", "fail-above", text, 0.0, MAX_ERROR, &a->fail_above);
+        return gb_cli_number(command.tool, "fail-above", text, 0.0, MAX_ERROR, &a->fail_above);
+    default: abort();   /* an entry with no case here */
     }
-    return 0;
 }
 
-/* GB_CLI_GO_ON, else the exit status (0 after --help and --version). */
-static int parse_arguments(int argc, char **argv, arguments *a)
+/* IMAGE and REFERENCE; GB_CLI_GO_ON, else the exit status. */
+static int check_operands(int count, char **operands, void *context)
 {
-    static const struct option options[] = {
-        GB_CLI_VALUE("mask", OPTION_MASK),
-        GB_CLI_VALUE("heatmap", OPTION_HEATMAP),
-        GB_CLI_VALUE("heatmap-scale", OPTION_HEATMAP_SCALE),
-        GB_CLI_VALUE("fail-above", OPTION_FAIL_ABOVE),
-        GB_CLI_OPTIONS_END,
-    };
-    int status = gb_cli_options("imgdiff", usage, argc, argv, options, parse_option, a);
-    if (status != GB_CLI_GO_ON)
-        return status;
-    if (optind != argc - 2)
-        return gb_cli_usage_error("imgdiff", "expected IMAGE and REFERENCE");
-    a->image = argv[optind];
-    a->reference = argv[optind + 1];
+    arguments *a = context;
+    if (count != 2)
+        return gb_cli_usage_error(command.tool, "expected IMAGE and REFERENCE");
+    a->image = operands[0];
+    a->reference = operands[1];
     return GB_CLI_GO_ON;
 }
+
+static const gb_cli_command command = {"imgdiff", usage, NULL, parse_option, check_operands,
+                                       entries, 28};
 
 static void print_error(const gb_image_error *e)
 {
@@ -124,7 +122,7 @@ static gb_result compare(const arguments *a, gb_image images[3], gb_image_error 
         result = gb_image_error_compute(&images[0], &images[1], mask, measures, error);
     if (result == GB_OK && a->heatmap)
         result = write_heatmap(a, &images[0], &images[1], mask, error);
-    if (result == GB_OK && !a->quiet)
+    if (result == GB_OK && !a->shared.quiet)
         print_error(measures);
     return result;
 }
@@ -132,7 +130,7 @@ static gb_result compare(const arguments *a, gb_image images[3], gb_image_error 
 int main(int argc, char **argv)
 {
     arguments a = {.fail_above = INFINITY};
-    int status = parse_arguments(argc, argv, &a);
+    int status = gb_cli_parse(&command, argc, argv, &a);
     if (status != GB_CLI_GO_ON)
         return status;
     gb_image images[3] = {{0}, {0}, {0}};
@@ -144,13 +142,13 @@ int main(int argc, char **argv)
     for (int i = 0; i < 3; ++i)
         gb_image_free(&images[i]);
     if (result != GB_OK)
-        return gb_cli_failure("imgdiff", &error);
+        return gb_cli_failure(command.tool, &error);
     if (fflush(stdout) != 0)
         return 1;
     if (isfinite(a.fail_above) && !(measures.relative_mse <= a.fail_above)) {
-        if (!a.quiet)
-            fprintf(stderr, "imgdiff: relative_mse %.6g is above %g\n", measures.relative_mse,
-                    a.fail_above);
+        if (!a.shared.quiet)
+            fprintf(stderr, "%s: relative_mse %.6g is above %g\n", command.tool,
+                    measures.relative_mse, a.fail_above);
         return 1;
     }
     return 0;

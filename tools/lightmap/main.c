@@ -30,32 +30,27 @@ static const char usage[] =
     "float EXR and, with --glb, the scene as a glTF 2.0 binary with the atlas\n"
     "UVs as TEXCOORD_1 and the lightmap as an embedded PNG (formats/FORMATS.md,\n"
     "\"glTF export\"). The files depend on the inputs only, never on --threads.\n"
-    "\n"
-    "  -o, --output FILE       the lightmap to write (.exr)\n"
-    "      --glb FILE          also the scene as a glTF binary (.glb)\n"
-    "  -j, --threads N         threads (default: every core)\n"
-    "  -s, --stats             print texels, seconds, bytes and the PNG's error\n"
-    "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
-    "  -q, --quiet             no progress bar, no warnings\n"
-    "  -h, --help              this help\n"
-    "  -V, --version           the version\n";
+    "\n";
 
 typedef struct arguments {
+    gb_cli_shared shared;       /* first: the options every tool shares */
     gb_lightmap_options lightmap;
-    const char *output, *glb, *scene, *atlas, *octree, *depfile;
-    int quiet, stats;
+    const char *output, *glb, *scene, *atlas, *octree;
 } arguments;
 
-enum { OPTION_GLB = 256, OPTION_DEPFILE };
+enum { OPTION_GLB = 256 };
 
-static const struct option long_options[] = {
-    GB_CLI_VALUE("output", 'o'),
-    GB_CLI_VALUE("glb", OPTION_GLB),
-    GB_CLI_VALUE("threads", 'j'),
-    GB_CLI_FLAG("stats", 's'),
-    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
-    GB_CLI_OPTIONS_END,
+static const gb_cli_entry entries[] = {
+    GB_CLI_OPTION('o', "output", "FILE", "the lightmap to write (.exr)"),
+    GB_CLI_OPTION(OPTION_GLB, "glb", "FILE", "also the scene as a glTF binary (.glb)"),
+    GB_CLI_THREADS(256, NULL),
+    GB_CLI_STATS("print texels, seconds, bytes and the PNG's error"),
+    GB_CLI_DEPFILE(NULL),
+    GB_CLI_QUIET(NULL),
+    GB_CLI_ENTRIES_END,
 };
+
+static const gb_cli_command command; /* below; command.tool starts every message */
 
 /* One option into a; 0, else the exit status. */
 static int parse_option(int option, const char *text, void *context)
@@ -63,11 +58,8 @@ static int parse_option(int option, const char *text, void *context)
     arguments *a = context;
     switch (option) {
     case 'o': a->output = text; return 0;
-    case 'q': a->quiet = 1; return 0;
     case OPTION_GLB: a->glb = text; return 0;
-    case 's': a->stats = 1; return 0;
-    case OPTION_DEPFILE: a->depfile = text; return 0;
-    default: return gb_cli_int("lightmap", "threads", text, 1, 256, &a->lightmap.threads);
+    default: abort();   /* an entry with no case here */
     }
 }
 
@@ -76,16 +68,17 @@ static int check_operands(int count, char **operands, void *context)
 {
     arguments *a = context;
     if (!a->output || count != 3)
-        return gb_cli_usage_error("lightmap", "expected SCENE NAME.atlas NAME.lot and -o "
+        return gb_cli_usage_error(command.tool, "expected SCENE NAME.atlas NAME.lot and -o "
                                               "OUT.exr");
     a->scene = operands[0];
     a->atlas = operands[1];
     a->octree = operands[2];
+    a->lightmap.threads = a->shared.threads;
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"lightmap", usage, long_options, parse_option,
-                                       check_operands};
+static const gb_cli_command command = {"lightmap", usage, NULL, parse_option,
+                                       check_operands, entries, 26};
 
 static long file_bytes(const char *path)
 {
@@ -116,7 +109,7 @@ static gb_result check_outputs(const arguments *a, gb_error *error)
 {
     gb_result result = gb_image_check_output(a->output, error);
     if (result == GB_OK)
-        result = gb_output_files_check((const char *[]){a->glb, a->depfile}, 2, error);
+        result = gb_output_files_check((const char *[]){a->glb, a->shared.depfile}, 2, error);
     return result;
 }
 
@@ -124,8 +117,8 @@ static gb_result read_inputs(const arguments *a, gb_scene *scene, gb_atlas *atla
                              gb_light_octree *octree, gb_error *error)
 {
     gb_result result = gb_scene_load(a->scene, NULL, scene, error);
-    if (result == GB_OK && !a->quiet)
-        gb_scene_warn("lightmap", scene, GB_WARN_GEOMETRY);
+    if (result == GB_OK && !a->shared.quiet)
+        gb_scene_warn(command.tool, scene, GB_WARN_GEOMETRY);
     if (result == GB_OK)
         result = gb_atlas_read(a->atlas, atlas, error);
     if (result == GB_OK)
@@ -143,7 +136,7 @@ static gb_result bake(arguments *a, const gb_scene *scene, const gb_atlas *atlas
                       gb_lightmap_stats *stats, gb_error *error)
 {
     gb_progress progress;
-    gb_progress_begin_for(&progress, "lightmap", a->quiet, &a->lightmap.progress,
+    gb_progress_begin_for(&progress, command.tool, a->shared.quiet, &a->lightmap.progress,
                           &a->lightmap.progress_user);
     gb_result result = gb_lightmap_bake(scene, atlas, octree, &a->lightmap, image, stats, error);
     gb_progress_end(&progress);
@@ -166,7 +159,7 @@ static gb_result write_depfile(const arguments *a, const gb_scene *scene, gb_err
     for (uint32_t m = 0; a->glb && m < scene->material_count; ++m)
         if (scene->materials[m].map_Kd)
             inputs[count++] = scene->materials[m].map_Kd;
-    gb_result result = gb_depfile_write(a->depfile, a->output, inputs, count, error);
+    gb_result result = gb_depfile_write(a->shared.depfile, a->output, inputs, count, error);
     free(inputs);
     return result;
 }
@@ -204,9 +197,9 @@ static gb_result run(void *context, gb_error *error)
         result = gb_glb_export(a->glb, &scene, &atlas, &image, &glb, error);
     if (result == GB_OK)
         result = write_lightmap(a, &image, error);
-    if (result == GB_OK && a->depfile)
+    if (result == GB_OK && a->shared.depfile)
         result = write_depfile(a, &scene, error);
-    if (result == GB_OK && a->stats)
+    if (result == GB_OK && a->shared.stats)
         print_stats(a, &stats, &glb, &atlas);
     gb_image_free(&image);
     gb_light_octree_free(&octree);

@@ -1,7 +1,6 @@
 /* photons — traces the photon map of a scene with Embree (photons.h), or
  * merges the shards of a run. */
 
-#include <getopt.h>
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -22,64 +21,56 @@ static const char usage[] =
     "Traces photons from every light of SCENE with Embree and writes the photon\n"
     "map (formats/FORMATS.md, \"Photon map\"). The map depends on the seed, never\n"
     "on --threads.\n"
-    "\n"
-    "  -o, --output FILE       the photon map to write\n"
-    "  -n, --count N|auto      photons emitted (default 1000000); auto: 2^16,\n"
-    "                          2^17, ... until the map's power in 16^3 cells of the\n"
-    "                          bounds changes by less than --tolerance (at most\n"
-    "                          2^30; about twice the cost of the run it keeps)\n"
-    "      --tolerance T       for -n auto: relative change, 1e-6..0.999 (default\n"
-    "                          0.05)\n"
-    "  -b, --bounces N         most reflections of a path, 1..255 (default 16;\n"
-    "                          Russian roulette after 2)\n"
-    "      --store WHAT        indirect (default): photons that were reflected at\n"
-    "                          least once; all: every hit, direct light included\n"
-    "      --seed N            random seed (default 0)\n"
-    "  -j, --threads N         threads (default: every core)\n"
-    "      --shard I/N         trace only part I of N (from 0/N to N-1/N) of the\n"
-    "                          photons; --merge joins the N parts into the map of\n"
-    "                          the whole run, byte for byte\n"
-    "      --merge             join the shards given as arguments\n"
-    "  -s, --stats             print photons, rays and seconds on stdout\n"
-    "      --depfile FILE      a make rule: the output and every file read (-MD)\n"
-    "  -q, --quiet             no progress bar, no warnings\n"
-    "  -h, --help              this help\n"
-    "  -V, --version           the version\n";
+    "\n";
 
-enum {
-    OPTION_STORE = 256, OPTION_SEED, OPTION_SHARD, OPTION_MERGE, OPTION_DEPFILE,
-    OPTION_TOLERANCE,
-};
+enum { OPTION_STORE = 256, OPTION_SHARD, OPTION_MERGE, OPTION_TOLERANCE };
 
 typedef struct arguments {
+    gb_cli_shared shared;       /* first: --seed, --threads, --stats, --depfile, -q */
     gb_photons_options trace;
-    const char *output, *depfile;
+    const char *output;
     char **inputs;
     int input_count;
-    int merge, stats, quiet, automatic;
+    int merge, automatic;
     double tolerance;
 } arguments;
 
-static const struct option long_options[] = {
-    GB_CLI_VALUE("output", 'o'),
-    GB_CLI_VALUE("count", 'n'),
-    GB_CLI_VALUE("bounces", 'b'),
-    GB_CLI_VALUE("store", OPTION_STORE),
-    GB_CLI_VALUE("seed", OPTION_SEED),
-    GB_CLI_VALUE("threads", 'j'),
-    GB_CLI_VALUE("shard", OPTION_SHARD),
-    GB_CLI_FLAG("merge", OPTION_MERGE),
-    GB_CLI_FLAG("stats", 's'),
-    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
-    GB_CLI_VALUE("tolerance", OPTION_TOLERANCE),
-    GB_CLI_OPTIONS_END,
+static const gb_cli_entry entries[] = {
+    GB_CLI_OPTION('o', "output", "FILE", "the photon map to write"),
+    GB_CLI_OPTION('n', "count", "N|auto",
+                  "photons emitted (default 1000000); auto: 2^16,\n"
+                  "2^17, ... until the map's power in 16^3 cells of the\n"
+                  "bounds changes by less than --tolerance (at most\n"
+                  "2^30; about twice the cost of the run it keeps)"),
+    GB_CLI_OPTION(OPTION_TOLERANCE, "tolerance", "T",
+                  "for -n auto: relative change, 1e-6..0.999 (default\n"
+                  "0.05)"),
+    GB_CLI_OPTION('b', "bounces", "N",
+                  "most reflections of a path, 1..255 (default 16;\n"
+                  "Russian roulette after 2)"),
+    GB_CLI_OPTION(OPTION_STORE, "store", "WHAT",
+                  "indirect (default): photons that were reflected at\n"
+                  "least once; all: every hit, direct light included"),
+    GB_CLI_SEED("N", NULL),
+    GB_CLI_THREADS(256, NULL),
+    GB_CLI_OPTION(OPTION_SHARD, "shard", "I/N",
+                  "trace only part I of N (from 0/N to N-1/N) of the\n"
+                  "photons; --merge joins the N parts into the map of\n"
+                  "the whole run, byte for byte"),
+    GB_CLI_OPTION(OPTION_MERGE, "merge", NULL, "join the shards given as arguments"),
+    GB_CLI_STATS("print photons, rays and seconds on stdout"),
+    GB_CLI_DEPFILE(NULL),
+    GB_CLI_QUIET(NULL),
+    GB_CLI_ENTRIES_END,
 };
+
+static const gb_cli_command command; /* below; command.tool starts every message */
 
 static int parse_store(const char *text, gb_photons_options *o)
 {
     static const char *const stores[] = {"indirect", "all"};
     int store;
-    int status = gb_cli_choice("photons", "store", text, stores, 2, &store);
+    int status = gb_cli_choice(command.tool, "store", text, stores, 2, &store);
     if (status == 0)
         o->store = store == 0 ? GB_PHOTON_STORE_INDIRECT : GB_PHOTON_STORE_ALL;
     return status;
@@ -92,25 +83,20 @@ static int parse_option(int option, const char *text, void *context)
     switch (option) {
     case 'o': a->output = text; return 0;
     case OPTION_MERGE: a->merge = 1; return 0;
-    case 's': a->stats = 1; return 0;
-    case OPTION_DEPFILE: a->depfile = text; return 0;
-    case 'q': a->quiet = 1; return 0;
     case 'n':
         a->automatic = strcmp(text, "auto") == 0;
-        return a->automatic ? 0 : gb_cli_unsigned("photons", "count", text, 1,
+        return a->automatic ? 0 : gb_cli_unsigned(command.tool, "count", text, 1,
                                                    GB_PHOTONS_MAX_COUNT, &a->trace.count);
     case OPTION_TOLERANCE:
-        return gb_cli_number("photons", "tolerance", text, 1e-6, 0.999, &a->tolerance);
+        return gb_cli_number(command.tool, "tolerance", text, 1e-6, 0.999, &a->tolerance);
     case 'b':
-        return gb_cli_uint("photons", "bounces", text, 1, GB_PHOTON_MAX_BOUNCES,
+        return gb_cli_uint(command.tool, "bounces", text, 1, GB_PHOTON_MAX_BOUNCES,
                            &a->trace.bounces);
-    case 'j': return gb_cli_int("photons", "threads", text, 1, 256, &a->trace.threads);
-    case OPTION_SEED:
-        return gb_cli_unsigned("photons", "seed", text, 0, UINT64_MAX, &a->trace.seed);
     case OPTION_STORE: return parse_store(text, &a->trace);
-    default:
-        return gb_cli_fraction("photons", "shard", text, &a->trace.shard_index,
+    case OPTION_SHARD:
+        return gb_cli_fraction(command.tool, "shard", text, &a->trace.shard_index,
                                &a->trace.shard_count);
+    default: abort();   /* an entry with no case here */
     }
 }
 
@@ -122,17 +108,19 @@ static int check_operands(int count, char **operands, void *context)
     a->inputs = operands;
     a->input_count = count;
     if (!a->output || a->input_count < 1 || (!a->merge && a->input_count != 1))
-        return gb_cli_usage_error("photons", "expected %s and -o OUT",
+        return gb_cli_usage_error(command.tool, "expected %s and -o OUT",
                                   a->merge ? "the shards to merge" : "one SCENE");
     if (a->tolerance > 0.0 && !a->automatic)
-        return gb_cli_usage_error("photons", "--tolerance is for -n auto");
+        return gb_cli_usage_error(command.tool, "--tolerance is for -n auto");
+    a->trace.seed = a->shared.seed;
+    a->trace.threads = a->shared.threads;
     if (a->automatic)
         a->trace.tolerance = a->tolerance > 0.0 ? a->tolerance : GB_PHOTONS_DEFAULT_TOLERANCE;
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"photons", usage, long_options, parse_option,
-                                       check_operands};
+static const gb_cli_command command = {"photons", usage, NULL, parse_option,
+                                       check_operands, entries, 26};
 
 /* ---- tracing ---- */
 
@@ -173,7 +161,7 @@ static gb_result trace(arguments *a, const gb_scene *scene, gb_error *error)
                                          : a->trace.count ? a->trace.count
                                                           : GB_PHOTONS_DEFAULT_COUNT};
     snprintf(progress.label, sizeof progress.label, "photons");
-    gb_progress_begin(&progress.bar, progress.label, a->quiet);
+    gb_progress_begin(&progress.bar, progress.label, a->shared.quiet);
     a->trace.progress = report_rate;
     a->trace.progress_user = &progress;
     gb_photon_map map;
@@ -181,13 +169,13 @@ static gb_result trace(arguments *a, const gb_scene *scene, gb_error *error)
     gb_result result = gb_photons_trace(scene, &a->trace, &map, &stats, error);
     snprintf(progress.label, sizeof progress.label, "photons");
     gb_progress_end(&progress.bar);
-    if (result == GB_OK && a->automatic && !a->quiet)
+    if (result == GB_OK && a->automatic && !a->shared.quiet)
         fprintf(stderr, "photons: -n auto: %" PRIu64 " photons (the map's power changed by "
                 "%.3f from half as many, %s the tolerance %g)\n", stats.paths, stats.change,
                 stats.change < a->trace.tolerance ? "below" : "still above", a->trace.tolerance);
     if (result == GB_OK)
         result = gb_photon_map_write(a->output, &map, error);
-    if (result == GB_OK && a->stats)
+    if (result == GB_OK && a->shared.stats)
         print_stats(&stats, &map);
     gb_photon_map_free(&map);
     return result;
@@ -198,12 +186,12 @@ static gb_result run_trace(arguments *a, gb_error *error)
     gb_scene scene;
     gb_scene_options scene_options = {.load_textures = 1};
     gb_result result = gb_scene_load(a->inputs[0], &scene_options, &scene, error);
-    if (result == GB_OK && !a->quiet)  /* no light: an empty map, the right answer */
-        gb_scene_warn("photons", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
+    if (result == GB_OK && !a->shared.quiet)  /* no light: an empty map, the right answer */
+        gb_scene_warn(command.tool, &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     if (result == GB_OK)
         result = trace(a, &scene, error);
-    if (result == GB_OK && a->depfile)
-        result = gb_depfile_write_scene(a->depfile, a->output, &scene, NULL, error);
+    if (result == GB_OK && a->shared.depfile)
+        result = gb_depfile_write_scene(a->shared.depfile, a->output, &scene, NULL, error);
     gb_scene_free(&scene);
     return result;
 }
@@ -241,10 +229,10 @@ static gb_result run(void *context, gb_error *error)
 {
     arguments *a = context;
     gb_result result = gb_output_file_check(a->output, error);
-    if (result == GB_OK && a->depfile)
+    if (result == GB_OK && a->shared.depfile)
         result = a->merge ? gb_fail(error, GB_ERROR_ARGUMENT, "--depfile is for a trace, "
                                     "not --merge (whose inputs are its operands)")
-                          : gb_output_file_check(a->depfile, error);
+                          : gb_output_file_check(a->shared.depfile, error);
     if (result == GB_OK)
         result = a->merge ? run_merge(a, error) : run_trace(a, error);
     return result;

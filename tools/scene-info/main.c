@@ -1,7 +1,6 @@
 /* scene-info — loads a scene (.scene, .obj, .obj.gz, .ply, .off, .stl) and
  * prints what gibake sees in it: counts, lights, cameras, bounds and hash. */
 
-#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 
@@ -19,28 +18,27 @@ static const char usage[] =
     "their emissive area, other lights, cameras, bounds and the content hash.\n"
     "Warnings (degenerate triangles dropped, undefined materials, no light) go to\n"
     "stderr.\n"
-    "\n"
-    "      --hash FILE     instead, write to FILE the lines 'scene_hash HEX' (the\n"
-    "                      content hash every baked file records) and 'images_hash\n"
-    "                      HEX' (of the bytes of its textures and environment map),\n"
-    "                      which the Makefile's bake rules depend on\n"
-    "      --depfile FILE  with --hash: a make rule, FILE and every file read (-MD)\n"
-    "  -q, --quiet         no warnings\n"
-    "  -h, --help          this help\n"
-    "  -V, --version       the version\n";
+    "\n";
 
-enum { OPTION_HASH = 256, OPTION_DEPFILE };
+enum { OPTION_HASH = 256 };
 
 typedef struct arguments {
-    const char *scene, *hash, *depfile;
-    int quiet;
+    gb_cli_shared shared;       /* first: the options every tool shares */
+    const char *scene, *hash;
 } arguments;
 
-static const struct option long_options[] = {
-    GB_CLI_VALUE("hash", OPTION_HASH),
-    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
-    GB_CLI_OPTIONS_END,
+static const gb_cli_entry entries[] = {
+    GB_CLI_OPTION(OPTION_HASH, "hash", "FILE",
+                  "instead, write to FILE the lines 'scene_hash HEX' (the\n"
+                  "content hash every baked file records) and 'images_hash\n"
+                  "HEX' (of the bytes of its textures and environment map),\n"
+                  "which the Makefile's bake rules depend on"),
+    GB_CLI_DEPFILE("with --hash: a make rule, FILE and every file read (-MD)"),
+    GB_CLI_QUIET("no warnings"),
+    GB_CLI_ENTRIES_END,
 };
+
+static const gb_cli_command command; /* below; command.tool starts every message */
 
 /* One option into the arguments; 0. */
 static int parse_option(int option, const char *value, void *context)
@@ -48,8 +46,7 @@ static int parse_option(int option, const char *value, void *context)
     arguments *a = context;
     switch (option) {
     case OPTION_HASH: a->hash = value; return 0;
-    case OPTION_DEPFILE: a->depfile = value; return 0;
-    default: a->quiet = 1; return 0;
+    default: abort();   /* an entry with no case here */
     }
 }
 
@@ -58,15 +55,15 @@ static int check_operands(int count, char **operands, void *context)
 {
     arguments *a = context;
     if (count != 1)
-        return gb_cli_usage_error("scene-info", "expected one SCENE");
-    if (a->depfile && !a->hash)
-        return gb_cli_usage_error("scene-info", "--depfile names the file of --hash: give both");
+        return gb_cli_usage_error(command.tool, "expected one SCENE");
+    if (a->shared.depfile && !a->hash)
+        return gb_cli_usage_error(command.tool, "--depfile names the file of --hash: give both");
     a->scene = operands[0];
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"scene-info", usage, long_options, parse_option,
-                                       check_operands};
+static const gb_cli_command command = {"scene-info", usage, NULL, parse_option,
+                                       check_operands, entries, 22};
 
 static double emissive_area(const gb_scene *scene)
 {
@@ -119,15 +116,16 @@ static void print_summary(const gb_scene *scene)
 static gb_result write_hash(const arguments *a, gb_scene *scene, gb_error *error)
 {
     gb_result result = gb_content_hash_write(a->hash, scene, error);
-    if (result == GB_OK && a->depfile)
-        result = gb_depfile_write_scene(a->depfile, a->hash, scene, NULL, error);
+    if (result == GB_OK && a->shared.depfile)
+        result = gb_depfile_write_scene(a->shared.depfile, a->hash, scene, NULL, error);
     return result;
 }
 
 static gb_result run(void *context, gb_error *error)
 {
     const arguments *a = context;
-    gb_result result = gb_output_files_check((const char *[]){a->hash, a->depfile}, 2, error);
+    gb_result result =
+        gb_output_files_check((const char *[]){a->hash, a->shared.depfile}, 2, error);
     gb_scene scene;
     if (result == GB_OK)
         result = gb_scene_load(a->scene, NULL, &scene, error);
@@ -137,8 +135,8 @@ static gb_result run(void *context, gb_error *error)
         result = write_hash(a, &scene, error);
     else
         print_summary(&scene);
-    if (result == GB_OK && !a->quiet)
-        gb_scene_warn("scene-info", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
+    if (result == GB_OK && !a->shared.quiet)
+        gb_scene_warn(command.tool, &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     gb_scene_free(&scene);
     return result;
 }

@@ -4,7 +4,6 @@
  * they predict visibility (--evaluate). Parses the command line, reads the
  * inputs, calls the library, writes the outputs. */
 
-#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -34,41 +33,37 @@ static const char usage[] =
     "visibility from IN.seg and thin's nearest-node grid GRID.vdb (\"same cluster\",\n"
     "\"same cluster or through one gate\"), checks it with Embree rays and prints\n"
     "precision and recall.\n"
-    "\n"
-    "  -o, --output FILE      the segmentation file (required without --evaluate)\n"
-    "      --voxels FILE      voxelize's voxels (.vdb), to fit the gates (with --grid)\n"
-    "  -g, --grid FILE        thin's nearest-node grid (.grid.vdb), to fit the gates\n"
-    "                         (with --voxels)\n"
-    "  -a, --alpha PERCENT    how much a neighbour's maximal ball may differ from the\n"
-    "                         cluster's largest to join it, 0 to 100 (default 20)\n"
-    "  -e, --evaluate         evaluate IN.seg on SCENE instead of segmenting\n"
-    "      --pairs N          point pairs to evaluate (default 100000)\n"
-    "      --seed S           random seed of the pairs (default 0)\n"
-    "  -s, --stats            print counts and timings on stdout\n"
-    "  -q, --quiet            no progress bar, no warnings\n"
-    "  -h, --help             this help\n"
-    "  -V, --version          the version\n";
+    "\n";
 
-enum { OPTION_PAIRS = 256, OPTION_SEED, OPTION_VOXELS };
+enum { OPTION_PAIRS = 256, OPTION_VOXELS };
 
 typedef struct arguments {
+    gb_cli_shared shared;       /* first: the options every tool shares */
     const char *input, *output, *scene, *grid, *voxels;
     gb_segment_options options;
     gb_segment_evaluate_options evaluate_options;
-    int evaluate, quiet, stats;
+    int evaluate;
 } arguments;
 
-static const struct option long_options[] = {
-    GB_CLI_VALUE("output", 'o'),
-    GB_CLI_VALUE("voxels", OPTION_VOXELS),
-    GB_CLI_VALUE("grid", 'g'),
-    GB_CLI_VALUE("alpha", 'a'),
-    GB_CLI_FLAG("evaluate", 'e'),
-    GB_CLI_VALUE("pairs", OPTION_PAIRS),
-    GB_CLI_VALUE("seed", OPTION_SEED),
-    GB_CLI_FLAG("stats", 's'),
-    GB_CLI_OPTIONS_END,
+static const gb_cli_entry entries[] = {
+    GB_CLI_OPTION('o', "output", "FILE", "the segmentation file (required without --evaluate)"),
+    GB_CLI_OPTION(OPTION_VOXELS, "voxels", "FILE",
+                  "voxelize's voxels (.vdb), to fit the gates (with --grid)"),
+    GB_CLI_OPTION('g', "grid", "FILE",
+                  "thin's nearest-node grid (.grid.vdb), to fit the gates\n"
+                  "(with --voxels)"),
+    GB_CLI_OPTION('a', "alpha", "PERCENT",
+                  "how much a neighbour's maximal ball may differ from the\n"
+                  "cluster's largest to join it, 0 to 100 (default 20)"),
+    GB_CLI_OPTION('e', "evaluate", NULL, "evaluate IN.seg on SCENE instead of segmenting"),
+    GB_CLI_OPTION(OPTION_PAIRS, "pairs", "N", "point pairs to evaluate (default 100000)"),
+    GB_CLI_SEED("S", "random seed of the pairs (default 0)"),
+    GB_CLI_STATS("print counts and timings on stdout"),
+    GB_CLI_QUIET(NULL),
+    GB_CLI_ENTRIES_END,
 };
+
+static const gb_cli_command command; /* below; command.tool starts every message */
 
 /* One option into args; 0, else the exit status. */
 static int parse_option(int option, const char *text, void *context)
@@ -80,13 +75,11 @@ static int parse_option(int option, const char *text, void *context)
     case OPTION_VOXELS: args->voxels = text; return 0;
     case 'g': args->grid = text; return 0;
     case 'e': args->evaluate = 1; return 0;
-    case 's': args->stats = 1; return 0;
-    case 'q': args->quiet = 1; return 0;
     case 'a':
-        return gb_cli_number_keep_zero("segment", "alpha", text, 0.0, 100.0,
+        return gb_cli_number_keep_zero(command.tool, "alpha", text, 0.0, 100.0,
                                        &args->options.alpha);
-    case OPTION_PAIRS: return gb_cli_uint("segment", "pairs", text, 1, UINT32_MAX, &e->pairs);
-    default: return gb_cli_unsigned("segment", "seed", text, 0, UINT64_MAX, &e->seed);
+    case OPTION_PAIRS: return gb_cli_uint(command.tool, "pairs", text, 1, UINT32_MAX, &e->pairs);
+    default: abort();   /* an entry with no case here */
     }
 }
 
@@ -97,24 +90,25 @@ static int check_operands(int count, char **operands, void *context)
     arguments *args = context;
     if (args->evaluate) {
         if (count != 3 || args->output || args->voxels || args->grid)
-            return gb_cli_usage_error("segment", "--evaluate expects SCENE IN.seg GRID.vdb "
+            return gb_cli_usage_error(command.tool, "--evaluate expects SCENE IN.seg GRID.vdb "
                                                  "and no -o, --voxels or --grid");
         args->scene = operands[0];
         args->input = operands[1];
         args->grid = operands[2];
+        args->evaluate_options.seed = args->shared.seed;
         return GB_CLI_GO_ON;
     }
     if (count != 1 || !args->output)
-        return gb_cli_usage_error("segment", "expected one IN.skel and -o OUT.seg");
+        return gb_cli_usage_error(command.tool, "expected one IN.skel and -o OUT.seg");
     if (!args->voxels != !args->grid)
-        return gb_cli_usage_error("segment", "--voxels and --grid go together (the gates "
+        return gb_cli_usage_error(command.tool, "--voxels and --grid go together (the gates "
                                              "are fitted to both)");
     args->input = operands[0];
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"segment", usage, long_options, parse_option,
-                                       check_operands};
+static const gb_cli_command command = {"segment", usage, NULL, parse_option,
+                                       check_operands, entries, 25};
 
 static void print_stats(const gb_segmentation *s, const gb_segment_stats *stats)
 {
@@ -197,7 +191,7 @@ static gb_result run_segment(const arguments *args, gb_error *error)
         result = make_segmentation(args, &skeleton, &in, &segmentation, &stats, error);
     if (result == GB_OK)
         result = gb_segmentation_write(args->output, &segmentation, error);
-    if (result == GB_OK && args->stats)
+    if (result == GB_OK && args->shared.stats)
         print_stats(&segmentation, &stats);
     gb_segmentation_free(&segmentation);
     free_fit_inputs(&in);
@@ -237,8 +231,8 @@ static gb_result load_evaluation_inputs(const arguments *args, gb_scene *scene,
         result = gb_voxel_grid_read_int32(args->grid, "nearest_node", frame, nearest, error);
     if (result == GB_OK)
         result = gb_segmentation_check_grid(seg, frame, *nearest, args->grid, error);
-    if (result == GB_OK && !args->quiet)
-        gb_scene_warn("segment", scene, GB_WARN_GEOMETRY);
+    if (result == GB_OK && !args->shared.quiet)
+        gb_scene_warn(command.tool, scene, GB_WARN_GEOMETRY);
     return result;
 }
 
@@ -247,7 +241,7 @@ static gb_result evaluate(const arguments *args, const gb_scene *scene,
 {
     gb_progress progress;
     gb_segment_evaluate_options options = args->evaluate_options;
-    gb_progress_begin_for(&progress, "segment", args->quiet, &options.progress,
+    gb_progress_begin_for(&progress, command.tool, args->shared.quiet, &options.progress,
                           &options.progress_user);
     gb_segment_evaluation evaluation;
     gb_error reason;

@@ -2,7 +2,6 @@
  * nearest-node grid (tools/thin/thin.h). Parses options, reads the voxel
  * file, calls gb_thin, writes the two files. */
 
-#include <getopt.h>
 #include <malloc.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,35 +23,31 @@ static const char usage[] =
     "whose lifespan exceeds persistence * (opening - distance) + min-lifespan\n"
     "iterations, and writes it to OUT.skel; with --grid, also the OpenVDB int32\n"
     "grid \"nearest_node\": every voxel's geodesic nearest skeleton node.\n"
-    "\n"
-    "  -o, --output FILE        the skeleton file (required)\n"
-    "  -g, --grid FILE          the nearest-node grid\n"
-    "  -p, --persistence S      scale of opening - distance (default 1; 0 keeps\n"
-    "                           every line as soon as it appears)\n"
-    "  -l, --min-lifespan N     iterations added to the threshold (default 0)\n"
-    "  -j, --threads N          threads for the collapse (a power of two, up to 8)\n"
-    "                           and for the nearest-node grid (default 2; the\n"
-    "                           output does not depend on it)\n"
-    "  -s, --stats              print counts and timings on stdout\n"
-    "  -q, --quiet              no progress bar\n"
-    "  -h, --help               this help\n"
-    "  -V, --version            the version\n";
+    "\n";
 
 typedef struct arguments {
+    gb_cli_shared shared;       /* first: the options every tool shares */
     const char *input, *output, *grid;
     gb_thin_options options;
-    int quiet, stats;
 } arguments;
 
-static const struct option long_options[] = {
-    GB_CLI_VALUE("output", 'o'),
-    GB_CLI_VALUE("grid", 'g'),
-    GB_CLI_VALUE("persistence", 'p'),
-    GB_CLI_VALUE("min-lifespan", 'l'),
-    GB_CLI_VALUE("threads", 'j'),
-    GB_CLI_FLAG("stats", 's'),
-    GB_CLI_OPTIONS_END,
+static const gb_cli_entry entries[] = {
+    GB_CLI_OPTION('o', "output", "FILE", "the skeleton file (required)"),
+    GB_CLI_OPTION('g', "grid", "FILE", "the nearest-node grid"),
+    GB_CLI_OPTION('p', "persistence", "S",
+                  "scale of opening - distance (default 1; 0 keeps\n"
+                  "every line as soon as it appears)"),
+    GB_CLI_OPTION('l', "min-lifespan", "N", "iterations added to the threshold (default 0)"),
+    GB_CLI_THREADS(GB_THIN_MAX_THREADS,
+                   "threads for the collapse (a power of two, up to 8)\n"
+                   "and for the nearest-node grid (default 2; the\n"
+                   "output does not depend on it)"),
+    GB_CLI_STATS("print counts and timings on stdout"),
+    GB_CLI_QUIET("no progress bar"),
+    GB_CLI_ENTRIES_END,
 };
+
+static const gb_cli_command command; /* below; command.tool starts every message */
 
 /* One option into args; 0, else the exit status. */
 static int parse_option(int option, const char *text, void *context)
@@ -61,17 +56,13 @@ static int parse_option(int option, const char *text, void *context)
     switch (option) {
     case 'o': args->output = text; return 0;
     case 'g': args->grid = text; return 0;
-    case 's': args->stats = 1; return 0;
-    case 'q': args->quiet = 1; return 0;
     case 'p':
-        return gb_cli_number_keep_zero("thin", "persistence", text, 0.0, 1e6,
+        return gb_cli_number_keep_zero(command.tool, "persistence", text, 0.0, 1e6,
                                        &args->options.persistence);
     case 'l':
-        return gb_cli_number_keep_zero("thin", "min-lifespan", text, 0.0, 1e6,
+        return gb_cli_number_keep_zero(command.tool, "min-lifespan", text, 0.0, 1e6,
                                        &args->options.min_lifespan);
-    default:
-        return gb_cli_int("thin", "threads", text, 1, GB_THIN_MAX_THREADS,
-                          &args->options.threads);
+    default: abort();   /* an entry with no case here */
     }
 }
 
@@ -80,12 +71,14 @@ static int check_operands(int count, char **operands, void *context)
 {
     arguments *args = context;
     if (count != 1 || !args->output)
-        return gb_cli_usage_error("thin", "expected one IN.vdb and -o OUT.skel");
+        return gb_cli_usage_error(command.tool, "expected one IN.vdb and -o OUT.skel");
     args->input = operands[0];
+    args->options.threads = args->shared.threads;
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"thin", usage, long_options, parse_option, check_operands};
+static const gb_cli_command command = {"thin", usage, NULL, parse_option,
+                                       check_operands, entries, 27};
 
 static void print_stats(const gb_skeleton *s, const gb_thin_stats *stats)
 {
@@ -157,7 +150,7 @@ static gb_result run(void *context, gb_error *error)
     options.distances = read_distances;
     options.distances_user = &source;
     gb_progress progress;
-    gb_progress_begin_for(&progress, "thin", args->quiet, &options.progress,
+    gb_progress_begin_for(&progress, command.tool, args->shared.quiet, &options.progress,
                           &options.progress_user);
     gb_skeleton skeleton;
     gb_thin_stats stats;
@@ -171,7 +164,7 @@ static gb_result run(void *context, gb_error *error)
         gb_fail(error, result, "%s: %s", args->input, reason.message);
     else
         result = write_outputs(args, &grid, &skeleton, nearest, error);
-    if (result == GB_OK && args->stats)
+    if (result == GB_OK && args->shared.stats)
         print_stats(&skeleton, &stats);
     gb_skeleton_free(&skeleton);
     gb_voxel_grid_free(&grid);

@@ -2,7 +2,6 @@
  * distances (noel-biri-2014, section IV.A; formats/FORMATS.md, "Voxel
  * file"). Parses the command line and calls tools/voxelize/voxelize.h. */
 
-#include <getopt.h>
 #include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -24,51 +23,49 @@ static const char usage[] =
     "Voxelizes SCENE (.scene, .obj, .obj.gz, .ply, .off or .stl) into OUT.vdb: the\n"
     "voxels every triangle touches (grid 'surface'), the others ('empty') and the\n"
     "distance of each empty voxel to the nearest surface voxel ('distance').\n"
-    "\n"
-    "  -o, --output FILE      the OpenVDB file to write (required)\n"
-    "  -r, --resolution N|auto  voxels along the longest side of the scene (default\n"
-    "                         256, at most 2048); voxels are cubes. An opening stays\n"
-    "                         open in the skeleton when two voxels span it: at 256,\n"
-    "                         down to 1/128 of the longest side (a door, most gaps\n"
-    "                         between columns); raise -r for narrower ones. auto:\n"
-    "                         of 16, 32 ... 512, the first whose empty space has the\n"
-    "                         topology (components, Euler characteristic) of half\n"
-    "                         and twice it, so that what is open there spans two\n"
-    "                         voxels; else 512; said on stderr. Not the default:\n"
-    "                         the checks cost up to six more passes, and scenes\n"
-    "                         with gaps never settle\n"
-    "      --pad N            empty voxels around the scene (default 2, at most 64)\n"
-    "      --depfile FILE     a make rule: OUT.vdb and every file read (-MD)\n"
-    "  -j, --threads N        threads (default 2)\n"
-    "  -q, --quiet            no progress bar, no warnings\n"
-    "  -h, --help             this help\n"
-    "  -V, --version          the version\n";
+    "\n";
 
-enum { OPTION_PAD = 256, OPTION_DEPFILE };
+enum { OPTION_PAD = 256 };
 
 typedef struct arguments {
-    const char *scene, *output, *depfile;
-    long resolution, pad, threads;
-    int quiet, automatic;
+    gb_cli_shared shared;       /* first: the options every tool shares */
+    const char *scene, *output;
+    long resolution, pad;
+    int automatic;
 } arguments;
 
-static const struct option long_options[] = {
-    GB_CLI_VALUE("output", 'o'),
-    GB_CLI_VALUE("resolution", 'r'),
-    GB_CLI_VALUE("pad", OPTION_PAD),
-    GB_CLI_VALUE("depfile", OPTION_DEPFILE),
-    GB_CLI_VALUE("threads", 'j'),
-    GB_CLI_OPTIONS_END,
+static const gb_cli_entry entries[] = {
+    GB_CLI_OPTION('o', "output", "FILE", "the OpenVDB file to write (required)"),
+    GB_CLI_OPTION('r', "resolution", "N|auto",
+                  "voxels along the longest side of the scene (default\n"
+                  "256, at most 2048); voxels are cubes. An opening stays\n"
+                  "open in the skeleton when two voxels span it: at 256,\n"
+                  "down to 1/128 of the longest side (a door, most gaps\n"
+                  "between columns); raise -r for narrower ones. auto:\n"
+                  "of 16, 32 ... 512, the first whose empty space has the\n"
+                  "topology (components, Euler characteristic) of half\n"
+                  "and twice it, so that what is open there spans two\n"
+                  "voxels; else 512; said on stderr. Not the default:\n"
+                  "the checks cost up to six more passes, and scenes\n"
+                  "with gaps never settle"),
+    GB_CLI_OPTION(OPTION_PAD, "pad", "N",
+                  "empty voxels around the scene (default 2, at most 64)"),
+    GB_CLI_DEPFILE("a make rule: OUT.vdb and every file read (-MD)"),
+    GB_CLI_THREADS(64, "threads (default 2)"),
+    GB_CLI_QUIET(NULL),
+    GB_CLI_ENTRIES_END,
 };
+
+static const gb_cli_command command; /* below; command.tool starts every message */
 
 /* One SCENE, and -o; GB_CLI_GO_ON, else the exit status. */
 static int check_operands(int count, char **operands, void *context)
 {
     arguments *parsed = context;
     if (count != 1)
-        return gb_cli_usage_error("voxelize", "expected one SCENE");
+        return gb_cli_usage_error(command.tool, "expected one SCENE");
     if (!parsed->output)
-        return gb_cli_usage_error("voxelize", "no output file: give -o OUT.vdb");
+        return gb_cli_usage_error(command.tool, "no output file: give -o OUT.vdb");
     parsed->scene = operands[0];
     return GB_CLI_GO_ON;
 }
@@ -78,23 +75,21 @@ static int parse_option(int option, const char *text, void *context)
 {
     arguments *parsed = context;
     switch (option) {
-    case 'q': parsed->quiet = 1; return 0;
     case 'o': parsed->output = text; return 0;
-    case OPTION_DEPFILE: parsed->depfile = text; return 0;
     case 'r':
         parsed->automatic = strcmp(text, "auto") == 0;
         if (parsed->automatic)
             return 0;
-        return gb_cli_integer("voxelize", "resolution", text, 1, GB_VOXELIZE_MAX_RESOLUTION,
+        return gb_cli_integer(command.tool, "resolution", text, 1, GB_VOXELIZE_MAX_RESOLUTION,
                               &parsed->resolution);
     case OPTION_PAD:
-        return gb_cli_integer("voxelize", "pad", text, 0, GB_VOXELIZE_MAX_PAD, &parsed->pad);
-    default: return gb_cli_integer("voxelize", "threads", text, 1, 64, &parsed->threads);
+        return gb_cli_integer(command.tool, "pad", text, 0, GB_VOXELIZE_MAX_PAD, &parsed->pad);
+    default: abort();   /* an entry with no case here */
     }
 }
 
-static const gb_cli_command command = {"voxelize", usage, long_options, parse_option,
-                                       check_operands};
+static const gb_cli_command command = {"voxelize", usage, NULL, parse_option,
+                                       check_operands, entries, 25};
 
 /* The bar shows voxelizing as 90 % of the work and writing as the rest. */
 static int report_voxelizing(void *bar, double fraction)
@@ -130,17 +125,18 @@ static gb_result voxelize_file(void *context, gb_error *error)
 {
     const arguments *parsed = context;
     gb_result result =
-        gb_output_files_check((const char *[]){parsed->output, parsed->depfile}, 2, error);
+        gb_output_files_check((const char *[]){parsed->output, parsed->shared.depfile}, 2, error);
     if (result != GB_OK)
         return result;
     gb_scene scene;
     gb_voxel_grid grid = {0};
     gb_progress bar;
-    gb_progress_begin(&bar, "voxelize", parsed->quiet);
+    gb_progress_begin(&bar, command.tool, parsed->shared.quiet);
     gb_voxelize_options options = {
         .resolution = (uint32_t)parsed->resolution,
         .pad = parsed->pad == 0 ? GB_VOXELIZE_NO_PAD : (int32_t)parsed->pad,
-        .thread_count = (int32_t)parsed->threads,
+        .thread_count = parsed->shared.threads ? parsed->shared.threads
+                                               : GB_VOXELIZE_DEFAULT_THREADS,
         .progress = report_voxelizing,
         .progress_user = &bar,
     };
@@ -149,19 +145,20 @@ static gb_result voxelize_file(void *context, gb_error *error)
         gb_scene_free(&scene);
         return result;
     }
-    if (!parsed->quiet)
-        gb_scene_warn("voxelize", &scene, GB_WARN_GEOMETRY);
+    if (!parsed->shared.quiet)
+        gb_scene_warn(command.tool, &scene, GB_WARN_GEOMETRY);
     gb_error reason;
     if (parsed->automatic)
-        result = choose_resolution(&scene, parsed->quiet, &options, &reason);
+        result = choose_resolution(&scene, parsed->shared.quiet, &options, &reason);
     if (result == GB_OK)
         result = gb_voxelize_scene(&scene, &options, &grid, &reason);
     if (result != GB_OK)
         gb_fail(error, result, "%s: %s", parsed->scene, reason.message);
     else
         result = gb_voxel_grid_write_and_free(parsed->output, &grid, error);
-    if (result == GB_OK && parsed->depfile)
-        result = gb_depfile_write_scene(parsed->depfile, parsed->output, &scene, NULL, error);
+    if (result == GB_OK && parsed->shared.depfile)
+        result = gb_depfile_write_scene(parsed->shared.depfile, parsed->output, &scene, NULL,
+                                        error);
     if (result == GB_OK)
         gb_progress_report(&bar, 1.0);
     gb_progress_end(&bar);
@@ -173,7 +170,6 @@ static gb_result voxelize_file(void *context, gb_error *error)
 int main(int argc, char **argv)
 {
     arguments defaults = {.resolution = GB_VOXELIZE_DEFAULT_RESOLUTION,
-                          .pad = GB_VOXELIZE_DEFAULT_PAD,
-                          .threads = GB_VOXELIZE_DEFAULT_THREADS};
+                          .pad = GB_VOXELIZE_DEFAULT_PAD};
     return gb_cli_main(&command, argc, argv, voxelize_file, &defaults);
 }
