@@ -39,7 +39,12 @@ LIGHTMAP_FLAGS ?=
 SHARDS ?= 1
 shard_indices = $(shell seq 0 $$(($(SHARDS) - 1)))
 BAKE_MK := $(abspath $(lastword $(MAKEFILE_LIST)))
-BAKE_TOOLS := voxelize thin segment photons cluster atlas lightmap
+# The bake steps and the suffix of the file each writes, in their order:
+# tools/tools.txt, the one list of the tools.
+BAKE_LIST := $(shell awk '!/^\#/ && NF && $$2 != "-" {print $$1 ":" $$2}' \
+  $(dir $(BAKE_MK))tools/tools.txt)
+BAKE_TOOLS := $(foreach step,$(BAKE_LIST),$(word 1,$(subst :, ,$(step))))
+BAKE_OUTPUTS := $(foreach step,$(BAKE_LIST),$(word 2,$(subst :, ,$(step))))
 
 .PHONY: bake bake-force slurm-bake
 bake:
@@ -75,7 +80,7 @@ BAKE_PREFIXES += $(2)
 $(if $(wildcard $(2).source),$(if $(filter-out $(abspath $(1)),$(file <$(2).source)),\
   $(error $(2).*: baked from $(file <$(2).source); $(1) has the same name: give it \
   another BAKE folder, or remove $(2).*)))
-bake: $(2).seg $(2).lot $(2).atlas $(2).lightmap.exr
+bake: $(addprefix $(2),$(BAKE_OUTPUTS))
 
 $(2).content: $(1) $(BIN)/scene-info
 	@mkdir -p $$(@D)

@@ -15,20 +15,10 @@ bin=${1:?usage: install.sh BIN DEST}
 dest=${2:?usage: install.sh BIN DEST}
 root=$(cd "$(dirname "$0")/.." && pwd)
 
-# The NAME line of each man page.
+# The NAME line of each man page: its line of tools/tools.txt.
 summary() {
-    case $1 in
-    scene-info) echo "print what gibake sees in a scene" ;;
-    voxelize) echo "voxelize a scene into an OpenVDB file of surfaces, empty space and distances" ;;
-    thin) echo "the curvilinear skeleton of a voxelized scene's empty space" ;;
-    segment) echo "visibility clusters and gates of a skeleton" ;;
-    photons) echo "trace the photon map of a scene with Embree" ;;
-    cluster) echo "the light octree of a scene from its photon map" ;;
-    reference) echo "render the ground truth of a scene with Embree" ;;
-    imgdiff) echo "how far an image is from a reference" ;;
-    gbview) echo "show a scene and its baked global illumination, or render it headless" ;;
-    *) echo "a gibake tool" ;;
-    esac
+    awk -v name="$1" '!/^#/ && $1 == name { sub(/^[^ ]+ +[^ ]+ +/, ""); print; found = 1 }
+        END { if (!found) print "a gibake tool" }' "$root/tools/tools.txt"
 }
 
 if ! command -v help2man >/dev/null 2>&1; then
