@@ -270,11 +270,6 @@ int gb_cli_option_error(const char *tool, char **argv, const struct option *opti
     return gb_cli_usage_error(tool, "unknown option '-%c'", optopt);
 }
 
-int gb_cli_help(const char *text)
-{
-    return fputs(text, stdout) == EOF ? GB_EXIT_FAILURE : GB_EXIT_SUCCESS;
-}
-
 int gb_cli_version(const char *tool)
 {
     return printf("%s (gibake) %s\n", tool, version) < 0 ? GB_EXIT_FAILURE : GB_EXIT_SUCCESS;
@@ -296,15 +291,13 @@ static void short_options_of(const struct option *options, char text[128])
     text[length] = '\0';
 }
 
-/* The getopt table of a command: its own (gbview), or the entries' (at
- * most GB_CLI_MAX_ENTRIES) then -h and -V. */
+/* The getopt table of a command: its entries' (at most
+ * GB_CLI_MAX_ENTRIES), then -h and -V. */
 enum { GB_CLI_MAX_ENTRIES = 64 };
 
 static const struct option *option_table(const gb_cli_command *command,
                                          struct option table[GB_CLI_MAX_ENTRIES + 3])
 {
-    if (!command->entries)
-        return command->options;
     size_t count = 0;
     for (const gb_cli_entry *e = command->entries; e->name; ++e) {
         if (count == GB_CLI_MAX_ENTRIES)
@@ -312,8 +305,8 @@ static const struct option *option_table(const gb_cli_command *command,
         table[count++] = (struct option){e->name, e->value ? required_argument : no_argument,
                                          NULL, e->code};
     }
-    table[count++] = (struct option)GB_CLI_FLAG("help", 'h');
-    table[count++] = (struct option)GB_CLI_FLAG("version", 'V');
+    table[count++] = (struct option){"help", no_argument, NULL, 'h'};
+    table[count++] = (struct option){"version", no_argument, NULL, 'V'};
     table[count] = (struct option){NULL, 0, NULL, 0};
     return table;
 }
@@ -345,9 +338,8 @@ static int parse_shared(const char *tool, const gb_cli_entry *entry, const char 
 
 static int print_help(const gb_cli_command *command)
 {
-    if (!command->entries)
-        return gb_cli_help(command->usage);
-    return gb_cli_help_entries(command->usage, command->entries, command->column);
+    return gb_cli_help_entries(command->usage, command->entries, command->column,
+                               command->tail);
 }
 
 /* Every tool's option loop: getopt_long over argv; -h prints the help, -V

@@ -20,7 +20,7 @@
  *     TOOL: WHAT                            (gb_cli_usage_error)
  *     Try 'TOOL --help' for more information.
  * never the whole help. The caller returns the status from main().
- * The help and the version go to stdout (gb_cli_help, gb_cli_version); a
+ * The help and the version go to stdout (gb_cli_main answers -h and -V); a
  * failure of the work is "TOOL: MESSAGE" on stderr (gb_cli_failure).
  * Nothing else here prints. The caller owns every string passed in; TOOL
  * is the bare name ("voxelize"), OPTION the long name without its dashes.
@@ -91,29 +91,9 @@ int gb_cli_usage_error(const char *tool, const char *format, ...)
  * options is the table given to getopt_long. */
 int gb_cli_option_error(const char *tool, char **argv, const struct option *options);
 
-/* The help on stdout; GB_EXIT_SUCCESS, or GB_EXIT_FAILURE if it could not
- * be written. */
-int gb_cli_help(const char *text);
-/* "TOOL (gibake) VERSION" on stdout; as gb_cli_help. */
+/* "TOOL (gibake) VERSION" on stdout; GB_EXIT_SUCCESS, or GB_EXIT_FAILURE
+ * if it could not be written. */
 int gb_cli_version(const char *tool);
-
-/* The entries of an option table (git's OPT_* habit): NAME is the long
- * option without its dashes, CODE what gb_cli_options hands to the tool's
- * option function: a letter, which is then also the short option (-o), or
- * a value past 255 for a long option alone.
- *     static const struct option long_options[] = {
- *         GB_CLI_VALUE("output", 'o'),        --output FILE, -o FILE
- *         GB_CLI_FLAG("stats", OPTION_STATS), --stats
- *         GB_CLI_OPTIONS_END,
- *     };
- * GB_CLI_OPTIONS_END holds the entries every tool ends with: -q --quiet
- * (each tool's option function says what quiet means), -h --help and
- * -V --version (gb_cli_options answers those), then the terminator. */
-#define GB_CLI_VALUE(name, code) {(name), required_argument, NULL, (code)}
-#define GB_CLI_FLAG(name, code) {(name), no_argument, NULL, (code)}
-#define GB_CLI_OPTIONS_END                                                                  \
-    GB_CLI_FLAG("quiet", 'q'), GB_CLI_FLAG("help", 'h'), GB_CLI_FLAG("version", 'V'),      \
-        {NULL, 0, NULL, 0}
 
 /* One option of a tool, its value (optarg) or NULL: stores it in the
  * tool's arguments and returns GB_EXIT_SUCCESS, or an exit status. A code
@@ -199,18 +179,17 @@ typedef int (*gb_cli_operands_function)(int count, char **operands, void *argume
  * written to writing them; fills error when it fails. */
 typedef gb_result (*gb_cli_run_function)(void *arguments, gb_error *error);
 
-/* A tool's command line: what gb_cli_main reads argv with. Either
- * entries (and column), the help made from them, or (gbview, until its
- * options move) options and usage the whole help. */
+/* A tool's command line: what gb_cli_main reads argv with, and the help
+ * made from it. */
 typedef struct gb_cli_command {
     const char *tool;                   /* "cluster": every message starts with it */
-    const char *usage;                  /* the --help text; with entries its head, up
-                                           to the first option */
-    const struct option *options;       /* ends with GB_CLI_OPTIONS_END; NULL with entries */
+    const char *usage;                  /* the head of the --help, up to the first option */
     gb_cli_option_function option;      /* each option into the arguments */
     gb_cli_operands_function operands;  /* then the operands */
     const gb_cli_entry *entries;        /* ends with GB_CLI_ENTRIES_END */
     int column;                         /* where each entry's help starts */
+    const char *tail;                   /* the help after -h and -V (gbview's window
+                                           keys); NULL: none */
 } gb_cli_command;
 
 /* gb_cli_main's options and operands: GB_CLI_GO_ON when the tool can run,

@@ -41,7 +41,8 @@ static int print_entry(const gb_cli_entry *entry, int column)
     }
 }
 
-int gb_cli_help_entries(const char *head, const gb_cli_entry *entries, int column)
+int gb_cli_help_entries(const char *head, const gb_cli_entry *entries, int column,
+                        const char *tail)
 {
     static const gb_cli_entry last[] = {
         GB_CLI_OPTION('h', "help", NULL, "this help"),
@@ -56,5 +57,5 @@ int gb_cli_help_entries(const char *head, const gb_cli_entry *entries, int colum
     for (const gb_cli_entry *e = last; e->name; ++e)
         if (!print_entry(e, column))
             return GB_EXIT_FAILURE;
-    return GB_EXIT_SUCCESS;
+    return tail && fputs(tail, stdout) == EOF ? GB_EXIT_FAILURE : GB_EXIT_SUCCESS;
 }

@@ -8,8 +8,9 @@
 #include "cli.h"
 
 /* head, then each entry of entries (up to GB_CLI_ENTRIES_END), then
- * "-h, --help" and "-V, --version", on stdout; GB_EXIT_SUCCESS, or
- * GB_EXIT_FAILURE if it could not be written. */
-int gb_cli_help_entries(const char *head, const gb_cli_entry *entries, int column);
+ * "-h, --help" and "-V, --version", then tail (NULL: none), on stdout;
+ * GB_EXIT_SUCCESS, or GB_EXIT_FAILURE if it could not be written. */
+int gb_cli_help_entries(const char *head, const gb_cli_entry *entries, int column,
+                        const char *tail);
 
 #endif

@@ -62,8 +62,8 @@ typedef struct gb_method_parameters gb_method_parameters;
 typedef struct gb_method_option {
     const char *name;           /* --NAME, without the dashes */
     const char *value_name;     /* "N" of "--NAME N"; NULL for a flag */
-    const char *help;           /* its --help text after the option's column:
-                                   lines ended by '\n' */
+    const char *help;           /* its --help text after the option's column,
+                                   '\n' between lines (cli.h's gb_cli_entry) */
     int (*parse)(const char *name, const char *value, gb_method_parameters *parameters);
 } gb_method_option;
 

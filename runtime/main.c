@@ -21,53 +21,15 @@
 #include "timings.h"
 #include "window.h"
 
-/* The help before the methods' options (indirect_method.h) and after. */
-static const char usage_head[] =
+static const char tool[] = "gbview";
+
+static const char usage[] =
     "usage: gbview [options] SCENE\n"
     "Shows SCENE (.scene or a mesh) with its global illumination in a window, or\n"
     "with --headless renders it without a display (EGL, Mesa surfaceless) into -o.\n"
-    "\n"
-    "      --headless          render without a window; write the last frame to -o\n"
-    "  -c, --camera N          the scene's camera N, from 0 (default 0)\n"
-    "  -m, --method M          direct (default); topo, octree, flc, implicit,\n"
-    "                          flc-iv (FLC shadowed by implicit visibility's bins)\n"
-    "                          when this build has them\n"
-    "  -f, --frames K          frames to render (headless: default 1); in a window,\n"
-    "                          quit after K frames\n"
-    "  -o, --output FILE       the image: .exr linear (compares with `reference`),\n"
-    "                          .png sRGB; in a window, where screenshots go\n"
-    "                          (and, with --frames, the last frame)\n"
-    "  -r, --resolution WxH    frame size (default: the camera's)\n"
-    "      --timings           print per-pass GPU times (ms) on stdout (each pass\n"
-    "                          is finished before its end time is taken)\n"
-    "      --bake DIR          use the files baked for SCENE in DIR\n"
-    "                          (NAME.vdb .skel .grid.vdb .seg .lot .atlas); a\n"
-    "                          missing or bad one is reported and skipped\n"
-    "      --area-samples N    shadowed point emitters approximating the area\n"
-    "                          lights, power-weighted (default 16; 0: none)\n"
-    "      --environment-lights N  directional lights, with shadow maps, standing\n"
-    "                          for the environment's light on surfaces (median\n"
-    "                          cut; default 64 times the sky's share of the\n"
-    "                          light power: 64 for a scene lit by its sky\n"
-    "                          alone; 0: none, the sky only seen)\n"
-    "      --shadow-size N     side of the 2-D shadow maps; cube faces get half\n"
-    "                          (default 1024)\n"
-    "      --cascade-size N    side of each of the 4 maps fitted to the view for\n"
-    "                          a directional light (default 2048; 0: none, the\n"
-    "                          scene-wide map only)\n"
-    "      --supersample S     headless: S x S samples a pixel, averaged (default\n"
-    "                          1), the box filter of `reference`\n"
-    "      --no-shadows        debug: every light fully visible\n"
-    "      --terms T           both (default), direct or indirect: the light drawn\n"
-    "      --budget MS         in the window, a frame's milliseconds (default 50):\n"
-    "                          each frame draws the parts of the image that fit,\n"
-    "                          and the image is shown when whole; 0: whole images\n";
+    "\n";
 
-static const char usage_tail[] =
-    "  -q, --quiet             no warnings, no progress bar (the links of implicit\n"
-    "                          and flc-iv show one on a terminal)\n"
-    "  -h, --help              this help\n"
-    "  -V, --version           the version\n"
+static const char window_keys[] =
     "\n"
     "Window keys: mouse (left button held) and W A S D Q E fly, Shift faster,\n"
     "wheel: speed; right button held: orbit about the point under the cursor;\n"
@@ -75,13 +37,14 @@ static const char usage_tail[] =
     ".scene camera line, H keys, F1 HUD, F12 or P screenshot, Esc quit.\n";
 
 typedef struct arguments {
+    gb_cli_shared shared;       /* first: the options every tool shares */
     const char *scene_path, *output, *bake;
     gb_method method;
     gb_renderer_options renderer;
     long camera, frames, supersample;
     int environment_lights;     /* -1: by the environment's share of the light */
     int budget_given;
-    int headless, timings, quiet;
+    int headless, timings;
 } arguments;
 
 enum {
@@ -99,25 +62,65 @@ enum {
     OPTION_METHOD_FIRST = 512,  /* + k: the k-th of method_options */
 };
 
-/* gbview's own options; main() appends the methods'. */
-static const struct option own_options[] = {
-    GB_CLI_FLAG("headless", OPTION_HEADLESS),
-    GB_CLI_VALUE("camera", 'c'),
-    GB_CLI_VALUE("method", 'm'),
-    GB_CLI_VALUE("frames", 'f'),
-    GB_CLI_VALUE("output", 'o'),
-    GB_CLI_VALUE("resolution", 'r'),
-    GB_CLI_FLAG("timings", OPTION_TIMINGS),
-    GB_CLI_VALUE("bake", OPTION_BAKE),
-    GB_CLI_VALUE("area-samples", OPTION_AREA_SAMPLES),
-    GB_CLI_VALUE("environment-lights", OPTION_ENVIRONMENT_LIGHTS),
-    GB_CLI_VALUE("shadow-size", OPTION_SHADOW_SIZE),
-    GB_CLI_VALUE("cascade-size", OPTION_CASCADE_SIZE),
-    GB_CLI_FLAG("no-shadows", OPTION_NO_SHADOWS),
-    GB_CLI_VALUE("supersample", OPTION_SUPERSAMPLE),
-    GB_CLI_VALUE("terms", OPTION_TERMS),
-    GB_CLI_VALUE("budget", OPTION_BUDGET),
+/* gbview's own options, before the methods' (main() appends them), and the
+ * last. */
+static const gb_cli_entry own_entries[] = {
+    GB_CLI_OPTION(OPTION_HEADLESS, "headless", NULL,
+                  "render without a window; write the last frame to -o"),
+    GB_CLI_OPTION('c', "camera", "N", "the scene's camera N, from 0 (default 0)"),
+    GB_CLI_OPTION('m', "method", "M",
+                  "direct (default); topo, octree, flc, implicit,\n"
+                  "flc-iv (FLC shadowed by implicit visibility's bins)\n"
+                  "when this build has them"),
+    GB_CLI_OPTION('f', "frames", "K",
+                  "frames to render (headless: default 1); in a window,\n"
+                  "quit after K frames"),
+    GB_CLI_OPTION('o', "output", "FILE",
+                  "the image: .exr linear (compares with `reference`),\n"
+                  ".png sRGB; in a window, where screenshots go\n"
+                  "(and, with --frames, the last frame)"),
+    GB_CLI_OPTION('r', "resolution", "WxH", "frame size (default: the camera's)"),
+    GB_CLI_OPTION(OPTION_TIMINGS, "timings", NULL,
+                  "print per-pass GPU times (ms) on stdout (each pass\n"
+                  "is finished before its end time is taken)"),
+    GB_CLI_OPTION(OPTION_BAKE, "bake", "DIR",
+                  "use the files baked for SCENE in DIR\n"
+                  "(NAME.vdb .skel .grid.vdb .seg .lot .atlas); a\n"
+                  "missing or bad one is reported and skipped"),
+    GB_CLI_OPTION(OPTION_AREA_SAMPLES, "area-samples", "N",
+                  "shadowed point emitters approximating the area\n"
+                  "lights, power-weighted (default 16; 0: none)"),
+    GB_CLI_OPTION(OPTION_ENVIRONMENT_LIGHTS, "environment-lights", "N",
+                  "directional lights, with shadow maps, standing\n"
+                  "for the environment's light on surfaces (median\n"
+                  "cut; default 64 times the sky's share of the\n"
+                  "light power: 64 for a scene lit by its sky\n"
+                  "alone; 0: none, the sky only seen)"),
+    GB_CLI_OPTION(OPTION_SHADOW_SIZE, "shadow-size", "N",
+                  "side of the 2-D shadow maps; cube faces get half\n"
+                  "(default 1024)"),
+    GB_CLI_OPTION(OPTION_CASCADE_SIZE, "cascade-size", "N",
+                  "side of each of the 4 maps fitted to the view for\n"
+                  "a directional light (default 2048; 0: none, the\n"
+                  "scene-wide map only)"),
+    GB_CLI_OPTION(OPTION_SUPERSAMPLE, "supersample", "S",
+                  "headless: S x S samples a pixel, averaged (default\n"
+                  "1), the box filter of `reference`"),
+    GB_CLI_OPTION(OPTION_NO_SHADOWS, "no-shadows", NULL, "debug: every light fully visible"),
+    GB_CLI_OPTION(OPTION_TERMS, "terms", "T",
+                  "both (default), direct or indirect: the light drawn"),
+    GB_CLI_OPTION(OPTION_BUDGET, "budget", "MS",
+                  "in the window, a frame's milliseconds (default 50):\n"
+                  "each frame draws the parts of the image that fit,\n"
+                  "and the image is shown when whole; 0: whole images"),
+    GB_CLI_ENTRIES_END,
 };
+static const gb_cli_entry last_entries[] = {
+    GB_CLI_QUIET("no warnings, no progress bar (the links of implicit\n"
+                 "and flc-iv show one on a terminal)"),
+    GB_CLI_ENTRIES_END,
+};
+
 
 static int parse_terms(const char *value, gb_terms *terms)
 {
@@ -125,7 +128,7 @@ static int parse_terms(const char *value, gb_terms *terms)
     for (int t = 0; t < GB_TERMS_COUNT; ++t)
         names[t] = t == GB_TERMS_BOTH ? "both" : gb_terms_name((gb_terms)t);
     int chosen;
-    int status = gb_cli_choice("gbview", "terms", value, names, GB_TERMS_COUNT, &chosen);
+    int status = gb_cli_choice(tool, "terms", value, names, GB_TERMS_COUNT, &chosen);
     if (status == 0)
         *terms = (gb_terms)chosen;
     return status;
@@ -136,7 +139,7 @@ static int parse_terms(const char *value, gb_terms *terms)
  * is the default). 0, else the exit status. */
 static int parse_count_or_none(const char *name, const char *value, int most, int *out)
 {
-    int status = gb_cli_int("gbview", name, value, 0, most, out);
+    int status = gb_cli_int(tool, name, value, 0, most, out);
     if (status == 0 && *out == 0)
         *out = -1;
     return status;
@@ -144,8 +147,8 @@ static int parse_count_or_none(const char *name, const char *value, int most, in
 
 /* The methods' options (indirect_method.h), in the order of gb_method, and
  * how many: option code OPTION_METHOD_FIRST + k is method_options[k]. */
-enum { MOST_METHOD_OPTIONS = 64 };
-static const gb_method_option *method_options[MOST_METHOD_OPTIONS];
+enum { MOST_ENTRIES = 64 };
+static const gb_method_option *method_options[MOST_ENTRIES];
 static int method_option_count;
 
 /* One option into a; 0, else the exit status. */
@@ -164,33 +167,32 @@ static int parse_option(int option, const char *value, void *context)
     case OPTION_BAKE: a->bake = value; return 0;
     case OPTION_NO_SHADOWS: r->no_shadows = 1; return 0;
     case 'o': a->output = value; return 0;
-    case 'q': a->quiet = 1; return 0;
     case OPTION_BUDGET:
         a->budget_given = 1;
-        return gb_cli_number("gbview", "budget", value, 0.0, 1e6, &r->budget_ms);
+        return gb_cli_number(tool, "budget", value, 0.0, 1e6, &r->budget_ms);
     case OPTION_SUPERSAMPLE:
-        return gb_cli_integer("gbview", "supersample", value, 1, 16, &a->supersample);
-    case 'c': return gb_cli_integer("gbview", "camera", value, 0, 1 << 30, &a->camera);
-    case 'f': return gb_cli_integer("gbview", "frames", value, 1, 1 << 30, &a->frames);
+        return gb_cli_integer(tool, "supersample", value, 1, 16, &a->supersample);
+    case 'c': return gb_cli_integer(tool, "camera", value, 0, 1 << 30, &a->camera);
+    case 'f': return gb_cli_integer(tool, "frames", value, 1, 1 << 30, &a->frames);
     case 'm':
         if (gb_method_parse(value, &a->method, &error) == GB_OK)
             return 0;
-        return gb_cli_usage_error("gbview", "%s", error.message);
+        return gb_cli_usage_error(tool, "%s", error.message);
     case 'r':
-        return gb_cli_size("gbview", "resolution", value, GB_CLI_MAX_IMAGE_SIDE, &r->width,
+        return gb_cli_size(tool, "resolution", value, GB_CLI_MAX_IMAGE_SIDE, &r->width,
                            &r->height);
     case OPTION_AREA_SAMPLES:
         return parse_count_or_none("area-samples", value, 4096, &r->shadow.area_samples);
     case OPTION_ENVIRONMENT_LIGHTS:
-        return gb_cli_int("gbview", "environment-lights", value, 0, 1024,
+        return gb_cli_int(tool, "environment-lights", value, 0, 1024,
                           &a->environment_lights);
     case OPTION_CASCADE_SIZE:
         return parse_count_or_none("cascade-size", value, 16384, &r->shadow.cascade_size);
     case OPTION_SHADOW_SIZE:
-        return gb_cli_int("gbview", "shadow-size", value, 16, 16384, &r->shadow.size);
+        return gb_cli_int(tool, "shadow-size", value, 16, 16384, &r->shadow.size);
     case OPTION_TERMS: return parse_terms(value, &r->terms);
     }
-    abort(); /* an option of the table without its case */
+    abort(); /* an entry of the table without its case */
 }
 
 /* The method chosen, if this build has it: GB_CLI_GO_ON, else a usage error. */
@@ -199,7 +201,7 @@ static int check_method(arguments *a)
     gb_error error;
     a->renderer.method = a->method;
     if (gb_method_check(a->method, &error) != GB_OK)
-        return gb_cli_usage_error("gbview", "%s", error.message);
+        return gb_cli_usage_error(tool, "%s", error.message);
     return GB_CLI_GO_ON;
 }
 
@@ -209,10 +211,10 @@ static int check_operands(int count, char **operands, void *context)
 {
     arguments *a = context;
     if (count != 1)
-        return gb_cli_usage_error("gbview", "expected one SCENE");
+        return gb_cli_usage_error(tool, "expected one SCENE");
     a->scene_path = operands[0];
     if (a->headless && !a->output && !a->timings && !a->renderer.parameters.topo.write_vpls)
-        return gb_cli_usage_error("gbview", "--headless writes nothing without -o FILE, "
+        return gb_cli_usage_error(tool, "--headless writes nothing without -o FILE, "
                                             "--timings or --write-vpls");
     return check_method(a);
 }
@@ -332,10 +334,10 @@ static gb_result run(void *context, gb_error *error)
                        : gb_environment_light_count(&scene, GB_MOST_ENVIRONMENT_LIGHTS);
     if (result == GB_OK)
         result = gb_scene_add_environment_lights(&scene, sky, error);
-    if (result == GB_OK && !a->quiet)  /* with no light every method draws black, as it should */
-        gb_scene_warn("gbview", &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
+    if (result == GB_OK && !a->shared.quiet)  /* with no light every method draws black, as it should */
+        gb_scene_warn(tool, &scene, GB_WARN_GEOMETRY | GB_WARN_LIGHT);
     a->renderer.bake = bake;
-    setup_bar bar = {.quiet = a->quiet};
+    setup_bar bar = {.quiet = a->shared.quiet};
     a->renderer.progress = report_setup;
     a->renderer.progress_user = &bar;
     if (result == GB_OK)
@@ -345,55 +347,34 @@ static gb_result run(void *context, gb_error *error)
     return result;
 }
 
-/* One option's help at usage + length, as usage_head's: the option
- * in a column of HELP_COLUMN, then help, its later lines indented to that
- * column. The new length. */
-enum { HELP_COLUMN = 26 };
-static int append_option_help(char *usage, size_t size, int length, const gb_method_option *o)
+/* own_entries, the methods' options (code OPTION_METHOD_FIRST + k), then
+ * last_entries, in entries (room for MOST_ENTRIES). */
+static void add_method_options(gb_cli_entry entries[MOST_ENTRIES])
 {
-    int start = length;
-    length += snprintf(usage + length, size - length, "      --%s%s%s", o->name,
-                       o->value_name ? " " : "", o->value_name ? o->value_name : "");
-    int column = length - start < HELP_COLUMN ? HELP_COLUMN - (length - start) : 2;
-    for (const char *line = o->help; *line;) {
-        const char *end = strchr(line, '\n');
-        int n = end ? (int)(end - line) : (int)strlen(line);
-        length += snprintf(usage + length, size - length, "%*s%.*s\n", column, "", n, line);
-        column = HELP_COLUMN;
-        line += end ? n + 1 : n;
-    }
-    return length;
-}
-
-/* The methods' options after own_options in options (GB_CLI_OPTIONS_END
- * last), and their help lines between usage_head and usage_tail in usage. */
-static void add_method_options(struct option *options, char *usage, size_t size)
-{
-    static const struct option end[] = {GB_CLI_OPTIONS_END};
-    size_t own = sizeof own_options / sizeof own_options[0];
-    memcpy(options, own_options, sizeof own_options);
-    int length = snprintf(usage, size, "%s", usage_head);
+    int count = 0;
+    for (const gb_cli_entry *e = own_entries; e->name; ++e)
+        entries[count++] = *e;
     for (int m = 0; m < GB_METHOD_COUNT; ++m)
         for (const gb_method_option *o = gb_method_options((gb_method)m); o && o->name; ++o) {
             int k = method_option_count++;
             method_options[k] = o;
-            options[own + k] = (struct option){o->name, o->value_name ? required_argument
-                                                                      : no_argument,
-                                               NULL, OPTION_METHOD_FIRST + k};
-            length = append_option_help(usage, size, length, o);
+            entries[count++] = (gb_cli_entry)GB_CLI_OPTION(OPTION_METHOD_FIRST + k, o->name,
+                                                            o->value_name, o->help);
         }
-    memcpy(options + own + method_option_count, end, sizeof end);
-    snprintf(usage + length, size - length, "%s", usage_tail);
+    for (const gb_cli_entry *e = last_entries;; ++e) {
+        entries[count++] = *e;
+        if (!e->name)
+            break;
+    }
 }
 
 int main(int argc, char **argv)
 {
-    static struct option options[sizeof own_options / sizeof own_options[0] +
-                                 MOST_METHOD_OPTIONS + 4];
-    static char usage[8192];
-    add_method_options(options, usage, sizeof usage);
-    const gb_cli_command command = {.tool = "gbview", .usage = usage, .options = options,
-                                    .option = parse_option, .operands = check_operands};
+    static gb_cli_entry entries[MOST_ENTRIES];
+    add_method_options(entries);
+    const gb_cli_command command = {.tool = tool, .usage = usage,
+                                    .option = parse_option, .operands = check_operands,
+                                    .entries = entries, .column = 26, .tail = window_keys};
     return gb_cli_main(&command, argc, argv, run,
                        &(arguments){.environment_lights = -1});
 }

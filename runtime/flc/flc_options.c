@@ -38,18 +38,18 @@ static int parse_no_decimation(const char *name, const char *value, gb_method_pa
 const gb_method_option gb_flc_options[] = {
     {"navg", "N",
      "flc: N_avg, VPLs lighting a pixel (Eq. 1; default 256,\n"
-     "within the paper's 64..1024 for quality or speed)\n",
+     "within the paper's 64..1024 for quality or speed)",
      parse_n_avg},
-    {"mu", "M", "flc: level growth, S_k = S0 M^k (Eq. 17; default 2)\n", parse_mu},
-    {"levels", "L", "flc: N + 1 levels of VPLs (default 6, at most 16)\n", parse_levels},
+    {"mu", "M", "flc: level growth, S_k = S0 M^k (Eq. 17; default 2)", parse_mu},
+    {"levels", "L", "flc: N + 1 levels of VPLs (default 6, at most 16)", parse_levels},
     {"epsilon", "E",
      "flc: distance clamp, world units (default 1% of the\n"
-     "scene's radius)\n",
+     "scene's radius)",
      parse_epsilon},
-    {"tiling", "T", "flc: splat into 4^T interleaved tiles (default 0)\n", parse_tiling},
+    {"tiling", "T", "flc: splat into 4^T interleaved tiles (default 0)", parse_tiling},
     {"no-decimation", NULL,
      "flc: every triangle a VPL (the estimator without\n"
-     "light cuts, for comparison)\n",
+     "light cuts, for comparison)",
      parse_no_decimation},
     {0},
 };

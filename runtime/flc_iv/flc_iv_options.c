@@ -12,7 +12,7 @@ static int parse_bin_filter(const char *name, const char *value, gb_method_param
 const gb_method_option gb_flc_iv_options[] = {
     {"bin-filter", "F",
      "flc-iv: bilinear (default: the four nearest bins'\n"
-     "tests weighed) or nearest (one bin)\n",
+     "tests weighed) or nearest (one bin)",
      parse_bin_filter},
     {0},
 };

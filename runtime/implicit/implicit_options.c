@@ -24,13 +24,13 @@ const gb_method_option gb_implicit_options[] = {
     {"bins", "N",
      "implicit, flc-iv: 6 x N x N cube-map bins (8, 12\n"
      "default, 16; 12: the paper's compromise of speed\n"
-     "and quality)\n",
+     "and quality)",
      parse_bins},
-    {"bounces", "N", "implicit: bounces of indirect light (1 default, 2)\n", parse_bounces},
+    {"bounces", "N", "implicit: bounces of indirect light (1 default, 2)", parse_bounces},
     {"paper-rules", NULL,
      "implicit: the links by the paper's rules alone\n"
      "(subdivide at a whole bin, no discs): several\n"
-     "times faster to build, coarser shadows\n",
+     "times faster to build, coarser shadows",
      parse_paper_rules},
     {0},
 };

@@ -14,7 +14,7 @@ const gb_method_option gb_octree_options[] = {
      "octree: render it into this atlas (from `atlas`) once\n"
      "and show it through it, one fetch a pixel (default:\n"
      "the bake's NAME.atlas if there is one; none: the\n"
-     "octree walk at every pixel)\n",
+     "octree walk at every pixel)",
      parse_atlas},
     {0},
 };

@@ -24,13 +24,13 @@ const gb_method_option gb_topo_options[] = {
     {"vpls", "N",
      "topo: VPLs traced from the lights (default 1024:\n"
      "the paper's Table 1 is real time under 512 and\n"
-     "interactive to a few thousand)\n",
+     "interactive to a few thousand)",
      parse_vpls},
-    {"write-vpls", "FILE", "topo: write the VPL set (for reference --vpl FILE)\n",
+    {"write-vpls", "FILE", "topo: write the VPL set (for reference --vpl FILE)",
      parse_write_vpls},
     {"topo-visibility", "V",
      "topo: full (clusters and gates, default), clusters\n"
-     "(gates off) or none (no shadows on indirect)\n",
+     "(gates off) or none (no shadows on indirect)",
      parse_visibility},
     {0},
 };

@@ -1,5 +1,5 @@
 /* test_cli.c — what common/cli.h gives every tool's main(): the option
- * table's entries (GB_CLI_VALUE, GB_CLI_FLAG, GB_CLI_OPTIONS_END, the short
+ * table's entries (GB_CLI_OPTION, a flag, -q from GB_CLI_QUIET, the short
  * options taken from the table), gb_cli_main's steps and exit statuses, the
  * failure line of gb_cli_failure, gb_cli_uint and gb_cli_number_keep_zero;
  * the shared options (gb_cli_shared) and the help made from entries;
@@ -60,30 +60,40 @@ static void capture_end(captured *c)
 enum { OPTION_SEED = 256 };
 
 typedef struct arguments {
+    gb_cli_shared shared;   /* first: stats and quiet */
     const char *output, *operand;
-    int stats, quiet, operand_count;
+    int operand_count;
     uint64_t seed;
     int ran;                /* run was called */
     int fail;               /* run fails */
 } arguments;
 
-static const struct option long_options[] = {
-    GB_CLI_VALUE("output", 'o'),
-    GB_CLI_FLAG("stats", 's'),
-    GB_CLI_VALUE("seed", OPTION_SEED),
-    GB_CLI_OPTIONS_END,
+static const gb_cli_entry demo_entries[] = {
+    GB_CLI_OPTION('o', "output", "FILE", "the output"),
+    GB_CLI_STATS(NULL),
+    GB_CLI_OPTION(OPTION_SEED, "seed", "N", "a seed, 0..9"),
+    GB_CLI_QUIET(NULL),
+    GB_CLI_ENTRIES_END,
 };
 
 static const char usage[] = "usage: demo [options] IN -o OUT\n";
+static const char demo_help[] =
+    "usage: demo [options] IN -o OUT\n"
+    "  -o, --output FILE   the output\n"
+    "  -s, --stats         print what the run measured on stdout\n"
+    "      --seed N        a seed, 0..9\n"
+    "  -q, --quiet         no progress bar, no warnings\n"
+    "  -h, --help          this help\n"
+    "  -V, --version       the version\n"
+    "(the end)\n";
 
 static int parse_option(int option, const char *value, void *context)
 {
     arguments *a = context;
     switch (option) {
     case 'o': a->output = value; return GB_EXIT_SUCCESS;
-    case 's': a->stats = 1; return GB_EXIT_SUCCESS;
-    case 'q': a->quiet = 1; return GB_EXIT_SUCCESS;
-    default: return gb_cli_unsigned("demo", "seed", value, 0, 9, &a->seed);
+    case OPTION_SEED: return gb_cli_unsigned("demo", "seed", value, 0, 9, &a->seed);
+    default: abort();
     }
 }
 
@@ -107,8 +117,10 @@ static gb_result run(void *context, gb_error *error)
     return GB_OK;
 }
 
-static const gb_cli_command command = {.tool = "demo", .usage = usage, .options = long_options,
-                                       .option = parse_option, .operands = check_operands};
+static const gb_cli_command command = {.tool = "demo", .usage = usage,
+                                       .option = parse_option, .operands = check_operands,
+                                       .entries = demo_entries, .column = 22,
+                                       .tail = "(the end)\n"};
 
 /* gb_cli_main on the words of line (at most 15, split at spaces), with a
  * fresh getopt; the words stay until the next call (a points into them). */
@@ -134,9 +146,10 @@ static void test_main_runs(void)
     captured c;
     int status = run_main("in -s --seed 7 -o out.txt -q", &a, &c);
     CHECK_EQ_INT(status, GB_EXIT_SUCCESS, "a good command line runs and exits 0");
-    CHECK(a.ran && a.stats && a.quiet && a.seed == 7, "every option reached the tool");
+    CHECK(a.ran && a.shared.stats && a.shared.quiet && a.seed == 7,
+          "every option reached the tool");
     CHECK(a.output && strcmp(a.output, "out.txt") == 0, "-o FILE: the short option of "
-                                                        "GB_CLI_VALUE(\"output\", 'o')");
+                                                        "GB_CLI_OPTION('o', \"output\" ...)");
     CHECK(a.operand_count == 1 && strcmp(a.operand, "in") == 0,
           "the operand, given before the options, is the only one handed on");
     CHECK(strcmp(c.out, "wrote out.txt\n") == 0 && c.err[0] == '\0',
@@ -144,8 +157,9 @@ static void test_main_runs(void)
 
     a = (arguments){0};
     status = run_main("--output=x --stats --quiet in", &a, &c);
-    CHECK(status == GB_EXIT_SUCCESS && a.stats && a.quiet && strcmp(a.output, "x") == 0,
-          "the long options: --output=x, --stats, and --quiet from GB_CLI_OPTIONS_END");
+    CHECK(status == GB_EXIT_SUCCESS && a.shared.stats && a.shared.quiet &&
+              strcmp(a.output, "x") == 0,
+          "the long options: --output=x, --stats, and --quiet from GB_CLI_QUIET");
 }
 
 static void test_main_help_and_version(void)
@@ -153,10 +167,11 @@ static void test_main_help_and_version(void)
     arguments a = {0};
     captured c;
     CHECK_EQ_INT(run_main("--help in", &a, &c), GB_EXIT_SUCCESS, "--help exits 0");
-    CHECK(strcmp(c.out, usage) == 0 && c.err[0] == '\0' && !a.ran,
-          "--help prints the usage on stdout and runs nothing");
+    CHECK(strcmp(c.out, demo_help) == 0 && c.err[0] == '\0' && !a.ran,
+          "--help prints the usage, the entries at column 22, -h, -V and the tail on "
+          "stdout, and runs nothing");
     CHECK_EQ_INT(run_main("-h", &a, &c), GB_EXIT_SUCCESS, "-h exits 0");
-    CHECK(strcmp(c.out, usage) == 0, "-h is --help");
+    CHECK(strcmp(c.out, demo_help) == 0, "-h is --help");
     CHECK_EQ_INT(run_main("-V", &a, &c), GB_EXIT_SUCCESS, "-V exits 0");
     CHECK(strcmp(c.out, "demo (gibake) 0.1\n") == 0 && !a.ran,
           "-V prints 'demo (gibake) 0.1' and runs nothing");
@@ -180,7 +195,7 @@ static void test_main_usage_errors(void)
     CHECK_EQ_INT(run_main("--stats=1 in -o out", &a, &c), GB_EXIT_USAGE,
                  "a value given to a flag exits 2");
     CHECK(strncmp(c.err, "demo: option '--stats' takes no value\n", 38) == 0,
-          "GB_CLI_FLAG takes no value");
+          "a flag takes no value");
 
     a = (arguments){0};
     CHECK_EQ_INT(run_main("--seed 10 in -o out", &a, &c), GB_EXIT_USAGE,

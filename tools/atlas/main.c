@@ -91,8 +91,8 @@ static int check_operands(int count, char **operands, void *context)
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"atlas", usage, NULL, parse_option,
-                                       check_operands, entries, 27};
+static const gb_cli_command command = {"atlas", usage, parse_option,
+                                       check_operands, entries, 27, NULL};
 
 static void print_stats(const gb_atlas_stats *s, const gb_atlas *atlas, const char *output)
 {

@@ -79,8 +79,8 @@ static int check_operands(int count, char **operands, void *context)
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"imgdiff", usage, NULL, parse_option, check_operands,
-                                       entries, 28};
+static const gb_cli_command command = {"imgdiff", usage, parse_option, check_operands,
+                                       entries, 28, NULL};
 
 static void print_error(const gb_image_error *e)
 {

@@ -77,8 +77,8 @@ static int check_operands(int count, char **operands, void *context)
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"lightmap", usage, NULL, parse_option,
-                                       check_operands, entries, 26};
+static const gb_cli_command command = {"lightmap", usage, parse_option,
+                                       check_operands, entries, 26, NULL};
 
 static long file_bytes(const char *path)
 {

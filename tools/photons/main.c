@@ -119,8 +119,8 @@ static int check_operands(int count, char **operands, void *context)
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"photons", usage, NULL, parse_option,
-                                       check_operands, entries, 26};
+static const gb_cli_command command = {"photons", usage, parse_option,
+                                       check_operands, entries, 26, NULL};
 
 /* ---- tracing ---- */
 

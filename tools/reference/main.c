@@ -149,8 +149,8 @@ static int check_operands(int count, char **operands, void *context)
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"reference", usage, NULL, parse_option,
-                                       check_operands, entries, 26};
+static const gb_cli_command command = {"reference", usage, parse_option,
+                                       check_operands, entries, 26, NULL};
 
 /* OUT.exr -> OUT.png; any other name gets ".png" appended. */
 static char *png_path(const char *output)

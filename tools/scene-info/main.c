@@ -62,8 +62,8 @@ static int check_operands(int count, char **operands, void *context)
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"scene-info", usage, NULL, parse_option,
-                                       check_operands, entries, 22};
+static const gb_cli_command command = {"scene-info", usage, parse_option,
+                                       check_operands, entries, 22, NULL};
 
 static double emissive_area(const gb_scene *scene)
 {

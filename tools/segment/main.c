@@ -107,8 +107,8 @@ static int check_operands(int count, char **operands, void *context)
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"segment", usage, NULL, parse_option,
-                                       check_operands, entries, 25};
+static const gb_cli_command command = {"segment", usage, parse_option,
+                                       check_operands, entries, 25, NULL};
 
 static void print_stats(const gb_segmentation *s, const gb_segment_stats *stats)
 {

@@ -77,8 +77,8 @@ static int check_operands(int count, char **operands, void *context)
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"thin", usage, NULL, parse_option,
-                                       check_operands, entries, 27};
+static const gb_cli_command command = {"thin", usage, parse_option,
+                                       check_operands, entries, 27, NULL};
 
 static void print_stats(const gb_skeleton *s, const gb_thin_stats *stats)
 {

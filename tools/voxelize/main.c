@@ -88,8 +88,8 @@ static int parse_option(int option, const char *text, void *context)
     }
 }
 
-static const gb_cli_command command = {"voxelize", usage, NULL, parse_option,
-                                       check_operands, entries, 25};
+static const gb_cli_command command = {"voxelize", usage, parse_option,
+                                       check_operands, entries, 25, NULL};
 
 /* The bar shows voxelizing as 90 % of the work and writing as the rest. */
 static int report_voxelizing(void *bar, double fraction)
