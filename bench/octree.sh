@@ -6,7 +6,7 @@
 #
 # Per scene: one photon map (photons -n N; stored photons: light reflected at
 # least once), then per k:
-#   bake     cluster --vdls k --max-spread 0 (always k VDLs where a leaf has
+#   bake     cluster --vdls k --tolerance 0 (always k VDLs where a leaf has
 #            that many distinct directions: the paper's fixed k) at depth
 #            OCTREE_DEPTH (default 6, the paper's δ) with K = OCTREE_KNN
 #            (default 300, the paper's KNN): wall and CPU seconds;
@@ -31,8 +31,8 @@
 #            reflected at least twice = full minus direct) at the scene's
 #            spp: relative MSE and 8-bit sRGB MSE from imgdiff; a second
 #            reference of another seed gives the references' own noise.
-# A last row per scene: k_max 8 with cluster's default spread threshold
-# (15°: the fewest VDLs whose spread is under it). Prints Markdown tables.
+# A last row per scene: k_max 8 with cluster's default tolerance (0.2: the
+# fewest VDLs whose irradiance error at the leaf's normals is under it).
 #
 # Run by `make bench` (GB_BIN: the tools folder, build/bin by default).
 # OCTREE_SCENES: entries path:emitted-photons:error-size:spp, paths under
@@ -96,14 +96,14 @@ for entry in $scenes; do
     echo "| k_max | bake s (wall) | bake s (CPU) | leaves | VDLs | spread ° | frame ms | fps | octree ms (wall) | octree ms (CPU) | relative MSE | 8-bit MSE |"
     echo "|---|---|---|---|---|---|---|---|---|---|---|---|"
     for k in $OCTREE_KS 8s; do
-        spread=0
+        tolerance=0
         label=$k
         if [ "$k" = 8s ]; then
-            spread=15
-            label="8, spread ≤ 15°"
+            tolerance=0.2
+            label="8, tolerance 0.2 (the default)"
         fi
         /usr/bin/time -f '%e %U %S' -o "$dir/time" "$GB_BIN/cluster" -q --stats \
-            --depth "$OCTREE_DEPTH" --knn "$OCTREE_KNN" --vdls "${k%s}" --max-spread $spread \
+            --depth "$OCTREE_DEPTH" --knn "$OCTREE_KNN" --vdls "${k%s}" --tolerance $tolerance \
             "$scene" "$dir/$name.phot" -o "$bake/$name.lot" >"$dir/cluster" || exit 1
         read -r wall user system <"$dir/time"
         full=$(time_frames --method octree --bake "$bake" "$scene") || exit 1

@@ -20,16 +20,18 @@
 set -e
 report=$1 bin=$2 sweep=$3
 cd "$report"
-header="scene,scene_hash,method,point,resolution,frames,spp,vplspp,navg,tiling,bins,bounces,vpls,visibility,voxels,photons,depth,vdls,bake,bake_wall_s,bake_cpu_s,voxelize_wall_s,voxelize_cpu_s,voxelize_rss_kib,thin_wall_s,thin_cpu_s,thin_rss_kib,segment_wall_s,segment_cpu_s,segment_rss_kib,photons_wall_s,photons_cpu_s,photons_rss_kib,cluster_wall_s,cluster_cpu_s,cluster_rss_kib,bake_bytes,gbview_rss_kib,frame_ms,frame_first_ms,passes_ms,full_ref,full_rel_mse,full_mse_srgb8,full_psnr,full_max_error,full_floor_rel_mse,full_floor_mse_srgb8,full_within_2x_floor,own_ref,own_rel_mse,own_mse_srgb8,own_psnr,own_max_error,own_floor_rel_mse,own_floor_mse_srgb8,own_within_2x_floor,time_ms,status,full_rel_mse_trimmed,own_rel_mse_trimmed,direct_pass_rel_mse,direct_share"
+header="scene,scene_hash,method,point,resolution,frames,spp,vplspp,navg,tiling,bins,bounces,vpls,visibility,voxels,photons,depth,vdls,bake,bake_wall_s,bake_cpu_s,voxelize_wall_s,voxelize_cpu_s,voxelize_rss_kib,thin_wall_s,thin_cpu_s,thin_rss_kib,segment_wall_s,segment_cpu_s,segment_rss_kib,photons_wall_s,photons_cpu_s,photons_rss_kib,cluster_wall_s,cluster_cpu_s,cluster_rss_kib,bake_bytes,gbview_rss_kib,frame_ms,frame_first_ms,passes_ms,full_ref,full_rel_mse,full_mse_srgb8,full_psnr,full_max_error,full_floor_rel_mse,full_floor_mse_srgb8,full_within_2x_floor,own_ref,own_rel_mse,own_mse_srgb8,own_psnr,own_max_error,own_floor_rel_mse,own_floor_mse_srgb8,own_within_2x_floor,time_ms,status,full_rel_mse_trimmed,own_rel_mse_trimmed,direct_pass_rel_mse,direct_share,tolerance"
 # Columns (results.csv): 42 full_ref, 43 full_rel_mse, 51 own_rel_mse, 58
 # time_ms, 59 status, 60 full_rel_mse_trimmed, 61 own_rel_mse_trimmed, 62
 # direct_pass_rel_mse (the direct points': bench/report_point.sh; the others'
 # copied here from the direct point of the same full reference, the first in
-# the sweep), 63 direct_share = 62 / 43.
+# the sweep), 63 direct_share = 62 / 43, 64 tolerance (octree: cluster
+# --tolerance; the last column of points.tsv).
 {
     echo "$header"
     cut -f 1 points.tsv | while read -r id; do cat "points/$id.csv"; done
 } | awk -F, -v OFS=, '
+    BEGIN { while ((getline line < "points.tsv") > 0) { n = split(line, f, "\t"); tolerance[f[1]] = f[n] } }
     { row[NR] = $0 }
     NR > 1 && $3 == "direct" && $59 == "ok" && !($42 in pass) { pass[$42] = $62 }
     END {
@@ -37,6 +39,7 @@ header="scene,scene_hash,method,point,resolution,frames,spp,vplspp,navg,tiling,b
         for (i = 2; i <= NR; i++) { $0 = row[i]
             if ($59 == "ok" && $62 == "" && ($42 in pass)) $62 = pass[$42]
             $63 = ($62 != "" && $43 + 0 > 0) ? sprintf("%.4g", $62 / $43) : ""
+            $64 = tolerance[$4]
             print }
     }' >results.csv.tmp
 
@@ -62,7 +65,7 @@ settings='function settings(m,   s) {
     else if (m == "flc-iv") s = "navg=" $9 " frames=" $6 ($10 + 0 ? " tiling=" $10 : "") " bins=" $11
     else if (m == "implicit") s = "bins=" $11 " bounces=" $12
     else if (m == "topo") s = "vpls=" $13 " visibility=" $14 " voxels=" $15
-    else if (m == "octree") s = "photons=" $16 " depth=" $17 " vdls=" $18
+    else if (m == "octree") s = "photons=" $16 " depth=" $17 " vdls=" $18 " tolerance=" $64
     else s = "-"
     return s " " $5
 }'
@@ -117,6 +120,9 @@ if command -v gnuplot >/dev/null; then
     awk -F, 'NR > 1 && $3 == "octree" && $20 != "" && !seen[$19]++ { print $16, $20, $37 }' results.csv | sort -n >plots/photons.dat
     awk -F, 'NR > 1 && $59 == "ok" { split($5, r, "x"); print r[1] * r[2], $39, $1 "-" $3 }' results.csv | sort -n >plots/resolution.dat
     awk -F, 'NR > 1 && $59 == "ok" && $3 == "topo" { print $13, $39 }' results.csv | sort -n >plots/vpls.dat
+    # the octree's bytes against its own error, one series a scene, photon count and depth
+    rm -f plots/octree-bytes-*.dat
+    awk -F, 'NR > 1 && $59 == "ok" && $3 == "octree" { print $37, $61, $64, $18 > ("plots/octree-bytes-" $1 "-p" $16 "-d" $17 ".dat") }' results.csv
     for term in png svg; do
         if [ $term = png ]; then t="set terminal png size 800,560"; else t="set terminal svg size 800,560"; fi
         for s in $scenes; do
@@ -169,6 +175,22 @@ set output 'plots/cost-vpls.$term'
 set title 'topo frame ms against VPL count'
 set xlabel 'VPLs'
 plot 'plots/vpls.dat' using 1:2 with points title 'topo'
+EOF
+        plot=
+        for f in plots/octree-bytes-*.dat; do
+            [ -s "$f" ] || continue
+            series=${f#plots/octree-bytes-}
+            plot="$plot${plot:+, }'$f' using 1:2 with points pointsize 1.5 title '${series%.dat}', '' using 1:2:(sprintf('k%d t%s', \$4, strcol(3))) with labels offset 0,1 font ',8' notitle"
+        done
+        [ -z "$plot" ] || gnuplot <<EOF || plots_ok=0
+$t
+set logscale xy
+set key outside right
+set output 'plots/octree-bytes.$term'
+set title 'light octree: bytes against the error of its indirect term'
+set xlabel 'bytes (.lot)'
+set ylabel 'relative MSE against full --min-bounces 2, trimmed'
+plot $plot
 EOF
     done 2>plots/gnuplot.log
 else
@@ -257,6 +279,7 @@ EOF
     if [ $plots_ok = 1 ]; then
         echo "<h2>Cost scaling</h2><p>"
         for p in voxels photons resolution vpls; do echo "<img src=\"plots/cost-$p.svg\" width=\"600\">"; done
+        [ ! -s plots/octree-bytes.svg ] || echo "<img src=\"plots/octree-bytes.svg\" width=\"600\">"
         echo "</p>"
     fi
     if [ "$(wc -l <segments.csv)" -gt 1 ]; then

@@ -40,10 +40,10 @@ static gb_result check_parameters(const gb_light_octree_header *h, const char *p
     if (h->vdls_max < 1 || h->vdls_max > GB_LIGHT_OCTREE_MAX_VDLS)
         return gb_fail(error, GB_ERROR_FORMAT, "%s: K_max %u is not in 1..%d", path,
                        h->vdls_max, GB_LIGHT_OCTREE_MAX_VDLS);
-    if (!(h->max_spread >= 0.0f && h->max_spread <= 180.0f) ||
+    if (!(h->tolerance >= -1.0f && h->tolerance <= 180.0f) ||
         !(h->flattening > 0.0f && h->flattening <= 1.0f))
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: bad spread %g or flattening %g", path,
-                       (double)h->max_spread, (double)h->flattening);
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: bad tolerance %g or flattening %g", path,
+                       (double)h->tolerance, (double)h->flattening);
     return GB_OK;
 }
 

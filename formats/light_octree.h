@@ -30,7 +30,7 @@
 #include "result.h"
 
 enum {
-    GB_LIGHT_OCTREE_VERSION = 1,
+    GB_LIGHT_OCTREE_VERSION = 2,   /* 2: tolerance in place of 1's spread threshold */
     GB_LIGHT_OCTREE_MAX_DEPTH = 10,     /* leaf cells keep 3 x 10 bits */
     GB_LIGHT_OCTREE_MAX_VDLS = 64,      /* per leaf */
 };
@@ -51,7 +51,9 @@ typedef struct gb_light_octree_header {
     uint32_t knn;               /* K: most photons gathered per leaf */
     float radius;               /* R: largest gathering radius (world units) */
     uint32_t vdls_max;          /* K_max: most VDLs per leaf */
-    float max_spread;           /* degrees: VDL count chosen by error */
+    float tolerance;            /* relative irradiance error a leaf's VDL count was
+                                   chosen for (tools/cluster/vdl.h); negative:
+                                   K_max always (version 1: a spread, degrees) */
     float flattening;           /* ellipsoid: normal semi-axis / tangent semi-axis */
     uint32_t reserved[11];      /* zero */
 } gb_light_octree_header;

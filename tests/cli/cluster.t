@@ -36,9 +36,9 @@ ok $? "--stats prints leaves and VDLs"
 spread_of() {
     sed -n 's/^mean_spread_degrees //p' "$1"
 }
-"$tool" $small --stats --vdls 4 --max-spread 0 "$scene" "$dir/in.phot" -o "$dir/r1.lot" \
+"$tool" $small --stats --vdls 4 --tolerance 0 "$scene" "$dir/in.phot" -o "$dir/r1.lot" \
     >"$dir/r1" 2>"$dir/err" &&
-    "$tool" $small --stats --vdls 4 --max-spread 0 --restarts 4 "$scene" "$dir/in.phot" \
+    "$tool" $small --stats --vdls 4 --tolerance 0 --restarts 4 "$scene" "$dir/in.phot" \
         -o "$dir/r4.lot" >"$dir/r4" 2>"$dir/err" &&
     awk -v one="$(spread_of "$dir/r1")" -v four="$(spread_of "$dir/r4")" \
         'BEGIN { exit !(one > 0 && four > 0 && four <= one) }'
@@ -48,7 +48,7 @@ ok $? "--restarts 4: mean spread $(spread_of "$dir/r4") <= $(spread_of "$dir/r1"
 ok $? "--restarts 0: exit 2, nothing written"
 
 "$tool" --help >"$dir/help"
-[ $? = 0 ] && grep -q -- '--max-spread' "$dir/help" && grep -q -- '--restarts' "$dir/help"
+[ $? = 0 ] && grep -q -- "--tolerance" "$dir/help" && grep -q -- '--restarts' "$dir/help"
 ok $? "--help: exit 0, lists the options"
 "$tool" --version >/dev/null
 ok $? "--version: exit 0"

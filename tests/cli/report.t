@@ -165,8 +165,17 @@ flc=$(err two-rooms flc . full_rel_mse)
 iv=$(err two-rooms flc-iv . full_rel_mse)
 echo "# two rooms vs reference --mode full: flc $flc, flc-iv $iv"
 
+# cluster --tolerance 0 (K_max VDLs a leaf always) against the default 0.2:
+# the count chosen by the error is never above K_max, so never more bytes.
+chosen=$(err cornell octree -t0.2- bake_bytes)
+always=$(err cornell octree -t0- bake_bytes)
+echo "# Cornell octree .lot bytes: tolerance 0.2 $chosen, 0 (K_max always) $always"
+[ "$(err cornell octree -t0.2- tolerance)" = 0.2 ] && [ "$(err cornell octree -t0- tolerance)" = 0 ] &&
+    awk -v a="$chosen" -v b="$always" 'BEGIN { exit !(a + 0 > 0 && a + 0 < b + 0) }'
+ok $? "octree rows carry their tolerance; 0.2 makes a smaller .lot than K_max always"
+
 direct=$(err cornell direct . full_rel_mse)
-octree=$(err cornell octree . full_rel_mse)
+octree=$(err cornell octree -t0.2- full_rel_mse)
 implicit=$(err cornell implicit . full_rel_mse)
 echo "# Cornell vs reference --mode full: direct $direct, octree $octree, implicit $implicit"
 below "$octree" "$direct"
@@ -216,6 +225,8 @@ for s in cornell cornell-original two-rooms; do
     done
 done
 ok $plots "plots: error against ms and against bake time, PNG and SVG, per scene"
+[ -s "$report/plots/octree-bytes.svg" ] && grep -q 'src="plots/octree-bytes.svg"' "$report/index.html"
+ok $? "plots: the octree's bytes against its error, on the page"
 n=$(grep -c "best under \(50\|200\|1000\) ms a frame" "$report/index.html")
 ok "$([ "$n" = 9 ]; echo $?)" "index.html: best under 50 / 200 / 1000 ms for each of the 3 scenes ($n lines)"
 rows=$(($(wc -l <"$report/pareto.csv") - 1))

@@ -159,7 +159,7 @@ static inline void floor_octree_make(floor_octree *h, const float normal[3], uin
         .depth = FLOOR_DEPTH, .node_count = h->node_count, .leaf_count = h->leaf_count,
         .vdl_count = h->vdl_count, .origin = {-2.0f, -2.1f, -2.0f}, .size = 4.0f,
         .scene_hash = scene->hash, .photon_count = 1, .emitted_count = 1, .knn = 1,
-        .radius = 1.0f, .vdls_max = vdls_max, .max_spread = 15.0f, .flattening = 0.5f};
+        .radius = 1.0f, .vdls_max = vdls_max, .tolerance = 0.2f, .flattening = 0.5f};
     octree->nodes = h->nodes;
     octree->leaves = h->leaves;
     octree->vdls = h->vdls;

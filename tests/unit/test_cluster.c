@@ -1,7 +1,9 @@
 /* test_cluster.c — the light octree (tools/cluster, formats/light_octree):
  * leaves only where geometry is and their normals; chord-length k-means on
  * synthetic directions (bundles, degenerate input, irradiance conserved);
- * VDL count chosen by spread; the spread of rings and of a cosine-weighted
+ * the normals a leaf is shaded at (its cell's and its neighbours'); the
+ * VDL count chosen by the irradiance error against an analytic case; the
+ * spread of rings and of a cosine-weighted
  * hemisphere against their analytic values, known clusters recovered,
  * centroids of unequally weighted directions at the minimisers by hand,
  * k-means restarts never worse; photons of one and two suns on a plane
@@ -174,6 +176,16 @@ static void add_bundle(gb_vdl_workspace *w, const float d[3], uint32_t n, float 
     }
 }
 
+/* A target (vdl.h) of the leaf normal and the further normals given. */
+static vdl_target target_of(float radius, float tolerance, const float leaf_normal[3],
+                            gb_surface_normal *normals, uint32_t count)
+{
+    vdl_target t = {.radius = radius, .normals = normals, .normal_count = count,
+                    .tolerance = tolerance};
+    memcpy(t.leaf_normal, leaf_normal, sizeof t.leaf_normal);
+    return t;
+}
+
 static void test_two_bundles(void)
 {
     gb_vdl_workspace w;
@@ -185,10 +197,12 @@ static void test_two_bundles(void)
     add_bundle(&w, a, 200, 0.01f, pa, &rng);
     add_bundle(&w, b, 100, 0.01f, pb, &rng);
     gb_light_octree_vdl vdls[8];
-    double spread;
+    double error;
     gb_random seed = gb_random_make(1, 2);
-    uint32_t n = gb_vdls_from_photons(&w, 0.5f, 5.0f, &seed, vdls, &spread);
-    CHECK_EQ_INT(n, 2, "two tight bundles: two VDLs");
+    gb_surface_normal normals[2] = {{{0, 1, 0}, 1}, {{1, 0, 0}, 1}};
+    vdl_target target = target_of(0.5f, 0.02f, a, normals, 2);
+    uint32_t n = gb_vdls_from_photons(&w, &target, &seed, vdls, &error);
+    CHECK_EQ_INT(n, 2, "two tight bundles, shaded on +y and +x: two VDLs");
     float da[3], db[3];
     gb_photon_unpack_direction(vdls[0].direction, da);
     gb_photon_unpack_direction(vdls[n > 1].direction, db);
@@ -203,7 +217,7 @@ static void test_two_bundles(void)
             total[k] += vdls[i].irradiance[k];
     CHECK(fabs(total[0] - 220.0 / area) < 1e-3 && fabs(total[2] - 90.0 / area) < 1e-3,
           "... irradiance summed over VDLs is the density estimate: conserved");
-    CHECK(spread < 5.0, "... spread under the threshold");
+    CHECK(error <= 0.02, "... within the tolerance (one VDL leaves 0.047 on +x)");
     gb_vdl_workspace_free(&w);
 }
 
@@ -215,51 +229,99 @@ static void test_identical_directions(void)
     const float d[3] = {0.0f, 0.0f, 1.0f}, p[3] = {1.0f, 1.0f, 1.0f};
     add_bundle(&w, d, 300, 0.0f, p, &rng);
     gb_light_octree_vdl vdls[8];
-    double spread;
+    double error;
     gb_random seed = gb_random_make(1, 3);
-    uint32_t n = gb_vdls_from_photons(&w, 1.0f, -1.0f, &seed, vdls, &spread);
+    gb_surface_normal normals[1] = {{{0, 0, 1}, 1}};
+    vdl_target always = target_of(1.0f, -1.0f, d, normals, 1);
+    uint32_t n = gb_vdls_from_photons(&w, &always, &seed, vdls, &error);
     float v[3];
     gb_photon_unpack_direction(vdls[0].direction, v);
     CHECK_EQ_INT(n, 1, "identical directions, K_max asked: one VDL");
-    CHECK(isfinite(vdls[0].irradiance[0]) && isfinite(spread) && spread == 0.0 &&
+    CHECK(isfinite(vdls[0].irradiance[0]) && isfinite(error) && error == 0.0 &&
               angle_degrees(v, d) < 0.01,
-          "... finite, along the direction, spread 0 (no NaN)");
+          "... finite, along the direction, error 0 (no NaN)");
     CHECK_NEAR(vdls[0].irradiance[1], 300.0 / PI, 1e-3, "... irradiance sum / (pi r^2)");
     w.count = 0;
-    CHECK_EQ_INT(gb_vdls_from_photons(&w, 1.0f, 15.0f, &seed, vdls, &spread), 0,
-                 "no photon: no VDL");
+    vdl_target some = target_of(1.0f, 0.2f, d, normals, 1);
+    CHECK_EQ_INT(gb_vdls_from_photons(&w, &some, &seed, vdls, &error), 0, "no photon: no VDL");
     gb_vdl_workspace_free(&w);
 }
 
-/* Four bundles 90 degrees apart with 3-degree noise: the spread of one cluster
- * is far above 10 degrees, of four well below; so 10 degrees picks four. */
-static void test_count_by_spread(void)
+/* Half the power from a = (0.6, 0, 0.8), half from b = (-0.6, 0, 0.8), on
+ * a floor of normal +z. At the floor's normal any k is exact. On a wall of
+ * normal +x, a brings 0.6 / 0.8 = 0.75 of its irradiance and b none: 0.375
+ * of the leaf's; one VDL, along +z, brings none there: error 0.375. Two
+ * VDLs, one a direction, are exact. */
+static void test_count_by_error(void)
 {
     gb_vdl_workspace w;
-    empty_workspace(&w, 400);
+    empty_workspace(&w, 200);
     gb_random rng = gb_random_make(9, 0);
-    const float d[4][3] = {{1, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {0, 0, 1}}, p[3] = {1, 1, 1};
-    for (int i = 0; i < 4; ++i)
-        add_bundle(&w, d[i], 100, 0.05f, p, &rng);
+    const float a[3] = {0.6f, 0.0f, 0.8f}, b[3] = {-0.6f, 0.0f, 0.8f}, p[3] = {1, 1, 1};
+    const float up[3] = {0.0f, 0.0f, 1.0f};
+    add_bundle(&w, a, 100, 0.0f, p, &rng);
+    add_bundle(&w, b, 100, 0.0f, p, &rng);
     gb_light_octree_vdl vdls[8];
-    double spread;
+    double error;
+    gb_surface_normal floor_only[1] = {{{0, 0, 1}, 1}};
+    gb_surface_normal floor_and_wall[2] = {{{0, 0, 1}, 1}, {{1, 0, 0}, 1}};
+    vdl_target target = target_of(1.0f, 0.0f, up, floor_only, 1);
     gb_random seed = gb_random_make(3, 0);
-    CHECK_EQ_INT(gb_vdls_from_photons(&w, 1.0f, 10.0f, &seed, vdls, &spread), 4,
-                 "four bundles, spread <= 10 degrees: four VDLs");
-    CHECK(spread <= 10.0, "... whose spread is under 10 degrees");
-    seed = gb_random_make(3, 0);
-    CHECK_EQ_INT(gb_vdls_from_photons(&w, 1.0f, 179.0f, &seed, vdls, &spread), 1,
-                 "spread <= 179 degrees: one VDL is enough");
-    uint32_t assignment[400];
-    float centroids[9];
-    double scratch[400];
-    seed = gb_random_make(3, 0);
-    uint32_t made = gb_kmeans_directions(w.directions, w.weights, w.count, 3, NULL, &seed, centroids,
-                                         assignment, scratch);
-    CHECK(made == 3 && gb_kmeans_spread(w.directions, w.weights, w.count, centroids,
-                                        assignment) > 10.0,
-          "... and three clusters spread more than 10 degrees");
+    CHECK_EQ_INT(gb_vdls_from_photons(&w, &target, &seed, vdls, &error), 1,
+                 "a floor shaded at its own normal: one VDL, even at tolerance 0");
+    printf("# one VDL on the floor: error %g\n", error);
+    CHECK(error < 1e-6, "... exact there");
+    target = target_of(1.0f, 0.3f, up, floor_and_wall, 2);
+    CHECK_EQ_INT(gb_vdls_from_photons(&w, &target, &seed, vdls, &error), 2,
+                 "floor and wall, tolerance 0.3: two VDLs (one leaves 0.375)");
+    printf("# two VDLs on floor and wall: error %g\n", error);
+    CHECK(error < 1e-4, "... exact at both normals");
+    target = target_of(1.0f, 0.4f, up, floor_and_wall, 2);
+    CHECK_EQ_INT(gb_vdls_from_photons(&w, &target, &seed, vdls, &error), 1,
+                 "tolerance 0.4: one VDL");
+    CHECK_NEAR(error, 0.375, 1e-4, "... whose error on the wall is 0.375 of the leaf's light");
     gb_vdl_workspace_free(&w);
+}
+
+/* The normals a leaf is shaded at, on the inside of a unit box at depth 3
+ * (cells 0 and 7 hold its faces): a cell in the middle of the floor and
+ * its neighbours see the floor alone; one cell in from the x = 0 wall, the
+ * floor and that wall; one cell in from two walls, three normals; the
+ * corner cell itself, its three faces. */
+static void test_shading_normals(void)
+{
+    gb_scene scene = {0};
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    add_box(&scene, lo, hi, 1, add_grey(&scene, 0.5f, 0.0f));
+    scene_done(&scene);
+    gb_octree_leaves leaves;
+    gb_error error;
+    CHECK(gb_octree_build(&scene, 3, &leaves, &error) == GB_OK, "octree of a box");
+    const uint32_t cells[4][3] = {{3, 0, 3}, {1, 0, 3}, {1, 0, 1}, {0, 0, 0}};
+    const uint32_t expected[4] = {1, 2, 3, 3};
+    const char *names[4] = {"middle of the floor", "one cell from a wall",
+                            "one cell from two walls", "the corner"};
+    for (int c = 0; c < 4; ++c) {
+        uint32_t leaf = UINT32_MAX, count = 0;
+        for (uint32_t i = 0; i < leaves.count; ++i) {
+            uint32_t at[3];
+            gb_octree_leaf_cell(&leaves, i, at);
+            if (!memcmp(at, cells[c], sizeof at))
+                leaf = i;
+        }
+        gb_surface_normal normals[GB_SURFACE_NORMALS];
+        if (leaf != UINT32_MAX)
+            count = gb_octree_shading_normals(&leaves, leaf, normals);
+        int axis_aligned = count > 0;
+        for (uint32_t j = 0; j < count; ++j)
+            axis_aligned &= fabsf(normals[j].normal[0]) + fabsf(normals[j].normal[1]) +
+                                    fabsf(normals[j].normal[2]) > 0.9999f;
+        printf("# %s: %u normals, %u expected\n", names[c], count, expected[c]);
+        CHECK(count == expected[c] && axis_aligned, "a cell of a box's inside: as many normals "
+              "as faces within a cell of it, each a face's");
+    }
+    gb_octree_leaves_free(&leaves);
+    gb_scene_free(&scene);
 }
 
 /* ---- k-means quality and the spread ---------------------------------------- */
@@ -415,14 +477,6 @@ static void test_known_clusters(void)
     CHECK(recovered, "five bundles, k = 5, 8 restarts, 8 streams: each bundle is one cluster of "
           "its own");
     CHECK(on_axis, "... whose centroid lies within 1 degree of the bundle's direction");
-    gb_light_octree_vdl vdls[8];
-    double spread;
-    gb_random seed = gb_random_make(15, 0);
-    w.kmeans.restarts = 8;
-    CHECK_EQ_INT(gb_vdls_from_photons(&w, 1.0f, 2.5f, &seed, vdls, &spread), 5,
-                 "... as VDLs of spread <= 2.5 degrees, K_max 8: bisection over k finds 5");
-    CHECK(spread <= 2.5, "... spreading under 2.5 degrees (4 clusters merge the two light "
-          "bundles: about 3.3)");
     gb_vdl_workspace_free(&w);
 }
 
@@ -474,11 +528,14 @@ static void test_weighted_centroids(void)
     CHECK(off_a < 0.1 && off_b < 0.1, "... centroids at the power-weighted minimisers of "
           "Σ w |d - c|² (3.77 and 32.33 degrees into each group), within 0.1 degree");
     gb_light_octree_vdl vdls[8];
-    double spread;
+    double error;
     w.kmeans.restarts = 4;
+    w.vdls_max = 2;
     seed = gb_random_make(18, 1);
-    CHECK_EQ_INT(gb_vdls_from_photons(&w, 1.0f, 20.0f, &seed, vdls, &spread), 2,
-                 "... as VDLs of spread <= 20 degrees: two");
+    gb_surface_normal normals[1] = {{{0, 0, 1}, 1}};
+    vdl_target always = target_of(1.0f, -1.0f, expected[0], normals, 1);
+    CHECK_EQ_INT(gb_vdls_from_photons(&w, &always, &seed, vdls, &error), 2,
+                 "... as VDLs, K_max 2 always: two");
     float da[3], db[3];
     gb_photon_unpack_direction(vdls[0].direction, da);
     gb_photon_unpack_direction(vdls[1].direction, db);
@@ -575,10 +632,13 @@ static void check_suns(const gb_light_octree *octree, int suns, const char *what
     CHECK(within == counted, text);
 }
 
+/* With K_max suns VDLs a leaf, always (the paper's fixed count), or with
+ * vdls_max 0: the defaults, the count chosen by the error. */
 static gb_light_octree cluster_plane(const gb_scene *scene, const gb_photon_map *map,
-                                     int threads)
+                                     int threads, uint32_t vdls_max)
 {
-    gb_cluster_options o = {.depth = 4, .threads = threads, .seed = 11};
+    gb_cluster_options o = {.depth = 4, .threads = threads, .seed = 11, .vdls_max = vdls_max,
+                            .tolerance = vdls_max ? -1.0f : 0.0f};
     gb_light_octree octree;
     gb_error error;
     if (gb_cluster_build(scene, map, &o, &octree, NULL, &error) != GB_OK) {
@@ -593,7 +653,7 @@ static void test_one_sun(void)
     gb_scene scene;
     build_sunny_plane(&scene, 1);
     gb_photon_map map = trace_plane(&scene, 40000);
-    gb_light_octree octree = cluster_plane(&scene, &map, 2);
+    gb_light_octree octree = cluster_plane(&scene, &map, 2, 1);
     check_suns(&octree, 1, "one sun");
     gb_light_octree_free(&octree);
     gb_photon_map_free(&map);
@@ -694,9 +754,28 @@ static void test_two_suns_and_determinism(void)
     gb_scene scene;
     build_sunny_plane(&scene, 2);
     gb_photon_map map = trace_plane(&scene, 60000);
-    gb_light_octree two = cluster_plane(&scene, &map, 2);
-    gb_light_octree one = cluster_plane(&scene, &map, 1);
-    check_suns(&two, 2, "two suns");
+    gb_light_octree two = cluster_plane(&scene, &map, 2, 2);
+    gb_light_octree one = cluster_plane(&scene, &map, 1, 2);
+    check_suns(&two, 2, "two suns, K_max 2 always");
+    gb_light_octree chosen = cluster_plane(&scene, &map, 2, 0);
+    uint32_t single = 0, counted = 0;
+    double same = 0.0;
+    for (uint32_t i = 0; i < chosen.header.leaf_count; ++i)
+        if (interior(&chosen, &chosen.leaves[i])) {
+            const gb_light_octree_leaf *leaf = &chosen.leaves[i], *paper = &two.leaves[i];
+            double sum = 0.0, paper_sum = 0.0;
+            for (uint32_t j = 0; j < leaf->vdl_count; ++j)
+                sum += chosen.vdls[leaf->first_vdl + j].irradiance[0];
+            for (uint32_t j = 0; j < paper->vdl_count; ++j)
+                paper_sum += two.vdls[paper->first_vdl + j].irradiance[0];
+            single += leaf->vdl_count == 1;
+            same = fmax(same, fabs(sum - paper_sum) / paper_sum);
+            ++counted;
+        }
+    CHECK(counted > 0 && single == counted, "two suns, the count chosen by the error: one VDL a "
+          "leaf of the plane, exact at its one normal");
+    CHECK(same < 1e-5, "... bringing the irradiance of the two");
+    gb_light_octree_free(&chosen);
     char path_one[64], path_two[64];
     snprintf(path_one, sizeof path_one, "/tmp/test_cluster_%d_1.lot", (int)getpid());
     snprintf(path_two, sizeof path_two, "/tmp/test_cluster_%d_2.lot", (int)getpid());
@@ -937,7 +1016,8 @@ int main(void)
     test_octree_box_shell();
     test_two_bundles();
     test_identical_directions();
-    test_count_by_spread();
+    test_count_by_error();
+    test_shading_normals();
     test_spread_of_rings();
     test_cosine_hemisphere();
     test_known_clusters();

@@ -11,8 +11,8 @@
 
 #include "gathering.h"
 #include "halo.h"
-#include "threads.h"
 #include "octree.h"
+#include "threads.h"
 #include "vdl.h"
 
 enum { CHUNK_LEAVES = 2048 };
@@ -26,16 +26,16 @@ static gb_result resolve_options(const gb_cluster_options *in, gb_cluster_option
     o->knn = o->knn ? o->knn : GB_CLUSTER_DEFAULT_KNN;
     o->vdls_max = o->vdls_max ? o->vdls_max : GB_CLUSTER_DEFAULT_VDLS;
     o->restarts = o->restarts ? o->restarts : 1;
-    o->max_spread = o->max_spread != 0.0f ? o->max_spread : GB_CLUSTER_DEFAULT_SPREAD;
+    o->tolerance = o->tolerance != 0.0f ? o->tolerance : GB_CLUSTER_DEFAULT_TOLERANCE;
     if (o->threads <= 0) {
         long cores = sysconf(_SC_NPROCESSORS_ONLN);
         o->threads = cores > 0 ? (int)cores : 1;
     }
     if (o->depth > GB_LIGHT_OCTREE_MAX_DEPTH || o->vdls_max > GB_LIGHT_OCTREE_MAX_VDLS ||
-        o->knn > 100000 || !(o->radius >= 0.0f) || !(o->max_spread <= 180.0f) ||
+        o->knn > 100000 || !(o->radius >= 0.0f) || !(o->tolerance <= 180.0f) ||
         o->threads > 256 || o->restarts > 64 || (o->part_count > 1 && o->part >= o->part_count))
         return gb_fail(error, GB_ERROR_ARGUMENT, "cluster: bad options (depth 1..%d, K "
-                       "1..100000, K_max 1..%d, R >= 0, spread <= 180, restarts <= 64, "
+                       "1..100000, K_max 1..%d, R >= 0, tolerance <= 180, restarts <= 64, "
                        "part < parts)",
                        GB_LIGHT_OCTREE_MAX_DEPTH, GB_LIGHT_OCTREE_MAX_VDLS);
     return GB_OK;
@@ -54,7 +54,7 @@ typedef struct chunk_job {
     const float *distances2;
     gb_light_octree_vdl *slots;         /* leaf_count x K_max */
     uint32_t *vdl_counts;               /* leaf_count */
-    double *spreads, *gathered;         /* leaf_count */
+    double *errors, *spreads, *gathered;    /* leaf_count */
     atomic_uint next;
     atomic_int failed;
 } chunk_job;
@@ -70,10 +70,17 @@ static void cluster_leaf(chunk_job *job, gb_vdl_workspace *w, uint32_t *kept, ui
                                      job->min_radius, GB_CLUSTER_FLATTENING, kept, &radius);
     gb_vdl_workspace_load(w, job->gathering->map, kept, n);
     gb_random rng = gb_random_make(job->options->seed, leaf);
-    job->vdl_counts[leaf] = gb_vdls_from_photons(w, radius, job->options->max_spread, &rng,
-                                                 &job->slots[(size_t)leaf *
-                                                             job->options->vdls_max],
-                                                 &job->spreads[leaf]);
+    gb_surface_normal normals[GB_SURFACE_NORMALS];
+    vdl_target target = {.radius = radius, .normals = normals,
+                         .tolerance = job->options->tolerance};
+    memcpy(target.leaf_normal, &job->leaves->normals[3 * (size_t)leaf], sizeof target.leaf_normal);
+    target.normal_count = gb_octree_shading_normals(job->leaves, leaf, normals);
+    job->vdl_counts[leaf] = gb_vdls_from_photons(
+        w, &target, &rng, &job->slots[(size_t)leaf * job->options->vdls_max],
+        &job->errors[leaf]);
+    job->spreads[leaf] = n ? gb_kmeans_spread(w->directions, w->weights, w->count,
+                                              w->centroids, w->assignment)
+                           : 0.0;
     job->gathered[leaf] = n;
 }
 
@@ -131,7 +138,7 @@ static float gathering_radius(const gb_octree_leaves *leaves, const gb_cluster_o
 typedef struct leaf_results {
     gb_light_octree_vdl *slots;
     uint32_t *vdl_counts;
-    double *spreads, *gathered;
+    double *errors, *spreads, *gathered;
 } leaf_results;
 
 static gb_result allocate_results(uint32_t leaf_count, uint32_t vdls_max, leaf_results *r,
@@ -140,9 +147,10 @@ static gb_result allocate_results(uint32_t leaf_count, uint32_t vdls_max, leaf_r
     size_t n = leaf_count ? leaf_count : 1;
     r->slots = malloc(n * vdls_max * sizeof *r->slots);
     r->vdl_counts = calloc(n, sizeof *r->vdl_counts);
+    r->errors = calloc(n, sizeof *r->errors);
     r->spreads = calloc(n, sizeof *r->spreads);
     r->gathered = calloc(n, sizeof *r->gathered);
-    if (!r->slots || !r->vdl_counts || !r->spreads || !r->gathered)
+    if (!r->slots || !r->vdl_counts || !r->errors || !r->spreads || !r->gathered)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cluster: out of memory");
     return GB_OK;
 }
@@ -151,6 +159,7 @@ static void free_results(leaf_results *r)
 {
     free(r->slots);
     free(r->vdl_counts);
+    free(r->errors);
     free(r->spreads);
     free(r->gathered);
 }
@@ -194,7 +203,7 @@ static gb_result cluster_leaves(const gb_octree_leaves *leaves, const gb_gatheri
     chunk_job job = {.leaves = leaves, .gathering = gathering, .options = o,
                      .max_radius = gathering_radius(leaves, o), .min_radius = 1e-4f * edge,
                      .centres = b.centres, .indices = b.indices, .distances2 = b.distances2,
-                     .slots = r->slots, .vdl_counts = r->vdl_counts, .spreads = r->spreads,
+                     .slots = r->slots, .vdl_counts = r->vdl_counts, .errors = r->errors, .spreads = r->spreads,
                      .gathered = r->gathered};
     uint32_t begin, end;
     gb_cluster_part_leaves(leaves->count, o->part, o->part_count, &begin, &end);
@@ -229,7 +238,7 @@ static void fill_header(const gb_scene *scene, const gb_photon_map *map,
     h->knn = o->knn;
     h->radius = gathering_radius(leaves, o);
     h->vdls_max = o->vdls_max;
-    h->max_spread = o->max_spread < 0.0f ? 0.0f : o->max_spread;
+    h->tolerance = o->tolerance < 0.0f ? -1.0f : o->tolerance;
     h->flattening = GB_CLUSTER_FLATTENING;
 }
 
@@ -268,19 +277,21 @@ static gb_result assemble(const gb_octree_leaves *leaves, const gb_light_octree_
 
 static void summarize(const leaf_results *r, uint32_t leaf_count, gb_cluster_stats *s)
 {
-    double gathered = 0.0, spread = 0.0;
+    double gathered = 0.0, error = 0.0, spread = 0.0;
     uint32_t lit = 0;
     for (uint32_t i = 0; i < leaf_count; ++i) {
         ++s->vdl_histogram[r->vdl_counts[i]];
         s->vdls += r->vdl_counts[i];
         gathered += r->gathered[i];
         if (r->vdl_counts[i]) {
+            error += r->errors[i];
             spread += r->spreads[i];
             ++lit;
         }
     }
     s->leaves = leaf_count;
     s->mean_gathered = leaf_count ? gathered / leaf_count : 0.0;
+    s->mean_error = lit ? error / lit : 0.0;
     s->mean_spread = lit ? spread / lit : 0.0;
 }
 

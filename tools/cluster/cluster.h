@@ -8,7 +8,8 @@
  *       photons = gather(K, R, KDtree);      gathering.c: K nearest in an
  *                                            ellipsoid along the leaf normal
  *       VDLs = cluster(K_max, photons);      kmeans.c + vdl.c: chord-length
- *   }                                        k-means, VDL count chosen by error
+ *   }                                        k-means, VDL count chosen by the
+ *                                            irradiance error it leaves
  *
  * A leaf gathers around its point on the geometry (octree.h), not its cell
  * centre, so that on a surface the photons lie in the disc the estimate
@@ -39,7 +40,7 @@ enum {
     GB_CLUSTER_DEFAULT_KNN = 300,       /* K */
     GB_CLUSTER_DEFAULT_VDLS = 8,        /* K_max, the paper's GPU limit */
 };
-#define GB_CLUSTER_DEFAULT_SPREAD 15.0f     /* degrees */
+#define GB_CLUSTER_DEFAULT_TOLERANCE 0.2f   /* vdl.h: relative irradiance error */
 #define GB_CLUSTER_DEFAULT_RADIUS_LEAVES 3.0f /* R in leaf edges when not given */
 #define GB_CLUSTER_FLATTENING 0.5f      /* ellipsoid normal semi-axis / tangent semi-axis */
 
@@ -48,8 +49,9 @@ typedef struct gb_cluster_options {
     unsigned knn;               /* K; 0: 300 */
     float radius;               /* R, world units; 0: 3 leaf edges */
     unsigned vdls_max;          /* K_max, 1..64; 0: 8 */
-    float max_spread;           /* degrees; 0: 15. The smallest k whose spread is
-                                   at most this; negative: always K_max */
+    float tolerance;            /* the fewest VDLs a leaf whose irradiance error is
+                                   at most this (vdl.h); 0: 0.2; negative:
+                                   always K_max */
     unsigned restarts;          /* k-means runs per clustering, the best kept
                                    (kmeans.h); 0: 1 */
     uint64_t seed;
@@ -70,7 +72,8 @@ typedef struct gb_cluster_stats {
     uint64_t queries;
     uint64_t indexed;           /* photons in the kd-tree: the map's, or a part's halo */
     double mean_gathered;       /* photons per leaf after the ellipsoid */
-    double mean_spread;         /* degrees, over leaves with VDLs */
+    double mean_error;          /* vdl.h's, over leaves with VDLs */
+    double mean_spread;         /* kmeans.h's, degrees, over leaves with VDLs */
     int threads;
 } gb_cluster_stats;
 

@@ -31,7 +31,7 @@ typedef struct arguments {
     int merge;
 } arguments;
 
-enum { OPTION_RADIUS = 256, OPTION_VDLS, OPTION_SPREAD, OPTION_RESTARTS, OPTION_SHARD,
+enum { OPTION_RADIUS = 256, OPTION_VDLS, OPTION_TOLERANCE, OPTION_RESTARTS, OPTION_SHARD,
        OPTION_MERGE };
 
 static const gb_cli_entry entries[] = {
@@ -46,9 +46,10 @@ static const gb_cli_entry entries[] = {
                   "largest gathering radius, world units\n"
                   "(default 3 leaf edges)"),
     GB_CLI_OPTION(OPTION_VDLS, "vdls", "K_MAX", "most VDLs per leaf, 1..64 (default 8)"),
-    GB_CLI_OPTION(OPTION_SPREAD, "max-spread", "DEG",
-                  "fewest VDLs whose spread is at most DEG degrees\n"
-                  "(default 15; 0: always K_MAX)"),
+    GB_CLI_OPTION(OPTION_TOLERANCE, "tolerance", "T",
+                  "the fewest VDLs a leaf whose irradiance at the\n"
+                  "normals around it is within T of its photons',\n"
+                  "relative (default 0.2; 0: always K_MAX, the paper)"),
     GB_CLI_OPTION(OPTION_RESTARTS, "restarts", "N",
                   "k-means runs per leaf and k, the best kept, 1..64\n"
                   "(default 1)"),
@@ -86,11 +87,11 @@ static int parse_option(int option, const char *text, void *context)
     case OPTION_RADIUS: return gb_cli_float(command.tool, "radius", text, 1e-30, 1e30, &o->radius);
     case OPTION_VDLS:
         return gb_cli_uint(command.tool, "vdls", text, 1, GB_LIGHT_OCTREE_MAX_VDLS, &o->vdls_max);
-    case OPTION_SPREAD:
-        status = gb_cli_float(command.tool, "max-spread", text, 0.0, 180.0, &o->max_spread);
+    case OPTION_TOLERANCE:
+        status = gb_cli_float(command.tool, "tolerance", text, 0.0, 180.0, &o->tolerance);
         /* 0 means "always K_max", which the library spells as negative */
-        if (status == 0 && o->max_spread == 0.0f)
-            o->max_spread = -1.0f;
+        if (status == 0 && o->tolerance == 0.0f)
+            o->tolerance = -1.0f;
         return status;
     case OPTION_RESTARTS: return gb_cli_uint(command.tool, "restarts", text, 1, 64, &o->restarts);
     default: abort();   /* an entry with no case here */
@@ -121,14 +122,14 @@ static int check_operands(int count, char **operands, void *context)
     return GB_CLI_GO_ON;
 }
 
-static const gb_cli_command command = {"cluster", usage, NULL, parse_option,
-                                       check_operands, entries, 26};
+static const gb_cli_command command = {"cluster", usage, parse_option,
+                                       check_operands, entries, 26, NULL};
 
 static void print_stats(const gb_cluster_stats *s, const char *output)
 {
     printf("leaves %u\nvdls %u\nthreads %d\nindexed_photons %llu\nmean_gathered %.1f\n"
-           "mean_spread_degrees %.2f\n", s->leaves, s->vdls, s->threads,
-           (unsigned long long)s->indexed, s->mean_gathered, s->mean_spread);
+           "mean_error %.4f\nmean_spread_degrees %.2f\n", s->leaves, s->vdls, s->threads,
+           (unsigned long long)s->indexed, s->mean_gathered, s->mean_error, s->mean_spread);
     printf("octree_seconds %.3f\nindex_seconds %.3f\nquery_seconds %.3f\n"
            "queries_per_second %.0f\nkmeans_seconds %.3f\nseconds %.3f\n", s->octree_seconds,
            s->index_seconds, s->query_seconds,

@@ -6,8 +6,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "triangle_box_overlap.h"
 #include "array_reserve.h"
+#include "bisection.h"
+#include "triangle_box_overlap.h"
 
 /* A triangle touching a cell: sorted by cell then triangle, so that the
  * normals are summed in one fixed order. */
@@ -230,6 +231,25 @@ static void leaf_normal(const gb_scene *scene, const cell_hit *hits, size_t firs
         normal[0] = 0.0f, normal[1] = 0.0f, normal[2] = 1.0f;
 }
 
+/* The groups of the normals of hits[first, end) (surface_normals.h). */
+static uint32_t cell_surfaces(const gb_scene *scene, const cell_hit *hits, size_t first,
+                              size_t end, gb_surface_normal out[GB_SURFACE_NORMALS])
+{
+    gb_surface_normal groups[GB_SURFACE_NORMALS_GATHERED];
+    uint32_t count = 0;
+    for (size_t i = first; i < end; ++i) {
+        double n[3];
+        float unit[3];
+        area_normal(scene, hits[i].triangle, n);
+        if (normalize_into(n, unit))
+            gb_surface_normals_add(groups, &count, GB_SURFACE_NORMALS_GATHERED, unit,
+                                   (float)(0.5 * sqrt(dot3(n, n))));
+    }
+    gb_surface_normals_keep_largest(groups, &count, GB_SURFACE_NORMALS);
+    memcpy(out, groups, count * sizeof *groups);
+    return count;
+}
+
 static gb_result reduce_hits(const gb_scene *scene, hit_list *list, gb_octree_leaves *leaves,
                              gb_error *error)
 {
@@ -240,7 +260,10 @@ static gb_result reduce_hits(const gb_scene *scene, hit_list *list, gb_octree_le
     leaves->keys = malloc((cells ? cells : 1) * sizeof *leaves->keys);
     leaves->normals = malloc((cells ? cells : 1) * 3 * sizeof *leaves->normals);
     leaves->points = malloc((cells ? cells : 1) * 3 * sizeof *leaves->points);
-    if (!leaves->keys || !leaves->normals || !leaves->points)
+    leaves->surfaces = malloc((cells ? cells : 1) * GB_SURFACE_NORMALS * sizeof *leaves->surfaces);
+    leaves->surface_counts = malloc((cells ? cells : 1) * sizeof *leaves->surface_counts);
+    if (!leaves->keys || !leaves->normals || !leaves->points || !leaves->surfaces ||
+        !leaves->surface_counts)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "octree: out of memory");
     for (size_t i = 0, end; i < list->count; i = end) {
         for (end = i + 1; end < list->count && list->hits[end].key == list->hits[i].key;)
@@ -248,6 +271,9 @@ static gb_result reduce_hits(const gb_scene *scene, hit_list *list, gb_octree_le
         leaves->keys[leaves->count] = list->hits[i].key;
         leaf_normal(scene, list->hits, i, end, &leaves->normals[3 * (size_t)leaves->count]);
         leaf_point(scene, leaves, list->hits, i, end, &leaves->points[3 * (size_t)leaves->count]);
+        leaves->surface_counts[leaves->count] = cell_surfaces(
+            scene, list->hits, i, end,
+            &leaves->surfaces[(size_t)leaves->count * GB_SURFACE_NORMALS]);
         ++leaves->count;
     }
     return GB_OK;
@@ -323,10 +349,58 @@ gb_result gb_octree_nodes(const gb_octree_leaves *leaves, gb_light_octree_node *
     return GB_OK;
 }
 
+typedef struct key_query {
+    const uint64_t *keys;
+    uint64_t key;
+} key_query;
+
+static int at_or_below_key(const void *user, size_t i)
+{
+    const key_query *query = user;
+    return query->keys[i] <= query->key;
+}
+
+/* The leaf of cell, or UINT32_MAX: by bisection over the sorted keys. */
+static uint32_t leaf_at(const gb_octree_leaves *leaves, const uint32_t cell[3])
+{
+    key_query query = {leaves->keys, morton_key(cell, leaves->depth)};
+    size_t i = gb_bisection_last(leaves->count, at_or_below_key, &query);
+    return leaves->keys[i] == query.key ? (uint32_t)i : UINT32_MAX;
+}
+
+uint32_t gb_octree_shading_normals(const gb_octree_leaves *leaves, uint32_t i,
+                                   gb_surface_normal out[GB_SURFACE_NORMALS])
+{
+    gb_surface_normal groups[GB_SURFACE_NORMALS_GATHERED];
+    uint32_t count = 0, cell[3], resolution = 1u << leaves->depth;
+    gb_octree_leaf_cell(leaves, i, cell);
+    for (int d = 0; d < 27; ++d) {
+        uint32_t around[3];
+        int inside = 1;
+        for (int k = 0; k < 3; ++k) {
+            int offset = d / (k == 0 ? 1 : k == 1 ? 3 : 9) % 3 - 1;
+            around[k] = cell[k] + (uint32_t)offset;     /* wraps below 0: outside */
+            inside &= around[k] < resolution;
+        }
+        uint32_t leaf = inside ? leaf_at(leaves, around) : UINT32_MAX;
+        if (leaf == UINT32_MAX)
+            continue;
+        const gb_surface_normal *s = &leaves->surfaces[(size_t)leaf * GB_SURFACE_NORMALS];
+        for (uint32_t g = 0; g < leaves->surface_counts[leaf]; ++g)
+            gb_surface_normals_add(groups, &count, GB_SURFACE_NORMALS_GATHERED, s[g].normal,
+                                   s[g].area);
+    }
+    gb_surface_normals_keep_largest(groups, &count, GB_SURFACE_NORMALS);
+    memcpy(out, groups, count * sizeof *groups);
+    return count;
+}
+
 void gb_octree_leaves_free(gb_octree_leaves *leaves)
 {
     free(leaves->keys);
     free(leaves->normals);
     free(leaves->points);
+    free(leaves->surfaces);
+    free(leaves->surface_counts);
     memset(leaves, 0, sizeof *leaves);
 }

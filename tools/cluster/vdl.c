@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "kmeans.h"
+#include "light_octree_shading.h"
 
 gb_result gb_vdl_workspace_create(gb_vdl_workspace *w, uint32_t capacity, uint32_t vdls_max,
                                   gb_error *error)
@@ -49,13 +50,62 @@ void gb_vdl_workspace_load(gb_vdl_workspace *w, const gb_photon_map *map,
     }
 }
 
-static uint32_t run_kmeans(gb_vdl_workspace *w, uint32_t k, gb_random *rng, double *spread)
+/* c of common/light_octree_shading.h: how a VDL from direction w that
+ * brings irradiance E to the leaf's surface (normal leaf_normal) lights a
+ * surface of normal n, as a factor of E. */
+static double shading_factor(const float n[3], const float leaf_normal[3], const float w[3])
 {
-    uint32_t made = gb_kmeans_directions(w->directions, w->weights, w->count, k, &w->kmeans,
-                                         rng, w->centroids, w->assignment, w->scratch);
-    *spread = gb_kmeans_spread(w->directions, w->weights, w->count, w->centroids,
-                               w->assignment);
-    return made;
+    double cosine = (double)n[0] * w[0] + (double)n[1] * w[1] + (double)n[2] * w[2];
+    double leaf = fabs((double)leaf_normal[0] * w[0] + (double)leaf_normal[1] * w[1] +
+                       (double)leaf_normal[2] * w[2]);
+    return cosine > 0.0 ? cosine / fmax(leaf, GB_LIGHT_OCTREE_MIN_COS) : 0.0;
+}
+
+/* The photons' own light at each normal: what VDLs of one photon each give. */
+static void photon_light(const gb_vdl_workspace *w, const vdl_target *target, double *light)
+{
+    for (uint32_t j = 0; j < target->normal_count; ++j) {
+        light[j] = 0.0;
+        for (uint32_t i = 0; i < w->count; ++i)
+            light[j] += w->weights[i] * shading_factor(target->normals[j].normal,
+                                                       target->leaf_normal,
+                                                       &w->directions[3 * (size_t)i]);
+    }
+}
+
+/* The error of the workspace's clustering of `made` clusters (vdl.h): the
+ * largest difference, over the target's normals, between its VDLs' light
+ * and the photons' (light), over the leaf's irradiance. */
+static double clustering_error(const gb_vdl_workspace *w, uint32_t made, const vdl_target *target,
+                               const double *light)
+{
+    double cluster_weight[GB_LIGHT_OCTREE_MAX_VDLS] = {0.0}, total = 0.0;
+    for (uint32_t i = 0; i < w->count; ++i) {
+        cluster_weight[w->assignment[i]] += w->weights[i];
+        total += w->weights[i];
+    }
+    float directions[GB_LIGHT_OCTREE_MAX_VDLS][3];
+    for (uint32_t c = 0; c < made; ++c) {
+        const float *m = &w->centroids[3 * c];
+        float length = sqrtf(m[0] * m[0] + m[1] * m[1] + m[2] * m[2]);
+        for (int k = 0; k < 3; ++k)
+            directions[c][k] = length > 0.0f ? m[k] / length : 0.0f;
+    }
+    double error = 0.0;
+    for (uint32_t j = 0; j < target->normal_count; ++j) {
+        double vdl_light = 0.0;
+        for (uint32_t c = 0; c < made; ++c)
+            vdl_light += cluster_weight[c] * shading_factor(target->normals[j].normal,
+                                                            target->leaf_normal, directions[c]);
+        error = fmax(error, fabs(vdl_light - light[j]));
+    }
+    return total > 0.0 ? error / total : 0.0;
+}
+
+static uint32_t run_kmeans(gb_vdl_workspace *w, uint32_t k, gb_random *rng)
+{
+    return gb_kmeans_directions(w->directions, w->weights, w->count, k, &w->kmeans, rng,
+                                w->centroids, w->assignment, w->scratch);
 }
 
 /* Keeps the workspace's clustering of `made` clusters aside, and back. */
@@ -71,33 +121,44 @@ static void restore_clustering(gb_vdl_workspace *w, uint32_t made)
     memcpy(w->centroids, w->kept_centroids, 3 * (size_t)made * sizeof *w->centroids);
 }
 
-/* The fewest k whose clustering spreads at most max_spread, by bisection
- * over k (vdl.h); the workspace keeps that clustering. K_max is tried
- * first: when even it spreads more (most leaves under indirect light), it
- * is the answer. Returns the clusters made. */
-static uint32_t choose_clustering(gb_vdl_workspace *w, float max_spread, gb_random *rng,
-                                  double *spread)
+/* The fewest k whose clustering is within the tolerance (vdl.h): k = 1, 2,
+ * 4 ... up to K_max until one is, then bisection between the last that was
+ * not and it; K_max when none is. The workspace keeps that clustering.
+ * Returns the clusters made. */
+static uint32_t choose_clustering(gb_vdl_workspace *w, const vdl_target *target,
+                                  gb_random *rng, double *error)
 {
-    uint32_t made = run_kmeans(w, w->vdls_max, rng, spread);
-    if (*spread > max_spread || w->vdls_max == 1)
-        return made;
-    uint32_t low = 1, high = w->vdls_max, kept = made; /* high passes; below low fail */
-    double kept_spread = *spread;
+    double light[GB_SURFACE_NORMALS];
+    photon_light(w, target, light);
+    uint32_t k = target->tolerance < 0.0f ? w->vdls_max : 1, failed = 0, made;
+    for (;;) {
+        made = run_kmeans(w, k, rng);
+        *error = clustering_error(w, made, target, light);
+        if (*error <= target->tolerance || made < k || k == w->vdls_max)
+            break;
+        failed = k;
+        k = 2 * k < w->vdls_max ? 2 * k : w->vdls_max;
+    }
+    if (!(*error <= target->tolerance || made < k))
+        return made;                            /* K_max, not within the tolerance */
+    uint32_t low = failed + 1, high = k, kept = made; /* high passes; below low fail */
+    double kept_error = *error;
     save_clustering(w, kept);
     while (low < high) {
-        uint32_t k = low + (high - low) / 2;
-        made = run_kmeans(w, k, rng, spread);
-        if (*spread <= max_spread || made < k) {
-            high = k;
+        uint32_t middle = low + (high - low) / 2;
+        made = run_kmeans(w, middle, rng);
+        *error = clustering_error(w, made, target, light);
+        if (*error <= target->tolerance || made < middle) {
+            high = middle;
             kept = made;
-            kept_spread = *spread;
+            kept_error = *error;
             save_clustering(w, kept);
         } else {
-            low = k + 1;
+            low = middle + 1;
         }
     }
     restore_clustering(w, kept);
-    *spread = kept_spread;
+    *error = kept_error;
     return kept;
 }
 
@@ -111,18 +172,18 @@ static int brighter_first(const void *a, const void *b)
     return (x->direction > y->direction) - (x->direction < y->direction);
 }
 
-uint32_t gb_vdls_from_photons(gb_vdl_workspace *w, float radius, float max_spread,
-                              gb_random *rng, gb_light_octree_vdl *out, double *spread)
+uint32_t gb_vdls_from_photons(gb_vdl_workspace *w, const vdl_target *target, gb_random *rng,
+                              gb_light_octree_vdl *out, double *error)
 {
-    *spread = 0.0;
+    *error = 0.0;
     if (w->count == 0)
         return 0;
-    uint32_t made = choose_clustering(w, max_spread, rng, spread);
+    uint32_t made = choose_clustering(w, target, rng, error);
     double sums[GB_LIGHT_OCTREE_MAX_VDLS][3] = {{0.0}};
     for (uint32_t i = 0; i < w->count; ++i)
         for (int j = 0; j < 3; ++j)
             sums[w->assignment[i]][j] += w->powers[3 * (size_t)i + j];
-    double area = M_PI * (double)radius * radius;   /* §3.1.1: density on the disc */
+    double area = M_PI * (double)target->radius * target->radius;   /* §3.1.1: density on the disc */
     uint32_t count = 0;
     for (uint32_t c = 0; c < made; ++c) {
         if (!(sums[c][0] + sums[c][1] + sums[c][2] > 0.0))

@@ -3,12 +3,20 @@
  * (irradiance RGB, direction), irradiance = Σ Φ_i / (π r²) over the cluster,
  * direction = the cluster's centroid (toward the light).
  *
- * Beyond the paper, the number of VDLs is chosen by error: the fewest k in
- * 1 .. K_max whose spread (kmeans.h, the paper's §5.3.2 error) is at most
- * max_spread degrees; K_max when none is (K_max is tried first, and kept at
- * once when even it spreads more). The spread falls as k grows, so k is
- * found by bisection: at most 1 + log2(K_max) clusterings a leaf (4 for
- * K_max 8, where counting up from 1 took up to 8). Clusters that end up
+ * Beyond the paper, the number of VDLs is chosen by the irradiance error
+ * it leaves: the fewest k in 1 .. K_max whose VDLs light every normal the
+ * leaf is shaded at (surface_normals.h) as its photons do, within the
+ * tolerance, relative to the leaf's irradiance. At normal n, a VDL of
+ * irradiance E from w gives E c(n, w), c = max(0, n.w) / max(|n_leaf.w|,
+ * MIN_COS), the runtime's shading (common/light_octree_shading.h), and the
+ * photons give the same sum with one VDL a photon; the error is the
+ * largest difference over the normals (sums of RGB), over the leaf's
+ * irradiance. At the leaf's own normal any k is exact (the VDLs sum to the
+ * estimate), so a flat leaf of one surface needs 1; a corner, where the
+ * light on the floor and on the wall differ, needs more. k = 1, 2, 4 ... is
+ * tried until one passes, then the k between the last that failed and it
+ * by bisection (the error falls as k grows); K_max when none passes, and
+ * always with a negative tolerance (the paper). Clusters that end up
  * empty give no VDL. VDLs are sorted brightest first (sum of RGB).
  *
  * A workspace holds one leaf's photons and the k-means arrays; one per
@@ -24,6 +32,7 @@
 #include "photon_map.h"
 #include "random.h"
 #include "result.h"
+#include "surface_normals.h"
 
 typedef struct gb_vdl_workspace {
     uint32_t capacity, vdls_max;    /* K photons, K_max clusters */
@@ -48,10 +57,19 @@ void gb_vdl_workspace_free(gb_vdl_workspace *workspace);
 void gb_vdl_workspace_load(gb_vdl_workspace *workspace, const gb_photon_map *map,
                            const uint32_t *photon_indices, uint32_t n);
 
-/* Clusters the loaded photons gathered on a disc of radius `radius` into at
- * most K_max VDLs (out: room for K_max); returns how many, and the spread
- * (degrees) of the clustering chosen in *spread. */
-uint32_t gb_vdls_from_photons(gb_vdl_workspace *workspace, float radius, float max_spread,
-                              gb_random *rng, gb_light_octree_vdl *out, double *spread);
+/* What a leaf's VDLs are chosen for (above). */
+typedef struct vdl_target {
+    float radius;               /* of the disc the photons were gathered on */
+    float leaf_normal[3];       /* unit */
+    const gb_surface_normal *normals;   /* where the leaf is shaded */
+    uint32_t normal_count;      /* 0..GB_SURFACE_NORMALS */
+    float tolerance;            /* relative; negative: K_max always */
+} vdl_target;
+
+/* Clusters the loaded photons into at most K_max VDLs for target (out: room
+ * for K_max); returns how many, and the error of the clustering chosen in
+ * *error. */
+uint32_t gb_vdls_from_photons(gb_vdl_workspace *workspace, const vdl_target *target,
+                              gb_random *rng, gb_light_octree_vdl *out, double *error);
 
 #endif
