@@ -57,7 +57,8 @@ LDLIBS += -lOpenMeshCore -lembree3 -lflann -lepoxy -lglfw -lEGL -lz -lm
 # The adapters to heavy libraries are shared objects loaded on first use
 # (formats/adapter.h), in $(BUILD)/lib/gibake/ beside $(BIN); each has its
 # rule below.
-ADAPTER_SOURCES = formats/image_openimageio.cpp formats/voxel_grid_openvdb.cpp
+OPENVDB_ADAPTER_SOURCES := $(wildcard formats/openvdb/*.cpp)
+ADAPTER_SOURCES = formats/image_openimageio.cpp $(OPENVDB_ADAPTER_SOURCES)
 ADAPTERS = $(BUILD)/lib/gibake/gibake-openimageio.so $(BUILD)/lib/gibake/gibake-openvdb.so
 OPENIMAGEIO_LIBS = -lOpenImageIO -lOpenImageIO_Util
 OPENVDB_LIBS = -lopenvdb -ltbb
@@ -129,7 +130,7 @@ $(BUILD)/lib/gibake/gibake-openimageio.so: $(BUILD)/pic/formats/image_openimagei
 	@mkdir -p $(@D)
 	$(CXX) -shared $(LDFLAGS) $^ $(OPENIMAGEIO_LIBS) -o $@
 
-$(BUILD)/lib/gibake/gibake-openvdb.so: $(BUILD)/pic/formats/voxel_grid_openvdb.o
+$(BUILD)/lib/gibake/gibake-openvdb.so: $(OPENVDB_ADAPTER_SOURCES:%.cpp=$(BUILD)/pic/%.o)
 	@mkdir -p $(@D)
 	$(CXX) -shared $(LDFLAGS) $^ $(OPENVDB_LIBS) -o $@
 

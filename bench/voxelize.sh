@@ -8,15 +8,12 @@
 # GB_SCENES: the scenes folder (default ../shared/scenes beside the repo);
 # VOXELIZE_RESOLUTIONS, VOXELIZE_SCENES: override the lists.
 #
-# Columns: surface, distance and write are voxelize's steps timed inside one
+# Columns: surface and write are voxelize's steps timed inside one
 # process (bench/voxelize_bench.cpp) on 2 threads; "voxelize" is their sum,
 # the work the target compares with meshToVolume, with its peak memory (the
 # process after loading the scene); "tool" is `voxelize` run as a user runs
-# it (process start, scene load and all); "ratio" is voxelize / meshToVolume.
-# "write floor" is OpenVDB's own io::File write of voxelize's distance grid
-# alone (a float per empty voxel, built untimed, same compression): what any
-# writer of that content through OpenVDB pays; "floor ratio" is it over
-# meshToVolume, the least voxelize's ratio could be with the file it writes.
+# it (process start, scene load and all); "ratio" is voxelize / meshToVolume;
+# "file KiB" the size of the .vdb written.
 
 root=$(cd "$(dirname "$0")/.." && pwd)
 GB_BIN=${GB_BIN:-$root/build/bin}
@@ -51,8 +48,8 @@ peak() {
 
 echo "voxelize against OpenVDB meshToVolume (unsigned, 1-voxel band); $(nproc) cores; $(date -u +%Y-%m-%d)"
 echo
-echo "| scene | res | grid | surface voxels | surface s | distance s | write s | voxelize s | peak MiB | meshToVolume s | peak MiB | ratio | write floor s | floor ratio | tool s | tool peak MiB |"
-echo "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| scene | res | grid | surface voxels | surface s | write s | voxelize s | peak MiB | meshToVolume s | peak MiB | ratio | file KiB | tool s | tool peak MiB |"
+echo "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for scene in $scenes; do
     path=$GB_SCENES/$scene
     if [ ! -f "$path" ]; then
@@ -64,23 +61,20 @@ for scene in $scenes; do
             >"$dir/v.out" || exit 1
         /usr/bin/time -f %M -o "$dir/m.mem" "$helper" mesh_to_volume "$path" "$r" \
             >"$dir/m.out" || exit 1
-        "$helper" write_floor "$path" "$r" "$dir/floor.vdb" >"$dir/f.out" || exit 1
         start=$(date +%s.%N)
         /usr/bin/time -f %M -o "$dir/t.mem" "$GB_BIN/voxelize" -q -r "$r" "$path" \
             -o "$dir/tool.vdb" || exit 1
         tool=$(echo "$(date +%s.%N) - $start" | bc)
         surface=$(field surface "$dir/v.out")
-        distance=$(field distance "$dir/v.out")
         write=$(field write "$dir/v.out")
-        total=$(echo "$surface + $distance + $write" | bc)
+        total=$(echo "$surface + $write" | bc)
         mtv=$(field mesh_to_volume "$dir/m.out")
         ratio=$(echo "scale=2; $total / $mtv" | bc)
-        floor=$(field write_floor "$dir/f.out")
-        floor_ratio=$(echo "scale=2; $floor / $mtv" | bc)
-        printf '| %s | %s | %s | %s | %s | %s | %s | %.3f | %s | %s | %s | %.2f | %s | %.2f | %.2f | %s |\n' \
+        kib=$(( $(wc -c <"$dir/tool.vdb") / 1024 ))
+        printf '| %s | %s | %s | %s | %s | %s | %.3f | %s | %s | %s | %.2f | %s | %.2f | %s |\n' \
             "$(basename "$scene")" "$r" "$(field size "$dir/v.out")" \
-            "$(field surface_voxels "$dir/v.out")" "$surface" "$distance" "$write" \
+            "$(field surface_voxels "$dir/v.out")" "$surface" "$write" \
             "$total" "$(peak "$dir/v.mem")" "$mtv" "$(peak "$dir/m.mem")" "$ratio" \
-            "$floor" "$floor_ratio" "$tool" "$(peak "$dir/t.mem")"
+            "$kib" "$tool" "$(peak "$dir/t.mem")"
     done
 done

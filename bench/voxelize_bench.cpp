@@ -3,20 +3,14 @@
 // process to measure its peak memory):
 //
 //   voxelize_bench voxelize SCENE RESOLUTION OUT.vdb
-//       load, surface, distance, write: seconds of each, then the counts
+//       load, surface, write: seconds of each, then the counts
 //   voxelize_bench mesh_to_volume SCENE RESOLUTION
 //       OpenVDB's meshToVolume (unsigned distance, 1-voxel band) on the same
 //       triangles with the same voxel size, for comparison
-//   voxelize_bench write_floor SCENE RESOLUTION OUT.vdb
-//       OpenVDB's own writing of voxelize's distance grid alone (the float
-//       of every empty voxel, made by tools::copyFromDense, untimed) with
-//       the same compression: the least any writer of that content through
-//       OpenVDB pays
 //
 // Prints one line of key=value pairs. Bench code: C++ only to call OpenVDB.
 
 extern "C" {
-#include "../tools/voxelize/distance.h"
 #include "progress.h"
 #include "scene.h"
 #include "voxel_grid.h"
@@ -25,7 +19,6 @@ extern "C" {
 
 #define IMATH_HALF_NO_LOOKUP_TABLE
 #include <openvdb/openvdb.h>
-#include <openvdb/tools/Dense.h>
 #include <openvdb/tools/MeshToVolume.h>
 
 #include <cmath>
@@ -56,7 +49,7 @@ static void bounds_of(const gb_scene &scene, double lower[3], double upper[3])
 
 struct voxelized {
     gb_voxel_grid grid;
-    double surface_seconds, distance_seconds;
+    double surface_seconds;
 };
 
 static voxelized voxelize(const gb_scene &scene, uint32_t resolution)
@@ -78,11 +71,8 @@ static voxelized voxelize(const gb_scene &scene, uint32_t resolution)
                             scene.indices, scene.triangle_count, &options, &error) != GB_OK)
         fail("surface", error);
     double surface_done = gb_seconds();
-    if (gb_distance_transform(&grid, &options, &error) != GB_OK)
-        fail("distance", error);
-    double distance_done = gb_seconds();
     grid.scene_hash = scene.hash;
-    return {grid, surface_done - start, distance_done - surface_done};
+    return {grid, surface_done - start};
 }
 
 static int run_voxelize(const gb_scene &scene, uint32_t resolution, const char *output,
@@ -99,36 +89,9 @@ static int run_voxelize(const gb_scene &scene, uint32_t resolution, const char *
     if (gb_voxel_grid_write_and_free(output, &grid, &error) != GB_OK)
         fail("write", error);
     double write_done = gb_seconds();
-    std::printf("load=%.3f surface=%.3f distance=%.3f write=%.3f size=%dx%dx%d "
-                "surface_voxels=%zu\n",
-                load_seconds, v.surface_seconds, v.distance_seconds, write_done - write_start,
+    std::printf("load=%.3f surface=%.3f write=%.3f size=%dx%dx%d surface_voxels=%zu\n",
+                load_seconds, v.surface_seconds, write_done - write_start,
                 size[0], size[1], size[2], surface);
-    return 0;
-}
-
-static int run_write_floor(const gb_scene &scene, uint32_t resolution, const char *output)
-{
-    openvdb::initialize();
-    voxelized v = voxelize(scene, resolution);
-    const int32_t *size = v.grid.size;
-    openvdb::CoordBBox box(openvdb::Coord(0, 0, 0),
-                           openvdb::Coord(size[0] - 1, size[1] - 1, size[2] - 1));
-    // x fastest, as gb_voxel_grid stores it; surface voxels (0) stay inactive
-    openvdb::tools::Dense<float, openvdb::tools::LayoutXYZ> dense(box, v.grid.distance);
-    auto grid = openvdb::FloatGrid::create(0.0f);
-    openvdb::tools::copyFromDense(dense, grid->tree(), 0.0f);
-    grid->setSaveFloatAsHalf(false);
-    double start = gb_seconds();
-    openvdb::io::File file(output);
-    file.setCompression(openvdb::io::COMPRESS_ACTIVE_MASK
-                        | (openvdb::io::Archive::hasBloscCompression()
-                               ? openvdb::io::COMPRESS_BLOSC
-                               : openvdb::io::COMPRESS_ZIP));
-    file.write({grid});
-    file.close();
-    std::printf("write_floor=%.3f active_voxels=%llu\n", gb_seconds() - start,
-                (unsigned long long)grid->activeVoxelCount());
-    gb_voxel_grid_free(&v.grid);
     return 0;
 }
 
@@ -163,8 +126,7 @@ int main(int argc, char **argv)
     bool with_output = argc > 1 && std::strcmp(argv[1], "mesh_to_volume") != 0;
     if (argc != (with_output ? 5 : 4)) {
         std::fprintf(stderr, "usage: voxelize_bench voxelize SCENE RESOLUTION OUT.vdb\n"
-                             "       voxelize_bench mesh_to_volume SCENE RESOLUTION\n"
-                             "       voxelize_bench write_floor SCENE RESOLUTION OUT.vdb\n");
+                             "       voxelize_bench mesh_to_volume SCENE RESOLUTION\n");
         return 2;
     }
     gb_scene scene;
@@ -176,8 +138,6 @@ int main(int argc, char **argv)
     uint32_t resolution = (uint32_t)std::atoi(argv[3]);
     int status = std::strcmp(argv[1], "voxelize") == 0
                      ? run_voxelize(scene, resolution, argv[4], load_seconds)
-                 : std::strcmp(argv[1], "write_floor") == 0
-                     ? run_write_floor(scene, resolution, argv[4])
                      : run_mesh_to_volume(scene, resolution, load_seconds);
     gb_scene_free(&scene);
     return status;

@@ -1,5 +1,5 @@
 /* voxel_check.h — an OpenVDB file's bytes walked before the OpenVDB adapter
- * (formats/voxel_grid_openvdb.cpp) hands them to OpenVDB.
+ * (formats/openvdb/) hands them to OpenVDB.
  *
  * OpenVDB 10 trusts the sizes and counts it reads: a string's or a
  * metadata value's length, a compressed chunk's size (bloscFromStream and

@@ -1,6 +1,6 @@
 /* voxel_grid.c — allocation of the dense in-memory voxel grid, and the
  * front of its file functions, which the OpenVDB adapter does
- * (voxel_grid_openvdb.cpp, a shared object loaded on first use). */
+ * (formats/openvdb/, a shared object loaded on first use). */
 #include "voxel_grid.h"
 
 #include <pthread.h>
@@ -36,22 +36,16 @@ gb_result gb_voxel_grid_allocate(gb_voxel_grid *grid, const int32_t size[3], gb_
         return gb_fail(error, GB_ERROR_ARGUMENT, "voxel grid: bad size %d x %d x %d",
                        (int)size[0], (int)size[1], (int)size[2]);
     uint8_t *surface = calloc(count, sizeof *surface);
-    float *distance = calloc(count, sizeof *distance);
-    /* hundreds of MiB at 512, written all over: a page fault every 2 MiB,
+    /* a hundred MiB at 512, written all over: a page fault every 2 MiB,
      * not every 4 KiB (huge_pages.h) */
     gb_advise_huge_pages(surface, count * sizeof *surface);
-    gb_advise_huge_pages(distance, count * sizeof *distance);
-    if (!surface || !distance) {
-        free(surface);
-        free(distance);
+    if (!surface)
         return gb_fail(error, GB_ERROR_OUT_OF_MEMORY,
                        "voxel grid: out of memory for %d x %d x %d voxels",
                        (int)size[0], (int)size[1], (int)size[2]);
-    }
     for (int axis = 0; axis < 3; ++axis)
         grid->size[axis] = size[axis];
     grid->surface = surface;
-    grid->distance = distance;
     return GB_OK;
 }
 
@@ -60,7 +54,6 @@ void gb_voxel_grid_free(gb_voxel_grid *grid)
     if (!grid)
         return;
     free(grid->surface);
-    free(grid->distance);
     memset(grid, 0, sizeof *grid);
 }
 
@@ -102,22 +95,7 @@ gb_result gb_voxel_grid_write_and_free(const char *path, gb_voxel_grid *grid, gb
 gb_result gb_voxel_grid_read(const char *path, gb_voxel_grid *grid, gb_error *error)
 {
     const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
-    return adapter ? adapter->read(path, grid, 1, error) : GB_ERROR_IO;
-}
-
-gb_result gb_voxel_grid_read_surface(const char *path, gb_voxel_grid *grid, gb_error *error)
-{
-    const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
-    return adapter ? adapter->read(path, grid, 0, error) : GB_ERROR_IO;
-}
-
-gb_result gb_voxel_grid_read_distances(const char *path, const gb_voxel_grid *frame,
-                                       const size_t *voxels, size_t count, float *distances,
-                                       gb_error *error)
-{
-    const gb_voxel_grid_adapter *adapter = voxel_adapter(error);
-    return adapter ? adapter->read_distances(path, frame, voxels, count, distances, error)
-                   : GB_ERROR_IO;
+    return adapter ? adapter->read(path, grid, error) : GB_ERROR_IO;
 }
 
 gb_result gb_voxel_grid_write_int32(const char *path, const gb_voxel_grid *frame,

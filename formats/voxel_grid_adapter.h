@@ -1,5 +1,5 @@
 /* voxel_grid_adapter.h — between formats/voxel_grid.c and the OpenVDB
- * adapter (formats/voxel_grid_openvdb.cpp), a shared object loaded on the
+ * adapter (formats/openvdb/, adapter_entry.cpp), a shared object loaded on the
  * first voxel file read, written or checksummed (formats/adapter.h says
  * why: OpenVDB costs a process about 70 ms of relocations at start-up).
  *
@@ -34,11 +34,7 @@ typedef struct gb_voxel_grid_host {
 typedef struct gb_voxel_grid_adapter {
     gb_result (*write)(const char *path, const gb_voxel_grid *grid, gb_error *error);
     gb_result (*write_and_free)(const char *path, gb_voxel_grid *grid, gb_error *error);
-    /* gb_voxel_grid_read, or gb_voxel_grid_read_surface when with_distance is 0 */
-    gb_result (*read)(const char *path, gb_voxel_grid *grid, int with_distance, gb_error *error);
-    gb_result (*read_distances)(const char *path, const gb_voxel_grid *frame,
-                                const size_t *voxels, size_t count, float *distances,
-                                gb_error *error);
+    gb_result (*read)(const char *path, gb_voxel_grid *grid, gb_error *error);
     gb_result (*write_int32)(const char *path, const gb_voxel_grid *frame, const char *name,
                              const int32_t *values, gb_error *error);
     gb_result (*write_int32_and_free)(const char *path, const gb_voxel_grid *frame,

@@ -2,8 +2,7 @@
  * characteristic (tools/voxelize/empty_topology.h) on hand-made grids whose
  * topology is known: a block (a ball: 1, 1), a hollow box (inside and the
  * shell around it: 2, 1 + 2) and the same with a door, a ring (1, 0), two
- * voxels touching at a corner (2, 2); and voxelize's
- * surface_only giving voxelize's own surface. */
+ * voxels touching at a corner (2, 2). */
 #include "tap.h"
 #include "tap_printf.h"
 #include "../../tools/voxelize/empty_topology.h"
@@ -93,29 +92,8 @@ static void test_shapes(void)
     free(g.surface);
 }
 
-/* surface_only marks the same surface voxelize does, with no distance. */
-static void test_surface_only(void)
-{
-    const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1};
-    const uint32_t indices[] = {0, 1, 2, 0, 1, 3, 0, 2, 3, 1, 2, 3};
-    gb_voxelize_options full = {.resolution = 24}, only = {.resolution = 24, .surface_only = 1};
-    gb_voxel_grid a, b;
-    gb_error error;
-    int ok = gb_voxelize_triangles(positions, 4, indices, 4, &full, &a, &error) == GB_OK;
-    ok = ok && gb_voxelize_triangles(positions, 4, indices, 4, &only, &b, &error) == GB_OK;
-    if (!CHECK(ok, "surface_only: voxelized"))
-        return;
-    size_t count = (size_t)a.size[0] * a.size[1] * a.size[2];
-    CHECK(memcmp(a.size, b.size, sizeof a.size) == 0 && !memcmp(a.surface, b.surface, count),
-          "surface_only: the same frame and surface as voxelize");
-    CHECK(b.distance == NULL, "surface_only: no distance");
-    gb_voxel_grid_free(&a);
-    gb_voxel_grid_free(&b);
-}
-
 int main(void)
 {
     test_shapes();
-    test_surface_only();
     return tap_done();
 }

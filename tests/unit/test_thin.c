@@ -191,7 +191,6 @@ static int nearest_is_consistent(const gb_voxel_grid *g, const outcome *o)
 static void check_topology(const char *name, gb_voxel_grid *g, long expected_b0,
                            long expected_b1, long expected_b2)
 {
-    volume_finish(g);
     volume_topology t = volume_topology_of(g);
     CHECK_EQ_INTF(t.b0, expected_b0, "%s: empty space has b0 = %ld (flood fill)", name,
                   expected_b0);
@@ -320,11 +319,10 @@ static void check_centred(int w, int h)
     int length = 30;
     gb_voxel_grid g = volume_solid(length + 2, w + 2, h + 2);
     volume_box(&g, 1, 1, 1, length, w, h, 0);
-    volume_finish(&g);
     float largest = 0.0f;
     for (int k = 1; k <= h; ++k)
         for (int j = 1; j <= w; ++j) {
-            float d = g.distance[gb_voxel_index(&g, length / 2, j, k)];
+            float d = volume_brute_distance(&g, length / 2, j, k);
             largest = d > largest ? d : largest;
         }
     outcome o = run_thin(&g, NULL);
@@ -579,7 +577,6 @@ static void test_nearest_ways(void)
     volume_box(&g, 1, 1, 1, 31, 18, 2, 0);
     for (int x = 3, gap_at_top = 1; x < 31; x += 3, gap_at_top = !gap_at_top)
         volume_box(&g, x, gap_at_top ? 1 : 3, 0, x, gap_at_top ? 16 : 18, 3, 1);
-    volume_finish(&g);
     check_nearest_ways("serpentine", &g, 0);
     check_nearest_ways("serpentine", &g, 1);
     gb_voxel_grid_free(&g);
@@ -715,64 +712,38 @@ static void test_collapse_threads(void)
     gb_voxel_grid_free(&g);
 }
 
-/* ---- node radii from a distance source (thin's main: the file again) ---- */
+/* ---- node radii: exact distances, against a brute force ---- */
 
-typedef struct served_distances {
-    const float *distance;      /* the dense distances the source answers from */
-    int calls;
-    size_t asked;
-} served_distances;
-
-static gb_result serve_distances(void *user, const size_t *voxels, size_t count,
-                                 float *distances, gb_error *error)
-{
-    (void)error;
-    served_distances *served = user;
-    ++served->calls;
-    served->asked += count;
-    for (size_t n = 0; n < count; ++n)
-        distances[n] = served->distance[voxels[n]];
-    return GB_OK;
-}
-
-static gb_result refuse_distances(void *user, const size_t *voxels, size_t count,
-                                  float *distances, gb_error *error)
-{
-    (void)user, (void)voxels, (void)count, (void)distances;
-    return gb_fail(error, GB_ERROR_IO, "refused by the test");
-}
-
-static void test_distance_source(void)
+/* Every node's radius is the largest exact distance to a wall voxel of the
+ * empty voxels around its corner, each found by trying every voxel of the
+ * grid (volume_brute_distance): equal to the float, not within a tolerance. */
+static void test_radii_brute_force(void)
 {
     gb_voxel_grid g = cluttered_room();
-    size_t voxels = (size_t)g.size[0] * g.size[1] * g.size[2];
-    outcome dense = run_thin(&g, NULL);
-    float *distance = g.distance;
-    g.distance = NULL;
-    served_distances served = {distance, 0, 0};
-    gb_thin_options options = {0};
-    options.distances = serve_distances;
-    options.distances_user = &served;
-    outcome sourced = run_thin(&g, &options);
-    CHECK_EQ_INT(sourced.result, GB_OK, "distance source: thin without the dense distance");
-    CHECK(same_outcome(&dense, &sourced, voxels),
-          "distance source: the same skeleton, radii and grid as with the dense distance");
-    CHECKF(served.calls == 1 && served.asked <= 8 * (size_t)sourced.skeleton.node_count &&
-               served.asked >= sourced.skeleton.node_count,
-           "distance source: asked once for %zu voxels, at most 8 a node (%u nodes)",
-           served.asked, sourced.skeleton.node_count);
-    options.distances = refuse_distances;
-    outcome refused = run_thin(&g, &options);
-    CHECK(refused.result == GB_ERROR_IO && refused.skeleton.node_count == 0 && !refused.nearest,
-          "distance source: its failure is thin's, nothing left");
-    gb_skeleton skeleton;
-    gb_error error;
-    CHECK_EQ_INT(gb_thin(&g, NULL, &skeleton, NULL, NULL, &error), GB_ERROR_ARGUMENT,
-                 "distance source: neither a distance nor a source is refused");
-    free_outcome(&dense);
-    free_outcome(&sourced);
-    free_outcome(&refused);
-    g.distance = distance;
+    outcome o = run_thin(&g, NULL);
+    CHECK_EQ_INT(o.result, GB_OK, "radii: thinned");
+    int wrong = 0, positive = 0;
+    for (uint32_t n = 0; n < o.skeleton.node_count; ++n) {
+        int corner[3];
+        for (int a = 0; a < 3; ++a)
+            corner[a] = (int)lround((o.skeleton.nodes[n].position[a] - g.world_origin[a]) /
+                                    g.voxel_size) + 1;
+        float radius = 0.0f;
+        for (int d = 0; d < 8; ++d) {
+            int i = corner[0] - 1 - (d & 1), j = corner[1] - 1 - (d >> 1 & 1),
+                k = corner[2] - 1 - (d >> 2 & 1);
+            if (volume_empty(&g, i, j, k)) {
+                float r = volume_brute_distance(&g, i, j, k);
+                radius = r > radius ? r : radius;
+            }
+        }
+        wrong += o.skeleton.nodes[n].radius != radius;
+        positive += radius > 0.0f;
+    }
+    CHECKF(o.skeleton.node_count > 10 && positive == (int)o.skeleton.node_count,
+           "radii: %u nodes, each with empty voxels around it", o.skeleton.node_count);
+    CHECK_EQ_INT(wrong, 0, "radii: every node's radius is the brute-force distance, exactly");
+    free_outcome(&o);
     gb_voxel_grid_free(&g);
 }
 
@@ -915,7 +886,7 @@ int main(void)
     test_nearest_ways();
     test_determinism();
     test_collapse_threads();
-    test_distance_source();
+    test_radii_brute_force();
     test_thin_and_free();
     test_options();
     test_grid_file();

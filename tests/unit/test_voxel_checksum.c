@@ -1,5 +1,5 @@
 /* test_voxel_checksum.c — the checksum of the voxel file (FORMATS.md, "Voxel
- * file", "Checksum"; formats/voxel_grid_openvdb.cpp): it covers every byte
+ * file", "Checksum"; formats/openvdb/): it covers every byte
  * and the length. Each byte of a small file changed, 1 to 3 bytes appended
  * or cut (zeros too, which the format-1 checksum missed), the OpenVDB file
  * version in bytes 8..20: each is refused before OpenVDB parses anything. A
@@ -19,11 +19,11 @@ enum { UUID_OFFSET = 21, UUID_LENGTH = 36, HEADER_BYTES = 57 };
 
 static char path[512]; /* the file the checks write and read */
 
-/* A surface plane at k = 1, the distance to it elsewhere. */
-static float plane_distance(int i, int j, int k)
+/* A surface plane at k = 1. */
+static int plane_surface(int i, int j, int k)
 {
     (void)i, (void)j;
-    return k == 1 ? 0.0f : 0.25f * (float)abs(k - 1);
+    return k == 1;
 }
 
 static void make_grid(gb_voxel_grid *grid)
@@ -32,7 +32,7 @@ static void make_grid(gb_voxel_grid *grid)
     grid->voxel_size = 0.25;
     grid->scene_hash = 0x0123456789abcdefull;
     grid->resolution = 9;
-    voxel_grid_fill(grid, plane_distance);
+    voxel_grid_fill(grid, plane_surface);
 }
 
 /* The result of reading bytes as a voxel file; error gets the message. */

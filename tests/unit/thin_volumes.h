@@ -69,56 +69,30 @@ static int volume_empty(const gb_voxel_grid *g, int i, int j, int k)
     return volume_inside(g, i, j, k) && !g->surface[gb_voxel_index(g, i, j, k)];
 }
 
-/* distance: two raster passes of the 3x3x3 chamfer mask (1, sqrt 2, sqrt 3)
- * to the nearest wall voxel centre, voxels outside the grid being walls. */
-static float volume_distance_at(const gb_voxel_grid *g, const float *d, int i, int j, int k)
+/* The exact distance of voxel (i, j, k) to the nearest wall voxel of the
+ * grid, centre to centre, in world units, by trying every voxel:
+ * voxel_size * sqrt(n), n the least squared distance in voxels, as thin's
+ * node radii should be. */
+static float volume_brute_distance(const gb_voxel_grid *g, int i, int j, int k)
 {
-    if (!volume_inside(g, i, j, k))
-        return 0.0f;
-    return d[gb_voxel_index(g, i, j, k)];
+    long best = -1;
+    for (int z = 0; z < g->size[2]; ++z)
+        for (int y = 0; y < g->size[1]; ++y)
+            for (int x = 0; x < g->size[0]; ++x) {
+                if (!g->surface[gb_voxel_index(g, x, y, z)])
+                    continue;
+                long d = (long)(x - i) * (x - i) + (long)(y - j) * (y - j) + (long)(z - k) * (z - k);
+                if (best < 0 || d < best)
+                    best = d;
+            }
+    return (float)(sqrt((double)best) * g->voxel_size);
 }
 
-static void volume_chamfer_pass(gb_voxel_grid *g, int sign)
-{
-    int n = g->size[0] * g->size[1] * g->size[2];
-    for (int step = 0; step < n; ++step) {
-        int v = sign > 0 ? step : n - 1 - step;
-        if (g->surface[v])
-            continue;
-        int i = v % g->size[0], j = v / g->size[0] % g->size[1], k = v / g->size[0] / g->size[1];
-        float best = g->distance[v];
-        for (int dz = -1; dz <= 1; ++dz)
-            for (int dy = -1; dy <= 1; ++dy)
-                for (int dx = -1; dx <= 1; ++dx) {
-                    int offset = dx + dy * g->size[0] + dz * g->size[0] * g->size[1];
-                    if (offset * sign >= 0)
-                        continue;
-                    float length = sqrtf((float)(dx * dx + dy * dy + dz * dz));
-                    float candidate =
-                        volume_distance_at(g, g->distance, i + dx, j + dy, k + dz) +
-                        length * (float)g->voxel_size;
-                    if (candidate < best)
-                        best = candidate;
-                }
-        g->distance[v] = best;
-    }
-}
-
-static void volume_finish(gb_voxel_grid *g)
-{
-    size_t n = (size_t)g->size[0] * g->size[1] * g->size[2];
-    for (size_t v = 0; v < n; ++v)
-        g->distance[v] = g->surface[v] ? 0.0f : 1e30f;
-    volume_chamfer_pass(g, 1);
-    volume_chamfer_pass(g, -1);
-}
-
-/* volume_solid, its boxes (volume_boxes), volume_finish. */
+/* volume_solid and its boxes (volume_boxes). */
 static gb_voxel_grid volume_made(int nx, int ny, int nz, const int (*boxes)[7])
 {
     gb_voxel_grid g = volume_solid(nx, ny, nz);
     volume_boxes(&g, boxes);
-    volume_finish(&g);
     return g;
 }
 

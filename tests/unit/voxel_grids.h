@@ -2,7 +2,7 @@
  * voxel file and of voxelize:
  *
  *   voxel_grid_make(&grid, 9, 5, 4);        // zeroed but its size; aborts
- *   voxel_grid_fill(&grid, distance);       // distance(i, j, k); 0: surface
+ *   voxel_grid_fill(&grid, surface);        // surface(i, j, k): 1 or 0
  *   ...
  *   gb_voxel_grid_free(&grid);              // the caller's
  *
@@ -25,15 +25,14 @@ static inline void voxel_grid_make(gb_voxel_grid *grid, int nx, int ny, int nz)
         abort();
 }
 
-/* Every voxel's distance, distance(i, j, k); a surface voxel where it is 0. */
-static inline void voxel_grid_fill(gb_voxel_grid *grid, float (*distance)(int i, int j, int k))
+/* Every voxel's surface flag, surface(i, j, k). */
+static inline void voxel_grid_fill(gb_voxel_grid *grid, int (*surface)(int i, int j, int k))
 {
     for (int k = 0; k < grid->size[2]; ++k)
         for (int j = 0; j < grid->size[1]; ++j)
             for (int i = 0; i < grid->size[0]; ++i) {
                 size_t index = gb_voxel_index(grid, i, j, k);
-                grid->distance[index] = distance(i, j, k);
-                grid->surface[index] = grid->distance[index] == 0.0f;
+                grid->surface[index] = (uint8_t)(surface(i, j, k) != 0);
             }
 }
 

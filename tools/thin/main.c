@@ -118,20 +118,6 @@ static gb_result write_outputs(const arguments *args, const gb_voxel_grid *grid,
     return result;
 }
 
-/* The node radii's few distances, read again from the input file. */
-typedef struct distance_source {
-    const char *path;
-    const gb_voxel_grid *frame;
-} distance_source;
-
-static gb_result read_distances(void *user, const size_t *voxels, size_t count,
-                                float *distances, gb_error *error)
-{
-    const distance_source *source = user;
-    return gb_voxel_grid_read_distances(source->path, source->frame, voxels, count, distances,
-                                        error);
-}
-
 static gb_result run(void *context, gb_error *error)
 {
     const arguments *args = context;
@@ -139,16 +125,13 @@ static gb_result run(void *context, gb_error *error)
     /* before the work: both outputs can be written */
     gb_result result = gb_output_files_check((const char *[]){args->output, args->grid}, 2, error);
     if (result == GB_OK)
-        result = gb_voxel_grid_read_surface(args->input, &grid, error);
+        result = gb_voxel_grid_read(args->input, &grid, error);
     if (result != GB_OK)
         return result;
     /* the reader's OpenVDB trees are freed, but glibc keeps their heap
      * pages: give them back before the big arrays of thin */
     malloc_trim(0);
     gb_thin_options options = args->options;
-    distance_source source = {args->input, &grid};
-    options.distances = read_distances;
-    options.distances_user = &source;
     gb_progress progress;
     gb_progress_begin_for(&progress, command.tool, args->shared.quiet, &options.progress,
                           &options.progress_user);

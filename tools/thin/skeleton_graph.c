@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "bisection.h"
+#include "surface_distance.h"
 
 static gb_result collect_node_cells(const gb_cubical_complex *complex, uint32_t **cells,
                                     uint32_t *count, uint32_t *edge_count, gb_error *error)
@@ -68,23 +69,16 @@ static int corner_voxels(const gb_voxel_grid *grid, const gb_empty_voxels *empty
     return count;
 }
 
-static gb_result dense_distances(void *user, const size_t *voxels, size_t count,
-                                 float *distances, gb_error *error)
-{
-    (void)error;
-    const gb_voxel_grid *grid = user;
-    for (size_t n = 0; n < count; ++n)
-        distances[n] = grid->distance[voxels[n]];
-    return GB_OK;
-}
-
-/* Every node's radius: the largest distance of the empty voxels around its
- * corner, all asked of distances_of at once. */
+/* Every node's radius: the largest distance to the surface of the empty
+ * voxels around its corner (surface_distance.h). */
 static gb_result set_radii(const gb_cubical_complex *complex, const gb_voxel_grid *grid,
                            const gb_empty_voxels *empty, const uint32_t *cells,
-                           gb_voxel_distances_function distances_of,
-                           void *distances_user, gb_skeleton *skeleton, gb_error *error)
+                           gb_skeleton *skeleton, gb_error *error)
 {
+    gb_surface_distance index;
+    gb_result built = gb_surface_distance_build(&index, grid, empty, error);
+    if (built)
+        return built;
     size_t most = 8 * (size_t)skeleton->node_count + 1;
     size_t *voxels = malloc(most * sizeof *voxels);
     float *distances = malloc(most * sizeof *distances);
@@ -100,7 +94,7 @@ static gb_result set_radii(const gb_cubical_complex *complex, const gb_voxel_gri
         total += counts[n];
     }
     if (!result)
-        result = distances_of(distances_user, voxels, total, distances, error);
+        gb_surface_distances(&index, voxels, total, distances);
     for (uint32_t n = 0, at = 0; !result && n < skeleton->node_count; ++n) {
         float radius = 0.0f;
         for (int v = 0; v < counts[n]; ++v, ++at)
@@ -111,6 +105,7 @@ static gb_result set_radii(const gb_cubical_complex *complex, const gb_voxel_gri
     free(voxels);
     free(distances);
     free(counts);
+    gb_surface_distance_free(&index);
     return result;
 }
 
@@ -144,9 +139,7 @@ static void join_edges(const gb_cubical_complex *complex, const uint32_t *cells,
 }
 
 gb_result gb_skeleton_graph_build(const gb_cubical_complex *complex, const gb_voxel_grid *grid,
-                                  const gb_empty_voxels *empty,
-                                  gb_voxel_distances_function distances_of,
-                                  void *distances_user, gb_skeleton *skeleton,
+                                  const gb_empty_voxels *empty, gb_skeleton *skeleton,
                                   uint32_t **node_cells, gb_error *error)
 {
     uint32_t *cells = NULL, node_count = 0, edge_count = 0;
@@ -167,12 +160,7 @@ gb_result gb_skeleton_graph_build(const gb_cubical_complex *complex, const gb_vo
     skeleton->edge_count = edge_count;
     place_nodes(complex, grid, cells, skeleton);
     join_edges(complex, cells, skeleton);
-    if (grid->distance) {
-        distances_of = dense_distances;
-        distances_user = (void *)grid;
-    }
-    result = set_radii(complex, grid, empty, cells, distances_of, distances_user, skeleton,
-                       error);
+    result = set_radii(complex, grid, empty, cells, skeleton, error);
     if (result) {
         free(cells);
         return result;

@@ -4,8 +4,8 @@
  *
  * A node sits at its point, a corner of the voxel grid: world_origin +
  * voxel_size * (x, y, z) for corner (x, y, z); its radius is the largest
- * distance of the empty voxels around that corner (from grid->distance, or
- * when the grid holds none, from distances_of). Nodes are
+ * exact distance to the surface of the empty voxels around that corner
+ * (surface_distance.h). Nodes are
  * numbered in the order of their cells (x fastest, then y, then z), edges are
  * sorted by their first then second node: the graph depends only on the
  * complex.
@@ -25,11 +25,9 @@
  * fields are left as they are) and returns in *node_cells (malloc'ed,
  * node_count entries, increasing) the cell of each node. Squares left in
  * the complex (none after a complete thinning) contribute their edges. */
-/* grid gives the frame (and distance, when it has one), empty its empty voxels. */
+/* grid gives the frame, empty its empty voxels. */
 gb_result gb_skeleton_graph_build(const gb_cubical_complex *complex, const gb_voxel_grid *grid,
-                                  const gb_empty_voxels *empty,
-                                  gb_voxel_distances_function distances_of,
-                                  void *distances_user, gb_skeleton *skeleton,
+                                  const gb_empty_voxels *empty, gb_skeleton *skeleton,
                                   uint32_t **node_cells, gb_error *error);
 
 #endif

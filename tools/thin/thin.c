@@ -45,8 +45,6 @@ static gb_result check_input(const gb_voxel_grid *grid, const gb_thin_options *o
 {
     if (!grid || !grid->surface)
         return gb_fail(error, GB_ERROR_ARGUMENT, "no voxel grid");
-    if (!grid->distance && !options->distances)
-        return gb_fail(error, GB_ERROR_ARGUMENT, "no distances: neither in the grid nor a source");
     for (int a = 0; a < 3; ++a)
         if (grid->size[a] <= 0 || !isfinite(grid->world_origin[a]))
             return gb_fail(error, GB_ERROR_ARGUMENT, "bad grid frame");
@@ -159,14 +157,12 @@ static gb_result thin_grid(const gb_voxel_grid *grid, uint8_t **surface_to_free,
     double collapse_done = gb_seconds();
     gb_persistence_free(&persistence);
     if (!result)
-        result = gb_skeleton_graph_build(&complex, grid, &empty, options.distances,
-                                         options.distances_user, skeleton, &node_cells, error);
+        result = gb_skeleton_graph_build(&complex, grid, &empty, skeleton, &node_cells, error);
     double graph_done = gb_seconds(), cpu_graph_done = gb_cpu_seconds();
     /* the faces are done with: only the lattice's frame is used from here */
     free(complex.faces);
     complex.faces = NULL;
-    /* the collapse's lists and the distance source's reading (an OpenVDB
-     * tree) grew on the heap, which glibc keeps once freed: give it back
+    /* the collapse's lists grew on the heap, which glibc keeps once freed: give it back
      * before the nearest-node grid takes its 6 bytes a cell */
     malloc_trim(0);
     if (!result && nearest)

@@ -22,9 +22,9 @@
  *   ...
  *   gb_skeleton_free(&skeleton); free(nearest);
  *
- * Preconditions: grid has a surface array, and a distance array or (a
- * grid read with gb_voxel_grid_read_surface) options->distances to ask the
- * few distances the node radii need; voxels outside it count as not empty. The result is the same bytes for the same grid,
+ * Preconditions: grid has a surface array; voxels outside it count as not
+ * empty. The node radii are exact distances to the surface, computed for
+ * the nodes only (surface_distance.h). The result is the same bytes for the same grid,
  * persistence and min_lifespan, whatever the number of threads: the collapse
  * removes at each substep exactly the set of free pairs of that substep, the
  * nearest-node grid is the unique least (distance, node) of every voxel.
@@ -64,11 +64,6 @@ typedef struct gb_thin_options {
      * return cancels and gb_thin fails with GB_ERROR_IO. May be NULL. */
     gb_progress_callback progress;
     void *progress_user;
-    /* When grid->distance is NULL: the distances of the empty voxels around
-     * the nodes, for their radii (thin's main reads them again from the
-     * voxel file, so that the dense distance is never held while thinning). */
-    gb_voxel_distances_function distances;
-    void *distances_user;
 } gb_thin_options;
 
 typedef struct gb_thin_stats {

@@ -12,7 +12,6 @@ static gb_result topology_at(const gb_scene *scene, const gb_voxelize_options *o
         check.thread_count = options->thread_count;
     }
     check.resolution = r;
-    check.surface_only = 1;
     gb_voxel_grid grid = {0};
     gb_result result = gb_voxelize_scene(scene, &check, &grid, error);
     if (result == GB_OK)

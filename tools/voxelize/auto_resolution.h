@@ -2,7 +2,7 @@
  * space's topology stops changing, found coarse to fine.
  *
  * From GB_AUTO_RESOLUTION_FIRST up, doubling, the scene's surface is marked
- * (no distance transform) and the empty space's components and Euler
+ * and the empty space's components and Euler
  * characteristic counted (empty_topology.h). The first r whose counts equal
  * those at 2r and 4r is where the topology stops changing; 2r is chosen, so
  * that every opening already open at r is at least two voxels wide (the
@@ -37,7 +37,7 @@ typedef struct gb_auto_resolution {
 } gb_auto_resolution;
 
 /* options (NULL: defaults) give the pad and threads of the checks; their
- * resolution, progress and surface_only are ignored. */
+ * resolution and progress are ignored. */
 gb_result gb_voxelize_auto_resolution(const gb_scene *scene, const gb_voxelize_options *options,
                                       gb_auto_resolution *choice, gb_error *error);
 

@@ -1,5 +1,5 @@
-/* voxelize — scene to the OpenVDB file of its surfaces, empty space and
- * distances (noel-biri-2014, section IV.A; formats/FORMATS.md, "Voxel
+/* voxelize — scene to the OpenVDB file of its surfaces and empty space
+ * (noel-biri-2014, section IV.A; formats/FORMATS.md, "Voxel
  * file"). Parses the command line and calls tools/voxelize/voxelize.h. */
 
 #include <inttypes.h>
@@ -21,8 +21,8 @@
 static const char usage[] =
     "usage: voxelize [options] SCENE -o OUT.vdb\n"
     "Voxelizes SCENE (.scene, .obj, .obj.gz, .ply, .off or .stl) into OUT.vdb: the\n"
-    "voxels every triangle touches (grid 'surface'), the others ('empty') and the\n"
-    "distance of each empty voxel to the nearest surface voxel ('distance').\n"
+    "voxels every triangle touches (grid 'surface') and the others ('empty'), both\n"
+    "sparse.\n"
     "\n";
 
 enum { OPTION_PAD = 256 };

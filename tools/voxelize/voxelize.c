@@ -8,7 +8,6 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "distance.h"
 #include "threads.h"
 #include "triangle_box_overlap.h"
 
@@ -349,21 +348,6 @@ static gb_voxelize_options step_options(const gb_voxelize_options *options,
     return step;
 }
 
-/* Share of the surface step in the whole, measured on Sponza at 256. */
-static const double SURFACE_SHARE = 0.4;
-
-/* The surface array alone, zero-filled, for options->surface_only. */
-static gb_result allocate_surface(gb_voxel_grid *grid, gb_error *error)
-{
-    size_t count = (size_t)grid->size[0] * (size_t)grid->size[1] * (size_t)grid->size[2];
-    grid->surface = calloc(count, 1);
-    grid->distance = NULL;
-    if (!grid->surface)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%d x %d x %d voxels: out of memory",
-                       grid->size[0], grid->size[1], grid->size[2]);
-    return GB_OK;
-}
-
 gb_result gb_voxelize_triangles(const float *positions, uint32_t vertex_count,
                                 const uint32_t *indices, uint32_t triangle_count,
                                 const gb_voxelize_options *given, gb_voxel_grid *grid,
@@ -379,9 +363,7 @@ gb_result gb_voxelize_triangles(const float *positions, uint32_t vertex_count,
     gb_voxel_grid frame;
     if (result == GB_OK)
         result = make_frame(lower, upper, &options, &frame, error);
-    if (result == GB_OK && options.surface_only)
-        result = allocate_surface(&frame, error);
-    else if (result == GB_OK) {
+    if (result == GB_OK) {
         int32_t size[3] = {frame.size[0], frame.size[1], frame.size[2]};
         result = gb_voxel_grid_allocate(&frame, size, error);
     }
@@ -389,12 +371,9 @@ gb_result gb_voxelize_triangles(const float *positions, uint32_t vertex_count,
         return result;
     double pad[3] = {options.pad, options.pad, options.pad};
     gb_progress_span span;
-    gb_voxelize_options step = step_options(&options, &span, 0, SURFACE_SHARE);
+    gb_voxelize_options step = step_options(&options, &span, 0, 1);
     result = mark_surface(&frame, lower, pad, positions, vertex_count, indices,
                           triangle_count, &step, error);
-    step = step_options(&options, &span, SURFACE_SHARE, 1 - SURFACE_SHARE);
-    if (result == GB_OK && !options.surface_only)
-        result = gb_distance_transform(&frame, &step, error);
     if (result != GB_OK) {
         gb_voxel_grid_free(&frame);
         return result;

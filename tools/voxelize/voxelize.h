@@ -1,7 +1,6 @@
 /* voxelize.h — scene triangles to the voxel grid of the topological pipeline
  * (noel-biri-2014, section IV.A): the voxels every triangle touches
- * (surface, conservative), the others (empty space), and for each empty
- * voxel the Euclidean distance to the nearest surface voxel.
+ * (surface, conservative); the others are the empty space.
  *
  * Frame: voxels are cubes of edge voxel_size = longest side of the bounds of
  * the triangles / resolution; the grid covers the bounds plus pad voxels on
@@ -12,8 +11,6 @@
  * Surface: a voxel is surface iff a triangle touches its closed box (exact
  * separating-axis test, common/triangle_box_overlap.h), so no
  * 6-connected path of empty voxels crosses a wall, however thin or oriented.
- * Distance (tools/voxelize/distance.h): exact Euclidean distance transform,
- * from voxel centre to voxel centre, in world units.
  *
  * Work is split over options->thread_count threads by voxel slabs; the result
  * does not depend on the thread count. The library never prints: it reports
@@ -32,7 +29,7 @@
 
 enum {
     GB_VOXELIZE_DEFAULT_RESOLUTION = 256,
-    GB_VOXELIZE_MAX_RESOLUTION = 2048, /* keeps squared distances exact in floats */
+    GB_VOXELIZE_MAX_RESOLUTION = 2048, /* keeps thin's squared distances exact */
     GB_VOXELIZE_DEFAULT_PAD = 2,
     GB_VOXELIZE_MAX_PAD = 64,
     GB_VOXELIZE_NO_PAD = -1,           /* pad value meaning "no empty border" */
@@ -50,13 +47,11 @@ typedef struct gb_voxelize_options {
                                      stops the work, which then fails with
                                      GB_ERROR_INTERRUPTED */
     void *progress_user;
-    int surface_only;             /* 1: the surface alone; distance stays NULL
-                                     (auto_resolution.c's checks) */
 } gb_voxelize_options;
 
 /* Triangles as positions (vertex_count * 3 floats) and indices
  * (triangle_count * 3). Fills grid (which the caller frees with
- * gb_voxel_grid_free) with the frame, surface and distance; scene_hash is 0.
+ * gb_voxel_grid_free) with the frame and surface; scene_hash is 0.
  * Fails with GB_ERROR_INVALID on no triangle, an index out of range, a
  * non-finite position or bounds of zero extent; GB_ERROR_ARGUMENT on options
  * out of range. Degenerate triangles are voxelized as the segment or point
