@@ -6,20 +6,18 @@
 #include "tap.h"
 #include "../../tools/thin/empty_voxels.h"
 #include "../../tools/thin/surface_distance.h"
+#include "random.h"
 #include "voxel_grids.h"
 
 #include <math.h>
 #include <stdint.h>
 #include <stdlib.h>
 
-static uint64_t random_state = 0x9e3779b97f4a7c15ull;
+static gb_random rng;
 
 static uint32_t random_u32(void)
 {
-    random_state ^= random_state << 13;
-    random_state ^= random_state >> 7;
-    random_state ^= random_state << 17;
-    return (uint32_t)(random_state >> 11);
+    return gb_random_uint32(&rng);
 }
 
 static float brute_distance(const gb_voxel_grid *g, int i, int j, int k)
@@ -80,6 +78,7 @@ static long mismatches(const gb_voxel_grid *g, size_t step)
 
 int main(void)
 {
+    rng = gb_random_make(48, 0);
     gb_voxel_grid g;
     voxel_grid_make(&g, 13, 9, 7);
     g.voxel_size = 0.3;

@@ -126,8 +126,9 @@ static void test_sparse(void)
     grid.surface[gb_voxel_index(&grid, 100, 37, 201)] = 1;
     const char *path = scratch_path("sparse.vdb");
     CHECK_EQ_INT(gb_voxel_grid_write(path, &grid, &error), GB_OK, "sparse: write 256^3");
-    struct stat status;
-    CHECKF(stat(path, &status) == 0 && status.st_size < 64 * 1024,
+    struct stat status = {0};
+    int found = stat(path, &status) == 0;
+    CHECKF(found && status.st_size < 64 * 1024,
            "sparse: the file of 16.7 M voxels, one surface, is under 64 KiB (%lld bytes)",
            (long long)status.st_size);
     CHECK(gb_voxel_grid_read(path, &read, &error) == GB_OK && same_arrays(&grid, &read),
