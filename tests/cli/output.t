@@ -381,8 +381,8 @@ if [ $root = 1 ] && mount -t tmpfs -o size=32k gibake-test "$dir/small-disk" 2>/
         if [ $t = reference ]; then
             "$GB_BIN/reference" -q --mode direct --spp 1 --resolution 128x128 "$scene" \
                 -o "$mounted/out.$e" >"$dir/job.out" 2>"$dir/job.err"
-        elif [ $t = cluster ]; then
-            run_job fg big cluster "$mounted/out.$e"    # depth 3's octree fits in 32 KiB
+        elif [ $t = cluster ] || [ $t = voxelize ]; then
+            run_job fg big $t "$mounted/out.$e"     # the small ones fit in 32 KiB
         else
             run_job fg small $t "$mounted/out.$e"
         fi
