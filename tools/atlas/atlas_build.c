@@ -9,6 +9,7 @@
 
 #include "charts.h"
 #include "discs.h"
+#include "merge.h"
 #include "overlap.h"
 #include "packing.h"
 #include "parameterize.h"
@@ -63,6 +64,26 @@ static gb_result parameterize_charts(builder *b, const uint32_t *grown, uint32_t
     }
     free(order);
     free(starts);
+    return result;
+}
+
+/* The small charts joined to neighbours (merge.h) at the density of a
+ * first packing (or the one asked for). */
+static gb_result merge_charts(builder *b, gb_error *error)
+{
+    gb_packing_options o = {b->options.texels_per_unit, b->options.size, b->options.padding};
+    double density = o.texels_per_unit;
+    gb_result result = GB_OK;
+    if (!(density > 0.0)) {
+        result = gb_packing_orient(&b->list, error);
+        if (result == GB_OK)
+            result = gb_pack(&b->list, &o, &b->packing, error);
+        density = b->packing.texels_per_unit;
+        gb_packing_free(&b->packing);
+    }
+    if (result == GB_OK)
+        result = gb_charts_merge(&b->parameterize, &b->list, density, o.padding,
+                                 &b->stats->merged, error);
     return result;
 }
 
@@ -306,18 +327,12 @@ static gb_result pack_until_sound(builder *b, gb_error *error)
 static double triangle_distortion(const gb_scene *scene, uint32_t t, const float *uv,
                                   uint32_t width, uint32_t height, double *sum)
 {
-    double p[9], q[6], largest = 0.0;
+    double q[6];
     for (int c = 0; c < 3; ++c) {
-        gb_triangle_corner(scene, t, c, p + 3 * c);
         q[2 * c] = (double)uv[2 * c] * width;
         q[2 * c + 1] = (double)uv[2 * c + 1] * height;
     }
-    for (int c = 0; c < 3; ++c) {
-        double d = fabs(gb_corner_angle(q, c, 2) - gb_corner_angle(p, c, 3)) * 180.0 / M_PI;
-        *sum += d;
-        largest = fmax(largest, d);
-    }
-    return largest;
+    return gb_triangle_angle_distortion(scene, t, q, sum);
 }
 
 static void fill_records(const builder *b, gb_atlas *atlas, gb_atlas_chart *records)
@@ -399,7 +414,8 @@ static gb_result build(builder *b, gb_atlas *atlas, gb_error *error)
         area += gb_triangle_area(b->scene, t);
     }
     b->parameterize = (gb_parameterize_context){b->scene, &b->adjacency, b->local_of,
-                                                area * GB_ATLAS_MAX_WASTE, {0}};
+                                                area * GB_ATLAS_MAX_WASTE,
+                                                GB_ATLAS_MAX_DISTORTION, {0}};
     gb_result result = gb_mesh_adjacency_build(b->scene, &b->adjacency, error);
     if (result == GB_OK)
         result = gb_charts_grow(b->scene, &b->adjacency, b->options.cone_degrees, grown,
@@ -408,6 +424,8 @@ static gb_result build(builder *b, gb_atlas *atlas, gb_error *error)
     if (result == GB_OK)
         result = parameterize_charts(b, grown, grown_count, error);
     free(grown);
+    if (result == GB_OK)
+        result = merge_charts(b, error);
     if (result == GB_OK)
         result = pack_until_sound(b, error);
     if (result == GB_OK)
@@ -440,6 +458,7 @@ gb_result gb_atlas_build(const gb_scene *scene, const gb_atlas_options *options,
     b.stats->folded = b.parameterize.stats.folded;
     b.stats->overlapping = b.parameterize.stats.overlapping;
     b.stats->wasteful = b.parameterize.stats.wasteful;
+    b.stats->distorted = b.parameterize.stats.distorted;
     gb_packing_free(&b.packing);
     gb_chart_list_free(&b.list);
     gb_mesh_adjacency_free(&b.adjacency);

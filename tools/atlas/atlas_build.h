@@ -3,6 +3,7 @@
  *   charts.h        charts grown over shared edges within a normal cone
  *   discs.h         each cut until it is a topological disc
  *   parameterize.h  each disc mapped by LSCM (lscm.h, CGAL), split again on a fold
+ *   merge.h         small charts joined to a neighbour when that packs smaller
  *   packing.h       turned, scaled to one texel density, packed with a gutter
  *   overlap.h       the exact test that no two triangles overlap in UV
  * into a gb_atlas (formats/atlas.h) that gb_atlas_check accepts.
@@ -52,6 +53,9 @@
 /* A chart whose smallest rectangle wastes more than this share of the
  * scene's area is split (parameterize.h, max_waste). */
 #define GB_ATLAS_MAX_WASTE 0.0005
+/* No corner of an LSCM chart, nor of a merged one, is distorted by more
+ * than this (degrees; parameterize.h, merge.h). */
+#define GB_ATLAS_MAX_DISTORTION 25.0
 
 typedef struct gb_atlas_options {
     double cone_degrees;        /* 0: the default, GB_ATLAS_DEFAULT_CONE */
@@ -70,7 +74,8 @@ typedef struct gb_atlas_stats {
     uint32_t grown_charts;      /* charts of the normal cone, before cutting */
     uint32_t charts;            /* in the file */
     uint32_t lone_triangles;    /* charts of one triangle */
-    uint32_t lscm_failures, splits, folded, overlapping, wasteful; /* parameterize.h */
+    uint32_t lscm_failures, splits, folded, overlapping, wasteful, distorted; /* parameterize.h */
+    uint32_t merged;            /* joins of small charts (merge.h) */
     uint32_t collapsed, self_overlaps;
     uint32_t rounds;            /* packings */
     double fill_ratio;

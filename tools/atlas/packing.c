@@ -65,27 +65,29 @@ gb_result gb_packing_orient(gb_chart_list *list, gb_error *error)
 
 /* ---- sizes ---- */
 
-/* Texels per world unit along each axis of a chart of this box. */
-static void scales_of(const double box[4], double density, double scale[2])
-{
-    for (int d = 0; d < 2; ++d) {
-        double extent = box[2 + d];
-        scale[d] = extent > 0.0 && extent * density < GB_PACKING_MIN_EXTENT
-                       ? GB_PACKING_MIN_EXTENT / extent
-                       : density;
-    }
-}
-
-/* The rect's width and height (padding excluded) at density. */
+/* The rect's width and height (padding excluded) at density: the box's
+ * extent in texels rounded up, at least 1. */
 static void size_of(const double box[4], double density, uint64_t size[2])
 {
-    double scale[2];
-    scales_of(box, density, scale);
     for (int d = 0; d < 2; ++d) {
-        double texels = fmax(1.0, ceil(box[2 + d] * scale[d]));
+        double texels = fmax(1.0, ceil(box[2 + d] * density));
         size[d] = texels < 4.0 * GB_ATLAS_MAX_SIZE ? (uint64_t)texels
                                                     : 4 * (uint64_t)GB_ATLAS_MAX_SIZE;
     }
+}
+
+/* Texels per world unit of a chart of this box at density: the largest
+ * one scale, at least density, at which the box still fits its rect
+ * (packing.h). */
+static double scale_of(const double box[4], double density)
+{
+    uint64_t size[2];
+    size_of(box, density, size);
+    double scale = INFINITY;
+    for (int d = 0; d < 2; ++d)
+        if (box[2 + d] > 0.0)
+            scale = fmin(scale, (double)size[d] / box[2 + d]);
+    return isfinite(scale) && scale > density ? scale : density;
 }
 
 /* ---- skyline ---- */
@@ -318,9 +320,8 @@ void gb_packing_texels(const gb_chart_list *list, const gb_packing *packing, uin
     const gb_chart *chart = &list->charts[i];
     const double *box = packing->boxes + 4 * (size_t)i;
     const uint32_t *rect = packing->rects + 4 * (size_t)i;
-    double scale[2];
-    scales_of(box, packing->texels_per_unit, scale);
+    double scale = scale_of(box, packing->texels_per_unit);
     for (size_t k = 0; k < 3 * (size_t)chart->triangle_count; ++k)
         for (int d = 0; d < 2; ++d)
-            texels[2 * k + d] = rect[d] + (chart->uvs[2 * k + d] - box[d]) * scale[d];
+            texels[2 * k + d] = rect[d] + (chart->uvs[2 * k + d] - box[d]) * scale;
 }

@@ -221,11 +221,13 @@ static double rect_waste(const gb_chart *chart, double *fill)
     return waste;
 }
 
-/* A disc m by LSCM: a chart appended, or m split when CGAL fails, when a
- * triangle folds or when two overlap. */
-static gb_result map_disc(const gb_scene *scene, const gb_chart_mesh *m, gb_chart_list *list,
-                          pieces *work, double max_waste, gb_parameterize_stats *stats,
-                          gb_error *error)
+/* Why an LSCM chart is not kept. */
+enum { SOUND, FAILED, FOLDED, OVERLAPPING, DISTORTED };
+
+/* The chart of the disc m by LSCM appended to list, and in *status
+ * whether it is sound; the caller removes it when it is not. */
+static gb_result lscm_chart(const gb_scene *scene, const gb_chart_mesh *m, double max_distortion,
+                            gb_chart_list *list, int *status, gb_error *error)
 {
     double *vertex_uvs = malloc(2 * (size_t)m->vertex_count * sizeof *vertex_uvs);
     uint8_t *folded = malloc(m->triangle_count);
@@ -237,26 +239,69 @@ static gb_result map_disc(const gb_scene *scene, const gb_chart_mesh *m, gb_char
         gb_lscm_parameterize(m->vertex_count, m->positions, m->triangle_count, m->corners,
                              vertex_uvs, NULL) == GB_OK)
         folds = normalise(scene, m, vertex_uvs, chart, folded, &overlaps);
-    double fill = 1.0;
-    int wasteful = result == GB_OK && folds == 0 && overlaps == 0 && max_waste > 0.0 &&
-                   rect_waste(chart, &fill) > max_waste && fill < GB_MIN_RECT_FILL;
-    if (result == GB_OK && folds < 0)
-        ++stats->lscm_failures;
-    else if (result == GB_OK && folds > 0)
-        ++stats->folded;
-    else if (result == GB_OK && overlaps > 0)
-        ++stats->overlapping;
-    else if (wasteful)
-        ++stats->wasteful;
-    else if (result == GB_OK)
-        ++stats->lscm_charts;
-    if (result == GB_OK && (folds != 0 || overlaps > 0 || wasteful)) {
-        gb_chart_list_remove(list, list->count - 1);
-        result = push_split(work, m, error);
-    }
+    *status = folds < 0 ? FAILED : folds > 0 ? FOLDED : overlaps > 0 ? OVERLAPPING
+              : gb_chart_max_distortion(scene, chart) > max_distortion ? DISTORTED : SOUND;
     free(folded);
     free(vertex_uvs);
     return result;
+}
+
+/* A disc m by LSCM: a chart appended, or m split when CGAL fails, when a
+ * triangle folds, when two overlap, when a corner is distorted beyond the
+ * bound or when the chart wastes its rectangle. */
+static gb_result map_disc(const gb_parameterize_context *context, const gb_chart_mesh *m,
+                          gb_chart_list *list, pieces *work, gb_parameterize_stats *stats,
+                          gb_error *error)
+{
+    int status;
+    gb_result result = lscm_chart(context->scene, m, context->max_distortion, list, &status,
+                                  error);
+    if (result != GB_OK)
+        return result;
+    double fill = 1.0;
+    int wasteful = status == SOUND && context->max_waste > 0.0 &&
+                   rect_waste(&list->charts[list->count - 1], &fill) > context->max_waste &&
+                   fill < GB_MIN_RECT_FILL;
+    stats->lscm_failures += status == FAILED;
+    stats->folded += status == FOLDED;
+    stats->overlapping += status == OVERLAPPING;
+    stats->distorted += status == DISTORTED;
+    stats->wasteful += wasteful;
+    stats->lscm_charts += status == SOUND && !wasteful;
+    if (status != SOUND || wasteful) {
+        gb_chart_list_remove(list, list->count - 1);
+        result = push_split(work, m, error);
+    }
+    return result;
+}
+
+gb_result gb_parameterize_disc(const gb_parameterize_context *context, const uint32_t *triangles,
+                               uint32_t count, gb_chart_list *list, int *mapped, gb_error *error)
+{
+    gb_chart_mesh m;
+    *mapped = 0;
+    gb_result result = gb_chart_mesh_build(context->scene, context->adjacency, triangles, count,
+                                           context->local_of, &m, error);
+    if (result != GB_OK)
+        return result;
+    int status = FAILED;
+    if (gb_chart_mesh_is_disc(&m))
+        result = lscm_chart(context->scene, &m, context->max_distortion, list, &status, error);
+    if (result == GB_OK && gb_chart_mesh_is_disc(&m) && status != SOUND)
+        gb_chart_list_remove(list, list->count - 1);
+    *mapped = result == GB_OK && status == SOUND;
+    gb_chart_mesh_free(&m);
+    return result;
+}
+
+/* The largest angle distortion of a chart's corners (degrees). */
+double gb_chart_max_distortion(const gb_scene *scene, const gb_chart *chart)
+{
+    double largest = 0.0, sum = 0.0;
+    for (uint32_t k = 0; k < chart->triangle_count; ++k)
+        largest = fmax(largest, gb_triangle_angle_distortion(scene, chart->triangles[k],
+                                                             chart->uvs + 6 * (size_t)k, &sum));
+    return largest;
 }
 
 /* One piece off the work list: laid flat, split, or mapped. */
@@ -276,7 +321,7 @@ static gb_result do_piece(gb_parameterize_context *context, piece p, gb_chart_li
         ++stats->splits;
         result = push_split(work, &m, error);
     } else {
-        result = map_disc(scene, &m, list, work, context->max_waste, stats, error);
+        result = map_disc(context, &m, list, work, stats, error);
     }
     gb_chart_mesh_free(&m);
     return result;

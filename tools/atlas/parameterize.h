@@ -17,6 +17,9 @@
  *   triangle stands alone, rather than laying it alone at once, keeps
  *   its neighbours in larger charts: on Sponza (cone 60) 4270 charts (348 lone
  *   triangles) against 5561 (1531), fill ratio 0.332 against 0.313;
+ * - so is a chart with a corner whose UV angle differs from its 3-D angle
+ *   by more than max_distortion degrees (LSCM bends the slivers of a
+ *   chart of many tiny triangles): a triangle laid alone keeps its angles;
  * - so is a chart that covers less than GB_MIN_RECT_FILL of its smallest
  *   rectangle when that rectangle exceeds its UV area by more than
  *   max_waste (world units squared; atlas_build.h sets it to a share of
@@ -59,6 +62,7 @@ typedef struct gb_parameterize_stats {
     uint32_t folded;            /* LSCM charts split for a triangle of UV area <= 0 */
     uint32_t overlapping;       /* LSCM charts split for overlapping themselves */
     uint32_t wasteful;          /* split for wasting more than max_waste of their rectangle */
+    uint32_t distorted;         /* split for a corner distorted beyond max_distortion */
 } gb_parameterize_stats;
 
 /* What every piece is parameterised with; the caller's. */
@@ -67,12 +71,25 @@ typedef struct gb_parameterize_context {
     const gb_mesh_adjacency *adjacency;
     uint32_t *local_of;         /* discs.h's scratch array */
     double max_waste;           /* world units squared; 0: no limit */
+    double max_distortion;      /* degrees, per corner */
     gb_parameterize_stats stats;/* counts added to */
 } gb_parameterize_context;
 
 /* Appends the charts of the connected piece triangles[0..count-1] to list. */
 gb_result gb_parameterize_piece(gb_parameterize_context *context, const uint32_t *triangles,
                                 uint32_t count, gb_chart_list *list, gb_error *error);
+
+/* Appends the piece triangles[0..count-1] as one chart, *mapped = 1, when
+ * it is a disc that LSCM maps soundly (no CGAL failure, no fold, no two
+ * triangles overlapping, no corner distorted beyond max_distortion; the
+ * waste of its rectangle is the caller's to judge); else *mapped = 0 and
+ * the list is unchanged. Counts nothing in context->stats. */
+gb_result gb_parameterize_disc(const gb_parameterize_context *context, const uint32_t *triangles,
+                               uint32_t count, gb_chart_list *list, int *mapped, gb_error *error);
+
+/* The largest angle distortion (degrees) of a chart's corners at its UVs:
+ * |UV angle - 3-D angle|. */
+double gb_chart_max_distortion(const gb_scene *scene, const gb_chart *chart);
 
 /* Appends one chart of scene triangle t laid flat. */
 gb_result gb_chart_list_add_flat(const gb_scene *scene, uint32_t t, gb_chart_list *list,

@@ -88,4 +88,21 @@ static inline double gb_uv_twice_area(const double *uv)
     return (uv[2] - uv[0]) * (uv[5] - uv[1]) - (uv[3] - uv[1]) * (uv[4] - uv[0]);
 }
 
+/* The angle distortion (degrees) of the corners of scene triangle t at
+ * the UVs uv (6 doubles, any uniform scale): each corner's |UV angle -
+ * 3-D angle| added to *sum; returns the largest. */
+static inline double gb_triangle_angle_distortion(const gb_scene *scene, uint32_t t,
+                                                  const double uv[6], double *sum)
+{
+    double p[9], largest = 0.0;
+    for (int c = 0; c < 3; ++c)
+        gb_triangle_corner(scene, t, c, p + 3 * c);
+    for (int c = 0; c < 3; ++c) {
+        double d = fabs(gb_corner_angle(uv, c, 2) - gb_corner_angle(p, c, 3)) * 180.0 / M_PI;
+        *sum += d;
+        largest = fmax(largest, d);
+    }
+    return largest;
+}
+
 #endif
