@@ -10,6 +10,7 @@
  * gives the same bytes. */
 #include "../../tools/atlas/atlas_build.h"
 #include "../../tools/atlas/lscm.h"
+#include "../../tools/atlas/merge.h"
 #include "../../tools/atlas/min_area_rect.h"
 #include "../../tools/atlas/overlap.h"
 #include "scene_builder.h"
@@ -594,6 +595,87 @@ static void test_file_and_determinism(void)
     gb_scene_free(&scene);
 }
 
+/* A chart's cost: its smallest rectangle in whole texels grown by the
+ * padding, whatever its turn: a unit square at 3.9 texels per unit,
+ * padding 2, costs (4 + 2 * 2)^2 = 64 texels, turned by 45 degrees as
+ * well. */
+static void test_merge_cost(void)
+{
+    double square[12] = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1}, turned[12];
+    for (int k = 0; k < 6; ++k) {
+        double x = square[2 * k], y = square[2 * k + 1], c = sqrt(0.5);
+        turned[2 * k] = c * x - c * y;
+        turned[2 * k + 1] = c * x + c * y;
+    }
+    uint32_t triangles[2] = {0, 1};
+    gb_chart chart = {2, triangles, square, 1.0};
+    CHECK_NEAR(gb_chart_cost(&chart, 3.9, 2), 64.0, 1e-9, "merge: a unit square costs 8 x 8");
+    chart.uvs = turned;
+    CHECK_NEAR(gb_chart_cost(&chart, 3.9, 2), 64.0, 1e-9, "merge: ... turned by 45 degrees too");
+    CHECK_NEAR(gb_chart_cost(&chart, 0.01, 2), 25.0, 1e-9,
+               "merge: a chart under a texel costs one texel and its gutter, 5 x 5");
+}
+
+/* A sphere cut by a 10 degree cone into charts of a few texels each (a
+ * 96 x 96 atlas): small charts join, no corner beyond the bound (measured
+ * here), every chart a disc, no overlap. */
+static void test_merge(void)
+{
+    gb_scene scene;
+    build_sphere(&scene, 10, 16);
+    gb_atlas_options options = {.cone_degrees = 10, .size = 96,
+                                .padding = GB_ATLAS_DEFAULT_PADDING};
+    gb_atlas atlas;
+    gb_atlas_stats stats;
+    gb_error error;
+    if (!CHECK(gb_atlas_build(&scene, &options, &atlas, &stats, &error) == GB_OK,
+               "merge: sphere built")) {
+        printf("# %s\n", error.message);
+        gb_scene_free(&scene);
+        return;
+    }
+    printf("# merge: %u grown, %u joins, %u charts, max distortion %.2f\n", stats.grown_charts,
+           stats.merged, stats.charts, max_distortion_degrees(&scene, &atlas));
+    CHECK(stats.merged > 0 && stats.charts < stats.grown_charts, "merge: small charts joined");
+    CHECK(max_distortion_degrees(&scene, &atlas) <= GB_ATLAS_MAX_DISTORTION + 0.5,
+          "merge: no corner distorted beyond the bound (+0.5 degree of fixed point)");
+    CHECK(every_chart_a_disc(&scene, &atlas), "merge: every chart a disc");
+    CHECK_EQ_INT(overlapping_pairs_brute_force(&atlas), 0, "merge: no two triangles overlap");
+    gb_atlas_free(&atlas);
+    gb_scene_free(&scene);
+}
+
+/* A right isosceles triangle far below a texel beside a large quad: laid
+ * flat, its hypotenuse along u, it is scaled (angles kept) until its box
+ * fills its 1 x 1 rect: the hypotenuse one texel, its area 1/4 texel. */
+static void test_tiny_chart_scale(void)
+{
+    gb_scene scene;
+    begin(&scene);
+    uint32_t q[4] = {add_vertex(&scene, 0, 0, 0), add_vertex(&scene, 10, 0, 0),
+                     add_vertex(&scene, 10, 10, 0), add_vertex(&scene, 0, 10, 0)};
+    add_quad_indices(&scene, q[0], q[1], q[2], q[3]);
+    uint32_t a = add_vertex(&scene, 20, 0, 0), b = add_vertex(&scene, 20.001, 0, 0),
+             c = add_vertex(&scene, 20, 0.001, 0);
+    add_triangle(&scene, a, b, c, 0);
+    scene_done(&scene);
+    gb_atlas atlas;
+    gb_atlas_stats stats;
+    if (!CHECK(build(&scene, 0, &atlas, &stats) == GB_OK, "tiny chart: built")) {
+        gb_scene_free(&scene);
+        return;
+    }
+    const float *uv = atlas.uvs + 12;
+    double area = 0.5 * (((double)uv[2] - uv[0]) * ((double)uv[5] - uv[1]) -
+                         ((double)uv[3] - uv[1]) * ((double)uv[4] - uv[0])) *
+                  atlas.header.width * atlas.header.height;
+    printf("# tiny chart: %.6f texels\n", area);
+    CHECK_NEAR(area, 0.25, 1e-3, "tiny chart: scaled to fill its texel, a quarter texel");
+    CHECK(max_distortion_degrees(&scene, &atlas) < 0.05, "tiny chart: its angles kept");
+    gb_atlas_free(&atlas);
+    gb_scene_free(&scene);
+}
+
 int main(void)
 {
     test_planar_chart();
@@ -605,5 +687,8 @@ int main(void)
     test_lscm_adapter();
     test_min_area_rect();
     test_file_and_determinism();
+    test_merge_cost();
+    test_merge();
+    test_tiny_chart_scale();
     return tap_done();
 }

@@ -11,10 +11,10 @@
  *   the texels its triangles touch are the rect's, so with a padding of
  *   at least 1 a bilinear read anywhere on the chart touches only its own
  *   rect and its gutter;
- * - a chart smaller than GB_PACKING_MIN_EXTENT texels along either side is
- *   stretched to that along it, so that no triangle shrinks to nothing
- *   (such charts are a quarter texel: their distortion is measured, not
- *   hidden);
+ * - every chart is scaled up, the same along u and v (its angles kept),
+ *   until its box fills its rect on one side: a chart of a fraction of a
+ *   texel gets the texel its rect costs anyway (so no triangle shrinks to
+ *   nothing), a large one gains under a texel a side;
  * - the skyline packer puts each rect at the lowest place it fits, then
  *   the leftmost; ties in the order by height, width, then chart index;
  * - --size N: the largest density (bisection on its logarithm, 40 steps)
@@ -31,8 +31,6 @@
 
 #include "parameterize.h"
 #include "result.h"
-
-#define GB_PACKING_MIN_EXTENT 0.25
 
 typedef struct gb_packing_options {
     double texels_per_unit;     /* > 0: this density; 0: the largest that fits size */
