@@ -32,7 +32,7 @@
 
 #define GB_MERGE_CANDIDATES 4
 #define GB_MERGE_MAX_TRIANGLES 4096
-#define GB_MERGE_PASSES 4
+#define GB_MERGE_PASSES 2
 
 /* The packing cost (texels) of a chart at density with padding. */
 double gb_chart_cost(const gb_chart *chart, double density, uint32_t padding);
