@@ -339,7 +339,9 @@ static int parse_shared(const char *tool, const gb_cli_entry *entry, const char 
 static int print_help(const gb_cli_command *command)
 {
     return gb_cli_help_entries(command->usage, command->entries, command->column,
-                               command->tail);
+                               command->tail)
+               ? GB_EXIT_SUCCESS
+               : GB_EXIT_FAILURE;
 }
 
 /* Every tool's option loop: getopt_long over argv; -h prints the help, -V

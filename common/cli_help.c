@@ -50,12 +50,12 @@ int gb_cli_help_entries(const char *head, const gb_cli_entry *entries, int colum
         GB_CLI_ENTRIES_END,
     };
     if (fputs(head, stdout) == EOF)
-        return GB_EXIT_FAILURE;
+        return 0;
     for (const gb_cli_entry *e = entries; e->name; ++e)
         if (!print_entry(e, column))
-            return GB_EXIT_FAILURE;
+            return 0;
     for (const gb_cli_entry *e = last; e->name; ++e)
         if (!print_entry(e, column))
-            return GB_EXIT_FAILURE;
-    return tail && fputs(tail, stdout) == EOF ? GB_EXIT_FAILURE : GB_EXIT_SUCCESS;
+            return 0;
+    return !tail || fputs(tail, stdout) != EOF;
 }
