@@ -128,16 +128,24 @@ static void test_octree_area_weighted_normal(void)
     gb_scene_free(&scene);
 }
 
+/* The octree at depth 3 of the inside of a unit box (cells 0 and 7 hold
+ * its faces). */
+static void box_octree(gb_scene *scene, gb_octree_leaves *leaves)
+{
+    *scene = (gb_scene){0};
+    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
+    add_box(scene, lo, hi, 1, add_grey(scene, 0.5f, 0.0f));
+    scene_done(scene);
+    gb_error error;
+    CHECK(gb_octree_build(scene, 3, leaves, &error) == GB_OK, "octree of a box");
+}
+
 /* The six faces of a box: leaves on its shell only, none inside. */
 static void test_octree_box_shell(void)
 {
-    gb_scene scene = {0};
-    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
-    add_box(&scene, lo, hi, 1, add_grey(&scene, 0.5f, 0.0f));
-    scene_done(&scene);
+    gb_scene scene;
     gb_octree_leaves leaves;
-    gb_error error;
-    CHECK(gb_octree_build(&scene, 3, &leaves, &error) == GB_OK, "octree of a box");
+    box_octree(&scene, &leaves);
     int shell = 1;
     for (uint32_t i = 0; i < leaves.count; ++i) {
         uint32_t c[3];
@@ -283,20 +291,16 @@ static void test_count_by_error(void)
     gb_vdl_workspace_free(&w);
 }
 
-/* The normals a leaf is shaded at, on the inside of a unit box at depth 3
- * (cells 0 and 7 hold its faces): a cell in the middle of the floor and
+/* The normals a leaf is shaded at, on the inside of a unit box (box_octree):
+ * a cell in the middle of the floor and
  * its neighbours see the floor alone; one cell in from the x = 0 wall, the
  * floor and that wall; one cell in from two walls, three normals; the
  * corner cell itself, its three faces. */
 static void test_shading_normals(void)
 {
-    gb_scene scene = {0};
-    const float lo[3] = {0, 0, 0}, hi[3] = {1, 1, 1};
-    add_box(&scene, lo, hi, 1, add_grey(&scene, 0.5f, 0.0f));
-    scene_done(&scene);
+    gb_scene scene;
     gb_octree_leaves leaves;
-    gb_error error;
-    CHECK(gb_octree_build(&scene, 3, &leaves, &error) == GB_OK, "octree of a box");
+    box_octree(&scene, &leaves);
     const uint32_t cells[4][3] = {{3, 0, 3}, {1, 0, 3}, {1, 0, 1}, {0, 0, 0}};
     const uint32_t expected[4] = {1, 2, 3, 3};
     const char *names[4] = {"middle of the floor", "one cell from a wall",
