@@ -148,7 +148,7 @@ for s in $SCENES; do
         else
             printf ' %6s/%-6s' "$1" "$2"
             last=$(printf '%6s %6s %6s %9s %7s %8s %6.2f' "$3" "$4" "$5" "$6" "$7" "$8" \
-                "$(echo "$5 $4" | awk '{ print $2 > 0 ? $1 / $2 : 0 }')")
+                "$(echo "$5 $4" | awk '{ print ($2 > 0 ? $1 / $2 : 0) }')")
         fi
     done
     printf ' %s\n' "$last"

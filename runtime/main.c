@@ -121,7 +121,7 @@ static const gb_cli_entry last_entries[] = {
     GB_CLI_ENTRIES_END,
 };
 
-
+/* --terms into *terms; 0, else the exit status. */
 static int parse_terms(const char *value, gb_terms *terms)
 {
     const char *names[GB_TERMS_COUNT];
@@ -134,7 +134,6 @@ static int parse_terms(const char *value, gb_terms *terms)
     return status;
 }
 
-/* The options of the methods and of the renderer; 0, else the exit status. */
 /* A count in 0..most into *out, 0 given as -1: the renderer's "none" (its 0
  * is the default). 0, else the exit status. */
 static int parse_count_or_none(const char *name, const char *value, int most, int *out)
@@ -146,7 +145,8 @@ static int parse_count_or_none(const char *name, const char *value, int most, in
 }
 
 /* The methods' options (indirect_method.h), in the order of gb_method, and
- * how many: option code OPTION_METHOD_FIRST + k is method_options[k]. */
+ * how many: option code OPTION_METHOD_FIRST + k is method_options[k].
+ * MOST_ENTRIES bounds gbview's whole table (cli.c takes as many). */
 enum { MOST_ENTRIES = 64 };
 static const gb_method_option *method_options[MOST_ENTRIES];
 static int method_option_count;
