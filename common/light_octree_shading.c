@@ -28,6 +28,11 @@ static uint32_t find_leaf(const gb_light_octree *octree, const int cell[3])
     return node;
 }
 
+float gb_light_octree_vdl_gain(const float n[3], const float leaf_normal[3], const float w[3])
+{
+    return gb_dot3(n, w) / fmaxf(fabsf(gb_dot3(leaf_normal, w)), GB_LIGHT_OCTREE_MIN_COS);
+}
+
 /* leaf_light: the sum of the leaf's VDLs, E max(0, n.w) / max(|nl.w|,
  * MIN_COS), those from behind ng dropped; 0 (and sum 0) for no leaf or a
  * leaf without VDLs, else 1. */
@@ -42,7 +47,7 @@ static int leaf_light(const gb_light_octree *octree, uint32_t index, const float
         const gb_light_octree_vdl *vdl = &octree->vdls[i];
         float w[3];
         gb_photon_unpack_direction(vdl->direction, w);
-        float c = gb_dot3(n, w) / fmaxf(fabsf(gb_dot3(leaf->normal, w)), GB_LIGHT_OCTREE_MIN_COS);
+        float c = gb_light_octree_vdl_gain(n, leaf->normal, w);
         if (c > 0.0f && gb_dot3(ng, w) > 0.0f)
             for (int k = 0; k < 3; ++k)
                 sum[k] += vdl->irradiance[k] * c;

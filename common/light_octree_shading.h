@@ -29,6 +29,13 @@
 #define GB_LIGHT_OCTREE_MIN_COS 0.25f       /* bounds a grazing VDL's gain (x4) */
 #define GB_LIGHT_OCTREE_MIN_WEIGHT 1e-6f    /* a leaf centre without VDLs is not black */
 
+/* c of a VDL from the unit direction w in a leaf of normal leaf_normal, at
+ * a surface of normal n: n.w / max(|leaf_normal.w|, MIN_COS). The VDL's
+ * irradiance E (on the leaf's surface) brings E c there where c > 0. The
+ * shading below and cluster's choice of the VDL count (tools/cluster/vdl.h)
+ * both weigh a VDL by it. */
+float gb_light_octree_vdl_gain(const float n[3], const float leaf_normal[3], const float w[3]);
+
 /* out_rgb = the irradiance (W/m^2, linear RGB) the octree gives at x. */
 void gb_light_octree_irradiance(const gb_light_octree *octree, const float x[3],
                                 const float n[3], const float ng[3], float out_rgb[3]);

@@ -50,15 +50,11 @@ void gb_vdl_workspace_load(gb_vdl_workspace *w, const gb_photon_map *map,
     }
 }
 
-/* c of common/light_octree_shading.h: how a VDL from direction w that
- * brings irradiance E to the leaf's surface (normal leaf_normal) lights a
- * surface of normal n, as a factor of E. */
+/* The light a VDL from direction w brings to normal n, as a factor of its
+ * irradiance: the runtime's (gb_light_octree_vdl_gain) where it is lit. */
 static double shading_factor(const float n[3], const float leaf_normal[3], const float w[3])
 {
-    double cosine = (double)n[0] * w[0] + (double)n[1] * w[1] + (double)n[2] * w[2];
-    double leaf = fabs((double)leaf_normal[0] * w[0] + (double)leaf_normal[1] * w[1] +
-                       (double)leaf_normal[2] * w[2]);
-    return cosine > 0.0 ? cosine / fmax(leaf, GB_LIGHT_OCTREE_MIN_COS) : 0.0;
+    return fmaxf(gb_light_octree_vdl_gain(n, leaf_normal, w), 0.0f);
 }
 
 /* The photons' own light at each normal: what VDLs of one photon each give. */
