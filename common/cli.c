@@ -293,7 +293,6 @@ static void short_options_of(const struct option *options, char text[128])
 
 /* The getopt table of a command: its entries' (at most
  * GB_CLI_MAX_ENTRIES), then -h and -V. */
-enum { GB_CLI_MAX_ENTRIES = 64 };
 
 static const struct option *option_table(const gb_cli_command *command,
                                          struct option table[GB_CLI_MAX_ENTRIES + 3])

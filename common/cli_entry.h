@@ -43,4 +43,7 @@ typedef struct gb_cli_entry {
 #define GB_CLI_SEED(value, help) {GB_CLI_CODE_SEED, "seed", (value), (help), GB_CLI_SHARED_SEED, 0}
 #define GB_CLI_ENTRIES_END {0, NULL, NULL, NULL, GB_CLI_OWN, 0}
 
+/* The most entries a command's table holds, GB_CLI_ENTRIES_END aside. */
+enum { GB_CLI_MAX_ENTRIES = 64 };
+
 #endif

@@ -145,10 +145,8 @@ static int parse_count_or_none(const char *name, const char *value, int most, in
 }
 
 /* The methods' options (indirect_method.h), in the order of gb_method, and
- * how many: option code OPTION_METHOD_FIRST + k is method_options[k].
- * MOST_ENTRIES bounds gbview's whole table (cli.c takes as many). */
-enum { MOST_ENTRIES = 64 };
-static const gb_method_option *method_options[MOST_ENTRIES];
+ * how many: option code OPTION_METHOD_FIRST + k is method_options[k]. */
+static const gb_method_option *method_options[GB_CLI_MAX_ENTRIES];
 static int method_option_count;
 
 /* One option into a; 0, else the exit status. */
@@ -348,8 +346,8 @@ static gb_result run(void *context, gb_error *error)
 }
 
 /* own_entries, the methods' options (code OPTION_METHOD_FIRST + k), then
- * last_entries, in entries (room for MOST_ENTRIES). */
-static void add_method_options(gb_cli_entry entries[MOST_ENTRIES])
+ * last_entries, in entries (room for GB_CLI_MAX_ENTRIES and the end). */
+static void add_method_options(gb_cli_entry entries[GB_CLI_MAX_ENTRIES + 1])
 {
     int count = 0;
     for (const gb_cli_entry *e = own_entries; e->name; ++e)
@@ -370,7 +368,7 @@ static void add_method_options(gb_cli_entry entries[MOST_ENTRIES])
 
 int main(int argc, char **argv)
 {
-    static gb_cli_entry entries[MOST_ENTRIES];
+    static gb_cli_entry entries[GB_CLI_MAX_ENTRIES + 1];
     add_method_options(entries);
     const gb_cli_command command = {.tool = tool, .usage = usage,
                                     .option = parse_option, .operands = check_operands,
