@@ -31,13 +31,18 @@ static uint64_t morton_key(const uint32_t cell[3], uint32_t depth)
     return key;
 }
 
-void gb_octree_leaf_cell(const gb_octree_leaves *leaves, uint32_t i, uint32_t cell[3])
+/* The cell of a Morton key, morton_key's inverse. */
+static void key_cell(uint64_t key, uint32_t depth, uint32_t cell[3])
 {
-    uint64_t key = leaves->keys[i];
     cell[0] = cell[1] = cell[2] = 0;
-    for (uint32_t b = 0; b < leaves->depth; ++b)
+    for (uint32_t b = 0; b < depth; ++b)
         for (int k = 0; k < 3; ++k)
             cell[k] |= (uint32_t)(key >> (3 * b + (uint32_t)k) & 1u) << b;
+}
+
+void gb_octree_leaf_cell(const gb_octree_leaves *leaves, uint32_t i, uint32_t cell[3])
+{
+    key_cell(leaves->keys[i], leaves->depth, cell);
 }
 
 float gb_octree_leaf_edge(const gb_octree_leaves *leaves)
@@ -192,10 +197,8 @@ static void leaf_point(const gb_scene *scene, const gb_octree_leaves *leaves,
 {
     double centre[3], sum[3] = {0.0, 0.0, 0.0}, weight = 0.0, v[3][3], q[3], n[3];
     double edge = (double)leaves->size / (double)(1u << leaves->depth);
-    uint32_t cell[3] = {0, 0, 0};
-    for (uint32_t b = 0; b < leaves->depth; ++b)
-        for (int k = 0; k < 3; ++k)
-            cell[k] |= (uint32_t)(hits[first].key >> (3 * b + (uint32_t)k) & 1u) << b;
+    uint32_t cell[3];
+    key_cell(hits[first].key, leaves->depth, cell);
     for (int k = 0; k < 3; ++k)
         centre[k] = leaves->origin[k] + ((double)cell[k] + 0.5) * edge;
     for (size_t i = first; i < end; ++i) {
