@@ -62,8 +62,15 @@ ok $? "the image becomes final (a line ', final')"
 first=$(bookmark 1)
 ok "$(echo "$first" | grep -q 'camera position 278 273 -800 target 278 273 -799 up 0 1 0 fov 39.3077 resolution 160 120'; echo $?)" \
     "B prints the scene's camera as a .scene line"
+# W is read as held at each frame (glfwGetKey): it stays down until a frame
+# of the moving view is logged, so that a loaded machine, which may take
+# the press and the release in one poll, cannot lose it.
+moving=$(count_lines ', moving' "$dir/log")
 xdotool keydown w
-sleep 0.3
+for i in $(seq 600); do   # 60 s: a limit against a hang, never a measure
+    [ "$(count_lines ', moving' "$dir/log")" -gt "$moving" ] && break
+    sleep 0.1
+done
 xdotool keyup w
 second=$(bookmark 2)
 ok "$([ -n "$second" ] && [ "$second" != "$first" ] &&
