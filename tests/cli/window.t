@@ -39,12 +39,30 @@ start_gbview() {
     xdotool windowactivate --sync "$wid" 2>/dev/null
 }
 
-# The view as B prints it (the Nth bookmark line of the log).
+# The view as B prints it (the bookmark line B adds to the log).
 bookmark() {
+    before=$(count_lines '^gbview: camera position' "$dir/log")
     xdotool key b
     wait_for "^gbview: camera position" "$dir/log" 60 || return
-    until [ "$(count_lines '^gbview: camera position' "$dir/log")" -ge "$1" ]; do sleep 0.1; done
-    grep '^gbview: camera position' "$dir/log" | sed -n "$1p"
+    until [ "$(count_lines '^gbview: camera position' "$dir/log")" -gt "$before" ]; do
+        sleep 0.1
+    done
+    grep '^gbview: camera position' "$dir/log" | sed -n "$((before + 1))p"
+}
+
+# Drags with button $1 from ($2, $3) to ($4, $5) in the window and prints
+# the view after, dragging again (at most 5 times) while it is still $6:
+# once, in a sanitized run beside hard_cases.t, a right drag left the view
+# as it was, as if the drag never reached the window (not reproduced under
+# load since). A drag gbview does not follow still fails the check after.
+drag() {
+    for try in 1 2 3 4 5; do
+        xdotool mousemove --window "$wid" "$2" "$3" mousedown "$1" \
+            mousemove --window "$wid" "$4" "$5" mouseup "$1"
+        after=$(bookmark)
+        [ "$after" != "$6" ] && break
+    done
+    echo "$after"
 }
 
 # At most one frame drew after the quit was asked.
@@ -59,7 +77,7 @@ ok "$([ -n "$wid" ]; echo $?)" "the window opens"
 wait_for ', final' "$dir/log" 120
 ok $? "the image becomes final (a line ', final')"
 
-first=$(bookmark 1)
+first=$(bookmark)
 ok "$(echo "$first" | grep -q 'camera position 278 273 -800 target 278 273 -799 up 0 1 0 fov 39.3077 resolution 160 120'; echo $?)" \
     "B prints the scene's camera as a .scene line"
 # W is read as held at each frame (glfwGetKey): it stays down until a frame
@@ -72,28 +90,26 @@ for i in $(seq 600); do   # 60 s: a limit against a hang, never a measure
     sleep 0.1
 done
 xdotool keyup w
-second=$(bookmark 2)
+second=$(bookmark)
 ok "$([ -n "$second" ] && [ "$second" != "$first" ] &&
       [ "$(echo "$second" | cut -d' ' -f5)" != 278 ] || [ "$(echo "$second" | cut -d' ' -f7)" != -800 ]; echo $?)" \
     "W moves the eye"
 ok "$(sed -n '/, final/,$p' "$dir/log" | grep -q '^gbview: frame .*, moving.*, presented'; echo $?)" \
     "... and a final image gives way to the moving view's"
 eval "$(xdotool getwindowgeometry --shell "$wid")"
-xdotool mousemove --window "$wid" 80 60 mousedown 1 mousemove --window "$wid" 120 70 mouseup 1
-third=$(bookmark 3)
+third=$(drag 1 80 60 120 70 "$second")
 target2=$(echo "$second" | cut -d' ' -f7-9)
 target3=$(echo "$third" | cut -d' ' -f7-9)
 position2=$(echo "$second" | cut -d' ' -f3-5)
 position3=$(echo "$third" | cut -d' ' -f3-5)
 ok "$([ "$position3" = "$position2" ] && [ "$target3" != "$target2" ]; echo $?)" \
     "dragging with the left button turns the view, the eye stays"
-xdotool mousemove --window "$wid" 80 60 mousedown 3 mousemove --window "$wid" 110 60 mouseup 3
-fourth=$(bookmark 4)
+fourth=$(drag 3 80 60 110 60 "$third")
 position4=$(echo "$fourth" | cut -d' ' -f3-5)
 ok "$([ -n "$fourth" ] && [ "$position4" != "$position3" ]; echo $?)" \
     "dragging with the right button orbits: the eye moves"
 xdotool key c
-fifth=$(bookmark 5)
+fifth=$(bookmark)
 ok "$([ "$fifth" = "$first" ]; echo $?)" "C goes back to the scene's camera"
 
 xdotool key m
