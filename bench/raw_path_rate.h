@@ -16,7 +16,7 @@
  *     is on the side of the surface the ray came from;
  *   - then one bounce ray (rtcIntersect1), cosine-distributed about the
  *     geometric normal turned toward the incoming ray, until a ray misses or
- *     GB_REFERENCE_ROULETTE_START (3) bounces, or the reference's bounce
+ *     GB_PATH_ROULETTE_START (3) bounces, or the reference's bounce
  *     count if smaller, are done.
  * Those first bounces are the part of the reference's paths that does not
  * depend on the materials. Past them the reference plays Russian roulette
@@ -50,6 +50,7 @@
 #include "../tools/reference/reference.h"
 #include "embree_scene.h"
 #include "light_sampling.h"
+#include "path_tracing.h"
 #include "random.h"
 #include "surface.h"
 #include "work_queue.h"
@@ -228,8 +229,7 @@ static gb_result prepare_paths(const gb_scene *scene, const gb_reference_options
     job->scene = scene;
     job->spp = options->spp ? options->spp : GB_REFERENCE_DEFAULT_SPP;
     int bounces = options->bounces ? options->bounces : GB_REFERENCE_DEFAULT_BOUNCES;
-    job->bounces = bounces < GB_REFERENCE_ROULETTE_START ? bounces
-                                                          : GB_REFERENCE_ROULETTE_START;
+    job->bounces = bounces < GB_PATH_ROULETTE_START ? bounces : GB_PATH_ROULETTE_START;
     job->seed = options->seed;
     job->tiles_x = (width + PATH_TILE_SIZE - 1) / PATH_TILE_SIZE;
     return gb_camera_frame_make(camera, width, height, &job->frame, error);

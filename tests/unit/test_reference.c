@@ -36,8 +36,7 @@ static void tracer_make(tracer *t, const gb_scene *scene, gb_reference_mode mode
         fprintf(stderr, "tracer: %s\n", error.message);
         exit(2);
     }
-    t->integrator = (gb_integrator){.scene = scene, .rays = t->rays, .surfaces = &t->surfaces,
-                                    .lights = &t->lights,
+    t->integrator = (gb_integrator){.paths = {scene, t->rays, &t->surfaces, &t->lights},
                                     .vpls = vpls, .mode = mode, .max_bounces = 1};
 }
 
@@ -51,7 +50,7 @@ static void tracer_free(tracer *t)
 /* Radiance reflected straight up by the plane y = 0 at (x, z). */
 static gb_vec3 radiance_from_above(const tracer *t, float x, float z)
 {
-    gb_trace_state state = {.rng = gb_random_make(7, 0)};
+    gb_path_state state = {.rng = gb_random_make(7, 0)};
     return gb_integrator_radiance(&t->integrator, gb_vec3_make(x, 1.0f, z),
                                   gb_vec3_make(0.0f, -1.0f, 0.0f), &state);
 }

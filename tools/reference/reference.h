@@ -51,8 +51,7 @@ enum {
     GB_REFERENCE_DEFAULT_SPP = 64,
     GB_REFERENCE_DEFAULT_VPL_SPP = 4,   /* vpl mode sums every VPL per sample */
     GB_REFERENCE_DEFAULT_BOUNCES = 64,
-    GB_REFERENCE_ROULETTE_START = 3,    /* bounces before Russian roulette */
-};
+    };
 
 typedef struct gb_reference_options {
     gb_reference_mode mode;

@@ -46,7 +46,7 @@ gb_result gb_reference_mode_parse(const char *name, gb_reference_mode *mode, gb_
                    "indirect1-unshadowed, vpl)", name);
 }
 
-static void render_pixel(render_job *job, int x, int y, gb_trace_state *state,
+static void render_pixel(render_job *job, int x, int y, gb_path_state *state,
                          uint64_t *nonfinite)
 {
     const gb_camera_frame *frame = job->frame;
@@ -82,7 +82,7 @@ static int render_tile(void *context, uint64_t item)
     int x0 = (tile % job->tiles_x) * TILE_SIZE, y0 = (tile / job->tiles_x) * TILE_SIZE;
     int x1 = x0 + TILE_SIZE < job->frame->width ? x0 + TILE_SIZE : job->frame->width;
     int y1 = y0 + TILE_SIZE < job->frame->height ? y0 + TILE_SIZE : job->frame->height;
-    gb_trace_state state = {.rays = 0};
+    gb_path_state state = {.rays = 0};
     uint64_t nonfinite = 0;
     for (int y = y0; y < y1; ++y)
         for (int x = x0; x < x1; ++x)
@@ -175,10 +175,7 @@ static gb_result prepare(const gb_scene *scene, const gb_reference_options *opti
     if (result == GB_OK)
         result = gb_embree_scene_create(scene, options->threads, &r->rays, error);
     r->integrator = (gb_integrator){
-        .scene = scene,
-        .rays = r->rays,
-        .surfaces = &r->surfaces,
-        .lights = &r->lights,
+        .paths = {scene, r->rays, &r->surfaces, &r->lights},
         .vpls = options->vpls,
         .mode = options->mode,
         .min_bounces = options->min_bounces,

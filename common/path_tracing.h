@@ -1,0 +1,61 @@
+/* path_tracing.h — the light arriving along a ray, by path tracing with
+ * next-event estimation: the reference renderer's light transport
+ * (tools/reference/reference.h says what it counts), which `lightmap`'s
+ * final gather uses too. A "bounce" is a reflection at a surface; the
+ * conventions of light and BRDF are those of common/brdf.h.
+ *
+ * Each vertex takes next-event estimation of every light (area lights one
+ * point by power, multiple importance sampling against the BRDF's sample;
+ * point, spot and directional lights one shadow ray each) and one BRDF
+ * sample; a path goes on with probability min(1, max throughput) after
+ * GB_PATH_ROULETTE_START bounces.
+ *
+ * Thread-safe: the tracer is read only, all mutable state is the caller's
+ * gb_path_state; the caller owns every argument.
+ */
+#ifndef GB_PATH_TRACING_H
+#define GB_PATH_TRACING_H
+
+#include "embree_scene.h"
+#include "light_sampling.h"
+#include "random.h"
+#include "surface.h"
+#include "vec3.h"
+
+enum { GB_PATH_ROULETTE_START = 3 };   /* bounces before Russian roulette */
+
+typedef struct gb_path_tracer {
+    const gb_scene *scene;
+    const gb_embree_scene *rays;
+    const gb_surface_table *surfaces;
+    const gb_light_table *lights;
+} gb_path_tracer;
+
+typedef struct gb_path_state {
+    gb_random rng;              /* the sample's stream */
+    uint64_t rays;              /* rays traced so far */
+} gb_path_state;
+
+/* Radiance arriving at origin from the unit direction -dir (traced along
+ * dir) by every path of min_bounces..max_bounces reflections: 0 counts the
+ * emitter or the background the ray finds. */
+gb_vec3 gb_path_radiance(const gb_path_tracer *tracer, gb_vec3 origin, gb_vec3 dir,
+                         int min_bounces, int max_bounces, gb_path_state *state);
+
+/* Light leaving s toward s->wo after exactly one reflection at s (the
+ * lights by next-event estimation, emitters and background found by one
+ * BRDF sample). */
+gb_vec3 gb_path_reflected_direct_light(const gb_path_tracer *tracer, gb_surface *s,
+                                       gb_path_state *state);
+
+/* Whether s can reflect light from wi toward s->wo: both above the shading
+ * normal, wi above the geometric surface too. */
+int gb_path_reflects(const gb_surface *s, gb_vec3 wi);
+
+/* f(wo, wi) dot(n, wi) at s, for a wi that s reflects. */
+gb_vec3 gb_path_reflected(const gb_path_tracer *tracer, gb_surface *s, gb_vec3 wi);
+
+/* The next uniform number in [0, 1) of the state's stream. */
+float gb_path_uniform(gb_path_state *state);
+
+#endif
