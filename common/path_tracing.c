@@ -161,7 +161,6 @@ static int russian_roulette(int bounce_count, gb_vec3 *beta, gb_path_state *stat
     return 1;
 }
 
-/* Light of every path along the ray with lo..hi bounces. */
 gb_vec3 gb_path_radiance(const gb_path_tracer *in, gb_vec3 origin, gb_vec3 dir, int lo, int hi,
                          gb_path_state *state)
 {
@@ -170,6 +169,13 @@ gb_vec3 gb_path_radiance(const gb_path_tracer *in, gb_vec3 origin, gb_vec3 dir, 
         return lo == 0 ? environment_seen(in, dir) : BLACK;
     gb_surface s;
     gb_surface_at_hit(in->surfaces, &hit, dir, &s);
+    return gb_path_radiance_leaving(in, &s, lo, hi, state);
+}
+
+gb_vec3 gb_path_radiance_leaving(const gb_path_tracer *in, gb_surface *first, int lo, int hi,
+                                 gb_path_state *state)
+{
+    gb_surface s = *first;
     gb_vec3 sum = lo == 0 ? s.emission : BLACK, beta = {1.0f, 1.0f, 1.0f};
     for (int bounce_count = 1; bounce_count <= hi; ++bounce_count) {
         if (bounce_count >= lo)
@@ -184,17 +190,5 @@ gb_vec3 gb_path_radiance(const gb_path_tracer *in, gb_vec3 origin, gb_vec3 dir, 
             break;
         s = b.next;
     }
-    return sum;
-}
-
-/* Light leaving s toward s->wo after exactly one reflection at s: what the
- * second vertex of an indirect1 path sends back. */
-gb_vec3 gb_path_reflected_direct_light(const gb_path_tracer *in, gb_surface *s,
-                                       gb_path_state *state)
-{
-    gb_vec3 sum = direct_light(in, s, state);
-    bounce b;
-    if (scatter(in, s, state, &b))
-        sum = gb_vec3_add(sum, gb_vec3_mul(b.weight, b.light));
     return sum;
 }

@@ -42,11 +42,13 @@ typedef struct gb_path_state {
 gb_vec3 gb_path_radiance(const gb_path_tracer *tracer, gb_vec3 origin, gb_vec3 dir,
                          int min_bounces, int max_bounces, gb_path_state *state);
 
-/* Light leaving s toward s->wo after exactly one reflection at s (the
- * lights by next-event estimation, emitters and background found by one
- * BRDF sample). */
-gb_vec3 gb_path_reflected_direct_light(const gb_path_tracer *tracer, gb_surface *s,
-                                       gb_path_state *state);
+/* Radiance leaving the surface s toward s->wo (s a ray's hit, as
+ * gb_surface_at_hit makes it) by the paths whose reflections, s's the first,
+ * number min_bounces..max_bounces: 0 counts s's emission; 1..1 is the
+ * light reflected once at s (the lights by next-event estimation, the
+ * emitters and background one BRDF sample finds). */
+gb_vec3 gb_path_radiance_leaving(const gb_path_tracer *tracer, gb_surface *s,
+                                 int min_bounces, int max_bounces, gb_path_state *state);
 
 /* Whether s can reflect light from wi toward s->wo: both above the shading
  * normal, wi above the geometric surface too. */

@@ -1,15 +1,15 @@
-/* lightmap.c — the octree's irradiance at every covered texel, then the
- * gutter (lightmap.h). */
+/* lightmap.c — the indirect irradiance at every covered texel, the octree
+ * read there or gathered (texel_gather.h), then the gutter (lightmap.h). */
 #include "lightmap.h"
 
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "gutter.h"
 #include "light_octree_shading.h"
-#include "scene_triangles.h"
 #include "texel_cover.h"
+#include "texel_gather.h"
+#include "texel_surface.h"
 #include "work_queue.h"
 
 typedef struct bake_job {
@@ -20,45 +20,31 @@ typedef struct bake_job {
     gb_image *image;
 } bake_job;
 
-/* The point, shading normal n and geometric normal ng of side `side` (1:
- * the side the winding faces, -1 the back) of triangle t at barycentric
- * weights w (lightmap.h, "Decided here"): the corners' normals as the
- * runtime gives them (scene_triangles.h) interpolated, normalised, turned
- * to ng's side. */
-static void surface_at(const gb_scene *scene, uint32_t t, const double w[3], float side,
-                       float x[3], float n[3], float ng[3])
+static float sum3(gb_vec3 v)
 {
-    gb_vec3 face = gb_vec3_scale(gb_triangle_normal(scene, t), side);
-    gb_vec3 normal = {0.0f, 0.0f, 0.0f};
-    double point[3] = {0.0, 0.0, 0.0};
-    for (int c = 0; c < 3; ++c) {
-        gb_vec3 corner = gb_triangle_corner(scene, t, c);
-        point[0] += w[c] * corner.x;
-        point[1] += w[c] * corner.y;
-        point[2] += w[c] * corner.z;
-        normal = gb_vec3_madd(normal, gb_corner_normal(scene, t, c, face), (float)w[c]);
-    }
-    for (int k = 0; k < 3; ++k)
-        x[k] = (float)point[k];
-    normal = gb_vec3_length(normal) > 0.0f ? gb_vec3_normalize(normal) : face;
-    if (gb_vec3_dot(normal, face) < 0.0f)
-        normal = gb_vec3_negate(normal);
-    gb_vec3_store(normal, n);
-    gb_vec3_store(face, ng);
+    return v.x + v.y + v.z;
 }
 
-/* The irradiance of the brighter side of triangle t at weights w: a glTF
- * lightmap has one value a texel for both sides, and the side that light
- * reaches is the one seen (the other faces into a wall or a solid). */
+/* The octree's irradiance at side s. */
+static gb_vec3 octree_irradiance(const gb_light_octree *octree, const gb_texel_surface *s)
+{
+    float x[3], n[3], ng[3], e[3];
+    gb_vec3_store(s->x, x);
+    gb_vec3_store(s->n, n);
+    gb_vec3_store(s->ng, ng);
+    gb_light_octree_irradiance(octree, x, n, ng, e);
+    return gb_vec3_load(e);
+}
+
+/* The irradiance of the brighter side of triangle t at weights w, the
+ * octree read there (lightmap.h, "Decided here"). */
 static void brighter_side(const bake_job *job, uint32_t t, const double w[3], float out[3])
 {
-    float x[3], n[3], ng[3], back[3];
-    surface_at(job->scene, t, w, 1.0f, x, n, ng);
-    gb_light_octree_irradiance(job->octree, x, n, ng, out);
-    surface_at(job->scene, t, w, -1.0f, x, n, ng);
-    gb_light_octree_irradiance(job->octree, x, n, ng, back);
-    if (back[0] + back[1] + back[2] > out[0] + out[1] + out[2])
-        out[0] = back[0], out[1] = back[1], out[2] = back[2];
+    gb_texel_surface front = gb_texel_surface_at(job->scene, t, w, 1.0f),
+                     back = gb_texel_surface_at(job->scene, t, w, -1.0f);
+    gb_vec3 e_front = octree_irradiance(job->octree, &front),
+            e_back = octree_irradiance(job->octree, &back);
+    gb_vec3_store(sum3(e_back) > sum3(e_front) ? e_back : e_front, out);
 }
 
 /* Row `item` of the atlas. */
@@ -77,8 +63,9 @@ static int bake_row(void *context, uint64_t item)
     return 0;
 }
 
-static gb_result bake_texels(bake_job *job, const gb_lightmap_options *options, int *threads,
-                             gb_error *error)
+/* The octree read at every covered texel. */
+static gb_result bake_octree_texels(bake_job *job, const gb_lightmap_options *options,
+                                    int *threads, gb_error *error)
 {
     gb_work_queue queue = {.item_count = job->cover->height, .threads = options->threads,
                            .progress = options->progress,
@@ -86,6 +73,24 @@ static gb_result bake_texels(bake_job *job, const gb_lightmap_options *options, 
     if (gb_work_queue_run(&queue, bake_row, job, threads) != GB_OK)
         return gb_fail(error, GB_ERROR_INTERRUPTED, "lightmap: interrupted");
     return GB_OK;
+}
+
+/* A final gather at every covered texel. */
+static gb_result bake_gathered_texels(const bake_job *job, const gb_lightmap_options *options,
+                                      gb_lightmap_stats *stats, gb_error *error)
+{
+    gb_texel_gather gather = {
+        .scene = job->scene,
+        .atlas = job->atlas,
+        .cover = job->cover,
+        .octree = options->paths ? NULL : job->octree,
+        .rays = options->quality,
+        .seed = options->seed,
+        .threads = options->threads,
+        .progress = options->progress,
+        .progress_user = options->progress_user,
+    };
+    return gb_texel_gather_bake(&gather, job->image, &stats->rays, &stats->threads, error);
 }
 
 /* The gutter past the triangles' reach; counts into stats. */
@@ -129,7 +134,8 @@ gb_result gb_lightmap_bake(const gb_scene *scene, const gb_atlas *atlas,
                                      error);
     bake_job job = {scene, atlas, octree, &cover, image};
     if (result == GB_OK)
-        result = bake_texels(&job, options, &stats->threads, error);
+        result = options->quality > 0 ? bake_gathered_texels(&job, options, stats, error)
+                                      : bake_octree_texels(&job, options, &stats->threads, error);
     if (result == GB_OK)
         result = fill_gutter(atlas, &cover, image, stats, error);
     gb_texel_cover_free(&cover);

@@ -5,11 +5,15 @@
  *   texel_cover.c   which triangle's field each texel holds: each triangle
  *                   rasterised at its atlas UVs with its reach
  *                   (gb_atlas_reach), the nearest keeping a texel
- *   lightmap.c      per such texel, the octree's irradiance on its
- *                   triangle's plane at the texel's centre
- *                   (light_octree_shading.h), on a work queue of rows: the
- *                   covered texels and every other one a bilinear read
- *                   inside a triangle weighs, so chart borders show no seam
+ *   lightmap.c      per such texel, the indirect irradiance on its
+ *                   triangle's plane at the texel's centre (texel_surface.h),
+ *                   on a work queue of rows: the covered texels and every
+ *                   other one a bilinear read inside a triangle weighs, so
+ *                   chart borders show no seam. With quality 0 the octree
+ *                   read there (light_octree_shading.h, as the runtime's
+ *                   display); else a final gather of `quality` rays
+ *                   (texel_gather.h, final_gather.h) that reads the octree,
+ *                   or traces paths on, where its rays meet the scene
  *   gutter.c        the rest of the gutter filled from the filled texels
  *                   (padding - 1 rounds), so bilinear reads never reach
  *                   black
@@ -24,15 +28,21 @@
  * albedo (textured or not) at display, so textures keep their resolution.
  *
  * Decided here: a texel has one value for both sides of its surface (a
- * glTF lightmap has no more), the brighter side's: the one light reaches,
- * which is the one seen, the other facing into a wall or a solid. A side's
- * geometric normal is the face normal of the triangle's winding,
- * cross(v1 - v0, v2 - v0), or its opposite, and the shading normal (the
- * corner normals interpolated, else the face normal) is turned to it, as
- * the runtime's render into the atlas does for each of its two layers
- * (runtime/octree/octree_atlas.h). The reach and the gutter follow the runtime's too:
- * after the triangles' reach, padding - 1 rounds, each giving an unfilled
- * texel the mean of its filled 8 neighbours; texels further out stay 0.
+ * glTF lightmap has no more). With gathers, each triangle keeps the side
+ * that looks into the open, where a camera can be (texel_gather.h; a gap
+ * narrower than GB_LIGHTMAP_NEAR_FRACTION of the scene's diagonal is
+ * closed), the side its winding faces on a tie; without, each texel the
+ * brighter side (the octree read at a point says nothing of what the side
+ * faces). A side's geometric normal is the face normal of the triangle's
+ * winding or its opposite, and the shading normal is turned to it
+ * (texel_surface.h), as the runtime's render into the atlas does for each
+ * of its two layers (runtime/octree/octree_atlas.h). The reach and the
+ * gutter follow the runtime's too: after the triangles' reach, padding - 1
+ * rounds, each giving an unfilled texel the mean of its filled 8
+ * neighbours; texels further out stay 0.
+ *
+ * The image never depends on the number of threads (texel_gather.h says
+ * which random streams a texel draws from).
  *
  * The caller owns the scene, the atlas, the octree (checked against the
  * scene before the call) and the image it gets (gb_image_free).
@@ -49,8 +59,15 @@
 #include "result.h"
 #include "scene.h"
 
+enum { GB_LIGHTMAP_PATH_BOUNCES = 64 };  /* paths: most reflections, as reference's */
+/* final_gather.h's near_distance, over the scene's bounding diagonal */
+#define GB_LIGHTMAP_NEAR_FRACTION 0.01f
+
 typedef struct gb_lightmap_options {
     int threads;                    /* 0: every core */
+    int quality;                    /* final gather rays per texel; 0: none */
+    int paths;                      /* the gathers trace paths on, the octree unused */
+    uint64_t seed;                  /* of the gathers' random streams */
     gb_progress_callback progress;  /* may be NULL */
     void *progress_user;
 } gb_lightmap_options;
@@ -58,6 +75,7 @@ typedef struct gb_lightmap_options {
 typedef struct gb_lightmap_stats {
     uint64_t covered;               /* texels within a triangle's reach */
     uint64_t gutter;                /* texels the gutter's rounds filled */
+    uint64_t rays;                  /* traced by the gathers */
     int threads;
     double seconds;
 } gb_lightmap_stats;

@@ -22,11 +22,14 @@
 static const char usage[] =
     "usage: lightmap [options] SCENE NAME.atlas NAME.lot -o OUT.exr [--glb OUT.glb]\n"
     "Bakes the light octree NAME.lot of SCENE into its atlas NAME.atlas\n"
-    "(vivianloc-2007 4.2.3): per texel, the octree's irradiance on the plane of\n"
-    "the triangle nearest the texel's centre, within sqrt 2 texels, trilinear as\n"
-    "the octree display does (W/m^2, linear RGB, without the albedo: a viewer\n"
-    "multiplies Kd / pi), then the rest of the padding's gutter (formats/\n"
-    "FORMATS.md, \"Rendering into an atlas\", as gbview does). Writes a linear\n"
+    "(vivianloc-2007 4.2.3): per texel, the indirect irradiance on the plane of\n"
+    "the triangle nearest the texel's centre, within sqrt 2 texels (W/m^2,\n"
+    "linear RGB, without the albedo: a viewer multiplies Kd / pi): with\n"
+    "--quality 0 the octree read there, trilinear as the octree display does;\n"
+    "else a final gather of --quality rays reading the octree where they meet\n"
+    "the scene (or, with --paths, tracing paths on), from the side of each\n"
+    "triangle that looks into the open. Then the rest of the padding's gutter\n"
+    "(formats/FORMATS.md, \"Rendering into an atlas\", as gbview does). Writes a linear\n"
     "float EXR and, with --glb, the scene as a glTF 2.0 binary with the atlas\n"
     "UVs as TEXCOORD_1 and the lightmap as an embedded PNG (formats/FORMATS.md,\n"
     "\"glTF export\"). The files depend on the inputs only, never on --threads.\n"
@@ -38,11 +41,20 @@ typedef struct arguments {
     const char *output, *glb, *scene, *atlas, *octree;
 } arguments;
 
-enum { OPTION_GLB = 256 };
+enum { OPTION_GLB = 256, OPTION_QUALITY, OPTION_PATHS };
 
 static const gb_cli_entry entries[] = {
     GB_CLI_OPTION('o', "output", "FILE", "the lightmap to write (.exr)"),
     GB_CLI_OPTION(OPTION_GLB, "glb", "FILE", "also the scene as a glTF binary (.glb)"),
+    GB_CLI_OPTION(OPTION_QUALITY, "quality", "N",
+                  "final gather rays per texel, 0..65536: more\n"
+                  "rays, less noise (default 0: the octree read at\n"
+                  "the texel, no rays)"),
+    GB_CLI_OPTION(OPTION_PATHS, "paths", NULL,
+                  "the gather traces paths on from where its rays\n"
+                  "meet the scene (unbiased, the octree unused)\n"
+                  "rather than reading the octree there"),
+    GB_CLI_SEED("N", "the gathers' random streams (default 0)"),
     GB_CLI_THREADS(256, NULL),
     GB_CLI_STATS("print texels, seconds, bytes and the PNG's error"),
     GB_CLI_DEPFILE(NULL),
@@ -59,6 +71,9 @@ static int parse_option(int option, const char *text, void *context)
     switch (option) {
     case 'o': a->output = text; return 0;
     case OPTION_GLB: a->glb = text; return 0;
+    case OPTION_QUALITY:
+        return gb_cli_int(command.tool, "quality", text, 0, 65536, &a->lightmap.quality);
+    case OPTION_PATHS: a->lightmap.paths = 1; return 0;
     default: abort();   /* an entry with no case here */
     }
 }
@@ -74,6 +89,9 @@ static int check_operands(int count, char **operands, void *context)
     a->atlas = operands[1];
     a->octree = operands[2];
     a->lightmap.threads = a->shared.threads;
+    a->lightmap.seed = a->shared.seed;
+    if (a->lightmap.paths && a->lightmap.quality == 0)
+        return gb_cli_usage_error(command.tool, "--paths needs --quality N > 0");
     return GB_CLI_GO_ON;
 }
 
@@ -94,10 +112,10 @@ static long file_bytes(const char *path)
 static void print_stats(const arguments *a, const gb_lightmap_stats *s,
                         const gb_glb_export_stats *g, const gb_atlas *atlas)
 {
-    printf("width %u\nheight %u\ncovered_texels %llu\ngutter_texels %llu\nthreads %d\n"
-           "seconds %.3f\nbytes %ld\n", atlas->header.width, atlas->header.height,
-           (unsigned long long)s->covered, (unsigned long long)s->gutter, s->threads,
-           s->seconds, file_bytes(a->output));
+    printf("width %u\nheight %u\ncovered_texels %llu\ngutter_texels %llu\nrays %llu\n"
+           "threads %d\nseconds %.3f\nbytes %ld\n", atlas->header.width, atlas->header.height,
+           (unsigned long long)s->covered, (unsigned long long)s->gutter,
+           (unsigned long long)s->rays, s->threads, s->seconds, file_bytes(a->output));
     if (a->glb)
         printf("glb_vertices %llu\nglb_primitives %u\nglb_scale %.9g\npng_relative_mse %.3g\n"
                "glb_seconds %.3f\nglb_bytes %ld\n", (unsigned long long)g->vertices,

@@ -35,7 +35,7 @@ static gb_vec3 trace_unshadowed(const gb_integrator *in, gb_vec3 origin, gb_vec3
             break;
         gb_surface second;
         gb_surface_at_hit(in->paths.surfaces, &hit, sample.wi, &second);
-        sum = gb_vec3_add(sum, gb_path_reflected_direct_light(&in->paths, &second, state));
+        sum = gb_vec3_add(sum, gb_path_radiance_leaving(&in->paths, &second, 1, 1, state));
         tnear = hit.t + second.offset;
     }
     return gb_vec3_mul(sample.weight, sum);

@@ -1,0 +1,160 @@
+/* lightmap_error.c — a lightmap's error against a truth of the same atlas,
+ * by the classes of texels issue 49 measures (bench/lightmap.sh).
+ *
+ *   lightmap_error SCENE NAME.atlas A.exr TRUTH.exr [CAMERA]
+ *
+ * Classes: "covered", the texels the lightmap fills (tools/lightmap/
+ * texel_cover.h at the atlas's reach); "interior", the texels whose centre
+ * a triangle covers and whose 9 x 9 neighbourhood lies in the same chart
+ * (at least 5 texels from a chart's edge); "seen", the covered texels that
+ * the scene's camera CAMERA (default 0; its own resolution) sees: each
+ * pixel's centre ray traced with Embree, the hit's atlas UV giving the
+ * texel (a pixel seeing a triangle's back counts too: the lightmap holds one
+ * side a texel). For each, the count, the relative MSE
+ *     mean over the texels and RGB of (a - b)^2 / (b^2 + 0.01 m^2),
+ * m the truth's mean over the class (a floor scaled to the image, so the
+ * figure does not depend on the light's units), and the ratio of means
+ * mean(a) / mean(b) (a bias), as "NAME VALUE" lines.
+ */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "atlas.h"
+#include "camera.h"
+#include "embree_scene.h"
+#include "image.h"
+#include "scene.h"
+#include "../tools/lightmap/texel_cover.h"
+
+enum { EDGE_TEXELS = 5 };
+
+/* Whether texel (i, j)'s centre lies in a triangle of a chart that covers
+ * every texel within EDGE_TEXELS - 1. */
+static int interior(const gb_atlas *atlas, const gb_texel_cover *inside, long i, long j)
+{
+    long width = inside->width, height = inside->height, r = EDGE_TEXELS - 1;
+    uint32_t t = inside->triangle[j * width + i];
+    if (t == GB_TEXEL_NONE || i < r || j < r || i + r >= width || j + r >= height)
+        return 0;
+    for (long y = j - r; y <= j + r; ++y)
+        for (long x = i - r; x <= i + r; ++x) {
+            uint32_t u = inside->triangle[y * width + x];
+            if (u == GB_TEXEL_NONE || atlas->charts[u] != atlas->charts[t])
+                return 0;
+        }
+    return 1;
+}
+
+/* Marks seen[] the texels the camera's pixel centres see. */
+static int mark_seen(const gb_scene *scene, const gb_atlas *atlas, int camera, uint8_t *seen,
+                     gb_error *error)
+{
+    const gb_camera *c = &scene->cameras[camera];
+    gb_camera_frame frame;
+    gb_embree_scene *rays = NULL;
+    if (gb_camera_frame_make(c, c->width, c->height, &frame, error) ||
+        gb_embree_scene_create(scene, 0, &rays, error))
+        return 0;
+    const gb_atlas_header *h = &atlas->header;
+    uint64_t ray_count = 0;
+    for (int y = 0; y < c->height; ++y)
+        for (int x = 0; x < c->width; ++x) {
+            gb_vec3 direction = gb_camera_direction(&frame, x + 0.5f, y + 0.5f);
+            gb_hit hit;
+            if (!gb_embree_intersect(rays, frame.position, direction, 0.0f, INFINITY, &hit,
+                                     &ray_count))
+                continue;
+            const float *uv = atlas->uvs + 6 * (size_t)hit.triangle;
+            double w0 = 1.0 - hit.u - hit.v;
+            long i = (long)floor((w0 * uv[0] + hit.u * uv[2] + hit.v * uv[4]) * h->width);
+            long j = (long)floor((w0 * uv[1] + hit.u * uv[3] + hit.v * uv[5]) * h->height);
+            if (i >= 0 && j >= 0 && i < (long)h->width && j < (long)h->height)
+                seen[(size_t)j * h->width + (size_t)i] = 1;
+        }
+    gb_embree_scene_destroy(rays);
+    return 1;
+}
+
+/* One class's figures from its mask. */
+static void print_class(const char *name, const uint8_t *mask, const gb_image *a,
+                        const gb_image *b)
+{
+    size_t texels = (size_t)a->width * a->height, count = 0;
+    double sum_a = 0.0, sum_b = 0.0, error = 0.0;
+    for (size_t k = 0; k < texels; ++k)
+        if (mask[k])
+            for (int c = 0; c < 3; ++c, ++count) {
+                sum_a += a->pixels[k * a->channels + c];
+                sum_b += b->pixels[k * b->channels + c];
+            }
+    double m = count ? sum_b / count : 0.0, floor2 = 0.01 * m * m;
+    for (size_t k = 0; k < texels; ++k)
+        if (mask[k])
+            for (int c = 0; c < 3; ++c) {
+                double x = a->pixels[k * a->channels + c], y = b->pixels[k * b->channels + c];
+                error += (x - y) * (x - y) / (y * y + floor2);
+            }
+    printf("%s_texels %zu\n%s_relative_mse %.6g\n%s_ratio_of_means %.6g\n", name, count / 3,
+           name, count ? error / count : 0.0, name, sum_b > 0.0 ? sum_a / sum_b : 0.0);
+}
+
+static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image *a,
+                   const gb_image *b, int camera, gb_error *error)
+{
+    gb_texel_cover covered = {0}, inside = {0};
+    size_t texels = (size_t)a->width * a->height;
+    uint8_t *masks = calloc(3, texels);
+    int ok = masks && !gb_texel_cover_make(atlas, gb_atlas_reach(atlas->header.padding),
+                                           &covered, error) &&
+             !gb_texel_cover_make(atlas, 0.0, &inside, error) &&
+             mark_seen(scene, atlas, camera, masks + 2 * texels, error);
+    if (ok) {
+        for (size_t k = 0; k < texels; ++k) {
+            masks[k] = covered.triangle[k] != GB_TEXEL_NONE;
+            masks[texels + k] = interior(atlas, &inside, (long)(k % a->width),
+                                         (long)(k / a->width));
+            masks[2 * texels + k] &= masks[k];
+        }
+        print_class("covered", masks, a, b);
+        print_class("interior", masks + texels, a, b);
+        print_class("seen", masks + 2 * texels, a, b);
+    }
+    free(masks);
+    gb_texel_cover_free(&covered);
+    gb_texel_cover_free(&inside);
+    return ok;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 5 && argc != 6) {
+        fprintf(stderr, "usage: lightmap_error SCENE NAME.atlas A.exr TRUTH.exr [CAMERA]\n");
+        return 2;
+    }
+    gb_scene scene = {0};
+    gb_atlas atlas = {0};
+    gb_image a = {0}, b = {0};
+    gb_error error = {0};
+    int camera = argc == 6 ? atoi(argv[5]) : 0, ok = 0;
+    if (gb_scene_load(argv[1], NULL, &scene, &error) == GB_OK &&
+        gb_atlas_read(argv[2], &atlas, &error) == GB_OK &&
+        gb_atlas_check_scene(&atlas, scene.hash, scene.triangle_count, argv[2], &error) ==
+            GB_OK &&
+        gb_image_read(argv[3], &a, &error) == GB_OK && gb_image_read(argv[4], &b, &error) == GB_OK) {
+        if (a.width != (int)atlas.header.width || a.height != (int)atlas.header.height ||
+            b.width != a.width || b.height != a.height || a.channels < 3 || b.channels < 3)
+            fprintf(stderr, "lightmap_error: the images are not RGB at the atlas's size\n");
+        else if (camera < 0 || (uint32_t)camera >= scene.camera_count)
+            fprintf(stderr, "lightmap_error: no camera %d\n", camera);
+        else
+            ok = compare(&scene, &atlas, &a, &b, camera, &error);
+    }
+    if (!ok && error.message[0])
+        fprintf(stderr, "lightmap_error: %s\n", error.message);
+    gb_image_free(&a);
+    gb_image_free(&b);
+    gb_atlas_free(&atlas);
+    gb_scene_free(&scene);
+    return ok ? 0 : 1;
+}

@@ -1,0 +1,48 @@
+/* texel_gather.h — the lightmap's covered texels by final gather
+ * (final_gather.h), in two passes of atlas rows on a work queue:
+ *   1. probes: at each texel, GB_TEXEL_GATHER_PROBES directions from each
+ *      side of its triangle say how open that side is; summed over the
+ *      triangle's texels they choose the side the whole triangle keeps
+ *      (the side the winding faces on a tie): one side per triangle, so
+ *      that no surface is speckled with both;
+ *   2. the gather: `rays` directions from the kept side.
+ * Texel i draws from PCG32 streams 3 i and 3 i + 1 (its sides' probes) and
+ * 3 i + 2 (its gather) of the seed: the image never depends on the number
+ * of threads.
+ *
+ * The caller owns every argument; the tables for Embree and the lights are
+ * built and freed here.
+ */
+#ifndef GB_TEXEL_GATHER_H
+#define GB_TEXEL_GATHER_H
+
+#include <stdint.h>
+
+#include "atlas.h"
+#include "image.h"
+#include "light_octree.h"
+#include "progress.h"
+#include "result.h"
+#include "scene.h"
+#include "texel_cover.h"
+
+enum { GB_TEXEL_GATHER_PROBES = 16 };   /* per texel side */
+
+typedef struct gb_texel_gather {
+    const gb_scene *scene;
+    const gb_atlas *atlas;
+    const gb_texel_cover *cover;    /* the texels to fill */
+    const gb_light_octree *octree;  /* read at the hits; NULL: paths traced on */
+    int rays;                       /* per texel, >= 1 */
+    uint64_t seed;
+    int threads;                    /* 0: every core */
+    gb_progress_callback progress;  /* of the gather pass; may be NULL */
+    void *progress_user;
+} gb_texel_gather;
+
+/* Fills image's covered texels (3 channels, the atlas's size); adds the
+ * rays traced to *rays and sets *threads to the threads used. */
+gb_result gb_texel_gather_bake(const gb_texel_gather *gather, gb_image *image, uint64_t *rays,
+                               int *threads, gb_error *error);
+
+#endif
