@@ -12,6 +12,8 @@
 #include "texel_surface.h"
 #include "work_queue.h"
 
+static const double INSET = 1e-3;    /* weights_inside */
+
 typedef struct pass {
     const gb_texel_gather *options;
     gb_final_gather gather;
@@ -30,8 +32,24 @@ static gb_path_state texel_state(const pass *p, size_t i, int k)
     return state;
 }
 
+/* Weights w moved into their triangle: a texel of the reach (its centre
+ * past the triangle's edge) stands for the nearest part of the triangle,
+ * not for the plane beyond it, which may lie behind another wall or inside
+ * a solid, whose darkness would bleed into the chart's edge through the
+ * display's bilinear reads. Negative weights go to 0, then every weight
+ * moves 10^-3 of the way to the centroid, so that no ray starts on the
+ * wall an edge meets. */
+static void weights_inside(double w[3])
+{
+    double sum = 0.0;
+    for (int c = 0; c < 3; ++c)
+        sum += w[c] = w[c] > 0.0 ? w[c] : 0.0;
+    for (int c = 0; c < 3; ++c)
+        w[c] = (1.0 - INSET) * (sum > 0.0 ? w[c] / sum : 1.0 / 3.0) + INSET / 3.0;
+}
+
 /* Calls visit(p, texel, triangle, weights) for each covered texel of row
- * `row`, and counts the rays its states traced. */
+ * `row` (weights_inside), and counts the rays its states traced. */
 typedef uint64_t (*texel_visit)(pass *p, size_t texel, uint32_t t, const double w[3]);
 
 static void visit_row(pass *p, uint32_t row, texel_visit visit)
@@ -45,6 +63,7 @@ static void visit_row(pass *p, uint32_t row, texel_visit visit)
             continue;
         double w[3];
         gb_texel_barycentric(p->options->atlas, t, i, row, w);
+        weights_inside(w);
         rays += visit(p, texel, t, w);
     }
     atomic_fetch_add(&p->rays, rays);
