@@ -94,6 +94,37 @@ ok "$([ $status = 0 ] && below "$gather_error" 0.03 &&
     below "$gather_error" "$(echo "$octree_error" | awk '{print $1 / 3}')"; echo $?)" \
     "--quality 16 against --paths: under 0.03 and under a third of the octree read's error"
 
+# ---- the furnace: a closed box of albedo 0.5 whose inside emits 1 ----
+# Its indirect irradiance is pi Le rho / (1 - rho) = pi everywhere, edges
+# and corners included; a texel past its triangle's edge (the reach) must
+# read the triangle, not the outside of the box beyond it.
+printf 'newmtl wall\nKd 0.5 0.5 0.5\nKe 1 1 1\n' >"$dir/furnace.mtl"
+printf 'mtllib furnace.mtl\nusemtl wall\n' >"$dir/furnace.obj"
+printf 'v %s\n' "0 0 0" "1 0 0" "1 1 0" "0 1 0" "0 0 1" "1 0 1" "1 1 1" "0 1 1" \
+    >>"$dir/furnace.obj"
+printf 'f %s\n' "1 5 6" "1 6 2" "4 3 7" "4 7 8" "1 4 8" "1 8 5" "2 6 7" "2 7 3" "1 2 3" \
+    "1 3 4" "5 8 7" "5 7 6" >>"$dir/furnace.obj"
+"$GB_BIN/photons" -q -n 20000 "$dir/furnace.obj" -o "$dir/furnace.phot" 2>"$dir/err" &&
+    "$GB_BIN/cluster" -q --depth 3 "$dir/furnace.obj" "$dir/furnace.phot" \
+        -o "$dir/furnace.lot" 2>>"$dir/err" &&
+    "$GB_BIN/atlas" -q --size 64 "$dir/furnace.obj" -o "$dir/furnace.atlas" 2>>"$dir/err" &&
+    "$tool" -q --stats --quality 128 --paths "$dir/furnace.obj" "$dir/furnace.atlas" \
+        "$dir/furnace.lot" -o "$dir/furnace.exr" >"$dir/furnace_stats" 2>>"$dir/err" &&
+    oiiotool --dumpdata "$dir/furnace.exr" >"$dir/furnace.txt" 2>>"$dir/err"
+status=$?
+[ $status = 0 ] || sed 's/^/# /' "$dir/err"
+# The texels that hold light, sorted over pi: the 0.1 % and 99.9 % points.
+awk '/Pixel/ { if ($4 + 0 > 0) print $4 / 3.14159265 }' "$dir/furnace.txt" | sort -g \
+    >"$dir/furnace_sorted"
+lit=$(wc -l <"$dir/furnace_sorted")
+low=$(sed -n "$((lit / 1000 + 1))p" "$dir/furnace_sorted")
+high=$(sed -n "$((lit - lit / 1000))p" "$dir/furnace_sorted")
+echo "# furnace: $lit texels lit of $(value covered_texels "$dir/furnace_stats") covered;" \
+    "0.1 % .. 99.9 % at $low .. $high pi"
+ok "$([ $status = 0 ] && [ "$lit" -ge "$(value covered_texels "$dir/furnace_stats")" ] &&
+    below 0.85 "$low" && below "$high" 1.15; echo $?)" \
+    "furnace: every covered texel lit, 99.8 % of them within 15 % of pi (--paths, 128 rays)"
+
 # ---- the values, read back apart from gibake ----
 if command -v python3 >/dev/null && command -v oiiotool >/dev/null; then
     oiiotool --dumpdata "$dir/a.exr" >"$dir/a.txt" &&
