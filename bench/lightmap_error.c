@@ -6,7 +6,9 @@
  * Classes: "covered", the texels the lightmap fills (tools/lightmap/
  * texel_cover.h at the atlas's reach); "interior", the texels whose centre
  * a triangle covers and whose 9 x 9 neighbourhood lies in the same chart
- * (at least 5 texels from a chart's edge); "seen", the covered texels that
+ * (at least 5 texels from a chart's edge); "edge", the texels whose centre
+ * a triangle covers but whose 3 x 3 neighbourhood leaves its chart (one
+ * texel in from the edge); "seen", the covered texels that
  * the scene's camera CAMERA (default 0; its own resolution) sees: each
  * pixel's centre ray traced with Embree, the hit's atlas UV giving the
  * texel (a pixel seeing a triangle's back counts too: the lightmap holds one
@@ -14,7 +16,9 @@
  *     mean over the texels and RGB of (a - b)^2 / (b^2 + 0.01 m^2),
  * m the truth's mean over the class (a floor scaled to the image, so the
  * figure does not depend on the light's units), and the ratio of means
- * mean(a) / mean(b) (a bias), as "NAME VALUE" lines.
+ * mean(a) / mean(b) (a bias), as "NAME VALUE" lines; then, over the charts
+ * of at least 64 interior texels, the ratio of means furthest from 1
+ * (chart_worst_ratio) and its chart.
  */
 #include <math.h>
 #include <stdio.h>
@@ -30,10 +34,11 @@
 enum { EDGE_TEXELS = 5 };
 
 /* Whether texel (i, j)'s centre lies in a triangle of a chart that covers
- * every texel within EDGE_TEXELS - 1. */
-static int interior(const gb_atlas *atlas, const gb_texel_cover *inside, long i, long j)
+ * every texel within r. */
+static int within_chart(const gb_atlas *atlas, const gb_texel_cover *inside, long i, long j,
+                        long r)
 {
-    long width = inside->width, height = inside->height, r = EDGE_TEXELS - 1;
+    long width = inside->width, height = inside->height;
     uint32_t t = inside->triangle[j * width + i];
     if (t == GB_TEXEL_NONE || i < r || j < r || i + r >= width || j + r >= height)
         return 0;
@@ -99,12 +104,45 @@ static void print_class(const char *name, const uint8_t *mask, const gb_image *a
            name, count ? error / count : 0.0, name, sum_b > 0.0 ? sum_a / sum_b : 0.0);
 }
 
+/* The chart (of at least 64 texels of mask) whose ratio of means is
+ * furthest from 1, in log. */
+static void print_worst_chart(const gb_atlas *atlas, const gb_texel_cover *inside,
+                              const uint8_t *mask, const gb_image *a, const gb_image *b)
+{
+    uint32_t charts = atlas->header.chart_count;
+    double *sums = calloc(3 * (size_t)charts, sizeof *sums);
+    if (!sums)
+        return;
+    for (size_t k = 0; k < (size_t)a->width * a->height; ++k) {
+        if (!mask[k])
+            continue;
+        uint32_t chart = atlas->charts[inside->triangle[k]];
+        sums[3 * chart] += 1.0;
+        for (int c = 0; c < 3; ++c) {
+            sums[3 * chart + 1] += a->pixels[k * a->channels + c];
+            sums[3 * chart + 2] += b->pixels[k * b->channels + c];
+        }
+    }
+    double worst = 1.0;
+    uint32_t worst_chart = 0;
+    for (uint32_t chart = 0; chart < charts; ++chart) {
+        double ratio = sums[3 * chart + 2] > 0.0 ? sums[3 * chart + 1] / sums[3 * chart + 2]
+                                                 : 1.0;
+        if (sums[3 * chart] >= 64.0 && fabs(log(ratio)) > fabs(log(worst))) {
+            worst = ratio;
+            worst_chart = chart;
+        }
+    }
+    printf("chart_worst_ratio %.6g\nchart_worst %u\n", worst, worst_chart);
+    free(sums);
+}
+
 static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image *a,
                    const gb_image *b, int camera, gb_error *error)
 {
     gb_texel_cover covered = {0}, inside = {0};
     size_t texels = (size_t)a->width * a->height;
-    uint8_t *masks = calloc(3, texels);
+    uint8_t *masks = calloc(4, texels);
     int ok = masks && !gb_texel_cover_make(atlas, gb_atlas_reach(atlas->header.padding),
                                            &covered, error) &&
              !gb_texel_cover_make(atlas, 0.0, &inside, error) &&
@@ -112,13 +150,17 @@ static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image 
     if (ok) {
         for (size_t k = 0; k < texels; ++k) {
             masks[k] = covered.triangle[k] != GB_TEXEL_NONE;
-            masks[texels + k] = interior(atlas, &inside, (long)(k % a->width),
-                                         (long)(k / a->width));
+            long i = (long)(k % a->width), j = (long)(k / a->width);
+            masks[texels + k] = within_chart(atlas, &inside, i, j, EDGE_TEXELS - 1);
+            masks[3 * texels + k] = inside.triangle[k] != GB_TEXEL_NONE &&
+                                    !within_chart(atlas, &inside, i, j, 1);
             masks[2 * texels + k] &= masks[k];
         }
         print_class("covered", masks, a, b);
         print_class("interior", masks + texels, a, b);
         print_class("seen", masks + 2 * texels, a, b);
+        print_class("edge", masks + 3 * texels, a, b);
+        print_worst_chart(atlas, &inside, masks + texels, a, b);
     }
     free(masks);
     gb_texel_cover_free(&covered);

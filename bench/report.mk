@@ -17,7 +17,8 @@
 REPORT ?= report
 SWEEP ?= $(if $(FAST),bench/report-fast.sweep,bench/report.sweep)
 REPORT_BIN_GIVEN := $(filter command line,$(origin BIN))
-REPORT_TOOL_NAMES := voxelize thin segment photons cluster reference imgdiff scene-info gbview
+REPORT_TOOL_NAMES := voxelize thin segment photons cluster reference imgdiff scene-info gbview \
+    atlas lightmap
 REPORT_OLD_TOOLS := $(if $(REPORT_BIN_GIVEN),$(REPORT_TOOL_NAMES:%=-o $(BIN)/%))
 # A rule's prerequisite on a tool, only when this make builds the tools.
 report_tool = $(if $(REPORT_BIN_GIVEN),,$(BIN)/$(1))
@@ -46,6 +47,17 @@ $(REPORT)/rules.mk: $(SWEEP) bench/report_rules.sh
 
 report-run: $(REPORT)/results.csv
 	@echo "make report: $(REPORT)/index.html, $(REPORT)/results.csv"
+
+# The lightmap's error against its bake's CPU time (bench/lightmap.sh, on
+# McGuire's box at 512^2), in the full report only: its truth alone takes
+# minutes. index.html shows lightmap.md; lightmap.csv has the rows.
+ifeq ($(FAST),)
+$(REPORT)/results.csv: $(REPORT)/lightmap.md
+$(REPORT)/lightmap.md: bench/lightmap.sh $(if $(REPORT_BIN_GIVEN),,$(BUILD)/bench/lightmap_error) \
+    $(foreach t,photons cluster atlas lightmap,$(call report_tool,$(t)))
+	LIGHTMAP_CSV=$(REPORT)/lightmap.csv GB_BIN=$(BIN) sh bench/lightmap.sh >$@.tmp
+	mv $@.tmp $@
+endif
 endif
 
 # Two stages. GNU make (4.3) remakes every target whose prerequisite had its
@@ -60,3 +72,4 @@ readme-figures:
 	+$(MAKE) report
 	sh bench/report_readme.sh $(REPORT)/readme-table.md docs/figures.md report
 	sh bench/report_readme.sh $(REPORT)/readme-segment-table.md docs/figures.md segment
+	sh bench/report_readme.sh $(REPORT)/lightmap.md docs/figures.md lightmap
