@@ -19,7 +19,9 @@
 # bench/lightmap_error's relative MSE per texel, (a - b)^2 / (b^2 + 0.01
 # mean(b)^2), on the texels the scene's camera sees, those 5 texels or more
 # from a chart's edge and every covered one; the ratio of means one texel
-# in from the charts' edges, and the worst chart's.
+# in from the charts' edges, the worst chart's, and the dark texels'
+# (truth under a tenth of the mean: the floor under the boxes, the ceiling
+# above McGuire's light).
 # Prints a Markdown table; LIGHTMAP_CSV=FILE also writes its rows as CSV
 # (make report's lightmap.csv). Run by `make bench`, and by `make report`
 # on McGuire's box.
@@ -45,10 +47,10 @@ timed() { # OUT.time TOOL ARGS...
 echo "lightmap at ${LIGHTMAP_SIZE}^2, $LIGHTMAP_PHOTONS photons, truth --paths --quality" \
     "$LIGHTMAP_TRUTH; $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg); $(date -u +%Y-%m-%d)"
 echo
-echo "| scene | lightmap | bake CPU (s) | lightmap CPU (s) | seen | interior | covered | edge ratio | worst chart ratio |"
-echo "|---|---|---:|---:|---:|---:|---:|---:|---:|"
+echo "| scene | lightmap | bake CPU (s) | lightmap CPU (s) | seen | interior | covered | edge ratio | worst chart ratio | dark ratio |"
+echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
 [ -z "$LIGHTMAP_CSV" ] ||
-    echo "scene,mode,quality,bake_cpu_s,lightmap_cpu_s,seen_relative_mse,interior_relative_mse,covered_relative_mse,edge_ratio_of_means,chart_worst_ratio,truth_quality,truth_floor_seen" \
+    echo "scene,mode,quality,bake_cpu_s,lightmap_cpu_s,seen_relative_mse,interior_relative_mse,covered_relative_mse,edge_ratio_of_means,chart_worst_ratio,dark_ratio_of_means,truth_quality,truth_floor_seen" \
         >"$LIGHTMAP_CSV"
 for scene in $LIGHTMAP_SCENES; do
     name=$(basename "$scene" .scene)
@@ -65,7 +67,7 @@ for scene in $LIGHTMAP_SCENES; do
     done
     "$error_program" "$scene" "$b.atlas" "$b.truth2.exr" "$b.truth1.exr" >"$b.floor" || exit 1
     floor=$(awk '$1 == "seen_relative_mse" { printf "%.3g", $2 / 2 }' "$b.floor")
-    printf "| %s | truth's noise floor (half of two seeds') | | %s | %s | | | | |\n" "$name" \
+    printf "| %s | truth's noise floor (half of two seeds') | | %s | %s | | | | | |\n" "$name" \
         "$(cpu_seconds "$b.truth1.time")" "$floor"
     row() { # MODE QUALITY FLAGS...
         mode=$1 quality=$2
@@ -81,11 +83,12 @@ for scene in $LIGHTMAP_SCENES; do
         bake=$(awk -v a="$base" -v b="$cpu" 'BEGIN { printf "%.2f", a + b }')
         label="--quality $quality"
         [ "$mode" = paths ] && label="--paths --quality $quality"
-        printf "| %s | %s | %s | %s | %.4g | %.4g | %.4g | %.3f | %.3f |\n" "$name" "$label" \
-            "$bake" "$cpu" "$(v seen_relative_mse)" "$(v interior_relative_mse)" \
-            "$(v covered_relative_mse)" "$(v edge_ratio_of_means)" "$(v chart_worst_ratio)"
+        printf "| %s | %s | %s | %s | %.4g | %.4g | %.4g | %.3f | %.3f | %.3g |\n" "$name" \
+            "$label" "$bake" "$cpu" "$(v seen_relative_mse)" "$(v interior_relative_mse)" \
+            "$(v covered_relative_mse)" "$(v edge_ratio_of_means)" "$(v chart_worst_ratio)" \
+            "$(v dark_ratio_of_means)"
         [ -z "$LIGHTMAP_CSV" ] ||
-            echo "$name,$mode,$quality,$bake,$cpu,$(v seen_relative_mse),$(v interior_relative_mse),$(v covered_relative_mse),$(v edge_ratio_of_means),$(v chart_worst_ratio),$LIGHTMAP_TRUTH,$floor" \
+            echo "$name,$mode,$quality,$bake,$cpu,$(v seen_relative_mse),$(v interior_relative_mse),$(v covered_relative_mse),$(v edge_ratio_of_means),$(v chart_worst_ratio),$(v dark_ratio_of_means),$LIGHTMAP_TRUTH,$floor" \
                 >>"$LIGHTMAP_CSV"
     }
     for quality in $LIGHTMAP_QUALITIES; do

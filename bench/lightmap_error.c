@@ -8,7 +8,9 @@
  * a triangle covers and whose 9 x 9 neighbourhood lies in the same chart
  * (at least 5 texels from a chart's edge); "edge", the texels whose centre
  * a triangle covers but whose 3 x 3 neighbourhood leaves its chart (one
- * texel in from the edge); "seen", the covered texels that
+ * texel in from the edge); "dark", the covered texels whose truth is under
+ * a tenth of the covered texels' mean (hidden ones: the floor under a box,
+ * the ceiling above McGuire's light); "seen", the covered texels that
  * the scene's camera CAMERA (default 0; its own resolution) sees: each
  * pixel's centre ray traced with Embree, the hit's atlas UV giving the
  * texel (a pixel seeing a triangle's back counts too: the lightmap holds one
@@ -81,6 +83,13 @@ static int mark_seen(const gb_scene *scene, const gb_atlas *atlas, int camera, u
     return 1;
 }
 
+/* The sum of texel k's RGB. */
+static double rgb_sum(const gb_image *image, size_t k)
+{
+    const float *p = image->pixels + k * image->channels;
+    return (double)p[0] + p[1] + p[2];
+}
+
 /* One class's figures from its mask. */
 static void print_class(const char *name, const uint8_t *mask, const gb_image *a,
                         const gb_image *b)
@@ -142,7 +151,7 @@ static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image 
 {
     gb_texel_cover covered = {0}, inside = {0};
     size_t texels = (size_t)a->width * a->height;
-    uint8_t *masks = calloc(4, texels);
+    uint8_t *masks = calloc(5, texels);
     int ok = masks && !gb_texel_cover_make(atlas, gb_atlas_reach(atlas->header.padding),
                                            &covered, error) &&
              !gb_texel_cover_make(atlas, 0.0, &inside, error) &&
@@ -160,6 +169,15 @@ static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image 
         print_class("interior", masks + texels, a, b);
         print_class("seen", masks + 2 * texels, a, b);
         print_class("edge", masks + 3 * texels, a, b);
+        double mean = 0.0;
+        size_t count = 0;
+        for (size_t k = 0; k < texels; ++k)
+            if (masks[k])
+                mean += rgb_sum(b, k), ++count;
+        mean = count ? mean / count : 0.0;
+        for (size_t k = 0; k < texels; ++k)
+            masks[4 * texels + k] = masks[k] && rgb_sum(b, k) < 0.1 * mean;
+        print_class("dark", masks + 4 * texels, a, b);
         print_worst_chart(atlas, &inside, masks + texels, a, b);
     }
     free(masks);
