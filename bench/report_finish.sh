@@ -293,7 +293,7 @@ EOF
         echo "<h2>Lightmap (bench/lightmap.sh): bake CPU time against the lightmap's error</h2>"
         echo "<p>$(head -n 1 lightmap.md | esc). Relative MSE per texel against the truth," \
             "(a - b)² / (b² + 0.01 mean(b)²), on the texels the camera sees, those 5 or more from a chart's edge, every covered one;" \
-            "the ratio of means one texel in from the charts' edges, and the worst chart's.</p><table>"
+            "the ratio of means one texel in from the charts' edges, the worst chart's and the dark texels' (truth under a tenth of the mean).</p><table>"
         awk -F'|' '/^\|/ && !/^\|---/ { tag = (n++ ? "td" : "th"); printf "<tr>";
             for (i = 2; i < NF; i++) { gsub(/^ +| +$/, "", $i); printf "<%s>%s</%s>", tag, $i, tag }
             print "</tr>" }' lightmap.md
