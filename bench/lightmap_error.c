@@ -26,7 +26,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-#include "atlas.h"
+#include "atlas_inputs.h"
 #include "camera.h"
 #include "embree_scene.h"
 #include "image.h"
@@ -188,33 +188,16 @@ static int compare(const gb_scene *scene, const gb_atlas *atlas, const gb_image 
 
 int main(int argc, char **argv)
 {
-    if (argc != 5 && argc != 6) {
-        fprintf(stderr, "usage: lightmap_error SCENE NAME.atlas A.exr TRUTH.exr [CAMERA]\n");
-        return 2;
+    atlas_inputs in;
+    int ok = atlas_inputs_read(&in, argc, argv, "lightmap_error");
+    if (ok && (in.a.width != (int)in.atlas.header.width ||
+               in.a.height != (int)in.atlas.header.height)) {
+        fprintf(stderr, "lightmap_error: the images are not at the atlas's size\n");
+        ok = 0;
     }
-    gb_scene scene = {0};
-    gb_atlas atlas = {0};
-    gb_image a = {0}, b = {0};
     gb_error error = {0};
-    int camera = argc == 6 ? atoi(argv[5]) : 0, ok = 0;
-    if (gb_scene_load(argv[1], NULL, &scene, &error) == GB_OK &&
-        gb_atlas_read(argv[2], &atlas, &error) == GB_OK &&
-        gb_atlas_check_scene(&atlas, scene.hash, scene.triangle_count, argv[2], &error) ==
-            GB_OK &&
-        gb_image_read(argv[3], &a, &error) == GB_OK && gb_image_read(argv[4], &b, &error) == GB_OK) {
-        if (a.width != (int)atlas.header.width || a.height != (int)atlas.header.height ||
-            b.width != a.width || b.height != a.height || a.channels < 3 || b.channels < 3)
-            fprintf(stderr, "lightmap_error: the images are not RGB at the atlas's size\n");
-        else if (camera < 0 || (uint32_t)camera >= scene.camera_count)
-            fprintf(stderr, "lightmap_error: no camera %d\n", camera);
-        else
-            ok = compare(&scene, &atlas, &a, &b, camera, &error);
-    }
-    if (!ok && error.message[0])
+    if (ok && !(ok = compare(&in.scene, &in.atlas, &in.a, &in.b, in.camera, &error)))
         fprintf(stderr, "lightmap_error: %s\n", error.message);
-    gb_image_free(&a);
-    gb_image_free(&b);
-    gb_atlas_free(&atlas);
-    gb_scene_free(&scene);
+    atlas_inputs_free(&in);
     return ok ? 0 : 1;
 }
