@@ -5,44 +5,34 @@
 #include <math.h>
 
 #include "light_octree_shading.h"
+#include "scene_triangles.h"
 #include "vec3.h"
 
 static const float GOLDEN_ANGLE = 2.39996322972865f;   /* π (3 - √5) */
+enum { MAX_WALLS_PASSED = 8 };
 
-/* The part [*enter, *leave] of the ray origin + s down (down unit) inside
- * the region's ellipsoid, |t|² + (a / f)² <= r² with a the part along the
- * normal: a quadratic in s. 0 when the ray misses it. */
-static int ellipsoid_span(const gb_gathering_region *region, gb_vec3 origin, gb_vec3 down,
-                          float *enter, float *leave)
+/* Whether the ray from origin along down (unit) first meets, within 4 r,
+ * a surface inside the region: a triangle's back met before the region is
+ * the outside of a wall the ray started behind, passed through; inside the
+ * region either side counts, as photons land on both. */
+static int meets_surface(const gb_embree_scene *rays, const gb_scene *scene,
+                         const gb_gathering_region *region, gb_vec3 origin, gb_vec3 down,
+                         uint64_t *traced)
 {
-    gb_vec3 x = gb_vec3_sub(origin, gb_vec3_load(region->centre));
-    gb_vec3 n = gb_vec3_load(region->normal);
-    float k = 1.0f - 1.0f / (region->flattening * region->flattening);
-    float a = gb_vec3_dot(x, n), along = gb_vec3_dot(down, n);
-    float A = 1.0f - k * along * along;
-    float B = gb_vec3_dot(x, down) - k * a * along;
-    float C = gb_vec3_dot(x, x) - k * a * a - region->radius * region->radius;
-    float discriminant = B * B - A * C;
-    if (!(A > 0.0f) || discriminant < 0.0f)
-        return 0;
-    float root = sqrtf(discriminant);
-    *enter = (-B - root) / A;
-    *leave = (-B + root) / A;
-    return *leave > 0.0f;
-}
-
-/* Whether the ray meets a surface inside the region: its first hit after
- * it enters the ellipsoid, before it leaves. Only what lies inside hides:
- * a light just under a ceiling hides the ceiling; an arch above a floor
- * does not, since a VDL's photons arrive from a cone around its direction,
- * not along one line. */
-static int meets_surface(const gb_embree_scene *rays, const gb_gathering_region *region,
-                         gb_vec3 origin, gb_vec3 down, uint64_t *traced)
-{
-    float enter, leave;
-    gb_hit hit;
-    return ellipsoid_span(region, origin, down, &enter, &leave) &&
-           gb_embree_intersect(rays, origin, down, fmaxf(enter, 0.0f), leave, &hit, traced);
+    float tnear = 0.0f, tfar = 4.0f * region->radius, pass = 1e-4f * region->radius;
+    for (int layer = 0; layer < MAX_WALLS_PASSED; ++layer) {
+        gb_hit hit;
+        float p[3];
+        if (!gb_embree_intersect(rays, origin, down, tnear, tfar, &hit, traced))
+            return 0;
+        gb_vec3_store(gb_vec3_madd(origin, down, hit.t), p);
+        if (gb_gathering_region_contains(region, p))
+            return 1;
+        if (gb_vec3_dot(gb_triangle_normal(scene, hit.triangle), down) < 0.0f)
+            return 0;       /* a front outside the region hides it */
+        tnear = hit.t + pass;
+    }
+    return 0;
 }
 
 /* Whether the ray crosses the leaf's plane (through the centre) inside the
@@ -60,8 +50,8 @@ static int meets_plane(const gb_gathering_region *region, gb_vec3 origin, gb_vec
 }
 
 /* The rays' counts along -w: on the scene's surfaces and on the plane. */
-static void count_rays(const gb_embree_scene *rays, const gb_gathering_region *region,
-                       gb_vec3 w, int *surface, int *plane)
+static void count_rays(const gb_embree_scene *rays, const gb_scene *scene,
+                       const gb_gathering_region *region, gb_vec3 w, int *surface, int *plane)
 {
     gb_vec3 a, b;
     gb_vec3_frame(w, &a, &b);
@@ -76,18 +66,18 @@ static void count_rays(const gb_embree_scene *rays, const gb_gathering_region *r
         float phi = (float)j * GOLDEN_ANGLE;
         gb_vec3 origin = gb_vec3_madd(gb_vec3_madd(start, a, rho * cosf(phi)), b,
                                       rho * sinf(phi));
-        *surface += meets_surface(rays, region, origin, down, &traced);
+        *surface += meets_surface(rays, scene, region, origin, down, &traced);
         *plane += meets_plane(region, origin, down);
     }
 }
 
-float gb_surface_coverage(const gb_embree_scene *rays, const gb_gathering_region *region,
-                          const float direction[3])
+float gb_surface_coverage(const gb_embree_scene *rays, const gb_scene *scene,
+                          const gb_gathering_region *region, const float direction[3])
 {
     gb_vec3 w = gb_vec3_normalize(gb_vec3_load(direction)), n = gb_vec3_load(region->normal);
     if (fabsf(gb_vec3_dot(w, n)) < GB_LIGHT_OCTREE_MIN_COS)
         w = gb_vec3_dot(w, n) < 0.0f ? gb_vec3_negate(n) : n;
     int surface, plane;
-    count_rays(rays, region, w, &surface, &plane);
+    count_rays(rays, scene, region, w, &surface, &plane);
     return surface > 0 && plane > 0 ? (float)surface / (float)plane : 1.0f;
 }

@@ -21,13 +21,11 @@
  *
  * Measured with Embree, both areas by the same GB_SURFACE_COVERAGE_RAYS
  * parallel rays along -ω over the disc of radius r across ω (Vogel's
- * spiral): A counts a ray that meets a surface between where it enters the
- * ellipsoid and where it leaves it, A_plane one whose crossing of the
- * leaf's plane lies inside it. Only what lies inside hides (a light hides
- * the ceiling just above it), not what lies beyond (an arch over a floor:
- * a VDL's photons arrive from a cone of directions, not along one line).
- * So κ is exactly 1 for one flat surface, and the rays' discreteness
- * cancels. Below |n_leaf · ω| = MIN_COS (the shading's
+ * spiral), each from 2 r away: A counts a ray whose first surface lies
+ * inside the ellipsoid (a triangle's back met before it is the outside of a
+ * wall the ray started behind: passed), A_plane one whose crossing of the
+ * leaf's plane does. So κ is exactly 1 for one flat surface, and the
+ * rays' discreteness cancels. Below |n_leaf · ω| = MIN_COS (the shading's
  * bound), where few rays meet the plane, κ(n_leaf) stands for κ(ω); 1 when
  * no ray met a surface.
  *
@@ -38,12 +36,13 @@
 
 #include "embree_scene.h"
 #include "gathering.h"
+#include "scene.h"
 
 enum { GB_SURFACE_COVERAGE_RAYS = 64 };
 
 /* κ(ω) over the region (a leaf's, its normal the leaf's), ω unit toward
- * the light; rays holds the scene's triangles. */
-float gb_surface_coverage(const gb_embree_scene *rays, const gb_gathering_region *region,
-                          const float direction[3]);
+ * the light; rays holds scene's triangles. */
+float gb_surface_coverage(const gb_embree_scene *rays, const gb_scene *scene,
+                          const gb_gathering_region *region, const float direction[3]);
 
 #endif
