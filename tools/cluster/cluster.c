@@ -4,7 +4,6 @@
  * (cluster.h). */
 #include "cluster.h"
 
-#include <math.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -13,7 +12,6 @@
 #include "gathering.h"
 #include "halo.h"
 #include "octree.h"
-#include "surface_coverage.h"
 #include "threads.h"
 #include "vdl.h"
 
@@ -48,8 +46,6 @@ static gb_result resolve_options(const gb_cluster_options *in, gb_cluster_option
 typedef struct chunk_job {
     const gb_octree_leaves *leaves;
     const gb_gathering *gathering;
-    const gb_scene *scene;
-    const gb_embree_scene *rays;        /* the scene's, for the VDLs' areas */
     const gb_cluster_options *options;
     float max_radius, min_radius;
     uint32_t first, count;              /* leaves [first, first + count) */
@@ -63,21 +59,6 @@ typedef struct chunk_job {
     atomic_int failed;
 } chunk_job;
 
-/* What a leaf's VDLs divide their flux by (surface_coverage.h). */
-typedef struct leaf_area {
-    const gb_embree_scene *rays;
-    const gb_scene *scene;
-    gb_gathering_region region;
-} leaf_area;
-
-/* κ(ω) π r², the area a VDL from ω divides its flux by. */
-static double vdl_area(const void *context, const float direction[3])
-{
-    const leaf_area *l = context;
-    double r = l->region.radius;
-    return gb_surface_coverage(l->rays, l->scene, &l->region, direction) * M_PI * r * r;
-}
-
 static void cluster_leaf(chunk_job *job, gb_vdl_workspace *w, uint32_t *kept, uint32_t j)
 {
     uint32_t leaf = job->first + j, K = job->gathering->knn;
@@ -90,12 +71,8 @@ static void cluster_leaf(chunk_job *job, gb_vdl_workspace *w, uint32_t *kept, ui
     gb_vdl_workspace_load(w, job->gathering->map, kept, n);
     gb_random rng = gb_random_make(job->options->seed, leaf);
     gb_surface_normal normals[GB_SURFACE_NORMALS];
-    leaf_area area = {job->rays, job->scene, {{0}, {0}, radius, GB_CLUSTER_FLATTENING}};
-    memcpy(area.region.centre, &job->centres[3 * (size_t)j], sizeof area.region.centre);
-    memcpy(area.region.normal, &job->leaves->normals[3 * (size_t)leaf],
-           sizeof area.region.normal);
-    vdl_target target = {.radius = radius, .area = vdl_area, .area_context = &area,
-                         .normals = normals, .tolerance = job->options->tolerance};
+    vdl_target target = {.radius = radius, .normals = normals,
+                         .tolerance = job->options->tolerance};
     memcpy(target.leaf_normal, &job->leaves->normals[3 * (size_t)leaf], sizeof target.leaf_normal);
     target.normal_count = gb_octree_shading_normals(job->leaves, leaf, normals);
     job->vdl_counts[leaf] = gb_vdls_from_photons(
@@ -211,10 +188,9 @@ static gb_result cluster_chunk(chunk_job *job, chunk_buffers *b, gb_cluster_stat
     return result;
 }
 
-static gb_result cluster_leaves(const gb_scene *scene, const gb_octree_leaves *leaves,
-                                const gb_gathering *gathering, const gb_embree_scene *rays,
-                                const gb_cluster_options *o,
-                                leaf_results *r, gb_cluster_stats *stats, gb_error *error)
+static gb_result cluster_leaves(const gb_octree_leaves *leaves, const gb_gathering *gathering,
+                                const gb_cluster_options *o, leaf_results *r,
+                                gb_cluster_stats *stats, gb_error *error)
 {
     size_t K = gathering->knn ? gathering->knn : 1;
     chunk_buffers b = {malloc(3 * CHUNK_LEAVES * sizeof(float)),
@@ -224,8 +200,7 @@ static gb_result cluster_leaves(const gb_scene *scene, const gb_octree_leaves *l
     if (!b.centres || !b.indices || !b.distances2)
         result = gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "cluster: out of memory");
     float edge = gb_octree_leaf_edge(leaves);
-    chunk_job job = {.leaves = leaves, .gathering = gathering, .scene = scene, .rays = rays,
-                     .options = o,
+    chunk_job job = {.leaves = leaves, .gathering = gathering, .options = o,
                      .max_radius = gathering_radius(leaves, o), .min_radius = 1e-4f * edge,
                      .centres = b.centres, .indices = b.indices, .distances2 = b.distances2,
                      .slots = r->slots, .vdl_counts = r->vdl_counts, .errors = r->errors, .spreads = r->spreads,
@@ -366,19 +341,15 @@ static gb_result build_octree(const gb_scene *scene, const gb_photon_map *map,
     stats->index_seconds = gb_seconds() - start;
     stats->indexed = gathered->count;
     leaf_results r = {0};
-    gb_embree_scene *rays = NULL;
-    if (result == GB_OK)
-        result = gb_embree_scene_create(scene, o->threads, &rays, error);
     if (result == GB_OK)
         result = allocate_results(leaves->count, o->vdls_max, &r, error);
     if (result == GB_OK)
-        result = cluster_leaves(scene, leaves, &gathering, rays, o, &r, stats, error);
+        result = cluster_leaves(leaves, &gathering, o, &r, stats, error);
     if (result == GB_OK)
         result = assemble(leaves, nodes, &r, octree, error);
     if (result == GB_OK)
         summarize(&r, leaves->count, stats);
     gb_gathering_free(&gathering);
-    gb_embree_scene_destroy(rays);
     gb_photon_map_free(&halo);
     free_results(&r);
     free(nodes);

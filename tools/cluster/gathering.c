@@ -84,26 +84,21 @@ uint32_t gb_gather_ellipsoid(const gb_gathering *gathering, const float centre[3
         r = sqrtf(distances2[k - 1]);
     r = fmaxf(r, min_radius);
     *radius = r;
-    gb_gathering_region region = {{centre[0], centre[1], centre[2]},
-                                  {normal[0], normal[1], normal[2]}, r, flattening};
     uint32_t count = 0;
     const float *positions = gathering->map->positions;
-    for (uint32_t i = 0; i < k; ++i)
-        if (indices[i] >= 0 && distances2[i] <= r * r &&
-            gb_gathering_region_contains(&region, &positions[3 * (size_t)indices[i]]))
+    for (uint32_t i = 0; i < k; ++i) {
+        if (indices[i] < 0 || distances2[i] > r * r)
+            continue;
+        const float *p = &positions[3 * (size_t)indices[i]];
+        float d[3] = {p[0] - centre[0], p[1] - centre[1], p[2] - centre[2]};
+        float along = d[0] * normal[0] + d[1] * normal[1] + d[2] * normal[2];
+        float length2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        float tangent2 = fmaxf(0.0f, length2 - along * along);
+        float scaled = along / flattening;
+        if (tangent2 + scaled * scaled <= r * r)
             kept[count++] = (uint32_t)indices[i];
+    }
     return count;
-}
-
-int gb_gathering_region_contains(const gb_gathering_region *region, const float p[3])
-{
-    const float *c = region->centre, *n = region->normal;
-    float d[3] = {p[0] - c[0], p[1] - c[1], p[2] - c[2]};
-    float along = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
-    float length2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
-    float tangent2 = fmaxf(0.0f, length2 - along * along);
-    float scaled = along / region->flattening;
-    return tangent2 + scaled * scaled <= region->radius * region->radius;
 }
 
 void gb_gathering_free(gb_gathering *gathering)

@@ -44,17 +44,6 @@ gb_result gb_gathering_build(const gb_photon_map *map, uint32_t knn, int threads
 gb_result gb_gathering_knn(const gb_gathering *gathering, const float *centres,
                            uint32_t count, int *indices, float *distances2, gb_error *error);
 
-/* A leaf's ellipsoid (above). */
-typedef struct gb_gathering_region {
-    float centre[3];
-    float normal[3];            /* unit: the leaf's */
-    float radius;               /* r: the tangent semi-axis */
-    float flattening;           /* the normal semi-axis over r */
-} gb_gathering_region;
-
-/* Whether p lies in the region: t² + (n / flattening)² <= r². */
-int gb_gathering_region_contains(const gb_gathering_region *region, const float p[3]);
-
 /* Keeps, of one centre's K nearest, those inside its ellipsoid (see above):
  * writes their indices to kept (room for K), returns how many, and the
  * radius r in *radius (never below min_radius). */

@@ -179,13 +179,11 @@ uint32_t gb_vdls_from_photons(gb_vdl_workspace *w, const vdl_target *target, gb_
     for (uint32_t i = 0; i < w->count; ++i)
         for (int j = 0; j < 3; ++j)
             sums[w->assignment[i]][j] += w->powers[3 * (size_t)i + j];
-    double disc = M_PI * (double)target->radius * target->radius;   /* §3.1.1: density on the disc */
+    double area = M_PI * (double)target->radius * target->radius;   /* §3.1.1: density on the disc */
     uint32_t count = 0;
     for (uint32_t c = 0; c < made; ++c) {
         if (!(sums[c][0] + sums[c][1] + sums[c][2] > 0.0))
             continue;
-        double area = target->area ? target->area(target->area_context, &w->centroids[3 * c])
-                                   : disc;
         for (int j = 0; j < 3; ++j)
             out[count].irradiance[j] = (float)(sums[c][j] / area);
         out[count].direction = gb_photon_pack_direction(&w->centroids[3 * c]);

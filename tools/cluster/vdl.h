@@ -1,8 +1,7 @@
 /* vdl.h — virtual directional lights of one leaf (vivianloc-2007 §3.1.2,
  * §4.2.2): each k-means cluster of the gathered photons becomes a VDL =
- * (irradiance RGB, direction), irradiance = Σ Φ_i / (π r²) over the cluster
- * (or over the area target->area gives), direction = the cluster's
- * centroid (toward the light).
+ * (irradiance RGB, direction), irradiance = Σ Φ_i / (π r²) over the cluster,
+ * direction = the cluster's centroid (toward the light).
  *
  * Beyond the paper, the number of VDLs is chosen by the irradiance error
  * it leaves: the fewest k in 1 .. K_max whose VDLs light every normal the
@@ -61,10 +60,6 @@ void gb_vdl_workspace_load(gb_vdl_workspace *workspace, const gb_photon_map *map
 /* What a leaf's VDLs are chosen for (above). */
 typedef struct vdl_target {
     float radius;               /* of the disc the photons were gathered on */
-    /* the area a VDL from direction (unit, toward the light) divides its
-     * flux by (projected_area.h); NULL: the disc's π r² (the paper) */
-    double (*area)(const void *context, const float direction[3]);
-    const void *area_context;
     float leaf_normal[3];       /* unit */
     const gb_surface_normal *normals;   /* where the leaf is shaded */
     uint32_t normal_count;      /* 0..GB_SURFACE_NORMALS */
