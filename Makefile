@@ -37,8 +37,9 @@ DEB_PACKAGES = gcc g++ make perl clang libclang-rt-14-dev zlib1g-dev \
   libegl-mesa0 libgl1-mesa-dri xvfb xauth xdotool openbox libopenvdb-tools openimageio-tools time strace gnuplot-nox help2man \
   munge slurm-wlm nodejs python3
 # What make bench needs beside: scikit-image's skeletonize_3d, thin's peer
-# in bench/thin.sh (for Debian's /usr/bin/python3).
-BENCH_DEB_PACKAGES = python3-skimage python3-openvdb
+# in bench/thin.sh (for Debian's /usr/bin/python3); Blender's Cycles,
+# lightmap's peer in bench/lightmap_peer.sh (its glTF importer needs numpy).
+BENCH_DEB_PACKAGES = python3-skimage python3-openvdb blender python3-numpy
 
 SANITIZE_FLAGS = $(if $(SANITIZE),-fsanitize=$(SANITIZE) -fno-sanitize-recover=all -fno-omit-frame-pointer)
 # libFuzzer's coverage instrumentation (SANITIZE with fuzzer-no-link) only in

@@ -1,0 +1,230 @@
+#!/bin/sh
+# lightmap_peer.sh — gibake's lightmap bake against a peer, Blender Cycles
+# (3.4, Debian's `blender`), baking the same quantity into the same atlas:
+# CPU seconds against error. Not run in CI (make bench runs it: tens of
+# minutes on 2 cores).
+#
+# The quantity: the indirect irradiance E per atlas texel (W/m^2, linear
+# RGB, light that has bounced at least once, without the albedo), as
+# `lightmap` writes it. gibake's bake: photons -n LIGHTMAP_PEER_PHOTONS,
+# cluster, atlas --size SIZE --padding LIGHTMAP_PEER_PADDING, then
+# `lightmap --quality Q` for each Q of the scene's list (0: the light octree
+# read at the texel; N: a final gather of N rays reading the octree where
+# they meet the scene). Its CPU seconds are the whole bake's: photons +
+# cluster + atlas + that lightmap run (user + system, /usr/bin/time).
+# Cycles' bake: bench/cycles_bake.py (its header says how) in one Blender
+# process per sample count, from the glb `lightmap --glb` writes (atlas UVs
+# as TEXCOORD_1; the .scene's point and directional lights and environment
+# added), DIFFUSE without colour, {DIRECT, INDIRECT} less {DIRECT}, times
+# pi; its CPU seconds are the whole Blender process's (start-up, import, two
+# bakes, the EXR); column "step" gives the {DIRECT, INDIRECT} bake alone
+# (what Cycles would cost if its INDIRECT-only filter worked), and for
+# gibake the lightmap run alone. Every tool and Blender run with
+# LIGHTMAP_PEER_THREADS threads (default 2; atlas has no such option), one
+# at a time.
+#
+# The truth: `lightmap --paths --quality T` (unbiased path-traced gather),
+# the mean of seeds 1 and 2 (the rows use seed 0); its noise floor is the
+# relative MSE of seed 1 against seed 2, / 4 (each seed's noise is half
+# their difference's, the mean's half again). The error:
+# bench/lightmap_error's relative MSE against the truth on "seen" (by the
+# scene's camera), "interior" (5 texels or more from a chart's edge) and
+# "covered" texels, and the ratio of means mean(bake) / mean(truth) (a
+# bias; it checks that both bake the same quantity).
+#
+# Then the crossing points: for each Cycles row, the gibake CPU seconds
+# that reach the same seen-texel error (log-log interpolation between the
+# cheapest pair of gibake rows that brackets it; "<" or ">" outside their
+# range) and Cycles' CPU seconds over those; again by interior texels,
+# where the two bakes' conventions agree (seen and covered texels include
+# those at a chart's edge, whose centre lies outside the triangle: Cycles
+# extends its neighbours' values there, gibake evaluates the triangle's
+# plane extended).
+#
+# LIGHTMAP_PEER_SCENES: entries PATH:SIZE:QUALITIES:SPPS:T (PATH under
+# scenes/; QUALITIES and SPPS comma-separated; T the truth's rays); default
+# the Cornell box at 512 and Sponza at 1024 with fewer rows (about 20 and 25
+# minutes on 2 cores). LIGHTMAP_PEER_CYCLES_TRUTH: if not 0, also a Cycles
+# bake at that many samples (seed 1) measured against the truth (default
+# 0). LIGHTMAP_PEER_BLENDER: the blender to run (default blender). GB_BIN:
+# the tools (default build/bin). Prints Markdown tables on stdout.
+
+. "$(dirname "$0")/common.sh"
+needs photons cluster atlas lightmap
+error_program=$(bench_program lightmap_error) || exit 1
+c=shared/cornell-original.scene
+s=shared/sponza.scene
+scenes=${LIGHTMAP_PEER_SCENES:-"$c:512:0,16,64,256,1024:16,64,256,1024:4096 \
+$s:1024:0,16,64,256:16,64,256:512"}
+threads=${LIGHTMAP_PEER_THREADS:-2}
+photon_count=${LIGHTMAP_PEER_PHOTONS:-1000000}
+padding=${LIGHTMAP_PEER_PADDING:-2}
+cycles_truth=${LIGHTMAP_PEER_CYCLES_TRUTH:-0}
+blender=${LIGHTMAP_PEER_BLENDER:-blender}
+if ! command -v "$blender" >/dev/null 2>&1 || ! command -v oiiotool >/dev/null 2>&1; then
+    echo "lightmap_peer.sh: no $blender or oiiotool (make bench-deps installs them)" >&2
+    exit 1
+fi
+
+# timed COMMAND...: runs COMMAND under /usr/bin/time; cpu then prints its
+# user + system seconds.
+timed() {
+    /usr/bin/time -f '%U %S' -o "$dir/time" "$@"
+}
+cpu() {
+    tail -n 1 "$dir/time" | awk '{ printf "%.2f", $1 + $2 }'
+}
+
+# error IMAGE: lightmap_error of IMAGE against the scene's truth, into $dir/error.
+error() {
+    "$error_program" "$scene" "$bake/atlas" "$1" "$bake/truth.exr" >"$dir/error"
+}
+
+# row METHOD SETTING CPU STEP: a table row from $dir/error, and a line of
+# $dir/rows for the crossing points.
+row() {
+    e() { value "$1" "$dir/error"; }
+    printf '| %s | %s | %s | %s | %s | %.4g | %.4g | %.4g | %.3f | %.3f |\n' "$name" "$1" "$2" \
+        "$3" "$4" "$(e seen_relative_mse)" "$(e interior_relative_mse)" \
+        "$(e covered_relative_mse)" "$(e seen_ratio_of_means)" "$(e interior_ratio_of_means)"
+    echo "$name $1 $2 $3 $(e seen_relative_mse) $(e interior_relative_mse)" >>"$dir/rows"
+}
+
+# cycles SPP SEED OUT: Cycles' bake of the scene into OUT.
+cycles() {
+    timed "$blender" -b --factory-startup -t "$threads" --python-exit-code 1 \
+        -P "$root/bench/cycles_bake.py" -- "$scene" "$bake/scene.glb" -o "$3" \
+        --size "$width" "$height" --samples "$1" --seed "$2" --margin "$padding" \
+        >"$bake/cycles.out" 2>"$bake/cycles.err" || {
+        echo "lightmap_peer.sh: $name: blender failed:" >&2
+        tail -n 5 "$bake/cycles.err" >&2
+        exit 1
+    }
+}
+
+echo "lightmap against Blender $("$blender" --version 2>/dev/null | sed -n 's/^Blender //p' |
+    head -n 1) Cycles (bench/cycles_bake.py); photons -n $photon_count, atlas padding" \
+    "$padding, $threads threads; $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg);" \
+    "$(date -u +%Y-%m-%d)"
+echo
+echo "| scene | bake | setting | CPU s | step CPU s | seen rel. MSE | interior rel. MSE |" \
+    "covered rel. MSE | seen ratio of means | interior ratio of means |"
+echo "|---|---|---|---:|---:|---:|---:|---:|---:|---:|"
+: >"$dir/notes"
+for entry in $scenes; do
+    path=${entry%%:*}
+    rest=${entry#*:}
+    size=${rest%%:*}
+    rest=${rest#*:}
+    qualities=$(echo "${rest%%:*}" | tr , ' ')
+    rest=${rest#*:}
+    spps=$(echo "${rest%%:*}" | tr , ' ')
+    truth=${rest#*:}
+    scene=$root/scenes/$path
+    name=$(basename "$scene" .scene)
+    bake=$dir/$name
+    mkdir -p "$bake"
+    j="-j $threads"
+
+    # The shared steps, once.
+    timed "$GB_BIN/photons" -q $j -n "$photon_count" "$scene" -o "$bake/phot" || exit 1
+    shared=$(cpu)
+    timed "$GB_BIN/cluster" -q $j "$scene" "$bake/phot" -o "$bake/lot" || exit 1
+    shared=$(echo "$shared $(cpu)" | awk '{ print $1 + $2 }')
+    timed "$GB_BIN/atlas" -q --stats --size "$size" --padding "$padding" "$scene" \
+        -o "$bake/atlas" >"$bake/atlas.stats" || exit 1
+    shared=$(echo "$shared $(cpu)" | awk '{ print $1 + $2 }')
+    texels=$(value size "$bake/atlas.stats")
+    width=${texels%x*}
+    height=${texels#*x}
+    lightmap() {
+        "$GB_BIN/lightmap" -q $j "$@" "$scene" "$bake/atlas" "$bake/lot"
+    }
+    lightmap -o "$bake/glb.exr" --glb "$bake/scene.glb" || exit 1
+
+    # The truth and its noise floor.
+    for seed in 1 2; do
+        lightmap --paths --quality "$truth" --seed "$seed" -o "$bake/truth$seed.exr" || exit 1
+    done
+    oiiotool "$bake/truth1.exr" "$bake/truth2.exr" --add --mulc 0.5 -d float \
+        -o "$bake/truth.exr" || exit 1
+    "$error_program" "$scene" "$bake/atlas" "$bake/truth1.exr" "$bake/truth2.exr" >"$dir/error"
+    echo "$name: truth lightmap --paths --quality $truth, seeds 1 and 2 averaged; noise floor" \
+        "(seed 1 against 2, / 4): seen $(value seen_relative_mse "$dir/error" |
+            awk '{ printf "%.3g", $1 / 4 }'), interior $(value interior_relative_mse \
+            "$dir/error" | awk '{ printf "%.3g", $1 / 4 }'), covered $(value \
+            covered_relative_mse "$dir/error" | awk '{ printf "%.3g", $1 / 4 }');" \
+        "$(value seen_texels "$dir/error") seen, $(value interior_texels "$dir/error")" \
+        "interior, $(value covered_texels "$dir/error") covered texels of ${width}x$height;" \
+        "photons + cluster + atlas: $shared CPU s" >>"$dir/notes"
+
+    for q in $qualities; do
+        timed "$GB_BIN/lightmap" -q $j --quality "$q" "$scene" "$bake/atlas" "$bake/lot" \
+            -o "$bake/q$q.exr" || exit 1
+        step=$(cpu)
+        error "$bake/q$q.exr" || exit 1
+        row gibake "--quality $q" "$(echo "$shared $step" | awk '{ printf "%.2f", $1 + $2 }')" \
+            "$step"
+    done
+    for spp in $spps; do
+        cycles "$spp" 0 "$bake/cycles$spp.exr"
+        error "$bake/cycles$spp.exr" || exit 1
+        row Cycles "$spp spp" "$(cpu)" "$(value bake_seconds_direct_indirect "$bake/cycles.out")"
+    done
+    if [ "$cycles_truth" != 0 ]; then
+        cycles "$cycles_truth" 1 "$bake/cycles-truth.exr"
+        error "$bake/cycles-truth.exr" || exit 1
+        echo "$name: Cycles at $cycles_truth spp (seed 1, $(cpu) CPU s) against the truth:" \
+            "relative MSE seen $(value seen_relative_mse "$dir/error"), interior" \
+            "$(value interior_relative_mse "$dir/error"), covered $(value \
+            covered_relative_mse "$dir/error"); ratio of means seen $(value \
+            seen_ratio_of_means "$dir/error"), interior $(value interior_ratio_of_means \
+            "$dir/error")" >>"$dir/notes"
+    fi
+done
+echo
+sed 's/^/- /' "$dir/notes"
+
+# crossing CLASS: the crossing points table by CLASS's relative MSE (seen or
+# interior).
+crossing() {
+    echo
+    echo "Crossing points by $1 texels: the gibake CPU seconds at each Cycles row's error."
+    echo
+    echo "| scene | Cycles spp | Cycles CPU s | $1 rel. MSE | gibake CPU s, same error |" \
+        "Cycles / gibake |"
+    echo "|---|---:|---:|---:|---:|---:|"
+    awk -v column="$2" '
+    { scene = $1; cpu = $(NF - 2); err = $(NF - column) }
+    $2 == "gibake" { n = count[scene]++; t[scene, n] = cpu; e[scene, n] = err }
+    $2 == "Cycles" { ++m; cs[m] = scene; spp[m] = $3; tc[m] = cpu; ec[m] = err }
+    END {
+        for (k = 1; k <= m; ++k) {
+            scene = cs[k]; rows = count[scene]; at = "-"; ratio = "-"
+            # the cheapest gibake segment whose errors bracket the row'"'"'s
+            for (i = 0; i + 1 < rows && at == "-"; ++i) {
+                e0 = e[scene, i]; e1 = e[scene, i + 1]
+                if ((e0 - ec[k]) * (e1 - ec[k]) <= 0 && e0 != e1) {
+                    x = (log(ec[k]) - log(e0)) / (log(e1) - log(e0))
+                    tg = exp(log(t[scene, i]) + x * (log(t[scene, i + 1]) - log(t[scene, i])))
+                    at = sprintf("%.2f", tg); ratio = sprintf("%.2f", tc[k] / tg)
+                }
+            }
+            if (at == "-" && rows > 0) {
+                best = 0
+                for (i = 1; i < rows; ++i)
+                    if (e[scene, i] < e[scene, best]) best = i
+                if (ec[k] < e[scene, best]) {
+                    at = sprintf("> %.2f", t[scene, best])
+                    ratio = sprintf("< %.2f", tc[k] / t[scene, best])
+                } else {
+                    at = sprintf("< %.2f", t[scene, 0])
+                    ratio = sprintf("> %.2f", tc[k] / t[scene, 0])
+                }
+            }
+            printf "| %s | %s | %s | %.4g | %s | %s |\n", scene, spp[k], tc[k], ec[k], at, ratio
+        }
+    }' "$dir/rows"
+}
+crossing seen 1
+crossing interior 0
