@@ -134,7 +134,9 @@ static gb_result check_outputs(const arguments *a, gb_error *error)
 static gb_result read_inputs(const arguments *a, gb_scene *scene, gb_atlas *atlas,
                              gb_light_octree *octree, gb_error *error)
 {
-    gb_result result = gb_scene_load(a->scene, NULL, scene, error);
+    /* the gathers read Kd at their hits, textures included, as photons does */
+    gb_scene_options scene_options = {.load_textures = a->lightmap.quality > 0};
+    gb_result result = gb_scene_load(a->scene, &scene_options, scene, error);
     if (result == GB_OK && !a->shared.quiet)
         gb_scene_warn(command.tool, scene, GB_WARN_GEOMETRY);
     if (result == GB_OK)
@@ -162,7 +164,7 @@ static gb_result bake(arguments *a, const gb_scene *scene, const gb_atlas *atlas
 }
 
 /* The make rule: the EXR from the scene's files, the atlas, the octree and
- * the textures the glTF embedded. */
+ * the textures the glTF embedded or the gathers read. */
 static gb_result write_depfile(const arguments *a, const gb_scene *scene, gb_error *error)
 {
     const char **inputs = malloc((scene->input_count + 2 + scene->material_count) *
@@ -174,7 +176,8 @@ static gb_result write_depfile(const arguments *a, const gb_scene *scene, gb_err
         inputs[count++] = scene->inputs[i];
     inputs[count++] = a->atlas;
     inputs[count++] = a->octree;
-    for (uint32_t m = 0; a->glb && m < scene->material_count; ++m)
+    int textures_read = a->glb || a->lightmap.quality > 0;
+    for (uint32_t m = 0; textures_read && m < scene->material_count; ++m)
         if (scene->materials[m].map_Kd)
             inputs[count++] = scene->materials[m].map_Kd;
     gb_result result = gb_depfile_write(a->shared.depfile, a->output, inputs, count, error);
