@@ -43,7 +43,7 @@
 #
 # LIGHTMAP_PEER_SCENES: entries PATH:SIZE:QUALITIES:SPPS:T (PATH under
 # scenes/; QUALITIES and SPPS comma-separated; T the truth's rays); default
-# the Cornell box at 512 and Sponza at 1024 with fewer rows (about 20 and 25
+# the Cornell box at 512 and Sponza at 1024 with fewer rows (about 30 and 20
 # minutes on 2 cores). LIGHTMAP_PEER_CYCLES_TRUTH: if not 0, also a Cycles
 # bake at that many samples (seed 1) measured against the truth (default
 # 0). LIGHTMAP_PEER_BLENDER: the blender to run (default blender). GB_BIN:
