@@ -180,6 +180,8 @@ gb_vec3 gb_path_radiance_leaving(const gb_path_tracer *in, gb_surface *first, in
     for (int bounce_count = 1; bounce_count <= hi; ++bounce_count) {
         if (bounce_count >= lo)
             sum = gb_vec3_add(sum, gb_vec3_mul(beta, direct_light(in, &s, state)));
+        if (bounce_count == hi && in->beyond)
+            sum = gb_vec3_add(sum, gb_vec3_mul(beta, in->beyond(in->beyond_context, &s)));
         bounce b;
         if (!scatter(in, &s, state, &b))
             break;

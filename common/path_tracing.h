@@ -29,6 +29,11 @@ typedef struct gb_path_tracer {
     const gb_embree_scene *rays;
     const gb_surface_table *surfaces;
     const gb_light_table *lights;
+    /* the light leaving s toward s->wo after more reflections than
+     * max_bounces, at the vertex where a path of max_bounces stops (an
+     * estimate such as the light octree's); NULL: none */
+    gb_vec3 (*beyond)(const void *context, gb_surface *s);
+    const void *beyond_context;
 } gb_path_tracer;
 
 typedef struct gb_path_state {

@@ -66,8 +66,10 @@ ok "$(cmp -s "$dir/a.exr" "$dir/b.exr" && cmp -s "$dir/a.glb" "$dir/b.glb"; echo
     "1 thread or 2: byte-identical EXR and glTF binary"
 
 # ---- the final gather (--quality) ----
-expect_failure "--paths without --quality" 2 "paths needs --quality N > 0" --paths "$scene" \
+expect_failure "--paths without --quality" 2 "need --quality N > 0" --paths "$scene" \
     a.atlas a.lot -o "$dir/x.exr"
+expect_failure "--bounces with --paths" 2 "not with --paths" --quality 4 --bounces 2 --paths \
+    "$scene" a.atlas a.lot -o "$dir/x.exr"
 expect_failure "--quality -1" 2 "quality: '-1'" --quality -1 "$scene" a.atlas a.lot \
     -o "$dir/x.exr"
 for threads in 1 2; do

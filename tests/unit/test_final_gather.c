@@ -4,7 +4,8 @@
  *     indirect irradiance is π Le ρ / (1 - ρ) everywhere, at the middle of
  *     a wall, near an edge and in a corner; the paths gather finds it;
  *  2. the same box with an octree that holds nothing: the octree gather
- *     keeps the light reflected once at the hits, exactly π Le ρ;
+ *     keeps the light reflected once at the hits, π Le ρ, and with 2
+ *     bounces before the octree, π Le (ρ + ρ²);
  *  3. the octree read at the hits: a point at height h above the floor of
  *     floor_octree.h, every leaf one VDL straight up of irradiance E_f, no
  *     lights: E = Kd E_f F, F the form factor of the floor's square seen
@@ -45,7 +46,7 @@ static void gatherer_make(gatherer *g, const gb_scene *scene, const gb_light_oct
         exit(2);
     }
     g->gather = (gb_final_gather){.paths = {scene, g->rays, &g->surfaces, &g->lights},
-                                  .octree = octree, .max_bounces = 1000,
+                                  .octree = octree, .max_bounces = 1000, .octree_bounces = 1,
                                   .near_distance = 0.05f};
 }
 
@@ -117,6 +118,11 @@ static void test_furnace(void)
     CHECK_NEAR(once, PI * Le * rho, 0.02 * PI * Le * rho,
                "furnace, an empty octree: the gather keeps the light reflected once at the "
                "hits, pi Le rho, within 2%");
+    g.gather.octree_bounces = 2;
+    double twice = gathered(&g, &points[0], 4096, 8);
+    CHECK_NEAR(twice, PI * Le * (rho + rho * rho), 0.02 * PI * Le * (rho + rho * rho),
+               "... with 2 bounces before the octree, the light reflected once or twice, "
+               "pi Le (rho + rho^2), within 2%");
     gatherer_free(&g);
     gb_scene_free(&scene);
 }

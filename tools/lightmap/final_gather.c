@@ -11,20 +11,29 @@ static const float PI = 3.14159265358979f;
 static const float GOLDEN_RATIO_FRACTION = 0.618033988749895f;
 static const float BELOW_ONE = 0x1.fffffep-1f;
 
+/* Kd(s) / π times the octree's irradiance at s: the light s reflects
+ * toward s->wo of what arrives there after a bounce or more. */
+static gb_vec3 octree_reflected(const void *context, gb_surface *s)
+{
+    const gb_final_gather *gather = context;
+    float p[3], n[3], ng[3], e[3];
+    gb_vec3_store(s->position, p);
+    gb_vec3_store(s->n, n);
+    gb_vec3_store(s->ng, ng);
+    gb_light_octree_irradiance(gather->octree, p, n, ng, e);
+    const float *Kd = gb_surface_brdf(gather->paths.surfaces, s)->Kd;
+    return gb_vec3_mul(gb_vec3_scale(gb_vec3_load(Kd), 1.0f / PI), gb_vec3_load(e));
+}
+
 /* The light y sends back toward the gathering point. */
 static gb_vec3 light_from(const gb_final_gather *gather, gb_surface *y, gb_path_state *state)
 {
     if (!gather->octree)
         return gb_path_radiance_leaving(&gather->paths, y, 1, gather->max_bounces, state);
-    gb_vec3 once = gb_path_radiance_leaving(&gather->paths, y, 1, 1, state);
-    float p[3], n[3], ng[3], e[3];
-    gb_vec3_store(y->position, p);
-    gb_vec3_store(y->n, n);
-    gb_vec3_store(y->ng, ng);
-    gb_light_octree_irradiance(gather->octree, p, n, ng, e);
-    const float *Kd = gb_surface_brdf(gather->paths.surfaces, y)->Kd;
-    gb_vec3 albedo_over_pi = gb_vec3_scale(gb_vec3_load(Kd), 1.0f / PI);
-    return gb_vec3_add(once, gb_vec3_mul(albedo_over_pi, gb_vec3_load(e)));
+    gb_path_tracer paths = gather->paths;
+    paths.beyond = octree_reflected;
+    paths.beyond_context = gather;
+    return gb_path_radiance_leaving(&paths, y, 1, gather->octree_bounces, state);
 }
 
 /* The lattice's directions about n, shifted by (shift[0], shift[1]). */

@@ -3,11 +3,12 @@
  * reconstruction one bounce away): `rays` directions drawn by cos θ / π
  * about the shading normal n, each traced with Embree to the surface y it
  * meets, which sends back toward x
- *     octree: the light reflected once at y (common/path_tracing.h, 1..1
- *             bounces) plus Kd(y) / π times the octree's irradiance at y
- *             (light_octree_shading.h), the light arriving at y after a
- *             bounce or more: the octree's errors reach x only through a
- *             second reflection and averaged over the hemisphere;
+ *     octree: the light of paths of 1..octree_bounces reflections from y on
+ *             (common/path_tracing.h; 1: the light reflected once at y),
+ *             plus, where such a path stops, Kd / π times the octree's
+ *             irradiance there (light_octree_shading.h), the light that
+ *             arrives after more: the octree's errors reach x only through
+ *             octree_bounces + 1 reflections, averaged over the hemisphere;
  *     paths:  every path of 1..max_bounces reflections from y on (the
  *             octree unused): unbiased, the limit of the octree's gather.
  * A direction below ng or one that meets nothing brings no indirect light
@@ -40,6 +41,7 @@ typedef struct gb_final_gather {
     gb_path_tracer paths;
     const gb_light_octree *octree;  /* read at the hits; NULL: paths traced on */
     int max_bounces;                /* paths: most reflections, y's the first */
+    int octree_bounces;             /* octree: reflections traced before it is read, >= 1 */
     float near_distance;            /* a gap narrower than this is closed */
 } gb_final_gather;
 

@@ -85,6 +85,7 @@ static gb_result bake_gathered_texels(const bake_job *job, const gb_lightmap_opt
         .cover = job->cover,
         .octree = options->paths ? NULL : job->octree,
         .rays = options->quality,
+        .octree_bounces = options->bounces > 0 ? options->bounces : 1,
         .seed = options->seed,
         .threads = options->threads,
         .progress = options->progress,

@@ -67,6 +67,8 @@ typedef struct gb_lightmap_options {
     int threads;                    /* 0: every core */
     int quality;                    /* final gather rays per texel; 0: none */
     int paths;                      /* the gathers trace paths on, the octree unused */
+    int bounces;                    /* reflections a gather traces before it reads the
+                                       octree; 0: 1, the final gather */
     uint64_t seed;                  /* of the gathers' random streams */
     gb_progress_callback progress;  /* may be NULL */
     void *progress_user;

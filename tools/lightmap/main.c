@@ -41,7 +41,7 @@ typedef struct arguments {
     const char *output, *glb, *scene, *atlas, *octree;
 } arguments;
 
-enum { OPTION_GLB = 256, OPTION_QUALITY, OPTION_PATHS };
+enum { OPTION_GLB = 256, OPTION_QUALITY, OPTION_PATHS, OPTION_BOUNCES };
 
 static const gb_cli_entry entries[] = {
     GB_CLI_OPTION('o', "output", "FILE", "the lightmap to write (.exr)"),
@@ -54,6 +54,11 @@ static const gb_cli_entry entries[] = {
                   "the gather traces paths on from where its rays\n"
                   "meet the scene (unbiased, the octree unused)\n"
                   "rather than reading the octree there"),
+    GB_CLI_OPTION(OPTION_BOUNCES, "bounces", "B",
+                  "reflections a gather's paths trace before they\n"
+                  "read the octree, 1..16 (default 1: the final\n"
+                  "gather; more push the octree's errors further\n"
+                  "away, for more noise and time)"),
     GB_CLI_SEED("N", "the gathers' random streams (default 0)"),
     GB_CLI_THREADS(256, NULL),
     GB_CLI_STATS("print texels, seconds, bytes and the PNG's error"),
@@ -74,6 +79,8 @@ static int parse_option(int option, const char *text, void *context)
     case OPTION_QUALITY:
         return gb_cli_int(command.tool, "quality", text, 0, 65536, &a->lightmap.quality);
     case OPTION_PATHS: a->lightmap.paths = 1; return 0;
+    case OPTION_BOUNCES:
+        return gb_cli_int(command.tool, "bounces", text, 1, 16, &a->lightmap.bounces);
     default: abort();   /* an entry with no case here */
     }
 }
@@ -90,8 +97,10 @@ static int check_operands(int count, char **operands, void *context)
     a->octree = operands[2];
     a->lightmap.threads = a->shared.threads;
     a->lightmap.seed = a->shared.seed;
-    if (a->lightmap.paths && a->lightmap.quality == 0)
-        return gb_cli_usage_error(command.tool, "--paths needs --quality N > 0");
+    if ((a->lightmap.paths || a->lightmap.bounces) && a->lightmap.quality == 0)
+        return gb_cli_usage_error(command.tool, "--paths and --bounces need --quality N > 0");
+    if (a->lightmap.paths && a->lightmap.bounces)
+        return gb_cli_usage_error(command.tool, "--bounces reads the octree: not with --paths");
     return GB_CLI_GO_ON;
 }
 

@@ -34,6 +34,7 @@ typedef struct gb_texel_gather {
     const gb_texel_cover *cover;    /* the texels to fill */
     const gb_light_octree *octree;  /* read at the hits; NULL: paths traced on */
     int rays;                       /* per texel, >= 1 */
+    int octree_bounces;             /* final_gather.h's, >= 1 */
     uint64_t seed;
     int threads;                    /* 0: every core */
     gb_progress_callback progress;  /* of the gather pass; may be NULL */
