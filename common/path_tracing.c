@@ -4,6 +4,7 @@
 #include "path_tracing.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "brdf_sampling.h"
 #include "environment.h"
@@ -193,4 +194,33 @@ gb_vec3 gb_path_radiance_leaving(const gb_path_tracer *in, gb_surface *first, in
         s = b.next;
     }
     return sum;
+}
+
+gb_result gb_path_tables_build(const gb_scene *scene, int threads, gb_path_tables *tables,
+                               gb_error *error)
+{
+    memset(tables, 0, sizeof *tables);
+    gb_result result = gb_surface_table_build(scene, &tables->surfaces, error);
+    if (result == GB_OK)
+        result = gb_light_table_build(scene, &tables->lights, error);
+    if (result == GB_OK)
+        result = gb_embree_scene_create(scene, threads, &tables->rays, error);
+    if (result != GB_OK)
+        gb_path_tables_free(tables);
+    return result;
+}
+
+void gb_path_tables_free(gb_path_tables *tables)
+{
+    gb_embree_scene_destroy(tables->rays);
+    gb_surface_table_free(&tables->surfaces);
+    gb_light_table_free(&tables->lights);
+    memset(tables, 0, sizeof *tables);
+}
+
+gb_path_tracer gb_path_tracer_over(const gb_scene *scene, const gb_path_tables *tables)
+{
+    gb_path_tracer tracer = {scene, tables->rays, &tables->surfaces, &tables->lights, NULL,
+                             NULL};
+    return tracer;
 }

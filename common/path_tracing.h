@@ -36,6 +36,25 @@ typedef struct gb_path_tracer {
     const void *beyond_context;
 } gb_path_tracer;
 
+/* What a tracer traces against and reads, built together:
+ *   gb_path_tables tables;
+ *   gb_path_tables_build(scene, threads, &tables, &error);   // on failure, freed
+ *   gb_path_tracer tracer = gb_path_tracer_over(scene, &tables);
+ *   gb_path_tables_free(&tables);
+ * The scene must outlive the tables. */
+typedef struct gb_path_tables {
+    gb_surface_table surfaces;
+    gb_light_table lights;
+    gb_embree_scene *rays;
+} gb_path_tables;
+
+/* threads: Embree's build threads (0: all). */
+gb_result gb_path_tables_build(const gb_scene *scene, int threads, gb_path_tables *tables,
+                               gb_error *error);
+void gb_path_tables_free(gb_path_tables *tables);
+/* A tracer over the tables, no estimate beyond its paths. */
+gb_path_tracer gb_path_tracer_over(const gb_scene *scene, const gb_path_tables *tables);
+
 typedef struct gb_path_state {
     gb_random rng;              /* the sample's stream */
     uint64_t rays;              /* rays traced so far */

@@ -29,9 +29,7 @@
 static const double PI = 3.14159265358979323846;
 
 typedef struct gatherer {
-    gb_surface_table surfaces;
-    gb_light_table lights;
-    gb_embree_scene *rays;
+    gb_path_tables tables;
     gb_final_gather gather;
 } gatherer;
 
@@ -39,22 +37,18 @@ static void gatherer_make(gatherer *g, const gb_scene *scene, const gb_light_oct
 {
     gb_error error;
     memset(g, 0, sizeof *g);
-    if (gb_surface_table_build(scene, &g->surfaces, &error) != GB_OK ||
-        gb_light_table_build(scene, &g->lights, &error) != GB_OK ||
-        gb_embree_scene_create(scene, 1, &g->rays, &error) != GB_OK) {
+    if (gb_path_tables_build(scene, 1, &g->tables, &error) != GB_OK) {
         fprintf(stderr, "gatherer: %s\n", error.message);
         exit(2);
     }
-    g->gather = (gb_final_gather){.paths = {scene, g->rays, &g->surfaces, &g->lights},
+    g->gather = (gb_final_gather){.paths = gb_path_tracer_over(scene, &g->tables),
                                   .octree = octree, .max_bounces = 1000, .octree_bounces = 1,
                                   .near_distance = 0.05f};
 }
 
 static void gatherer_free(gatherer *g)
 {
-    gb_embree_scene_destroy(g->rays);
-    gb_surface_table_free(&g->surfaces);
-    gb_light_table_free(&g->lights);
+    gb_path_tables_free(&g->tables);
 }
 
 static gb_texel_surface point_facing(float x, float y, float z, float nx, float ny, float nz)

@@ -19,9 +19,7 @@ static const double PI = 3.14159265358979323846;
 /* ---- helpers ----------------------------------------------------------- */
 
 typedef struct tracer {
-    gb_embree_scene *rays;
-    gb_surface_table surfaces;
-    gb_light_table lights;
+    gb_path_tables tables;
     gb_integrator integrator;
 } tracer;
 
@@ -30,21 +28,17 @@ static void tracer_make(tracer *t, const gb_scene *scene, gb_reference_mode mode
 {
     gb_error error;
     memset(t, 0, sizeof *t);
-    if (gb_surface_table_build(scene, &t->surfaces, &error) != GB_OK ||
-        gb_light_table_build(scene, &t->lights, &error) != GB_OK ||
-        gb_embree_scene_create(scene, 1, &t->rays, &error) != GB_OK) {
+    if (gb_path_tables_build(scene, 1, &t->tables, &error) != GB_OK) {
         fprintf(stderr, "tracer: %s\n", error.message);
         exit(2);
     }
-    t->integrator = (gb_integrator){.paths = {scene, t->rays, &t->surfaces, &t->lights},
+    t->integrator = (gb_integrator){.paths = gb_path_tracer_over(scene, &t->tables),
                                     .vpls = vpls, .mode = mode, .max_bounces = 1};
 }
 
 static void tracer_free(tracer *t)
 {
-    gb_embree_scene_destroy(t->rays);
-    gb_surface_table_free(&t->surfaces);
-    gb_light_table_free(&t->lights);
+    gb_path_tables_free(&t->tables);
 }
 
 /* Radiance reflected straight up by the plane y = 0 at (x, z). */

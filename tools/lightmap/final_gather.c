@@ -58,12 +58,11 @@ static gb_vec3 lattice_direction(const lattice *l, int j)
     return gb_cosine_direction(l->n, fminf(u1, BELOW_ONE), fminf(u2, BELOW_ONE));
 }
 
-/* The closest hit along dir from p; 0 when dir leaves below ng or meets
- * nothing. */
-static int trace(const gb_final_gather *gather, const gb_texel_surface *p, float offset,
+/* The closest hit along dir from origin, off p; 0 when dir leaves below
+ * p's ng or meets nothing. */
+static int trace(const gb_final_gather *gather, const gb_texel_surface *p, gb_vec3 origin,
                  gb_vec3 dir, gb_hit *hit, gb_path_state *state)
 {
-    gb_vec3 origin = gb_vec3_madd(p->x, p->ng, offset);
     return gb_vec3_dot(dir, p->ng) > 0.0f &&
            gb_embree_intersect(gather->paths.rays, origin, dir, 0.0f, INFINITY, hit,
                                &state->rays);
@@ -73,11 +72,12 @@ void gb_final_gather_irradiance(const gb_final_gather *gather, const gb_texel_su
                                 float offset, int rays, gb_path_state *state, float out[3])
 {
     lattice l = lattice_make(p->n, rays, state);
+    gb_vec3 origin = gb_vec3_madd(p->x, p->ng, offset);
     gb_vec3 sum = {0.0f, 0.0f, 0.0f};
     for (int j = 0; j < rays; ++j) {
         gb_vec3 dir = lattice_direction(&l, j);
         gb_hit hit;
-        if (!trace(gather, p, offset, dir, &hit, state))
+        if (!trace(gather, p, origin, dir, &hit, state))
             continue;
         gb_surface y;
         gb_surface_at_hit(gather->paths.surfaces, &hit, dir, &y);
@@ -90,11 +90,12 @@ int gb_final_gather_openness(const gb_final_gather *gather, const gb_texel_surfa
                              float offset, int rays, gb_path_state *state)
 {
     lattice l = lattice_make(p->n, rays, state);
+    gb_vec3 origin = gb_vec3_madd(p->x, p->ng, offset);
     int openness = 0;
     for (int j = 0; j < rays; ++j) {
         gb_vec3 dir = lattice_direction(&l, j);
         gb_hit hit;
-        if (!trace(gather, p, offset, dir, &hit, state))
+        if (!trace(gather, p, origin, dir, &hit, state))
             continue;
         const float *front = gather->paths.surfaces->records[hit.triangle].normal;
         int open = gb_vec3_dot(gb_vec3_load(front), dir) < 0.0f &&

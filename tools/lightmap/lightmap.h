@@ -30,7 +30,7 @@
  * Decided here: a texel has one value for both sides of its surface (a
  * glTF lightmap has no more). With gathers, each triangle keeps the side
  * that looks into the open, where a camera can be (texel_gather.h; a gap
- * narrower than GB_LIGHTMAP_NEAR_FRACTION of the scene's diagonal is
+ * narrower than GB_TEXEL_GATHER_NEAR_FRACTION of the scene's diagonal is
  * closed), the side its winding faces on a tie; without, each texel the
  * brighter side (the octree read at a point says nothing of what the side
  * faces). A side's geometric normal is the face normal of the triangle's
@@ -58,10 +58,6 @@
 #include "progress.h"
 #include "result.h"
 #include "scene.h"
-
-enum { GB_LIGHTMAP_PATH_BOUNCES = 64 };  /* paths: most reflections, as reference's */
-/* final_gather.h's near_distance, over the scene's bounding diagonal */
-#define GB_LIGHTMAP_NEAR_FRACTION 0.01f
 
 typedef struct gb_lightmap_options {
     int threads;                    /* 0: every core */

@@ -8,7 +8,6 @@
 #include <string.h>
 
 #include "final_gather.h"
-#include "lightmap.h"
 #include "texel_surface.h"
 #include "work_queue.h"
 
@@ -17,7 +16,6 @@ static const double INSET = 1e-3;    /* weights_inside */
 typedef struct pass {
     const gb_texel_gather *options;
     gb_final_gather gather;
-    const gb_surface_table *surfaces;
     int32_t *openness;              /* probes: per texel, back side's minus front side's */
     const int8_t *kept;             /* gather: per triangle, 1 for the back side */
     gb_image *image;
@@ -69,6 +67,12 @@ static void visit_row(pass *p, uint32_t row, texel_visit visit)
     atomic_fetch_add(&p->rays, rays);
 }
 
+/* How far triangle t's rays leave its surface (surface.h's offset). */
+static float offset_of(const pass *p, uint32_t t)
+{
+    return p->gather.paths.surfaces->records[t].offset;
+}
+
 static uint64_t probe_texel(pass *p, size_t texel, uint32_t t, const double w[3])
 {
     uint64_t rays = 0;
@@ -76,7 +80,7 @@ static uint64_t probe_texel(pass *p, size_t texel, uint32_t t, const double w[3]
     for (int k = 0; k < 2; ++k) {
         gb_texel_surface s = gb_texel_surface_at(p->options->scene, t, w, k ? -1.0f : 1.0f);
         gb_path_state state = texel_state(p, texel, k);
-        openness[k] = gb_final_gather_openness(&p->gather, &s, p->surfaces->records[t].offset,
+        openness[k] = gb_final_gather_openness(&p->gather, &s, offset_of(p, t),
                                                GB_TEXEL_GATHER_PROBES, &state);
         rays += state.rays;
     }
@@ -89,7 +93,7 @@ static uint64_t gather_texel(pass *p, size_t texel, uint32_t t, const double w[3
     float side = p->kept[t] ? -1.0f : 1.0f;
     gb_texel_surface s = gb_texel_surface_at(p->options->scene, t, w, side);
     gb_path_state state = texel_state(p, texel, 2);
-    gb_final_gather_irradiance(&p->gather, &s, p->surfaces->records[t].offset,
+    gb_final_gather_irradiance(&p->gather, &s, offset_of(p, t),
                                p->options->rays, &state, p->image->pixels + 3 * texel);
     return state.rays;
 }
@@ -132,31 +136,6 @@ static float scene_diagonal(const gb_scene *scene)
     return sqrtf(squares);
 }
 
-/* What the gathers trace against and read. */
-typedef struct tables {
-    gb_surface_table surfaces;
-    gb_light_table lights;
-    gb_embree_scene *rays;
-} tables;
-
-static gb_result tables_build(const gb_texel_gather *options, tables *t, gb_error *error)
-{
-    memset(t, 0, sizeof *t);
-    gb_result result = gb_surface_table_build(options->scene, &t->surfaces, error);
-    if (result == GB_OK)
-        result = gb_light_table_build(options->scene, &t->lights, error);
-    if (result == GB_OK)
-        result = gb_embree_scene_create(options->scene, options->threads, &t->rays, error);
-    return result;
-}
-
-static void tables_free(tables *t)
-{
-    gb_embree_scene_destroy(t->rays);
-    gb_surface_table_free(&t->surfaces);
-    gb_light_table_free(&t->lights);
-}
-
 static gb_result run_rows(const gb_texel_gather *options, gb_work_item_function row,
                           pass *p, int with_progress, int *threads, gb_error *error)
 {
@@ -171,17 +150,17 @@ static gb_result run_rows(const gb_texel_gather *options, gb_work_item_function 
 gb_result gb_texel_gather_bake(const gb_texel_gather *options, gb_image *image, uint64_t *rays,
                                int *threads, gb_error *error)
 {
-    tables t;
-    gb_result result = tables_build(options, &t, error);
+    gb_path_tables tables;
+    gb_result result = gb_path_tables_build(options->scene, options->threads, &tables, error);
     const gb_texel_cover *cover = options->cover;
     pass p = {
         .options = options,
-        .gather = {.paths = {options->scene, t.rays, &t.surfaces, &t.lights},
+        .gather = {.paths = gb_path_tracer_over(options->scene, &tables),
                    .octree = options->octree,
-                   .max_bounces = GB_LIGHTMAP_PATH_BOUNCES,
+                   .max_bounces = GB_TEXEL_GATHER_PATH_BOUNCES,
                    .octree_bounces = options->octree_bounces,
-                   .near_distance = GB_LIGHTMAP_NEAR_FRACTION * scene_diagonal(options->scene)},
-        .surfaces = &t.surfaces,
+                   .near_distance = GB_TEXEL_GATHER_NEAR_FRACTION *
+                                    scene_diagonal(options->scene)},
         .openness = malloc((size_t)cover->width * cover->height * sizeof(int32_t)),
         .image = image,
     };
@@ -198,6 +177,6 @@ gb_result gb_texel_gather_bake(const gb_texel_gather *options, gb_image *image, 
     *rays += p.rays;
     free(kept);
     free(p.openness);
-    tables_free(&t);
+    gb_path_tables_free(&tables);
     return result;
 }

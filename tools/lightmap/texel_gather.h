@@ -26,7 +26,12 @@
 #include "scene.h"
 #include "texel_cover.h"
 
-enum { GB_TEXEL_GATHER_PROBES = 16 };   /* per texel side */
+enum {
+    GB_TEXEL_GATHER_PROBES = 16,        /* per texel side */
+    GB_TEXEL_GATHER_PATH_BOUNCES = 64,  /* --paths: most reflections, as reference's */
+};
+/* final_gather.h's near_distance, over the scene's bounding diagonal */
+#define GB_TEXEL_GATHER_NEAR_FRACTION 0.01f
 
 typedef struct gb_texel_gather {
     const gb_scene *scene;

@@ -156,9 +156,7 @@ static gb_result resolve_options(const gb_scene *scene, const gb_reference_optio
 /* ---- the render ------------------------------------------------------------ */
 
 typedef struct renderer {
-    gb_embree_scene *rays;
-    gb_surface_table surfaces;
-    gb_light_table lights;
+    gb_path_tables tables;
     gb_integrator integrator;
     gb_camera_frame frame;
 } renderer;
@@ -169,13 +167,9 @@ static gb_result prepare(const gb_scene *scene, const gb_reference_options *opti
     gb_result result = gb_camera_frame_make(&scene->cameras[options->camera], settings->width,
                                             settings->height, &r->frame, error);
     if (result == GB_OK)
-        result = gb_surface_table_build(scene, &r->surfaces, error);
-    if (result == GB_OK)
-        result = gb_light_table_build(scene, &r->lights, error);
-    if (result == GB_OK)
-        result = gb_embree_scene_create(scene, options->threads, &r->rays, error);
+        result = gb_path_tables_build(scene, options->threads, &r->tables, error);
     r->integrator = (gb_integrator){
-        .paths = {scene, r->rays, &r->surfaces, &r->lights},
+        .paths = gb_path_tracer_over(scene, &r->tables),
         .vpls = options->vpls,
         .mode = options->mode,
         .min_bounces = options->min_bounces,
@@ -186,9 +180,7 @@ static gb_result prepare(const gb_scene *scene, const gb_reference_options *opti
 
 static void release(renderer *r)
 {
-    gb_embree_scene_destroy(r->rays);
-    gb_surface_table_free(&r->surfaces);
-    gb_light_table_free(&r->lights);
+    gb_path_tables_free(&r->tables);
 }
 
 static gb_result render_image(renderer *r, const gb_reference_options *options,
