@@ -43,11 +43,13 @@ static int leaf_light(const gb_light_octree *octree, uint32_t index, const float
     if (index == GB_LIGHT_OCTREE_NONE || octree->leaves[index].vdl_count == 0)
         return 0;
     const gb_light_octree_leaf *leaf = &octree->leaves[index];
+    float leaf_normal[3];
+    gb_light_octree_leaf_normal(leaf, leaf_normal);
     for (uint32_t i = leaf->first_vdl; i < leaf->first_vdl + leaf->vdl_count; ++i) {
         const gb_light_octree_vdl *vdl = &octree->vdls[i];
         float w[3];
         gb_photon_unpack_direction(vdl->direction, w);
-        float c = gb_light_octree_vdl_gain(n, leaf->normal, w);
+        float c = gb_light_octree_vdl_gain(n, leaf_normal, w);
         if (c > 0.0f && gb_dot3(ng, w) > 0.0f)
             for (int k = 0; k < 3; ++k)
                 sum[k] += vdl->irradiance[k] * c;

@@ -16,13 +16,10 @@
 
 _Static_assert(sizeof(gb_light_octree_header) == 128, "header is 128 bytes");
 _Static_assert(sizeof(gb_light_octree_node) == 32, "node is 32 bytes");
-_Static_assert(sizeof(gb_light_octree_leaf) == 32, "leaf is 32 bytes");
+_Static_assert(sizeof(gb_light_octree_leaf) == 16, "leaf is 16 bytes");
 _Static_assert(sizeof(gb_light_octree_vdl) == 16, "VDL is 16 bytes");
 
 enum { ALIGNMENT = 16 };
-
-/* The most the length of a stored normal may differ from 1. */
-#define UNIT_TOLERANCE 1e-3f
 
 /* ---- header ---- */
 
@@ -87,8 +84,7 @@ static gb_result check_leaf_reached(tree_walk *w, uint32_t leaf, const uint32_t 
     if (w->leaf_seen[leaf]++)
         return gb_fail(w->error, GB_ERROR_FORMAT, "%s: leaf %u is reached twice", w->path,
                        leaf);
-    const uint32_t *stored = w->octree->leaves[leaf].cell;
-    if (stored[0] != cell[0] || stored[1] != cell[1] || stored[2] != cell[2])
+    if (w->octree->leaves[leaf].cell != gb_light_octree_pack_cell(cell))
         return gb_fail(w->error, GB_ERROR_FORMAT, "%s: leaf %u names another cell than its "
                        "place in the tree", w->path, leaf);
     return GB_OK;
@@ -140,15 +136,19 @@ static gb_result check_tree(const gb_light_octree *octree, const char *path, gb_
 
 /* ---- leaves and VDLs ---- */
 
+/* gb_photon_pack_direction never writes a 0 field (its grid is -32767 ..
+ * 32767 biased by 32768). */
+static int is_packed_direction(uint32_t packed)
+{
+    return (packed & 0xFFFFu) != 0 && (packed >> 16) != 0;
+}
+
 static gb_result check_leaf(const gb_light_octree *octree, uint32_t i, uint32_t expected_first,
                             const char *path, gb_error *error)
 {
     const gb_light_octree_leaf *leaf = &octree->leaves[i];
-    const float *n = leaf->normal;
-    if (!is_finite3(n) || fabsf(sqrtf(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]) - 1.0f) >
-                              UNIT_TOLERANCE)
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: leaf %u: normal is not a unit vector",
-                       path, i);
+    if (!is_packed_direction(leaf->normal))
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: leaf %u: bad packed normal", path, i);
     if (leaf->first_vdl != expected_first || leaf->vdl_count > octree->header.vdls_max ||
         leaf->vdl_count > octree->header.vdl_count - expected_first)
         return gb_fail(error, GB_ERROR_FORMAT, "%s: leaf %u: VDL range %u + %u is not the "
@@ -165,7 +165,7 @@ static gb_result check_vdl(const gb_light_octree_vdl *vdl, uint32_t i, const cha
     if (!is_finite3(e) || e[0] < 0.0f || e[1] < 0.0f || e[2] < 0.0f)
         return gb_fail(error, GB_ERROR_FORMAT, "%s: VDL %u: irradiance is not finite and >= 0",
                        path, i);
-    if ((vdl->direction & 0xFFFFu) == 0 || (vdl->direction >> 16) == 0)
+    if (!is_packed_direction(vdl->direction))
         return gb_fail(error, GB_ERROR_FORMAT, "%s: VDL %u: bad packed direction", path, i);
     return GB_OK;
 }
@@ -257,6 +257,10 @@ static gb_result adopt_container(const gb_container *container, const char *path
                                  gb_error *error)
 {
     gb_light_octree *octree = object;
+    if (container->version < GB_LIGHT_OCTREE_VERSION)
+        return gb_fail(error, GB_ERROR_FORMAT,
+                       "%s: format version %u, from an older cluster (32-byte leaves); "
+                       "cluster it again", path, (unsigned)container->version);
     if (container->section_count != 4)
         return gb_fail(error, GB_ERROR_FORMAT, "%s: %u sections, expected 4", path,
                        (unsigned)container->section_count);

@@ -27,10 +27,11 @@
 #include <stdint.h>
 
 #include "container.h"
+#include "photon_map.h"
 #include "result.h"
 
 enum {
-    GB_LIGHT_OCTREE_VERSION = 2,   /* 2: tolerance in place of 1's spread threshold */
+    GB_LIGHT_OCTREE_VERSION = 3,   /* 3: 16-byte leaves; 2: tolerance in place of 1's spread */
     GB_LIGHT_OCTREE_MAX_DEPTH = 10,     /* leaf cells keep 3 x 10 bits */
     GB_LIGHT_OCTREE_MAX_VDLS = 64,      /* per leaf */
 };
@@ -53,7 +54,7 @@ typedef struct gb_light_octree_header {
     uint32_t vdls_max;          /* K_max: most VDLs per leaf */
     float tolerance;            /* relative irradiance error a leaf's VDL count was
                                    chosen for (tools/cluster/vdl.h); negative:
-                                   K_max always (version 1: a spread, degrees) */
+                                   K_max always */
     float flattening;           /* ellipsoid: normal semi-axis / tangent semi-axis */
     uint32_t reserved[11];      /* zero */
 } gb_light_octree_header;
@@ -62,12 +63,34 @@ typedef struct gb_light_octree_node {
     uint32_t child[8];
 } gb_light_octree_node;
 
+/* A leaf: what the runtime reads to shade in it, in 16 bytes. Its normal
+ * and cell are packed: read them with gb_light_octree_leaf_normal and
+ * gb_light_octree_leaf_cell. */
 typedef struct gb_light_octree_leaf {
-    float normal[3];            /* unit: area-weighted normal of its geometry */
+    uint32_t normal;            /* unit: area-weighted normal of its geometry,
+                                   octahedral 2 x 16 bits as a VDL's direction */
     uint32_t first_vdl;
     uint32_t vdl_count;         /* 0 .. vdls_max: 0 when no photon was gathered */
-    uint32_t cell[3];           /* integer cell, 0 .. 2^depth - 1 per axis */
+    uint32_t cell;              /* integer cell, 0 .. 2^depth - 1 per axis: x in
+                                   bits 0..9, y in 10..19, z in 20..29 */
 } gb_light_octree_leaf;
+
+static inline uint32_t gb_light_octree_pack_cell(const uint32_t cell[3])
+{
+    return cell[0] | cell[1] << 10 | cell[2] << 20;
+}
+
+static inline void gb_light_octree_leaf_cell(const gb_light_octree_leaf *leaf, uint32_t cell[3])
+{
+    cell[0] = leaf->cell & 0x3FFu;
+    cell[1] = leaf->cell >> 10 & 0x3FFu;
+    cell[2] = leaf->cell >> 20 & 0x3FFu;
+}
+
+static inline void gb_light_octree_leaf_normal(const gb_light_octree_leaf *leaf, float n[3])
+{
+    gb_photon_unpack_direction(leaf->normal, n);
+}
 
 /* A virtual directional light: irradiance (W/m^2, linear RGB) arriving from
  * direction (unit, toward the light; octahedral 2 x 16 bits as photon_map.h's
@@ -88,7 +111,8 @@ typedef struct gb_light_octree {
 
 /* Checks the header and every index: the nodes form a tree from the root
  * reaching each leaf exactly once at the cell it names, the VDL ranges are
- * contiguous and in bounds, normals unit, irradiances finite and >= 0. */
+ * contiguous and in bounds, packed normals and directions valid,
+ * irradiances finite and >= 0. */
 gb_result gb_light_octree_check(const gb_light_octree *octree, const char *path,
                                 gb_error *error);
 /* Checks, then writes (temporary file, rename). */

@@ -34,11 +34,10 @@ uint find_leaf(ivec3 cell) {
 // false for no leaf or no VDL.
 bool leaf_light(uint leaf, vec3 n, vec3 ng, out vec3 sum) {
     sum = vec3(0.0);
-    if (leaf == NONE || leaves[8u * leaf + 4u] == 0u)
+    if (leaf == NONE || leaves[4u * leaf + 2u] == 0u)
         return false;
-    uint first = leaves[8u * leaf + 3u], end = first + leaves[8u * leaf + 4u];
-    vec3 nl = uintBitsToFloat(uvec3(leaves[8u * leaf], leaves[8u * leaf + 1u],
-                                    leaves[8u * leaf + 2u]));
+    uint first = leaves[4u * leaf + 1u], end = first + leaves[4u * leaf + 2u];
+    vec3 nl = vdl_direction(leaves[4u * leaf]);
     for (uint i = first; i < end; ++i) {
         vec3 w = vdl_direction(vdls[4u * i + 3u]);
         float c = dot(n, w) / max(abs(dot(nl, w)), MIN_COS);

@@ -114,5 +114,8 @@ expect_failure "--merge of the parts out of order" 1 "part1.lot: .*not part 0 of
 "$tool" --depth 4 --shard 0/2 "$scene" "$dir/in.phot" -o "$dir/other.lot" 2>"$dir/err"
 expect_failure "--merge of parts of two octrees" 1 "not a part of the octree" \
     --merge "$dir/part0.lot" "$dir/other.lot" -o "$dir/x.lot"
+old="$GB_ROOT/tests/fuzz/corpus/fuzz_light_octree/cornell-depth2-v2.lot"
+expect_failure "a version-2 octree (32-byte leaves) is refused, naming its version" 1 \
+    "format version 2, from an older cluster" --merge "$old" "$old" -o "$dir/x.lot"
 
 tap_done

@@ -130,7 +130,8 @@ class Octree:
         self.origin = struct.unpack_from('<3f', h, 16)
         self.size = struct.unpack_from('<f', h, 28)[0]
         self.nodes = [struct.unpack_from('<8I', s['nodes'], 32 * i) for i in range(nodes)]
-        self.leaves = [struct.unpack_from('<3f5I', s['leaves'], 32 * i) for i in range(leaves)]
+        # a leaf (format 3): packed normal, first VDL, VDL count, packed cell
+        self.leaves = [struct.unpack_from('<4I', s['leaves'], 16 * i) for i in range(leaves)]
         self.vdls = [struct.unpack_from('<3fI', s['vdls'], 16 * i) for i in range(vdls)]
 
     def find(self, cell):
@@ -155,9 +156,10 @@ class Octree:
             o = [(c >> k) & 1 for k in range(3)]
             w = max(math.prod(f[k] if o[k] else 1 - f[k] for k in range(3)), 1e-6)
             leaf = self.find([base[k] + o[k] for k in range(3)])
-            if leaf is None or self.leaves[leaf][4] == 0:
+            if leaf is None or self.leaves[leaf][2] == 0:
                 continue
-            normal, first, count = self.leaves[leaf][:3], self.leaves[leaf][3], self.leaves[leaf][4]
+            packed_normal, first, count = self.leaves[leaf][:3]
+            normal = direction(packed_normal)
             for e0, e1, e2, packed in self.vdls[first:first + count]:
                 d = direction(packed)
                 factor = dot(n, d) / max(abs(dot(normal, d)), 0.25)

@@ -28,9 +28,11 @@ static float walk(const gb_light_octree *octree)
     float sum = 0.0f, edge = h->size / (float)(1u << h->depth);
     for (uint32_t i = 0; i < h->leaf_count; ++i) {
         const gb_light_octree_leaf *leaf = &octree->leaves[i];
-        float p[3];
+        float p[3], normal[3];
+        uint32_t cell[3];
+        gb_light_octree_leaf_cell(leaf, cell);
         for (int k = 0; k < 3; ++k)
-            p[k] = h->origin[k] + ((float)leaf->cell[k] + 0.5f) * edge;
+            p[k] = h->origin[k] + ((float)cell[k] + 0.5f) * edge;
         uint32_t found = gb_light_octree_find_leaf(octree, p);
         if (found != i && found != GB_LIGHT_OCTREE_NONE && found >= h->leaf_count)
             __builtin_trap(); /* the walk never leaves the arrays */
@@ -39,7 +41,8 @@ static float walk(const gb_light_octree *octree)
             gb_photon_unpack_direction(octree->vdls[v].direction, d);
             sum += octree->vdls[v].irradiance[1] + d[2];
         }
-        sum += leaf->normal[0];
+        gb_light_octree_leaf_normal(leaf, normal);
+        sum += normal[0];
     }
     const float outside[3] = {h->origin[0] - h->size, h->origin[1], h->origin[2] + 2 * h->size};
     const float nan[3] = {h->origin[0], __builtin_nanf(""), h->origin[2]};

@@ -115,10 +115,9 @@ static inline uint32_t floor_octree_add_leaf(floor_octree *h, uint32_t i, uint32
 {
     gb_light_octree_leaf *leaf = &h->leaves[h->leaf_count];
     memset(leaf, 0, sizeof *leaf);
-    memcpy(leaf->normal, h->normal, sizeof leaf->normal);
-    leaf->cell[0] = i;
-    leaf->cell[1] = FLOOR_LAYER;
-    leaf->cell[2] = k;
+    const uint32_t cell[3] = {i, FLOOR_LAYER, k};
+    leaf->normal = gb_photon_pack_direction(h->normal);
+    leaf->cell = gb_light_octree_pack_cell(cell);
     leaf->first_vdl = h->vdl_count;
     if (h->cells[i][k] == CELL_LIT)
         leaf->vdl_count = h->fill(i, k, &h->vdls[h->vdl_count]);

@@ -218,10 +218,14 @@ static void direct(const gb_light_octree *octree, const float x[3], const float 
     double cell = h->size / (double)(1u << h->depth), total[3] = {0, 0, 0}, weight = 0.0;
     for (uint32_t l = 0; l < h->leaf_count; ++l) {
         const gb_light_octree_leaf *leaf = &octree->leaves[l];
+        uint32_t leaf_cell[3];
+        float stored_normal[3];
+        gb_light_octree_leaf_cell(leaf, leaf_cell);
+        gb_light_octree_leaf_normal(leaf, stored_normal);
         double w = 1.0;
         int near = leaf->vdl_count > 0;
         for (int k = 0; k < 3; ++k) {
-            double d = (x[k] - (h->origin[k] + (leaf->cell[k] + 0.5) * cell)) / cell;
+            double d = (x[k] - (h->origin[k] + (leaf_cell[k] + 0.5) * cell)) / cell;
             near &= fabs(d) < 1.0;
             w *= 1.0 - fabs(d);
         }
@@ -231,7 +235,7 @@ static void direct(const gb_light_octree *octree, const float x[3], const float 
         for (uint32_t v = leaf->first_vdl; v < leaf->first_vdl + leaf->vdl_count; ++v) {
             float d[3];
             gb_photon_unpack_direction(octree->vdls[v].direction, d);
-            double c = dot3(n, d) / fmax(fabs(dot3(leaf->normal, d)), 0.25);
+            double c = dot3(n, d) / fmax(fabs(dot3(stored_normal, d)), 0.25);
             if (c > 0.0 && dot3(ng, d) > 0.0)
                 for (int k = 0; k < 3; ++k)
                     total[k] += w * octree->vdls[v].irradiance[k] * c;

@@ -261,8 +261,10 @@ static gb_result assemble(const gb_octree_leaves *leaves, const gb_light_octree_
     gb_light_octree_vdl *v = (void *)(block + node_bytes + leaf_bytes);
     memcpy(n, nodes, node_bytes);
     for (uint32_t i = 0, next = 0; i < leaves->count; ++i) {
-        memcpy(l[i].normal, &leaves->normals[3 * (size_t)i], sizeof l[i].normal);
-        gb_octree_leaf_cell(leaves, i, l[i].cell);
+        uint32_t cell[3];
+        gb_octree_leaf_cell(leaves, i, cell);
+        l[i].normal = gb_photon_pack_direction(&leaves->normals[3 * (size_t)i]);
+        l[i].cell = gb_light_octree_pack_cell(cell);
         l[i].first_vdl = next;
         l[i].vdl_count = r->vdl_counts[i];
         memcpy(&v[next], &r->slots[(size_t)i * h->vdls_max], r->vdl_counts[i] * sizeof *v);

@@ -216,7 +216,7 @@ static void leaf_point(const gb_scene *scene, const gb_octree_leaves *leaves,
 
 /* The area-weighted normal of hits[first, end): all of one cell. When the
  * normals cancel (the two sides of a thin wall), the first triangle's. */
-static void leaf_normal(const gb_scene *scene, const cell_hit *hits, size_t first, size_t end,
+static void mean_normal(const gb_scene *scene, const cell_hit *hits, size_t first, size_t end,
                         float normal[3])
 {
     double sum[3] = {0.0, 0.0, 0.0}, n[3];
@@ -232,6 +232,16 @@ static void leaf_normal(const gb_scene *scene, const cell_hit *hits, size_t firs
         return;
     if (!normalize_into(n, normal))
         normal[0] = 0.0f, normal[1] = 0.0f, normal[2] = 1.0f;
+}
+
+/* The leaf's normal as the file holds it (16-bit octahedral,
+ * light_octree.h), so that its VDLs are chosen for the normal the runtime
+ * shades with. */
+static void leaf_normal(const gb_scene *scene, const cell_hit *hits, size_t first, size_t end,
+                        float normal[3])
+{
+    mean_normal(scene, hits, first, end, normal);
+    gb_photon_unpack_direction(gb_photon_pack_direction(normal), normal);
 }
 
 /* The groups of the normals of hits[first, end) (surface_normals.h). */

@@ -16,8 +16,7 @@ static int same_octree(const gb_light_octree *a, const gb_light_octree *b)
         memcmp(a->nodes, b->nodes, (size_t)ha.node_count * sizeof *a->nodes) != 0)
         return 0;
     for (uint32_t i = 0; i < ha.leaf_count; ++i)
-        if (memcmp(a->leaves[i].normal, b->leaves[i].normal, sizeof a->leaves[i].normal) ||
-            memcmp(a->leaves[i].cell, b->leaves[i].cell, sizeof a->leaves[i].cell))
+        if (a->leaves[i].normal != b->leaves[i].normal || a->leaves[i].cell != b->leaves[i].cell)
             return 0;
     return 1;
 }
