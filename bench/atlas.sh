@@ -7,7 +7,8 @@
 #   triangles, charts (and of them lone triangles), fill ratio (the
 #   triangles' UV area in texels over the atlas's area; goal >= 0.6), the
 #   texel density chosen, max and mean angle distortion (degrees, per
-#   triangle corner: |UV angle - 3-D angle|), the build seconds atlas
+#   triangle corner: |UV angle - 3-D angle|; needle corners, at an edge
+#   under 4 UV steps, left out and counted), the build seconds atlas
 #   reports (goal <= 5 s on Sponza at 1024^2), the wall seconds of the run
 #   (with the scene's load) and its peak memory, the file's bytes.
 # Prints a Markdown table on stdout. Run by `make bench`.
@@ -20,16 +21,17 @@ ATLAS_SCENES=${ATLAS_SCENES:-"$s/cornell/cornell.scene $s/shared/cornell-origina
 echo "atlas --size $ATLAS_SIZE (default cone and padding); $(nproc) cores, load" \
     "$(cut -d' ' -f1-3 /proc/loadavg); $(date -u +%Y-%m-%d)"
 echo
-echo "| scene | triangles | charts | lone triangles | fill ratio | texels per unit | max distortion (deg) | mean distortion (deg) | build (s) | wall (s) | peak (MiB) | bytes |"
-echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+echo "| scene | triangles | charts | lone triangles | fill ratio | texels per unit | max distortion (deg) | mean distortion (deg) | needle corners | build (s) | wall (s) | peak (MiB) | bytes |"
+echo "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
 for scene in $ATLAS_SCENES; do
     name=$(basename "$scene" .scene)
     /usr/bin/time -f "%e %M" -o "$dir/time" "$GB_BIN/atlas" --quiet --stats \
         --size "$ATLAS_SIZE" "$scene" -o "$dir/$name.atlas" >"$dir/stats" || exit 1
     v() { value "$1" "$dir/stats"; }
     read -r wall peak <"$dir/time"
-    printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.0f | %s |\n" "$name" \
+    printf "| %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %s | %.0f | %s |\n" "$name" \
         "$(v triangles)" "$(v charts)" "$(v lone_triangles)" "$(v fill_ratio)" \
         "$(v texels_per_unit)" "$(v max_angle_distortion)" "$(v mean_angle_distortion)" \
+        "$(v needle_corners)" \
         "$(v seconds)" "$wall" "$(echo "$peak" | awk '{ print $1 / 1024 }')" "$(v bytes)"
 done

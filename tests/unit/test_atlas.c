@@ -169,6 +169,10 @@ static void build_needles(gb_scene *scene)
     uint32_t q0 = add_vertex(scene, 5, 5, 5), q1 = add_vertex(scene, 7, 5, 5);
     uint32_t q2 = add_vertex(scene, 6, 5 + 1e-6, 5);
     add_triangle(scene, q0, q1, q2, 0);
+    /* a needle whose short edge (1.4e-7) is under 4 UV steps at this density */
+    uint32_t r0 = add_vertex(scene, 0, 0, 2), r1 = add_vertex(scene, 1, 0, 2);
+    uint32_t r2 = add_vertex(scene, 1e-7, 1e-7, 2);
+    add_triangle(scene, r0, r1, r2, 0);
     scene_done(scene);
 }
 
@@ -212,6 +216,15 @@ static double angle_uv(const gb_atlas *a, uint32_t t, int c)
     double vx = (q[2 * k] - q[2 * i]) * w, vy = (q[2 * k + 1] - q[2 * i + 1]) * h;
     double d = (ux * vx + uy * vy) / sqrt((ux * ux + uy * uy) * (vx * vx + vy * vy));
     return acos(fmax(-1.0, fmin(1.0, d)));
+}
+
+/* The length in texels of edge c (corner c to corner c + 1) of t's UVs. */
+static double uv_edge_texels(const gb_atlas *a, uint32_t t, int c)
+{
+    const float *q = a->uvs + 6 * t;
+    int j = (c + 1) % 3;
+    return hypot((q[2 * j] - q[2 * c]) * (double)a->header.width,
+                 (q[2 * j + 1] - q[2 * c + 1]) * (double)a->header.height);
 }
 
 static double max_distortion_degrees(const gb_scene *s, const gb_atlas *a)
@@ -438,7 +451,7 @@ static void test_needles(void)
 {
     gb_scene scene;
     build_needles(&scene);
-    CHECK_EQ_INT(scene.triangle_count, 7, "needles: the loader kept all seven triangles");
+    CHECK_EQ_INT(scene.triangle_count, 8, "needles: the loader kept all eight triangles");
     gb_atlas atlas;
     gb_atlas_stats stats;
     if (!CHECK(build(&scene, 0, &atlas, &stats) == GB_OK, "needles: built"))
@@ -450,6 +463,28 @@ static void test_needles(void)
         finite &= isfinite(atlas.chart_records[c].max_angle_distortion) &&
                   isfinite(atlas.chart_records[c].mean_angle_distortion);
     CHECK(finite, "needles: distortion finite");
+    /* By brute force: a corner is measured when its two UV edges are at
+     * least 4 steps of 2^-24 of the side long; the 1e-6 edges are not. */
+    double step = atlas.header.width / 16777216.0, worst = 0.0, sum = 0.0;
+    uint64_t needles = 0, measured = 0;
+    for (uint32_t t = 0; t < scene.triangle_count; ++t)
+        for (int c = 0; c < 3; ++c) {
+            if (fmin(uv_edge_texels(&atlas, t, c), uv_edge_texels(&atlas, t, (c + 2) % 3)) <
+                4.0 * step) {
+                ++needles;
+                continue;
+            }
+            double d = fabs(angle_uv(&atlas, t, c) - angle_3d(&scene, t, c)) * 180.0 / M_PI;
+            worst = fmax(worst, d);
+            sum += d;
+            ++measured;
+        }
+    CHECK(needles >= 2 && stats.needle_corners == needles,
+          "needles: the corners at edges under 4 UV steps are counted, not measured");
+    CHECK(fabs(stats.max_angle_distortion - worst) < 1e-3 && worst <= GB_ATLAS_MAX_DISTORTION,
+          "needles: the largest distortion is that of the measured corners, within 25 degrees");
+    CHECK(fabs(stats.mean_angle_distortion - sum / (double)measured) < 1e-6,
+          "needles: the mean distortion is over the measured corners");
     gb_atlas_free(&atlas);
     gb_scene_free(&scene);
 }

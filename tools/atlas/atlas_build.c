@@ -322,45 +322,73 @@ static gb_result pack_until_sound(builder *b, gb_error *error)
 
 /* ---- the file ---- */
 
-/* Angle distortion of the corners of triangle t at its written UVs (texel
- * units); adds each corner's to sum, returns the largest. */
-static double triangle_distortion(const gb_scene *scene, uint32_t t, const float *uv,
-                                  uint32_t width, uint32_t height, double *sum)
+/* The angles a triangle's written UVs hold: corners_measured counts the
+ * corners whose two edges are at least GB_ATLAS_MEASURED_EDGE UV steps
+ * long, sum and largest their distortion (degrees); needle_corners counts
+ * the others. */
+typedef struct corner_distortion {
+    double sum, largest;
+    uint64_t corners_measured, needle_corners;
+} corner_distortion;
+
+/* Adds the corners of triangle t at its written UVs (uv: 6 floats). */
+static void add_triangle_distortion(const gb_scene *scene, uint32_t t, const float *uv,
+                                    uint32_t width, uint32_t height, corner_distortion *d)
 {
-    double q[6];
+    double q[6], p[9], edge[3];
+    double step = (double)(width > height ? width : height) / (double)GB_OVERLAP_ONE;
     for (int c = 0; c < 3; ++c) {
         q[2 * c] = (double)uv[2 * c] * width;
         q[2 * c + 1] = (double)uv[2 * c + 1] * height;
+        gb_triangle_corner(scene, t, c, p + 3 * c);
     }
-    return gb_triangle_angle_distortion(scene, t, q, sum);
+    for (int c = 0; c < 3; ++c) /* edge c: from corner c to corner c + 1 */
+        edge[c] = hypot(q[2 * ((c + 1) % 3)] - q[2 * c], q[2 * ((c + 1) % 3) + 1] - q[2 * c + 1]);
+    for (int c = 0; c < 3; ++c) {
+        if (fmin(edge[c], edge[(c + 2) % 3]) < GB_ATLAS_MEASURED_EDGE * step) {
+            ++d->needle_corners;
+            continue;
+        }
+        double a = fabs(gb_corner_angle(q, c, 2) - gb_corner_angle(p, c, 3)) * 180.0 / M_PI;
+        d->sum += a;
+        d->largest = fmax(d->largest, a);
+        ++d->corners_measured;
+    }
 }
 
 static void fill_records(const builder *b, gb_atlas *atlas, gb_atlas_chart *records)
 {
     const gb_atlas_header *h = &atlas->header;
-    double sum_all = 0.0, twice_area = 0.0;
+    corner_distortion all = {0};
+    double twice_area = 0.0;
     for (uint32_t i = 0; i < b->list.count; ++i) {
         const gb_chart *chart = &b->list.charts[i];
         gb_atlas_chart *r = &records[i];
-        double sum = 0.0, largest = 0.0;
+        corner_distortion d = {0};
         for (uint32_t k = 0; k < chart->triangle_count; ++k) {
             uint32_t t = chart->triangles[k];
             const int64_t *f = b->fixed + 6 * (size_t)t;
-            largest = fmax(largest, triangle_distortion(b->scene, t, atlas->uvs + 6 * (size_t)t,
-                                                        h->width, h->height, &sum));
+            add_triangle_distortion(b->scene, t, atlas->uvs + 6 * (size_t)t, h->width,
+                                    h->height, &d);
             twice_area += (double)gb_fixed_twice_area(f) / GB_OVERLAP_ONE / GB_OVERLAP_ONE *
                           h->width * h->height;
         }
         r->triangle_count = chart->triangle_count;
         r->area = (float)chart->area;
-        r->max_angle_distortion = (float)largest;
-        r->mean_angle_distortion = (float)fmin(sum / (3.0 * chart->triangle_count), largest);
+        r->max_angle_distortion = (float)d.largest;
+        r->mean_angle_distortion =
+            d.corners_measured ? (float)fmin(d.sum / (double)d.corners_measured, d.largest) : 0.0f;
         memcpy(r->rect, b->packing.rects + 4 * (size_t)i, sizeof r->rect);
-        b->stats->max_angle_distortion = fmax(b->stats->max_angle_distortion, largest);
         b->stats->lone_triangles += chart->triangle_count == 1;
-        sum_all += sum;
+        all.sum += d.sum;
+        all.largest = fmax(all.largest, d.largest);
+        all.corners_measured += d.corners_measured;
+        all.needle_corners += d.needle_corners;
     }
-    b->stats->mean_angle_distortion = sum_all / (3.0 * h->triangle_count);
+    b->stats->max_angle_distortion = all.largest;
+    b->stats->mean_angle_distortion =
+        all.corners_measured ? all.sum / (double)all.corners_measured : 0.0;
+    b->stats->needle_corners = all.needle_corners;
     b->stats->fill_ratio = 0.5 * twice_area / ((double)h->width * h->height);
 }
 

@@ -23,7 +23,14 @@
  *   so). Triangles of different charts never overlap: their rects do not;
  *   should the test find such a pair the build fails.
  * - Angle distortion is measured on the UVs written (texel units): per
- *   corner |UV angle - 3-D angle|.
+ *   corner |UV angle - 3-D angle|, over the corners whose two edges are
+ *   at least GB_ATLAS_MEASURED_EDGE UV steps long (a step: 2^-24 of the
+ *   atlas side, what a float UV in [0.5, 1) resolves). A shorter edge's
+ *   direction is not in the file: the staircase's needle triangles, with
+ *   an edge of 3e-5 texel beside two of half a texel, get UV angles of
+ *   anything from 0 to 180 degrees at their short edge (86.8 degrees off
+ *   at 1024^2), while every corner that the UVs can hold is within the
+ *   25 degrees of GB_ATLAS_MAX_DISTORTION. Needle corners are counted.
  * - fill ratio = (sum over triangles of their UV area in texels) /
  *   (atlas width * height): the share of the atlas the triangles cover.
  * - The default cone (70 degrees) and the waste limit (GB_ATLAS_MAX_WASTE
@@ -56,6 +63,10 @@
 /* No corner of an LSCM chart, nor of a merged one, is distorted by more
  * than this (degrees; parameterize.h, merge.h). */
 #define GB_ATLAS_MAX_DISTORTION 25.0
+/* The shortest UV edge, in UV steps (2^-24 of the side: GB_OVERLAP_ONE),
+ * whose corners' angles are measured: rounding moves each end of an edge
+ * of 4 steps by at most 0.71 of one, turning it by at most 20 degrees. */
+#define GB_ATLAS_MEASURED_EDGE 4.0
 
 typedef struct gb_atlas_options {
     double cone_degrees;        /* 0: the default, GB_ATLAS_DEFAULT_CONE */
@@ -79,7 +90,9 @@ typedef struct gb_atlas_stats {
     uint32_t collapsed, self_overlaps;
     uint32_t rounds;            /* packings */
     double fill_ratio;
-    double max_angle_distortion, mean_angle_distortion; /* degrees, over every corner */
+    double max_angle_distortion, mean_angle_distortion; /* degrees, over the corners
+                                   measured (GB_ATLAS_MEASURED_EDGE) */
+    uint64_t needle_corners;    /* corners not measured: an edge under GB_ATLAS_MEASURED_EDGE */
     double seconds;
 } gb_atlas_stats;
 

@@ -2,6 +2,7 @@
  * (tools/atlas/atlas_build.h). Parses options, loads the scene, calls
  * gb_atlas_build, writes the file. */
 
+#include <inttypes.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -98,8 +99,9 @@ static void print_stats(const gb_atlas_stats *s, const gb_atlas *atlas, const ch
 {
     const gb_atlas_header *h = &atlas->header;
     printf("charts %u\nfill_ratio %.4f\nmax_angle_distortion %.3f\n"
-           "mean_angle_distortion %.3f\nseconds %.3f\n", s->charts, s->fill_ratio,
-           s->max_angle_distortion, s->mean_angle_distortion, s->seconds);
+           "mean_angle_distortion %.3f\nneedle_corners %" PRIu64 "\nseconds %.3f\n",
+           s->charts, s->fill_ratio, s->max_angle_distortion, s->mean_angle_distortion,
+           s->needle_corners, s->seconds);
     printf("size %ux%u\ntexels_per_unit %.6g\ntriangles %u\ngrown_charts %u\n"
            "lone_triangles %u\n", h->width, h->height, (double)h->texels_per_unit,
            h->triangle_count, s->grown_charts, s->lone_triangles);
