@@ -15,7 +15,8 @@
 # (12) [implicit, flc-iv] bounces (1) [implicit], vpls (1024) visibility=none|clusters|full (full)
 # voxels (64; voxelize -r) [topo], photons (200000; photons -n) depth (6)
 # vdls (8) tolerance (0.2; cluster --depth, --vdls, --tolerance; 0: K_max
-# VDLs a leaf always) [octree].
+# VDLs a leaf always) interpolation=trilinear|surface (trilinear; cluster
+# --interpolation) [octree].
 # A bad line stops with "SWEEP:LINE: what is wrong".
 #
 # Each point is compared with two references: reference --mode full, and the
@@ -38,6 +39,7 @@ BEGIN {
     d["navg"] = 256; d["tiling"] = 0; d["bins"] = 12; d["bounces"] = 1
     d["vpls"] = 1024; d["visibility"] = "full"; d["voxels"] = 64
     d["photons"] = 200000; d["depth"] = 6; d["vdls"] = 8; d["tolerance"] = 0.2
+    d["interpolation"] = "trilinear"
     common = " resolution frames spp "
     own["direct"] = ""; own["flc"] = " navg tiling "; own["implicit"] = " bins bounces "
     own["flc-iv"] = " navg tiling bins "
@@ -83,11 +85,13 @@ $1 == "set" {
     for (i in nk) number(nk[i], p[nk[i]])
     if (p["tiling"] !~ /^[0-9]$/) fail("tiling wants 0..9")
     if (p["tolerance"] !~ /^([0-9]+\.?[0-9]*|\.[0-9]+)$/) fail("tolerance wants a number >= 0, not \"" p["tolerance"] "\"")
+    if (p["interpolation"] !~ /^(trilinear|surface)$/) fail("interpolation wants trilinear or surface")
+    surface = p["interpolation"] == "surface" ? "-surface" : ""
     file = scene[name]; base = file; sub(/.*\//, "", base); sub(/\.scene$/, "", base)
     res = p["resolution"]; spp = p["spp"]
     id = name "-" method
     for (i = 1; i <= 14; i++) if (index(own[method], " " order[i] " ") && order[i] != "vplspp") id = id "-" order[i] p[order[i]]
-    if (method == "octree") id = id "-t" p["tolerance"]
+    if (method == "octree") id = id "-t" p["tolerance"] surface
     id = id "-" res "-f" p["frames"] "-s" spp
     if (method == "topo") id = id "-vs" p["vplspp"]
     if (id in seen) fail("the same point as line " seen[id])
@@ -108,10 +112,10 @@ $1 == "set" {
             print bake "\t" name "\t" p["voxels"] > segments
         }
     } else if (method == "octree") {
-        bake = name "-p" p["photons"] "-d" p["depth"] "-k" p["vdls"] "-t" p["tolerance"]; bakefile = "$(REPORT)/bake/" bake "/" base ".lot"
+        bake = name "-p" p["photons"] "-d" p["depth"] "-k" p["vdls"] "-t" p["tolerance"] surface; bakefile = "$(REPORT)/bake/" bake "/" base ".lot"
         if (!(bake in bakes)) {
             bakes[bake] = 1
-            printf "report-bake/%s:\n\t+$(MAKE) --no-print-directory REPORT_STAGE= REPORT_BAKE=1 TIME_BAKE=1 $(REPORT_OLD_TOOLS) BAKE=$(REPORT)/bake/%s SCENE=%s PHOTONS_FLAGS=\"-n %s\" CLUSTER_FLAGS=\"--depth %s --vdls %s --tolerance %s\" %s\n\n", bake, bake, file, p["photons"], p["depth"], p["vdls"], p["tolerance"], bakefile
+            printf "report-bake/%s:\n\t+$(MAKE) --no-print-directory REPORT_STAGE= REPORT_BAKE=1 TIME_BAKE=1 $(REPORT_OLD_TOOLS) BAKE=$(REPORT)/bake/%s SCENE=%s PHOTONS_FLAGS=\"-n %s\" CLUSTER_FLAGS=\"--depth %s --vdls %s --tolerance %s --interpolation %s\" %s\n\n", bake, bake, file, p["photons"], p["depth"], p["vdls"], p["tolerance"], p["interpolation"], bakefile
             bakelist = bakelist " report-bake/" bake
         }
     }

@@ -57,8 +57,23 @@ static int leaf_light(const gb_light_octree *octree, uint32_t index, const float
     return 1;
 }
 
+/* surface_distance: how far x is from the leaf's surface, in cell edges:
+ * its distance from the leaf's plane plus 1 - |n_leaf.ng| (a leaf of
+ * another orientation is another surface); offset = x - the leaf's centre
+ * in cell edges. */
+static float surface_distance(const gb_light_octree_leaf *leaf, const float offset[3],
+                              const float ng[3])
+{
+    float leaf_normal[3];
+    gb_light_octree_leaf_normal(leaf, leaf_normal);
+    float plane = (float)leaf->plane / GB_LIGHT_OCTREE_PLANE_ONE;
+    return fabsf(gb_dot3(leaf_normal, offset) - plane) +
+           (1.0f - fabsf(gb_dot3(leaf_normal, ng)));
+}
+
 /* interpolate: trilinear between the 8 leaf centres around x, over those
- * with VDLs, each weight at least MIN_WEIGHT. */
+ * with VDLs, each weight at least MIN_WEIGHT, times its surface factor
+ * when the octree's interpolation is GB_LIGHT_OCTREE_SURFACE. */
 void gb_light_octree_irradiance(const gb_light_octree *octree, const float x[3],
                                 const float n[3], const float ng[3], float out_rgb[3])
 {
@@ -74,19 +89,33 @@ void gb_light_octree_irradiance(const gb_light_octree *octree, const float x[3],
          * integer cell stays representable */
         base[k] = fminf(fmaxf(base[k], -2.0f), resolution + 1.0f);
     }
+    float w[8], distance[8], sums[8][3], nearest = INFINITY;
+    int lit[8];
     for (int c = 0; c < 8; ++c) {
         int o[3] = {c & 1, (c >> 1) & 1, c >> 2}, cell[3];
-        float t = 1.0f, sum[3];
+        float t = 1.0f, offset[3];
         for (int k = 0; k < 3; ++k) {
             t *= o[k] ? f[k] : 1.0f - f[k];
             cell[k] = (int)base[k] + o[k];
+            offset[k] = f[k] - (float)o[k];
         }
-        float w = fmaxf(t, GB_LIGHT_OCTREE_MIN_WEIGHT);
-        if (leaf_light(octree, find_leaf(octree, cell), n, ng, sum)) {
-            for (int k = 0; k < 3; ++k)
-                total[k] += w * sum[k];
-            weight += w;
-        }
+        w[c] = fmaxf(t, GB_LIGHT_OCTREE_MIN_WEIGHT);
+        uint32_t index = find_leaf(octree, cell);
+        lit[c] = leaf_light(octree, index, n, ng, sums[c]);
+        distance[c] = 0.0f;
+        if (lit[c] && h->interpolation == GB_LIGHT_OCTREE_SURFACE)
+            distance[c] = surface_distance(&octree->leaves[index], offset, ng);
+        if (lit[c])
+            nearest = fminf(nearest, distance[c]);
+    }
+    for (int c = 0; c < 8; ++c) {
+        if (!lit[c])
+            continue;
+        float surface = fmaxf(1.0f - (distance[c] - nearest) / GB_LIGHT_OCTREE_SURFACE_REACH,
+                              GB_LIGHT_OCTREE_MIN_SURFACE);
+        for (int k = 0; k < 3; ++k)
+            total[k] += w[c] * surface * sums[c][k];
+        weight += w[c] * surface;
     }
     for (int k = 0; k < 3; ++k)
         out_rgb[k] = weight > 0.0f ? total[k] / weight : 0.0f;

@@ -17,6 +17,18 @@
  * VDLs. Same constants, same order of operations, in float, as the shader:
  * the two agree to float rounding (tests/unit/test_light_octree_shading.c).
  *
+ * An octree clustered with GB_LIGHT_OCTREE_SURFACE interpolation (cluster
+ * --interpolation surface) also scales each w by its surface factor
+ *     max(1 - (s - s_min) / SURFACE_REACH, MIN_SURFACE),
+ *     s = |n_leaf·(x - centre) - plane| + 1 - |n_leaf·ng|   (cell edges),
+ * s_min the least s of the 8: a leaf of another surface (another plane, a
+ * quarter of an edge off, or another orientation) lends x almost nothing
+ * (issue 49: McGuire's light, 0.3 mm under a leaf boundary, read the
+ * hidden ceiling 1 cm above it through the leaf above, and the boxes'
+ * corners mixed walls and floor). Measured better on the Cornell boxes and
+ * worse on the living room, so not the default: docs/figures.md, "light
+ * octree: surface interpolation".
+ *
  * Preconditions: the octree passed gb_light_octree_check; n (shading) and
  * ng (geometric) are unit, n on ng's side. Nothing is allocated; the
  * caller owns every argument. Thread-safe (reads only).
@@ -28,6 +40,8 @@
 
 #define GB_LIGHT_OCTREE_MIN_COS 0.25f       /* bounds a grazing VDL's gain (x4) */
 #define GB_LIGHT_OCTREE_MIN_WEIGHT 1e-6f    /* a leaf centre without VDLs is not black */
+#define GB_LIGHT_OCTREE_SURFACE_REACH 0.25f /* cell edges: past it, another surface's leaf */
+#define GB_LIGHT_OCTREE_MIN_SURFACE 1e-3f   /* a point far from every leaf's surface is not black */
 
 /* c of a VDL from the unit direction w in a leaf of normal leaf_normal, at
  * a surface of normal n: n.w / max(|leaf_normal.w|, MIN_COS). The VDL's

@@ -59,7 +59,10 @@ static gb_result check_header(const gb_light_octree_header *h, const char *path,
     if (h->vdl_count > (uint64_t)h->leaf_count * h->vdls_max)
         return gb_fail(error, GB_ERROR_FORMAT, "%s: %u VDLs for %u leaves", path,
                        h->vdl_count, h->leaf_count);
-    for (int i = 0; i < 11; ++i)
+    if (h->interpolation > GB_LIGHT_OCTREE_SURFACE)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: interpolation %u is not 0 or 1", path,
+                       h->interpolation);
+    for (int i = 0; i < 10; ++i)
         if (h->reserved[i])
             return gb_fail(error, GB_ERROR_FORMAT, "%s: reserved header field is not zero",
                            path);
@@ -147,8 +150,9 @@ static gb_result check_leaf(const gb_light_octree *octree, uint32_t i, uint32_t 
                             const char *path, gb_error *error)
 {
     const gb_light_octree_leaf *leaf = &octree->leaves[i];
-    if (!is_packed_direction(leaf->normal))
-        return gb_fail(error, GB_ERROR_FORMAT, "%s: leaf %u: bad packed normal", path, i);
+    if (!is_packed_direction(leaf->normal) || leaf->plane == INT16_MIN)
+        return gb_fail(error, GB_ERROR_FORMAT, "%s: leaf %u: bad packed normal or plane", path,
+                       i);
     if (leaf->first_vdl != expected_first || leaf->vdl_count > octree->header.vdls_max ||
         leaf->vdl_count > octree->header.vdl_count - expected_first)
         return gb_fail(error, GB_ERROR_FORMAT, "%s: leaf %u: VDL range %u + %u is not the "

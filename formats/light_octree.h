@@ -38,6 +38,11 @@ enum {
 
 #define GB_LIGHT_OCTREE_NONE 0xFFFFFFFFu
 
+enum {
+    GB_LIGHT_OCTREE_TRILINEAR = 0,      /* the paper's: trilinear over the 8 leaves */
+    GB_LIGHT_OCTREE_SURFACE = 1,        /* weighed by how well each leaf holds the surface */
+};
+
 typedef struct gb_light_octree_header {
     uint32_t depth;             /* δ: leaves are the cells of a 2^δ grid, 1 .. 10 */
     uint32_t node_count;
@@ -56,7 +61,9 @@ typedef struct gb_light_octree_header {
                                    chosen for (tools/cluster/vdl.h); negative:
                                    K_max always */
     float flattening;           /* ellipsoid: normal semi-axis / tangent semi-axis */
-    uint32_t reserved[11];      /* zero */
+    uint32_t interpolation;     /* between leaves: GB_LIGHT_OCTREE_TRILINEAR or
+                                   GB_LIGHT_OCTREE_SURFACE (light_octree_shading.h) */
+    uint32_t reserved[10];      /* zero */
 } gb_light_octree_header;
 
 typedef struct gb_light_octree_node {
@@ -70,10 +77,16 @@ typedef struct gb_light_octree_leaf {
     uint32_t normal;            /* unit: area-weighted normal of its geometry,
                                    octahedral 2 x 16 bits as a VDL's direction */
     uint32_t first_vdl;
-    uint32_t vdl_count;         /* 0 .. vdls_max: 0 when no photon was gathered */
+    uint16_t vdl_count;         /* 0 .. vdls_max: 0 when no photon was gathered */
+    int16_t plane;              /* where its surface lies: the plane of the normal
+                                   through the point the leaf gathered at, as
+                                   n.(x - cell centre) = plane / 32767 cell edges;
+                                   -32767 .. 32767 */
     uint32_t cell;              /* integer cell, 0 .. 2^depth - 1 per axis: x in
                                    bits 0..9, y in 10..19, z in 20..29 */
 } gb_light_octree_leaf;
+
+#define GB_LIGHT_OCTREE_PLANE_ONE 32767.0f  /* plane of one cell edge */
 
 static inline uint32_t gb_light_octree_pack_cell(const uint32_t cell[3])
 {

@@ -150,10 +150,7 @@ static void set_uniforms(const octree_state *s, const gb_indirect_frame *frame)
     const gb_light_octree_header *h = &s->octree->header;
     gb_gbuffer_set_view_of(p, view, frame->width, frame->height);
     glProgramUniform2i(p, glGetUniformLocation(p, "full_size"), frame->width, frame->height);
-    glProgramUniform3fv(p, glGetUniformLocation(p, "origin"), 1, h->origin);
-    glProgramUniform1f(p, glGetUniformLocation(p, "cell_size"),
-                       h->size / (float)(1u << h->depth));
-    glProgramUniform1i(p, glGetUniformLocation(p, "depth"), (GLint)h->depth);
+    gb_octree_set_irradiance_uniforms(p, h);
 }
 
 /* The walk: the octree's irradiance at each pixel of the band. */

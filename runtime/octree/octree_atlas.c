@@ -152,12 +152,14 @@ static GLuint framebuffer_of(GLuint texture, int layer)
     return framebuffer;
 }
 
-static void set_octree_uniforms(GLuint program, const gb_light_octree_header *h)
+void gb_octree_set_irradiance_uniforms(GLuint program, const gb_light_octree_header *h)
 {
     glProgramUniform3fv(program, glGetUniformLocation(program, "origin"), 1, h->origin);
     glProgramUniform1f(program, glGetUniformLocation(program, "cell_size"),
                        h->size / (float)(1u << h->depth));
     glProgramUniform1i(program, glGetUniformLocation(program, "depth"), (GLint)h->depth);
+    glProgramUniform1i(program, glGetUniformLocation(program, "surface_interpolation"),
+                       h->interpolation == GB_LIGHT_OCTREE_SURFACE);
 }
 
 /* The programs and the depth texture the render needs, kept until it is
@@ -176,7 +178,7 @@ static gb_result prepare_render(gb_octree_atlas *s, const gb_atlas_header *h,
     if (result != GB_OK)
         return result;
     GLuint p = s->render_program;
-    set_octree_uniforms(p, octree);
+    gb_octree_set_irradiance_uniforms(p, octree);
     glProgramUniform2f(p, glGetUniformLocation(p, "atlas_size"), (float)h->width,
                        (float)h->height);
     glProgramUniform1f(p, glGetUniformLocation(p, "reach"), (float)gb_atlas_reach(h->padding));

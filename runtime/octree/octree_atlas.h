@@ -70,4 +70,9 @@ void gb_octree_atlas_draw(gb_octree_atlas *state, const gb_indirect_frame *frame
 GLuint gb_octree_atlas_texture(const gb_octree_atlas *state);
 void gb_octree_atlas_destroy(gb_octree_atlas *state);
 
+/* The uniforms octree_irradiance.glsl reads from the octree's header
+ * (origin, cell_size, depth, surface_interpolation), set on program: the
+ * walk's display and the render into the atlas both call it. */
+void gb_octree_set_irradiance_uniforms(GLuint program, const gb_light_octree_header *h);
+
 #endif

@@ -4,17 +4,22 @@
 // Fig. 16c), octree.h's convention. The display (octree_display.frag.glsl)
 // and the render into the atlas (octree_atlas_render.frag.glsl) include it;
 // common/light_octree_shading.c is its CPU twin. The includer sets the
-// buffers (octree.c's upload) and the uniforms origin, cell_size, depth.
+// buffers (octree.c's upload) and the uniforms origin, cell_size, depth,
+// surface_interpolation.
 layout(std430, binding = 0) readonly buffer Nodes { uint nodes[]; };
 layout(std430, binding = 1) readonly buffer Leaves { uint leaves[]; };
 layout(std430, binding = 2) readonly buffer Vdls { uint vdls[]; };
 uniform vec3 origin;
 uniform float cell_size;
 uniform int depth;
+uniform bool surface_interpolation;  // the octree's header: GB_LIGHT_OCTREE_SURFACE
 const uint NONE = 0xffffffffu;
 const float PI = 3.14159265358979;
 const float MIN_COS = 0.25;
 const float MIN_WEIGHT = 1e-6;
+const float MIN_SURFACE = 1e-3;
+const float PLANE_ONE = 32767.0;
+const float SURFACE_REACH = 0.25;
 // gb_light_octree_find_leaf: depth node fetches from the root.
 uint find_leaf(ivec3 cell) {
     if (any(lessThan(cell, ivec3(0))) || any(greaterThanEqual(cell, ivec3(1 << depth))))
@@ -34,9 +39,9 @@ uint find_leaf(ivec3 cell) {
 // false for no leaf or no VDL.
 bool leaf_light(uint leaf, vec3 n, vec3 ng, out vec3 sum) {
     sum = vec3(0.0);
-    if (leaf == NONE || leaves[4u * leaf + 2u] == 0u)
+    if (leaf == NONE || (leaves[4u * leaf + 2u] & 0xffffu) == 0u)
         return false;
-    uint first = leaves[4u * leaf + 1u], end = first + leaves[4u * leaf + 2u];
+    uint first = leaves[4u * leaf + 1u], end = first + (leaves[4u * leaf + 2u] & 0xffffu);
     vec3 nl = vdl_direction(leaves[4u * leaf]);
     for (uint i = first; i < end; ++i) {
         vec3 w = vdl_direction(vdls[4u * i + 3u]);
@@ -47,26 +52,49 @@ bool leaf_light(uint leaf, vec3 n, vec3 ng, out vec3 sum) {
     }
     return true;
 }
+// How far x is from the leaf's surface in cell edges: its distance from
+// the leaf's plane plus 1 - |n_leaf.ng|; offset = x - the leaf's centre in
+// cell edges (gb_light_octree_irradiance's surface_distance).
+float surface_distance(uint leaf, vec3 offset, vec3 ng) {
+    vec3 nl = vdl_direction(leaves[4u * leaf]);
+    float plane = float(int(leaves[4u * leaf + 2u]) >> 16) / PLANE_ONE;
+    return abs(dot(nl, offset) - plane) + (1.0 - abs(dot(nl, ng)));
+}
 // Trilinear between the 8 leaf centres around x, renormalised over the
 // neighbours that have VDLs. Each weight is at least MIN_WEIGHT: at a
 // leaf centre the weights of the other 7 vanish, and when that leaf has
 // no VDLs the pixel would be black (tests/unit/test_octree_display.c);
 // there the floor makes it the mean of the others, and elsewhere it
-// changes the result by under 10^-5.
+// changes the result by under 10^-5. With surface interpolation each is
+// also scaled by max(1 - (s - s_min) / SURFACE_REACH, MIN_SURFACE), s the
+// leaf's surface_distance and s_min the least of the 8: a leaf of another
+// surface lends x almost nothing (light_octree_shading.h).
 vec3 interpolate(vec3 x, vec3 n, vec3 ng) {
     vec3 g = (x - origin) / cell_size - 0.5;
     vec3 base = floor(g), f = g - base;
-    vec3 total = vec3(0.0);
-    float weight = 0.0;
+    float w[8], distance[8];
+    vec3 sums[8];
+    bool lit[8];
+    float nearest = 1e30;
     for (int c = 0; c < 8; ++c) {
         ivec3 o = ivec3(c & 1, (c >> 1) & 1, c >> 2);
         vec3 t = mix(1.0 - f, f, vec3(o));
-        float w = max(t.x * t.y * t.z, MIN_WEIGHT);
-        vec3 sum;
-        if (leaf_light(find_leaf(ivec3(base) + o), n, ng, sum)) {
-            total += w * sum;
-            weight += w;
-        }
+        w[c] = max(t.x * t.y * t.z, MIN_WEIGHT);
+        uint leaf = find_leaf(ivec3(base) + o);
+        lit[c] = leaf_light(leaf, n, ng, sums[c]);
+        distance[c] = lit[c] && surface_interpolation ? surface_distance(leaf, f - vec3(o), ng)
+                                                      : 0.0;
+        if (lit[c])
+            nearest = min(nearest, distance[c]);
+    }
+    vec3 total = vec3(0.0);
+    float weight = 0.0;
+    for (int c = 0; c < 8; ++c) {
+        if (!lit[c])
+            continue;
+        float surface = max(1.0 - (distance[c] - nearest) / SURFACE_REACH, MIN_SURFACE);
+        total += w[c] * surface * sums[c];
+        weight += w[c] * surface;
     }
     return weight > 0.0 ? total / weight : vec3(0.0);
 }

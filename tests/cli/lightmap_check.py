@@ -122,6 +122,9 @@ def container_sections(path):
     return sections
 
 
+SURFACE_REACH = 0.25   # cell edges: light_octree_shading.h
+
+
 class Octree:
     def __init__(self, path):
         s = container_sections(path)
@@ -129,8 +132,10 @@ class Octree:
         self.depth, nodes, leaves, vdls = struct.unpack_from('<4I', h, 0)
         self.origin = struct.unpack_from('<3f', h, 16)
         self.size = struct.unpack_from('<f', h, 28)[0]
+        self.surface = struct.unpack_from('<I', h, 84)[0] == 1
         self.nodes = [struct.unpack_from('<8I', s['nodes'], 32 * i) for i in range(nodes)]
-        # a leaf (format 3): packed normal, first VDL, VDL count, packed cell
+        # a leaf (format 3): packed normal, first VDL, VDL count (16 bits) and
+        # plane (16, signed), packed cell
         self.leaves = [struct.unpack_from('<4I', s['leaves'], 16 * i) for i in range(leaves)]
         self.vdls = [struct.unpack_from('<3fI', s['vdls'], 16 * i) for i in range(vdls)]
 
@@ -146,26 +151,45 @@ class Octree:
                 return None
         return index
 
+    def leaf_light(self, leaf, n, ng):
+        packed_normal, first, count_plane = self.leaves[leaf][:3]
+        normal = direction(packed_normal)
+        total = [0.0, 0.0, 0.0]
+        for e0, e1, e2, packed in self.vdls[first:first + (count_plane & 0xFFFF)]:
+            d = direction(packed)
+            factor = dot(n, d) / max(abs(dot(normal, d)), 0.25)
+            if factor > 0 and dot(ng, d) > 0:
+                for k, e in enumerate((e0, e1, e2)):
+                    total[k] += e * factor
+        return total
+
+    def surface_distance(self, leaf, offset, ng):
+        packed_normal, _, count_plane = self.leaves[leaf][:3]
+        normal = direction(packed_normal)
+        plane = ((count_plane >> 16) ^ 0x8000) - 0x8000
+        return abs(dot(normal, offset) - plane / 32767.0) + 1.0 - abs(dot(normal, ng))
+
     def irradiance(self, x, n, ng):
         cell = self.size / (1 << self.depth)
         g = [(x[k] - self.origin[k]) / cell - 0.5 for k in range(3)]
         base = [math.floor(v) for v in g]
         f = [g[k] - base[k] for k in range(3)]
-        total, weight = [0.0, 0.0, 0.0], 0.0
+        lit = []   # (trilinear weight, surface distance, sum) of the lit leaves
         for c in range(8):
             o = [(c >> k) & 1 for k in range(3)]
             w = max(math.prod(f[k] if o[k] else 1 - f[k] for k in range(3)), 1e-6)
             leaf = self.find([base[k] + o[k] for k in range(3)])
-            if leaf is None or self.leaves[leaf][2] == 0:
+            if leaf is None or self.leaves[leaf][2] & 0xFFFF == 0:
                 continue
-            packed_normal, first, count = self.leaves[leaf][:3]
-            normal = direction(packed_normal)
-            for e0, e1, e2, packed in self.vdls[first:first + count]:
-                d = direction(packed)
-                factor = dot(n, d) / max(abs(dot(normal, d)), 0.25)
-                if factor > 0 and dot(ng, d) > 0:
-                    for k, e in enumerate((e0, e1, e2)):
-                        total[k] += w * e * factor
+            s = self.surface_distance(leaf, [f[k] - o[k] for k in range(3)], ng) \
+                if self.surface else 0.0
+            lit.append((w, s, self.leaf_light(leaf, n, ng)))
+        nearest = min((s for _, s, _ in lit), default=0.0)
+        total, weight = [0.0, 0.0, 0.0], 0.0
+        for w, s, light in lit:
+            w *= max(1.0 - (s - nearest) / SURFACE_REACH, 1e-3)
+            for k in range(3):
+                total[k] += w * light[k]
             weight += w
         return [t / weight if weight > 0 else 0.0 for t in total]
 

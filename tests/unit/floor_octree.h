@@ -16,7 +16,8 @@
  * The floor: y = 0, FLOOR_HALF each side of the origin in x and z, albedo
  * FLOOR_KD, seen from FLOOR_CAMERA_HEIGHT above its centre. The octree:
  * depth FLOOR_DEPTH 4 over the cube (-2, -2.1, -2) + 4, leaf edge 0.25,
- * the floor in layer FLOOR_LAYER 8 (0.1 above its bottom face); every cell
+ * surface interpolation (light_octree_shading.h), each leaf's plane the
+ * floor's, the floor in layer FLOOR_LAYER 8 (0.1 above its bottom face); every cell
  * (i, 8, k) is a leaf but those marked CELL_MISSING, and the test's `fill`
  * gives each CELL_LIT leaf its VDLs (a CELL_EMPTY leaf has none).
  *
@@ -36,6 +37,7 @@
 #ifndef GB_FLOOR_OCTREE_H
 #define GB_FLOOR_OCTREE_H
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 #include <unistd.h>
@@ -111,12 +113,24 @@ static inline int floor_octree_has_leaf(const floor_octree *h, uint32_t level, u
     return 0;
 }
 
+/* A leaf's plane (light_octree.h): through the floor's point under its
+ * centre, along its normal as stored. */
+static inline int16_t floor_octree_plane(const gb_light_octree_leaf *leaf)
+{
+    float normal[3];
+    gb_light_octree_leaf_normal(leaf, normal);
+    float centre_height = -2.1f + ((float)FLOOR_LAYER + 0.5f) * (float)FLOOR_CELL;
+    return (int16_t)lrintf(-normal[1] * centre_height / (float)FLOOR_CELL *
+                           GB_LIGHT_OCTREE_PLANE_ONE);
+}
+
 static inline uint32_t floor_octree_add_leaf(floor_octree *h, uint32_t i, uint32_t k)
 {
     gb_light_octree_leaf *leaf = &h->leaves[h->leaf_count];
     memset(leaf, 0, sizeof *leaf);
     const uint32_t cell[3] = {i, FLOOR_LAYER, k};
     leaf->normal = gb_photon_pack_direction(h->normal);
+    leaf->plane = floor_octree_plane(leaf);
     leaf->cell = gb_light_octree_pack_cell(cell);
     leaf->first_vdl = h->vdl_count;
     if (h->cells[i][k] == CELL_LIT)
@@ -158,7 +172,8 @@ static inline void floor_octree_make(floor_octree *h, const float normal[3], uin
         .depth = FLOOR_DEPTH, .node_count = h->node_count, .leaf_count = h->leaf_count,
         .vdl_count = h->vdl_count, .origin = {-2.0f, -2.1f, -2.0f}, .size = 4.0f,
         .scene_hash = scene->hash, .photon_count = 1, .emitted_count = 1, .knn = 1,
-        .radius = 1.0f, .vdls_max = vdls_max, .tolerance = 0.2f, .flattening = 0.5f};
+        .radius = 1.0f, .vdls_max = vdls_max, .tolerance = 0.2f, .flattening = 0.5f,
+        .interpolation = GB_LIGHT_OCTREE_SURFACE};
     octree->nodes = h->nodes;
     octree->leaves = h->leaves;
     octree->vdls = h->vdls;

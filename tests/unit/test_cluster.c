@@ -655,6 +655,22 @@ static gb_light_octree cluster_plane(const gb_scene *scene, const gb_photon_map 
     return octree;
 }
 
+/* Every leaf of the plane y = 0 stores that plane (light_octree.h): its
+ * offset from the leaf's centre along the normal (+y) is -centre_y, in
+ * cell edges, within the 16-bit step. */
+static void check_planes_hold_y0(const gb_light_octree *octree)
+{
+    const gb_light_octree_header *h = &octree->header;
+    double edge = h->size / (double)(1u << h->depth), worst = 0.0;
+    for (uint32_t i = 0; i < h->leaf_count; ++i) {
+        uint32_t cell[3];
+        gb_light_octree_leaf_cell(&octree->leaves[i], cell);
+        double centre_y = h->origin[1] + (cell[1] + 0.5) * edge;
+        worst = fmax(worst, fabs(octree->leaves[i].plane / 32767.0 + centre_y / edge));
+    }
+    CHECK(h->leaf_count > 0 && worst < 1e-4, "every leaf's plane is the plane y = 0");
+}
+
 static void test_one_sun(void)
 {
     gb_scene scene;
@@ -662,6 +678,7 @@ static void test_one_sun(void)
     gb_photon_map map = trace_plane(&scene, 40000);
     gb_light_octree octree = cluster_plane(&scene, &map, 2, 1);
     check_suns(&octree, 1, "one sun");
+    check_planes_hold_y0(&octree);
     gb_light_octree_free(&octree);
     gb_photon_map_free(&map);
     gb_scene_free(&scene);

@@ -147,6 +147,38 @@ static double relative(double a, double b)
     return fabs(a - b) / fmax(fabs(b), 1e-30);
 }
 
+/* The distance of the floor point over (i, k) from leaf (li, lk)'s plane
+ * in leaf edges, that plane through the floor under the leaf's centre
+ * along the leaf's normal as stored (its height offset as stored too).
+ * (The surface distance's normal term, 1 - |n_leaf.ng|, is the same for
+ * every leaf here: it cancels in s - s_min.) */
+static double plane_by_hand(double li, double lk, double i, double k)
+{
+    float n[3];
+    gb_photon_unpack_direction(gb_photon_pack_direction(leaf_normal), n);
+    double centre_height = (-2.1 + (FLOOR_LAYER + 0.5) * FLOOR_CELL) / FLOOR_CELL;
+    double stored = lrint(-n[1] * centre_height * 32767.0) / 32767.0;
+    return fabs(n[0] * (i - li) + n[1] * -centre_height + n[2] * (k - lk) - stored);
+}
+
+/* The mean of leaf sums over leaves (li[j], lk[j]), j < count (the lit
+ * ones among the point's 8, at equal trilinear weights), each weighted by
+ * its surface factor at the floor point over (i, k): max(1 - (s - s_min) /
+ * 0.25, 10^-3). */
+static double planed_mean(const double *li, const double *lk, int count, double i, double k,
+                          const float n[3], const float ng[3], int c)
+{
+    double total = 0.0, weight = 0.0, nearest = INFINITY;
+    for (int j = 0; j < count; ++j)
+        nearest = fmin(nearest, plane_by_hand(li[j], lk[j], i, k));
+    for (int j = 0; j < count; ++j) {
+        double f = fmax(1.0 - (plane_by_hand(li[j], lk[j], i, k) - nearest) / 0.25, 1e-3);
+        total += f * leaf_sum(li[j], lk[j], n, ng, c);
+        weight += f;
+    }
+    return total / weight;
+}
+
 /* The floor point over leaf coordinates (i, k) (leaf centres at integers). */
 static void floor_point(double i, double k, float x[3])
 {
@@ -161,27 +193,27 @@ static void test_by_hand(const gb_light_octree *octree)
     double worst = 0.0;
     /* Between the lit leaves (2..3) x (4..5): equal weights; layer 7 has no
      * leaf, so the weights renormalise over layer 8. */
+    const double window_i[4] = {2, 3, 2, 3}, window_k[4] = {4, 4, 5, 5};
     floor_point(2.5, 4.5, x);
     gb_light_octree_irradiance(octree, x, up, up, e);
     for (int c = 0; c < 3; ++c)
-        worst = fmax(worst, relative(e[c], leaf_sum(2.5, 4.5, up, up, c)));
+        worst = fmax(worst, relative(e[c], planed_mean(window_i, window_k, 4, 2.5, 4.5, up,
+                                                       up, c)));
     printf("# between four lit leaves: %.7g %.7g %.7g, relative error %.2g\n", e[0], e[1],
            e[2], worst);
-    CHECK(worst < 1e-5, "between four lit leaves: the sum at the window's centre");
+    CHECK(worst < 1e-5, "between four lit leaves: their sums weighted by their plane factors");
     CHECK(fabs(dot3(leaf_normal, grazing)) < 0.25 && factor(grazing, up, up) > 0.0,
           "the grazing VDL counts, its |n_leaf.w| below MIN_COS (gain clamped at 4)");
 
     /* The centre of missing leaf (6, 6): its own weight is 1 but it has no
      * light; the others' weights are MIN_WEIGHT each: the mean of the lit
      * (7, 6), (6, 7), (7, 7). */
+    const double around_i[3] = {7, 6, 7}, around_k[3] = {6, 7, 7};
     floor_point(6.0, 6.0, x);
     gb_light_octree_irradiance(octree, x, up, up, e);
     worst = 0.0;
-    for (int c = 0; c < 3; ++c) {
-        double mean = (leaf_sum(7, 6, up, up, c) + leaf_sum(6, 7, up, up, c) +
-                       leaf_sum(7, 7, up, up, c)) / 3.0;
-        worst = fmax(worst, relative(e[c], mean));
-    }
+    for (int c = 0; c < 3; ++c)
+        worst = fmax(worst, relative(e[c], planed_mean(around_i, around_k, 3, 6, 6, up, up, c)));
     printf("# centre of a missing leaf: %.7g %.7g %.7g, relative error %.2g\n", e[0], e[1],
            e[2], worst);
     CHECK(worst < 1e-5, "centre of a missing leaf: the mean of its three lit neighbours");
@@ -193,9 +225,9 @@ static void test_by_hand(const gb_light_octree *octree)
     floor_point(2.5, 4.5, x);
     float both[3];
     gb_light_octree_irradiance(octree, x, tilted, up, e);
-    double kept = leaf_sum(2.5, 4.5, tilted, up, 0);
+    double kept = planed_mean(window_i, window_k, 4, 2.5, 4.5, tilted, up, 0);
     gb_light_octree_irradiance(octree, x, tilted, tilted, both);
-    double counted = leaf_sum(2.5, 4.5, tilted, tilted, 0);
+    double counted = planed_mean(window_i, window_k, 4, 2.5, 4.5, tilted, tilted, 0);
     printf("# tilted n: %.7g (by hand %.7g); with ng = n %.7g (by hand %.7g)\n", e[0], kept,
            both[0], counted);
     CHECK(relative(e[0], kept) < 1e-5 && relative(both[0], counted) < 1e-5 && counted > kept,
@@ -210,12 +242,33 @@ static void test_by_hand(const gb_light_octree *octree)
 /* ---- 2. a direct evaluation ----------------------------------------------- */
 
 /* Σ w sum / Σ w over the leaves with VDLs whose centre is within one leaf
- * edge of x on every axis, w = max(Π (1 - |d|), 10^-6), in double. */
+ * edge of x on every axis, w = max(Π (1 - |d|), 10^-6) max(1 - (s -
+ * s_min) / 0.25, 10^-3), s the distance of x from the leaf's plane in leaf
+ * edges plus 1 - |n_leaf.ng|, s_min the least over those leaves, in
+ * double. */
 static void direct(const gb_light_octree *octree, const float x[3], const float n[3],
                    const float ng[3], double out[3])
 {
     const gb_light_octree_header *h = &octree->header;
     double cell = h->size / (double)(1u << h->depth), total[3] = {0, 0, 0}, weight = 0.0;
+    double *surface = malloc(h->leaf_count * sizeof *surface), nearest = INFINITY;
+    for (uint32_t l = 0; l < h->leaf_count; ++l) {
+        const gb_light_octree_leaf *leaf = &octree->leaves[l];
+        uint32_t leaf_cell[3];
+        float stored_normal[3];
+        gb_light_octree_leaf_cell(leaf, leaf_cell);
+        gb_light_octree_leaf_normal(leaf, stored_normal);
+        int near = leaf->vdl_count > 0;
+        double off_plane = -leaf->plane / 32767.0;
+        for (int k = 0; k < 3; ++k) {
+            double d = (x[k] - (h->origin[k] + (leaf_cell[k] + 0.5) * cell)) / cell;
+            near &= fabs(d) < 1.0;
+            off_plane += stored_normal[k] * d;
+        }
+        surface[l] = fabs(off_plane) + 1.0 - fabs(dot3(stored_normal, ng));
+        if (near)
+            nearest = fmin(nearest, surface[l]);
+    }
     for (uint32_t l = 0; l < h->leaf_count; ++l) {
         const gb_light_octree_leaf *leaf = &octree->leaves[l];
         uint32_t leaf_cell[3];
@@ -231,7 +284,7 @@ static void direct(const gb_light_octree *octree, const float x[3], const float 
         }
         if (!near)
             continue;
-        w = fmax(w, 1e-6);
+        w = fmax(w, 1e-6) * fmax(1.0 - (surface[l] - nearest) / 0.25, 1e-3);
         for (uint32_t v = leaf->first_vdl; v < leaf->first_vdl + leaf->vdl_count; ++v) {
             float d[3];
             gb_photon_unpack_direction(octree->vdls[v].direction, d);
@@ -244,6 +297,7 @@ static void direct(const gb_light_octree *octree, const float x[3], const float 
     }
     for (int k = 0; k < 3; ++k)
         out[k] = weight > 0.0 ? total[k] / weight : 0.0;
+    free(surface);
 }
 
 static void test_direct(const gb_light_octree *octree)

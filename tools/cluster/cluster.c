@@ -4,6 +4,7 @@
  * (cluster.h). */
 #include "cluster.h"
 
+#include <math.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
@@ -240,6 +241,21 @@ static void fill_header(const gb_scene *scene, const gb_photon_map *map,
     h->vdls_max = o->vdls_max;
     h->tolerance = o->tolerance < 0.0f ? -1.0f : o->tolerance;
     h->flattening = GB_CLUSTER_FLATTENING;
+    h->interpolation = o->interpolation;
+}
+
+/* The leaf's plane (light_octree.h): the offset along its normal of the
+ * point it gathered at from its cell's centre, in cell edges (under
+ * sqrt(3)/2: the point is on a triangle touching the cell), fixed point. */
+static int16_t leaf_plane(const gb_octree_leaves *leaves, uint32_t i, const uint32_t cell[3])
+{
+    double edge = (double)leaves->size / (double)(1u << leaves->depth), offset = 0.0;
+    for (int k = 0; k < 3; ++k)
+        offset += leaves->normals[3 * (size_t)i + k] *
+                  (leaves->points[3 * (size_t)i + k] -
+                   (leaves->origin[k] + ((double)cell[k] + 0.5) * edge));
+    offset = fmax(-1.0, fmin(1.0, offset / edge));
+    return (int16_t)lrint(offset * GB_LIGHT_OCTREE_PLANE_ONE);
 }
 
 /* Packs nodes, leaves and the VDLs of every leaf, one after the other, into
@@ -264,6 +280,7 @@ static gb_result assemble(const gb_octree_leaves *leaves, const gb_light_octree_
         uint32_t cell[3];
         gb_octree_leaf_cell(leaves, i, cell);
         l[i].normal = gb_photon_pack_direction(&leaves->normals[3 * (size_t)i]);
+        l[i].plane = leaf_plane(leaves, i, cell);
         l[i].cell = gb_light_octree_pack_cell(cell);
         l[i].first_vdl = next;
         l[i].vdl_count = r->vdl_counts[i];

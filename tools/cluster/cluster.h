@@ -54,6 +54,8 @@ typedef struct gb_cluster_options {
                                    always K_max */
     unsigned restarts;          /* k-means runs per clustering, the best kept
                                    (kmeans.h); 0: 1 */
+    uint32_t interpolation;     /* the octree's, light_octree.h: GB_LIGHT_OCTREE_TRILINEAR
+                                   (0, the default) or GB_LIGHT_OCTREE_SURFACE */
     uint64_t seed;
     int threads;                /* 0: every core */
     uint32_t part, part_count;  /* --shard I/N: only the leaves of part I of N

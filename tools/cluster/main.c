@@ -31,8 +31,8 @@ typedef struct arguments {
     int merge;
 } arguments;
 
-enum { OPTION_RADIUS = 256, OPTION_VDLS, OPTION_TOLERANCE, OPTION_RESTARTS, OPTION_SHARD,
-       OPTION_MERGE };
+enum { OPTION_RADIUS = 256, OPTION_VDLS, OPTION_TOLERANCE, OPTION_RESTARTS,
+       OPTION_INTERPOLATION, OPTION_SHARD, OPTION_MERGE };
 
 static const gb_cli_entry entries[] = {
     GB_CLI_OPTION('o', "output", "FILE", "the light octree to write"),
@@ -53,6 +53,11 @@ static const gb_cli_entry entries[] = {
     GB_CLI_OPTION(OPTION_RESTARTS, "restarts", "N",
                   "k-means runs per leaf and k, the best kept, 1..64\n"
                   "(default 1)"),
+    GB_CLI_OPTION(OPTION_INTERPOLATION, "interpolation", "HOW",
+                  "between leaves, as the runtime and lightmap read the\n"
+                  "octree: trilinear (default, the paper's) or surface\n"
+                  "(each leaf weighed by how near its plane and normal\n"
+                  "are to the point's: no light from another surface)"),
     GB_CLI_SEED("N", "k-means++ seed (default 0)"),
     GB_CLI_THREADS(256, NULL),
     GB_CLI_OPTION(OPTION_SHARD, "shard", "I/N",
@@ -94,6 +99,13 @@ static int parse_option(int option, const char *text, void *context)
             o->tolerance = -1.0f;
         return status;
     case OPTION_RESTARTS: return gb_cli_uint(command.tool, "restarts", text, 1, 64, &o->restarts);
+    case OPTION_INTERPOLATION: {
+        static const char *const names[] = {"trilinear", "surface"};
+        int index;
+        status = gb_cli_choice(command.tool, "interpolation", text, names, 2, &index);
+        o->interpolation = (uint32_t)index;
+        return status;
+    }
     default: abort();   /* an entry with no case here */
     }
 }
