@@ -1,6 +1,6 @@
 #!/bin/sh
 # atlas.sh — the lightmap atlas (tools/atlas: normal-cone charts, CGAL LSCM,
-# skyline packing) at ATLAS_SIZE (default 1024, i.e. --size 1024: the
+# packing by shape) at ATLAS_SIZE (default 1024, i.e. --size 1024: the
 # largest density whose charts fit 1024 x 1024) with the default cone and
 # padding, on ATLAS_SCENES (default the two Cornell boxes, Sponza and the
 # staircase):

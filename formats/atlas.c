@@ -8,6 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "array_reserve.h"
+#include "atlas_mask.h"
 #include "container_kind.h"
 
 #if !defined(__BYTE_ORDER__) || __BYTE_ORDER__ != __ORDER_LITTLE_ENDIAN__
@@ -131,42 +133,164 @@ static gb_result check_triangles(const gb_atlas *atlas, uint32_t *counts, const 
     return GB_OK;
 }
 
-/* ---- charts apart ---- */
+/* ---- charts apart: no texel in two padded masks (atlas_mask.h) ---- */
 
-static int by_left_edge(const void *a, const void *b, void *charts)
+/* A run of texels of a chart's padded mask, clipped to the atlas. */
+typedef struct run {
+    uint32_t row, first, last;
+} run;
+
+typedef struct apart_check {
+    const gb_atlas *atlas;
+    const char *path;
+    uint32_t *starts, *order;   /* the triangles by chart: order[starts[c] .. starts[c + 1]) */
+    uint64_t *taken;            /* a bit a texel, row after row: in a padded mask so far */
+    size_t words;               /* per row */
+    run *runs;                  /* one chart's padded mask */
+    size_t run_count, run_capacity;
+    gb_atlas_mask mask;
+} apart_check;
+
+static int by_row_then_column(const void *a, const void *b)
 {
-    const gb_atlas_chart *records = charts;
-    uint32_t xa = records[*(const uint32_t *)a].rect[0];
-    uint32_t xb = records[*(const uint32_t *)b].rect[0];
-    return (xa > xb) - (xa < xb);
+    const run *p = a, *q = b;
+    if (p->row != q->row)
+        return (p->row > q->row) - (p->row < q->row);
+    return (p->first > q->first) - (p->first < q->first);
 }
 
-/* No two rects grown by the padding overlap: a sweep over the charts by left
- * edge, each compared with those that start before it ends. */
+/* Triangle t's padded mask into a->mask; 0 when out of memory. */
+static int mask_of_triangle(apart_check *a, uint32_t t)
+{
+    const gb_atlas_header *h = &a->atlas->header;
+    double corners[6];
+    gb_atlas_texel_corners(a->atlas->uvs + 6 * (size_t)t, h->width, h->height, corners);
+    return gb_atlas_mask_of(&a->mask, corners, 0.0, h->padding);
+}
+
+/* Row k of a->mask clipped to the atlas: 1 with the run, 0 when outside. */
+static int clipped_run(const apart_check *a, uint32_t k, run *r)
+{
+    const gb_atlas_header *h = &a->atlas->header;
+    int64_t row = a->mask.first + k;
+    int64_t first = a->mask.columns[2 * k], last = a->mask.columns[2 * k + 1];
+    first = first < 0 ? 0 : first;
+    last = last >= h->width ? (int64_t)h->width - 1 : last;
+    if (row < 0 || row >= h->height || first > last)
+        return 0;
+    *r = (run){(uint32_t)row, (uint32_t)first, (uint32_t)last};
+    return 1;
+}
+
+/* Chart c's padded mask as runs, sorted; 0 when out of memory. */
+static int chart_runs(apart_check *a, uint32_t c)
+{
+    a->run_count = 0;
+    for (uint32_t j = a->starts[c]; j < a->starts[c + 1]; ++j) {
+        if (!mask_of_triangle(a, a->order[j]) ||
+            !gb_array_reserve(&a->runs, &a->run_capacity, a->run_count + a->mask.count,
+                              sizeof *a->runs))
+            return 0;
+        for (uint32_t k = 0; k < a->mask.count; ++k)
+            a->run_count += clipped_run(a, k, &a->runs[a->run_count]);
+    }
+    qsort(a->runs, a->run_count, sizeof *a->runs, by_row_then_column);
+    return 1;
+}
+
+/* The first texel of first .. last of a row of a->taken already taken
+ * (1, its column in *at) or none (0); takes them all. */
+static int take(apart_check *a, uint32_t row, uint32_t first, uint32_t last, uint32_t *at)
+{
+    uint64_t *words = a->taken + (size_t)row * a->words;
+    for (uint32_t w = first / 64; w <= last / 64; ++w) {
+        uint32_t lo = w == first / 64 ? first % 64 : 0, hi = w == last / 64 ? last % 64 : 63;
+        uint64_t bits = (~UINT64_C(0) >> (63 - hi)) & (~UINT64_C(0) << lo);
+        if (words[w] & bits) {
+            *at = w * 64 + (uint32_t)__builtin_ctzll(words[w] & bits);
+            return 1;
+        }
+        words[w] |= bits;
+    }
+    return 0;
+}
+
+/* The chart other than c whose padded mask holds texel (i, j) (the
+ * message's; found again, only when the check fails). */
+static uint32_t other_chart(apart_check *a, uint32_t c, uint32_t i, uint32_t j)
+{
+    for (uint32_t t = 0; t < a->atlas->header.triangle_count; ++t) {
+        run r;
+        if (a->atlas->charts[t] == c || !mask_of_triangle(a, t))
+            continue;
+        for (uint32_t k = 0; k < a->mask.count; ++k)
+            if (clipped_run(a, k, &r) && r.row == j && r.first <= i && i <= r.last)
+                return a->atlas->charts[t];
+    }
+    return c;
+}
+
+/* Chart c's padded mask taken, each run's texels once (a chart's own
+ * triangles' masks overlap); fails on a texel an earlier chart took. */
+static gb_result take_chart(apart_check *a, uint32_t c, gb_error *error)
+{
+    if (!chart_runs(a, c))
+        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", a->path);
+    int64_t row = -1, taken_to = -1;
+    for (size_t k = 0; k < a->run_count; ++k) {
+        const run *r = &a->runs[k];
+        if (r->row != row)
+            row = r->row, taken_to = -1;
+        uint32_t first = (int64_t)r->first > taken_to ? r->first : (uint32_t)(taken_to + 1), at;
+        if (first <= r->last && take(a, r->row, first, r->last, &at)) {
+            uint32_t other = other_chart(a, c, at, r->row);
+            return gb_fail(error, GB_ERROR_FORMAT, "%s: charts %u and %u: texel (%u, %u) lies "
+                           "in both padded masks", a->path, other < c ? other : c,
+                           other < c ? c : other, at, r->row);
+        }
+        taken_to = r->last > taken_to ? r->last : taken_to;
+    }
+    return GB_OK;
+}
+
+/* The triangles by chart (a counting sort), into a->starts and a->order. */
+static int sort_by_chart(apart_check *a)
+{
+    const gb_atlas_header *h = &a->atlas->header;
+    a->starts = calloc((size_t)h->chart_count + 1, sizeof *a->starts);
+    a->order = malloc((size_t)h->triangle_count * sizeof *a->order);
+    if (!a->starts || !a->order)
+        return 0;
+    for (uint32_t t = 0; t < h->triangle_count; ++t)
+        ++a->starts[a->atlas->charts[t] + 1];
+    for (uint32_t c = 0; c < h->chart_count; ++c)
+        a->starts[c + 1] += a->starts[c];
+    for (uint32_t t = 0; t < h->triangle_count; ++t)
+        a->order[a->starts[a->atlas->charts[t]]++] = t;
+    for (uint32_t c = h->chart_count; c > 0; --c)
+        a->starts[c] = a->starts[c - 1];
+    a->starts[0] = 0;
+    return 1;
+}
+
+/* No texel lies in the padded masks of two charts: chart after chart,
+ * each texel of its padded mask taken in a bitmap of the atlas (32 MiB at
+ * the largest), the first one taken twice named. */
 static gb_result check_charts_apart(const gb_atlas *atlas, const char *path, gb_error *error)
 {
     const gb_atlas_header *h = &atlas->header;
-    uint32_t *order = malloc(h->chart_count * sizeof *order);
-    if (!order)
-        return gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
-    for (uint32_t i = 0; i < h->chart_count; ++i)
-        order[i] = i;
-    qsort_r(order, h->chart_count, sizeof *order, by_left_edge,
-            (void *)atlas->chart_records);
-    gb_result result = GB_OK;
-    for (uint32_t i = 0; i < h->chart_count && result == GB_OK; ++i) {
-        int64_t a[4], b[4];
-        grown_rect(&atlas->chart_records[order[i]], h->padding, a);
-        for (uint32_t j = i + 1; j < h->chart_count && result == GB_OK; ++j) {
-            grown_rect(&atlas->chart_records[order[j]], h->padding, b);
-            if (b[0] >= a[2])
-                break;
-            if (b[1] < a[3] && a[1] < b[3])
-                result = gb_fail(error, GB_ERROR_FORMAT, "%s: charts %u and %u overlap "
-                                 "(their padding included)", path, order[i], order[j]);
-        }
-    }
-    free(order);
+    apart_check a = {.atlas = atlas, .path = path, .words = (h->width + 63) / 64};
+    a.taken = calloc(a.words * h->height, sizeof *a.taken);
+    gb_result result = a.taken && sort_by_chart(&a)
+                           ? GB_OK
+                           : gb_fail(error, GB_ERROR_OUT_OF_MEMORY, "%s: out of memory", path);
+    for (uint32_t c = 0; result == GB_OK && c < h->chart_count; ++c)
+        result = take_chart(&a, c, error);
+    gb_atlas_mask_free(&a.mask);
+    free(a.runs);
+    free(a.taken);
+    free(a.starts);
+    free(a.order);
     return result;
 }
 
@@ -252,6 +376,11 @@ static gb_result adopt_container(const gb_container *container, const char *path
                                  gb_error *error)
 {
     gb_atlas *atlas = object;
+    if (container->version < GB_ATLAS_VERSION)
+        return gb_fail(error, GB_ERROR_UNSUPPORTED, "%s: format version %u (charts apart by "
+                       "their rects) is no longer read; make the atlas again with atlas "
+                       "(version %d: charts apart by their padded masks)", path,
+                       (unsigned)container->version, GB_ATLAS_VERSION);
     if (container->section_count != SECTION_COUNT)
         return gb_fail(error, GB_ERROR_FORMAT, "%s: %u sections, expected %d", path,
                        (unsigned)container->section_count, SECTION_COUNT);

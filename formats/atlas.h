@@ -35,7 +35,7 @@
 #include "result.h"
 
 enum {
-    GB_ATLAS_VERSION = 1,
+    GB_ATLAS_VERSION = 2,         /* 1, whose charts were apart by their rects, is refused */
     GB_ATLAS_MAX_SIZE = 16384,          /* texels along a side */
 };
 
@@ -50,7 +50,7 @@ typedef struct gb_atlas_header {
     uint32_t chart_count;       /* >= 1 */
     uint32_t width, height;     /* texels, 1 .. GB_ATLAS_MAX_SIZE */
     float texels_per_unit;      /* texel density: texels per world unit, > 0 */
-    uint32_t padding;           /* texels of gutter kept around every chart */
+    uint32_t padding;           /* texels of gutter kept around every chart's mask */
     uint32_t reserved[8];       /* zero */
 } gb_atlas_header;
 
@@ -62,8 +62,9 @@ typedef struct gb_atlas_chart {
     float max_angle_distortion; /* degrees: largest |UV angle - 3-D angle| of its corners */
     float mean_angle_distortion;/* degrees: the mean of the same over its corners */
     uint32_t rect[4];           /* x, y, width, height in texels: the chart's
-                                   place, padding excluded; every UV of the
-                                   chart is inside it */
+                                   texel box, padding excluded; every UV of the
+                                   chart is inside it. Rects may overlap: the
+                                   charts' padded masks may not (gb_atlas_check) */
 } gb_atlas_chart;
 
 typedef struct gb_atlas {
@@ -77,8 +78,12 @@ typedef struct gb_atlas {
 
 /* Checks the header, every UV (finite, in [0, 1], inside its chart's
  * rect), every triangle's winding (UV area > 0), every chart index, each
- * chart's triangle count, and that the charts' rects, grown by the padding,
- * lie in the atlas and do not overlap one another. */
+ * chart's triangle count, that each chart's rect grown by the padding lies
+ * in the atlas, and that no texel lies in the padded masks of two charts
+ * (atlas_mask.h: the texels a chart's triangles overlap, grown by the
+ * padding along x and y). The last takes a bit a texel of the atlas (32
+ * MiB at the largest) and 12 bytes a row of each triangle of the largest
+ * chart. */
 gb_result gb_atlas_check(const gb_atlas *atlas, const char *path, gb_error *error);
 /* Checks, then writes (temporary file, rename). */
 gb_result gb_atlas_write(const char *path, const gb_atlas *atlas, gb_error *error);
@@ -98,7 +103,7 @@ void gb_atlas_free(gb_atlas *atlas);
  * evaluated on the plane of the nearest such triangle (extended past its
  * edges). √2 reaches every texel a bilinear read inside a triangle weighs,
  * so a chart's border shows no seam; it is kept under the padding, so that
- * it never reaches another chart's gutter (the padded rects are apart), and
+ * it never reaches another chart's gutter (the padded masks are apart), and
  * is 0 without padding: the runtime's render into the atlas and `lightmap`
  * both use it. */
 static inline double gb_atlas_reach(uint32_t padding)

@@ -2,7 +2,8 @@
 # atlas.t — the atlas tool as a user types it, on the Cornell box: a file
 # that an independent reader here (Python: the container's CRCs, the
 # header, every UV in [0, 1], every triangle counterclockwise with a
-# positive area, every chart index in range, the padded rects apart) and
+# positive area, every chart index in range, triangles of different charts
+# at least twice the padding apart along x or y) and
 # gb_atlas_read (through the lightmap tool) accept;
 # --stats; the same bytes on a second run; usage errors; nothing left by
 # a failed run. Prints TAP.
@@ -76,12 +77,28 @@ for t in range(T):
     for k in range(3):
         if not (x - 1e-3 <= q[2 * k] * W <= x + w + 1e-3 and y - 1e-3 <= q[2 * k + 1] * H <= y + hh + 1e-3):
             fail("triangle %d: outside its chart's rect" % t)
-for a in range(C):
-    for b in range(a + 1, C):
-        ra, rb = records[a][4:8], records[b][4:8]
-        if (ra[0] - P < rb[0] + rb[2] + P and rb[0] - P < ra[0] + ra[2] + P and
-                ra[1] - P < rb[1] + rb[3] + P and rb[1] - P < ra[1] + ra[3] + P):
-            fail("charts %d and %d: padded rects overlap" % (a, b))
+# Charts apart: every two triangles of different charts at least 2P texels
+# apart along x or y (the max-norm distance of two triangles: the largest
+# gap along an axis or an edge normal scaled to |nx| + |ny| = 1).
+def corners(t):
+    return [(uv[6 * t + 2 * k] * W, uv[6 * t + 2 * k + 1] * H) for k in range(3)]
+def distance(a, b):
+    normals = [(1, 0), (0, 1)]
+    for p in (a, b):
+        normals += [(p[(k + 1) % 3][1] - p[k][1], p[k][0] - p[(k + 1) % 3][0]) for k in range(3)]
+    best = 0.0
+    for nx, ny in normals:
+        for s in (1, -1):
+            n = abs(nx) + abs(ny)
+            if n > 0:
+                x, y = s * nx / n, s * ny / n
+                best = max(best, min(x * q[0] + y * q[1] for q in b) -
+                           max(x * q[0] + y * q[1] for q in a))
+    return best
+for s in range(T):
+    for t in range(s + 1, T):
+        if chart[s] != chart[t] and distance(corners(s), corners(t)) < 2 * P - 1e-9:
+            fail("triangles %d and %d of charts %d and %d: nearer than 2P" % (s, t, chart[s], chart[t]))
 PY
 }
 check_atlas "$dir/box.atlas" "$triangles"

@@ -5,7 +5,10 @@
  * mapped file is; every UV of a parsed atlas is turned into the texel the
  * runtime would fetch and checked to lie in its chart's rect, grown by the
  * padding and by the rounding the reader allows (GB_ATLAS_RECT_TOLERANCE:
- * with no padding, a UV a thousandth of a texel outside its rect passes).
+ * with no padding, a UV a thousandth of a texel outside its rect passes),
+ * and every two triangles of different charts are checked, apart from the
+ * reader's raster (tests/unit/uv_distance.h), to be at least twice the
+ * padding apart along x or y, as disjoint padded masks promise.
  *
  * Every payload is CRC-checked by the container, so each input is parsed as
  * it is, then again with its checksums recomputed (fix_checksums.h), which
@@ -17,6 +20,7 @@
 #include <stdint.h>
 
 #include "fuzz_reader.h"
+#include "unit/uv_distance.h"
 
 /* Traps when a corner's texel leaves its chart's padded rect. */
 static float fetch_every_corner(const gb_atlas *atlas)
@@ -40,6 +44,32 @@ static float fetch_every_corner(const gb_atlas *atlas)
     return sum;
 }
 
+/* Traps when two triangles of different charts are nearer than twice the
+ * padding along x and y (beyond the rounding of double arithmetic). */
+static void check_charts_apart(const gb_atlas *atlas)
+{
+    const gb_atlas_header *h = &atlas->header;
+    double a[6], b[6];
+    for (uint32_t s = 0; s < h->triangle_count; ++s)
+        for (uint32_t t = s + 1; t < h->triangle_count; ++t) {
+            if (atlas->charts[s] == atlas->charts[t])
+                continue;
+            for (int k = 0; k < 6; ++k) {
+                double side = k % 2 ? h->height : h->width;
+                a[k] = atlas->uvs[6 * (size_t)s + k] * side;
+                b[k] = atlas->uvs[6 * (size_t)t + k] * side;
+            }
+            if (uv_distance(a, b) < 2.0 * h->padding - 1e-9)
+                __builtin_trap();
+        }
+}
+
+static float fetch_and_measure(const gb_atlas *atlas)
+{
+    check_charts_apart(atlas);
+    return fetch_every_corner(atlas);
+}
+
 static int is_empty(const gb_atlas *atlas)
 {
     return !atlas->uvs && !atlas->charts && !atlas->chart_records &&
@@ -47,7 +77,7 @@ static int is_empty(const gb_atlas *atlas)
 }
 
 GB_FUZZ_READER(parse, gb_atlas, gb_atlas_parse, gb_atlas_check, gb_atlas_free,
-               fetch_every_corner, is_empty)
+               fetch_and_measure, is_empty)
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

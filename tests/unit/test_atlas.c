@@ -6,8 +6,11 @@
  * finite UVs of positive area; no two triangles overlap (every pair,
  * tested here without the grid and without the tool's predicate); the
  * overlap predicate and grid against hand cases and brute force; the
- * LSCM adapter refuses a closed mesh; the file reads back; the same scene
- * gives the same bytes. */
+ * charts kept apart as the file's padded masks promise, measured pair by
+ * pair of triangles (uv_distance.h, apart from the raster the packer and
+ * the reader share) on built scenes, McGuire's Cornell box and the first
+ * triangles of Sponza; the LSCM adapter refuses a closed mesh; the file
+ * reads back; the same scene gives the same bytes. */
 #include "../../tools/atlas/atlas_build.h"
 #include "../../tools/atlas/lscm.h"
 #include "../../tools/atlas/merge.h"
@@ -16,6 +19,7 @@
 #include "scene_builder.h"
 #include "scratch.h"
 #include "tap.h"
+#include "uv_distance.h"
 
 #include <math.h>
 #include <stdint.h>
@@ -358,6 +362,51 @@ static long overlapping_pairs_brute_force(const gb_atlas *a)
     return pairs;
 }
 
+/* How far apart the boxes of triangles s and t are along x or y: no more
+ * than the triangles are. */
+static double box_gap(const double *s, const double *t)
+{
+    double gap = 0.0;
+    for (int d = 0; d < 2; ++d) {
+        double s_lo = fmin(s[d], fmin(s[2 + d], s[4 + d])), s_hi = fmax(s[d], fmax(s[2 + d], s[4 + d]));
+        double t_lo = fmin(t[d], fmin(t[2 + d], t[4 + d])), t_hi = fmax(t[d], fmax(t[2 + d], t[4 + d]));
+        gap = fmax(gap, fmax(t_lo - s_hi, s_lo - t_hi));
+    }
+    return gap;
+}
+
+/* The least distance along x or y (uv_distance.h) between two triangles
+ * of different charts, over every pair, up to wanted: a pair whose boxes
+ * are that far apart is not measured further; +inf with one chart. */
+static double charts_apart_brute_force(const gb_atlas *a, double wanted)
+{
+    uint32_t n = a->header.triangle_count;
+    double *q = malloc(6 * (size_t)n * sizeof *q), least = INFINITY;
+    for (uint32_t t = 0; t < n; ++t)
+        for (int k = 0; k < 6; ++k)
+            q[6 * t + k] = a->uvs[6 * t + k] * (k % 2 ? a->header.height : a->header.width);
+    for (uint32_t s = 0; s < n; ++s)
+        for (uint32_t t = s + 1; t < n; ++t)
+            if (a->charts[s] != a->charts[t]) {
+                double gap = box_gap(q + 6 * s, q + 6 * t);
+                least = fmin(least, gap >= wanted ? gap : uv_distance(q + 6 * s, q + 6 * t));
+            }
+    free(q);
+    return least;
+}
+
+/* Whether every two triangles of different charts are at least twice the
+ * padding apart along x or y (the written floats are what the reader
+ * rastered: only the rounding of double arithmetic is allowed). */
+static void check_charts_apart(const gb_atlas *atlas, const char *name)
+{
+    char what[160];
+    double wanted = 2.0 * atlas->header.padding, least = charts_apart_brute_force(atlas, wanted);
+    snprintf(what, sizeof what, "%s: triangles of different charts at least 2P = %g texels "
+             "apart along x or y (every pair; least %.4f)", name, wanted, least);
+    CHECK(least >= wanted - 1e-9, what);
+}
+
 /* ---- the tests ---- */
 
 static void test_planar_chart(void)
@@ -458,6 +507,7 @@ static void test_needles(void)
         return;
     CHECK(all_finite_and_positive(&atlas), "needles: finite UVs, every area positive");
     CHECK_EQ_INT(overlapping_pairs_brute_force(&atlas), 0, "needles: no overlap");
+    check_charts_apart(&atlas, "needles");
     int finite = 1;
     for (uint32_t c = 0; c < atlas.header.chart_count; ++c)
         finite &= isfinite(atlas.chart_records[c].max_angle_distortion) &&
@@ -501,19 +551,62 @@ static void test_packing(void)
                  "Cornell box: no two triangles overlap (every pair)");
     CHECK(stats.fill_ratio > 0.3 && stats.fill_ratio <= 1.0, "Cornell box: fill ratio in (0.3, 1]");
     printf("# Cornell box: %u charts, fill %.3f\n", atlas.header.chart_count, stats.fill_ratio);
-    /* the padded rects apart, measured here */
-    int apart = 1;
-    uint32_t p = atlas.header.padding;
-    for (uint32_t i = 0; i < atlas.header.chart_count; ++i)
-        for (uint32_t j = i + 1; j < atlas.header.chart_count; ++j) {
-            const uint32_t *a = atlas.chart_records[i].rect, *b = atlas.chart_records[j].rect;
-            if (a[0] < b[0] + b[2] + 2 * p && b[0] < a[0] + a[2] + 2 * p &&
-                a[1] < b[1] + b[3] + 2 * p && b[1] < a[1] + a[3] + 2 * p)
-                apart = 0;
-        }
-    CHECK(apart, "Cornell box: rects at least twice the padding apart");
+    check_charts_apart(&atlas, "Cornell box");
     gb_atlas_free(&atlas);
     gb_scene_free(&scene);
+}
+
+/* The first `count` triangles of a loaded scene (every vertex kept). */
+static void first_triangles(const gb_scene *from, uint32_t count, gb_scene *scene)
+{
+    begin(scene);
+    for (uint32_t v = 0; v < from->vertex_count; ++v)
+        add_vertex(scene, from->positions[3 * v], from->positions[3 * v + 1],
+                   from->positions[3 * v + 2]);
+    for (uint32_t t = 0; t < count && t < from->triangle_count; ++t)
+        add_triangle(scene, from->indices[3 * t], from->indices[3 * t + 1],
+                     from->indices[3 * t + 2], 0);
+    scene_done(scene);
+}
+
+/* Charts apart on real scenes: McGuire's Cornell box whole, and Sponza's
+ * first triangles (hundreds of small charts), at a few sizes and
+ * paddings; skipped when the shared scenes are not there. */
+static void check_scene_file(const char *root, const char *file, uint32_t triangles,
+                             const uint32_t sizes[2], const uint32_t paddings[2])
+{
+    char path[4096], name[160];
+    snprintf(path, sizeof path, "%s/scenes/shared/%s", root, file);
+    gb_scene loaded, scene;
+    gb_error error;
+    if (gb_scene_load(path, NULL, &loaded, &error) != GB_OK) {
+        printf("# skipped %s: %s\n", file, error.message);
+        return;
+    }
+    first_triangles(&loaded, triangles, &scene);
+    gb_scene_free(&loaded);
+    for (int k = 0; k < 2; ++k) {
+        gb_atlas_options options = {.size = sizes[k], .padding = paddings[k]};
+        gb_atlas atlas;
+        gb_atlas_stats stats;
+        snprintf(name, sizeof name, "%s (%u triangles) at %u, padding %u", file,
+                 scene.triangle_count, sizes[k], paddings[k]);
+        if (!CHECK(gb_atlas_build(&scene, &options, &atlas, &stats, &error) == GB_OK, name)) {
+            printf("# %s\n", error.message);
+            continue;
+        }
+        printf("# %s: %u charts, fill %.3f\n", name, stats.charts, stats.fill_ratio);
+        check_charts_apart(&atlas, name);
+        gb_atlas_free(&atlas);
+    }
+    gb_scene_free(&scene);
+}
+
+static void test_charts_apart(const char *root)
+{
+    check_scene_file(root, "cornell-original.scene", UINT32_MAX, (uint32_t[2]){256, 1024},
+                     (uint32_t[2]){2, 3});
+    check_scene_file(root, "sponza.scene", 3000, (uint32_t[2]){512, 256}, (uint32_t[2]){2, 1});
 }
 
 static void test_overlap_predicate(void)
@@ -676,6 +769,7 @@ static void test_merge(void)
           "merge: no corner distorted beyond the bound (+0.5 degree of fixed point)");
     CHECK(every_chart_a_disc(&scene, &atlas), "merge: every chart a disc");
     CHECK_EQ_INT(overlapping_pairs_brute_force(&atlas), 0, "merge: no two triangles overlap");
+    check_charts_apart(&atlas, "merge");
     gb_atlas_free(&atlas);
     gb_scene_free(&scene);
 }
@@ -713,11 +807,14 @@ static void test_tiny_chart_scale(void)
 
 int main(void)
 {
+    const char *root = getenv("GB_ROOT");
+    root = root ? root : ".";
     test_planar_chart();
     test_cube();
     test_discs();
     test_needles();
     test_packing();
+    test_charts_apart(root);
     test_overlap_predicate();
     test_lscm_adapter();
     test_min_area_rect();

@@ -2,9 +2,14 @@
  * of two charts written and read back byte for byte, and each rule of
  * gb_atlas_check (formats/FORMATS.md, "Atlas") broken once on a copy of
  * it: the reader must refuse it with the message naming what is wrong.
+ * Charts are apart by their padded masks (formats/atlas_mask.h), not by
+ * their rects: a chart inside another's rect passes when the padded masks
+ * share no texel and is refused when they share one. A file of format
+ * version 1 is refused, saying to make it again.
  */
 #include <stdlib.h>
 #include <string.h>
+#include <zlib.h>
 
 #include "atlas.h"
 #include "scratch.h"
@@ -111,17 +116,19 @@ static void test_each_rule(void)
     a.records[0].triangle_count = 1, a.records[1].triangle_count = 2;
     check_refused(&a, "its record says", "a chart record's triangle count");
 
+    /* chart 0 covers texel columns 2..9, its padded mask 0..11 */
     make_hand_atlas(&a);
-    a.records[1].rect[0] = 13; /* 13 - 2 < 2 + 8 + 2: the paddings overlap */
+    a.records[1].rect[0] = 13; /* chart 1's padded mask from 11: column 11 shared */
     a.uvs[12] = a.uvs[16] = 13.0f / SIZE;
     a.uvs[14] = 19.0f / SIZE;
-    check_refused(&a, "overlap", "two charts whose paddings overlap");
+    check_refused(&a, "charts 0 and 1: texel (11, 0) lies in both padded masks",
+                  "two charts whose padded masks share a column (their rects apart)");
 
     make_hand_atlas(&a);
-    a.records[1].rect[0] = 14; /* 14 - 2 = 2 + 8 + 2: touching, not overlapping */
+    a.records[1].rect[0] = 14; /* from 12: the padded masks touch, share nothing */
     a.uvs[12] = a.uvs[16] = 14.0f / SIZE;
     a.uvs[14] = 20.0f / SIZE;
-    CHECK(strcmp(check_message(&a), "") == 0, "two charts whose paddings touch pass");
+    CHECK(strcmp(check_message(&a), "") == 0, "two charts whose padded masks touch pass");
 
     make_hand_atlas(&a);
     a.records[0].rect[0] = 1, a.records[0].rect[2] = 9;
@@ -136,11 +143,73 @@ static void test_each_rule(void)
     check_refused(&a, "angle distortion", "a mean distortion above the max");
 }
 
+/* Chart 0: the lower left half of the square (2, 2)..(18, 18), below its
+ * diagonal, in the rect of the whole square; chart 1: a triangle in the
+ * square's top right corner, its rect inside chart 0's. Texels chart 0
+ * touches have i - j <= 0, so its padded mask i - j <= 4. */
+static void make_nested(hand_atlas *a, float corner)
+{
+    make_hand_atlas(a);
+    const float texels[12] = {2, 2, 18, 18, 2, 18, corner, 2, 18, 2, 18, 20 - corner};
+    for (int i = 0; i < 12; ++i)
+        a->uvs[i] = texels[i] / SIZE;
+    a->charts[0] = 0, a->charts[1] = 1;
+    a->atlas.header.triangle_count = 2;
+    a->records[0] = (gb_atlas_chart){1, 1.0f, 0.0f, 0.0f, {2, 2, 16, 16}};
+    a->records[1] = (gb_atlas_chart){1, 0.5f, 0.0f, 0.0f,
+                                     {(uint32_t)corner, 2, 18 - (uint32_t)corner,
+                                      18 - (uint32_t)corner}};
+}
+
+static void test_masks_not_rects(void)
+{
+    hand_atlas a;
+    make_nested(&a, 14); /* chart 1: x - y >= 12, its texels i - j >= 10, padded >= 6 */
+    CHECK(strcmp(check_message(&a), "") == 0,
+          "a chart inside another's rect, their padded masks apart: passes");
+    make_nested(&a, 10); /* chart 1: x - y >= 8, its texels i - j >= 8, padded >= 4 */
+    check_refused(&a, "lies in both padded masks",
+                  "a chart inside another's rect, their padded masks sharing texels: refused");
+}
+
+/* The atlas written, then its container's format version set to 1 (the
+ * header's CRC made again): refused, saying why. */
+static void test_version_one(void)
+{
+    hand_atlas a;
+    make_hand_atlas(&a);
+    const char *path = scratch_path("old.atlas");
+    gb_error error = {0};
+    if (!CHECK(gb_atlas_write(path, &a.atlas, &error) == GB_OK, "version 1: written"))
+        return;
+    FILE *file = fopen(path, "r+b");
+    unsigned char head[32 + 48 * 4];
+    size_t got = file ? fread(head, 1, sizeof head, file) : 0;
+    uint32_t version = 1, count = head[24] | head[25] << 8, crc;
+    memcpy(head + 12, &version, 4);
+    crc = (uint32_t)crc32(crc32(0, head, 28), head + 32, 48 * count);
+    memcpy(head + 28, &crc, 4);
+    int patched = got == sizeof head && count == 4 && fseek(file, 0, SEEK_SET) == 0 &&
+                  fwrite(head, 1, 32, file) == 32;
+    if (file)
+        fclose(file);
+    if (!CHECK(patched, "version 1: the version patched"))
+        return;
+    gb_atlas back = {0};
+    CHECK(gb_atlas_read(path, &back, &error) == GB_ERROR_UNSUPPORTED &&
+              strstr(error.message, "format version 1") &&
+              strstr(error.message, "make the atlas again"),
+          "a version 1 atlas is refused, saying to make it again");
+    printf("# %s\n", error.message);
+}
+
 int main(void)
 {
     scratch_create("atlas-file");
     test_round_trip();
     test_each_rule();
+    test_masks_not_rects();
+    test_version_one();
     scratch_remove();
     return tap_done();
 }

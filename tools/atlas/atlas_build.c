@@ -67,17 +67,30 @@ static gb_result parameterize_charts(builder *b, const uint32_t *grown, uint32_t
     return result;
 }
 
+/* How the charts are packed: the options', with the margin of the
+ * fixed-point rounding (atlas_build.h): a corner moves by at most half a
+ * unit of 2^-24 of the atlas's side, and the side is at most size (or
+ * GB_ATLAS_MAX_SIZE at a density asked for); twice that is the margin. */
+static gb_packing_options packing_options(const builder *b)
+{
+    double side = b->options.texels_per_unit > 0.0 ? GB_ATLAS_MAX_SIZE : b->options.size;
+    return (gb_packing_options){.texels_per_unit = b->options.texels_per_unit,
+                                .size = b->options.size,
+                                .padding = b->options.padding,
+                                .margin = side / (double)GB_OVERLAP_ONE};
+}
+
 /* The small charts joined to neighbours (merge.h) at the density of a
- * first packing (or the one asked for). */
+ * first packing by rects (or the one asked for). */
 static gb_result merge_charts(builder *b, gb_error *error)
 {
-    gb_packing_options o = {b->options.texels_per_unit, b->options.size, b->options.padding};
+    gb_packing_options o = packing_options(b);
     double density = o.texels_per_unit;
     gb_result result = GB_OK;
     if (!(density > 0.0)) {
         result = gb_packing_orient(&b->list, error);
         if (result == GB_OK)
-            result = gb_pack(&b->list, &o, &b->packing, error);
+            result = gb_pack_rects(&b->list, &o, &b->packing, error);
         density = b->packing.texels_per_unit;
         gb_packing_free(&b->packing);
     }
@@ -283,8 +296,7 @@ static gb_result repair(builder *b, const uint8_t *flag, const uint8_t *collapse
 /* Packs, places, and repairs until nothing needs it. */
 static gb_result pack_until_sound(builder *b, gb_error *error)
 {
-    gb_packing_options packing = {b->options.texels_per_unit, b->options.size,
-                                  b->options.padding};
+    gb_packing_options packing = packing_options(b);
     uint8_t *collapsed = malloc(b->scene->triangle_count);
     gb_result result = collapsed ? GB_OK : out_of_memory(error);
     for (uint32_t round = 0; result == GB_OK; ++round) {
@@ -293,6 +305,7 @@ static gb_result pack_until_sound(builder *b, gb_error *error)
                              "overlapping triangles after %d packings", GB_ATLAS_BUILD_ROUNDS);
             break;
         }
+        packing.hint = b->packing.texels_per_unit;  /* the last round's, or 0 */
         gb_packing_free(&b->packing);
         uint8_t *flag = calloc(b->list.count ? b->list.count : 1, 1);
         result = flag ? gb_packing_orient(&b->list, error) : out_of_memory(error);

@@ -4,7 +4,8 @@
  *   discs.h         each cut until it is a topological disc
  *   parameterize.h  each disc mapped by LSCM (lscm.h, CGAL), split again on a fold
  *   merge.h         small charts joined to a neighbour when that packs smaller
- *   packing.h       turned, scaled to one texel density, packed with a gutter
+ *   packing.h       turned, scaled to one texel density, packed by shape
+ *                   (chart_mask.h, occupancy.h) with a gutter
  *   overlap.h       the exact test that no two triangles overlap in UV
  * into a gb_atlas (formats/atlas.h) that gb_atlas_check accepts.
  *
@@ -12,7 +13,11 @@
  * - UVs are fixed point before they are floats: u = round(x / width *
  *   2^24) / 2^24 (x the texel coordinate), exactly a float, so that the
  *   overlap test and the sign of every triangle's area are exact, and the
- *   file holds what was tested.
+ *   file holds what was tested. Rounding moves a corner by at most half a
+ *   unit, side / 2^25 texels; the packer rasters the charts before
+ *   rounding with a margin of twice that (side / 2^24, the side being
+ *   --size, or 16384 at a density asked for), so that the file's padded
+ *   masks (formats/atlas_mask.h), rastered after, are apart too.
  * - A triangle whose area rounds to zero or below in fixed point (a tiny
  *   triangle of a large chart at a low density) leaves its chart for a
  *   chart of its own, laid flat; its old chart, split into its connected
@@ -20,8 +25,9 @@
  *   (LSCM is not injective on every disc) send the chart back to be split
  *   and mapped again. Either means packing again, until neither happens
  *   (at most GB_ATLAS_BUILD_ROUNDS rounds, else the build fails saying
- *   so). Triangles of different charts never overlap: their rects do not;
- *   should the test find such a pair the build fails.
+ *   so). Triangles of different charts never overlap: their padded masks
+ *   share no texel; should the test find such a pair the build fails. Each
+ *   round after the first tries the last round's density first.
  * - Angle distortion is measured on the UVs written (texel units): per
  *   corner |UV angle - 3-D angle|, over the corners whose two edges are
  *   at least GB_ATLAS_MEASURED_EDGE UV steps long (a step: 2^-24 of the
@@ -37,9 +43,9 @@
  *   with GB_MIN_RECT_FILL, parameterize.h) were chosen by the charts, fill
  *   ratio and distortion they give on Sponza and the staircase; the sweeps
  *   are in docs/figures.md, "atlas: the default cone and the waste limit".
- *   The fill ratio is bounded by the file's rule that charts' rects, grown
- *   by the padding, do not overlap: every chart costs its rect and a
- *   gutter of 2P around it.
+ *   The fill ratio is bounded by the file's rule that charts' padded
+ *   masks share no texel: every chart costs the texels its triangles
+ *   overlap and a gutter of P texels around them.
  *
  * On GB_OK the caller owns *atlas (gb_atlas_free). Single-threaded and
  * deterministic: the same scene and options give the same bytes (from one

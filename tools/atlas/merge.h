@@ -1,7 +1,9 @@
 /* merge.h — small charts joined to a neighbour when the join packs into
- * less atlas: a chart pays its rectangle and a gutter of `padding` texels
- * on every side (packing.h), so a chart of a few texels pays mostly
+ * less atlas: a chart pays the texels it covers and a gutter of `padding`
+ * texels around them (packing.h), so a chart of a few texels pays mostly
  * gutter, and two such charts that meet along an edge cost less as one.
+ * The cost is measured on the chart's rectangle grown by the gutter, which
+ * bounds its padded mask, at the density of a packing by rectangles.
  *
  * Decided here:
  * - a chart's cost is the area of its smallest rectangle (min_area_rect.h)

@@ -5,8 +5,10 @@
  * every unfilled texel that has filled neighbours the mean of its filled 8
  * neighbours as they were before the round. It is the rule of the
  * runtime's render into the atlas (octree_atlas_gutter.frag.glsl), so the
- * two lightmaps agree in the gutter too. As the padded chart rects do not
- * overlap (atlas.h), a gutter texel only takes values of its own chart.
+ * two lightmaps agree in the gutter too. As the charts' padded masks share
+ * no texel (atlas.h: the texels a chart's triangles overlap, grown by the
+ * padding; the reach's texels and the rounds stay within them), a gutter
+ * texel only takes values of its own chart.
  *
  * filled: width * height flags, 1 where a texel holds a value; updated.
  * Returns the number of texels filled, or -1 when out of memory.
