@@ -4,12 +4,13 @@
  *
  * A mask fits at (x, y) when its box lies in the atlas and none of its
  * texels is occupied. The search for the first place (lowest row, then
- * leftmost column) never tries a place it can rule out: a row whose
- * longest free run is shorter than the mask's longest run in that row
- * rules out its row, and at a column x where a run of the mask meets an
- * occupied texel p, every x' up to the end of the occupied run holding p
- * (q) would meet one of them too, so the next x tried is q less the run's
- * start.
+ * leftmost column) skips the places it can rule out: the mask at row y
+ * fits nowhere when a row y + r of the atlas has no free run as long as
+ * the mask's longest run in its row r; and at a column x where a run of
+ * the mask, starting at a, meets an occupied texel p, every column up to
+ * q - a, q the end of the occupied run holding p, would meet that run too,
+ * so the next column tried is q - a (the row that blocked is tried first
+ * there).
  *
  * The caller owns the occupancy (gb_occupancy_free) and the masks.
  */

@@ -11,15 +11,16 @@
  * Decided here:
  * - a chart is turned so that its rectangle's long side runs along u;
  * - a chart's rect (gb_atlas_chart.rect, padding excluded) is its extent
- *   in texels plus four times the margin, rounded up (at least 1); the
- *   chart's box starts twice the margin from the rect's top left corner
- *   (in fixed point, exactly two units at --size: as near the corner as
- *   the old rects put it, so that a needle keeps what area it had), every
- *   corner at least twice the margin inside,
- *   so that its mask, rastered with the margin before the UVs are rounded
- *   (atlas_mask.h), covers what the reader rasters after, and stays in
- *   the rect; the mask's box is the rect grown by the padding, and rects
- *   may overlap;
+ *   in texels plus four times the margin, rounded up (at least 1), and
+ *   its box starts twice the margin from the rect's top left corner, so
+ *   that every corner is at least twice the margin inside: its mask,
+ *   rastered with the margin before the UVs are rounded (atlas_mask.h),
+ *   covers what the reader rasters after and stays in the rect. At --size
+ *   twice the margin is exactly two units of the fixed point, so a
+ *   needle's lowest corner rounds to itself and the needle keeps the
+ *   area it has (a chart centred in its rect would round every corner and
+ *   collapse more needles). The mask's box is the rect grown by the
+ *   padding; rects may overlap;
  * - every chart is scaled up, the same along u and v (its angles kept),
  *   until its box fills its rect less the margins on one side: a chart of
  *   a fraction of a texel gets the texel it costs anyway (so no triangle
