@@ -36,8 +36,24 @@ static const uint64_t *row_of(const gb_occupancy *o, uint32_t y)
     return o->bits + (size_t)y * o->words;
 }
 
+/* The first column at or after from where a free run of at least length
+ * texels starts in row (the row's width when none). */
+static uint64_t free_run_from(const gb_occupancy *o, const uint64_t *row, uint64_t from,
+                              uint64_t length)
+{
+    for (uint64_t start = gb_bits_next(row, from, o->width, 0); start < o->width;) {
+        uint64_t end = gb_bits_next(row, start, start + length < o->width ? start + length
+                                                                           : o->width, 1);
+        if (end - start >= length)
+            return start;
+        start = gb_bits_next(row, end, o->width, 0);
+    }
+    return o->width;
+}
+
 /* Where row r of the mask at column x meets an occupied texel: 1 with the
- * next column at which it may not (*next), else 0. */
+ * next column at which it may not (*next: the run that met one moved to
+ * the next free run of the atlas's row long enough to hold it), else 0. */
 static int row_blocks(const gb_occupancy *o, const gb_chart_mask *m, uint32_t r, uint64_t x,
                       uint32_t y, uint64_t *next)
 {
@@ -46,7 +62,7 @@ static int row_blocks(const gb_occupancy *o, const gb_chart_mask *m, uint32_t r,
         uint64_t first = x + m->runs[2 * k], last = x + m->runs[2 * k + 1];
         uint64_t p = gb_bits_next(row, first, last + 1, 1);
         if (p <= last) {
-            *next = gb_bits_next(row, p, o->width, 0) - m->runs[2 * k];
+            *next = free_run_from(o, row, p, last - first + 1) - m->runs[2 * k];
             return 1;
         }
     }

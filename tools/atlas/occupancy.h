@@ -7,9 +7,10 @@
  * leftmost column) skips the places it can rule out: the mask at row y
  * fits nowhere when a row y + r of the atlas has no free run as long as
  * the mask's longest run in its row r; and at a column x where a run of
- * the mask, starting at a, meets an occupied texel p, every column up to
- * q - a, q the end of the occupied run holding p, would meet that run too,
- * so the next column tried is q - a (the row that blocked is tried first
+ * the mask, of n texels starting at a, meets an occupied texel p, every
+ * column before q - a, q the first column past p where n free texels
+ * start in that row of the atlas, would meet an occupied texel too, so
+ * the next column tried is q - a (the row that blocked is tried first
  * there).
  *
  * The caller owns the occupancy (gb_occupancy_free) and the masks.
