@@ -7,13 +7,16 @@
  * tilted shading normal, but ng·ω < 0: dropped), a leaf normal tilted off
  * the floor, and holes (missing leaves, leaves without VDLs):
  *
+ *  The octree is clustered for surface interpolation (floor_octree.h):
+ *  each leaf's plane is the floor's, seen along the tilted leaf normal, so
+ *  the leaves' surface factors differ a little across the floor.
  *  1. Values worked out by hand: between four lit leaves, the mean of their
- *     sums, which for a field linear across the leaves is the sum at the
- *     window's centre; at the centre of a missing leaf, the mean of its
- *     three lit neighbours (MIN_WEIGHT); no light from behind ng.
+ *     sums weighted by their surface factors; at the centre of a missing
+ *     leaf, the same over its three lit neighbours (MIN_WEIGHT); no light
+ *     from behind ng.
  *  2. Against a direct evaluation written another way (every leaf's
- *     tent weight Π (1 - |d|) over the leaves themselves, no tree walk, in
- *     double) at 2000 points of the floor.
+ *     tent weight Π (1 - |d|) and surface factor over the leaves
+ *     themselves, no tree walk, in double) at 2000 points of the floor.
  *  3. Against the GPU: the display of the floor (gbview --method octree
  *     --terms indirect, the runtime's own shader) at every pixel against
  *     Kd / π times gb_light_octree_irradiance at the pixel's world point
@@ -241,6 +244,34 @@ static void test_by_hand(const gb_light_octree *octree)
 
 /* ---- 2. a direct evaluation ----------------------------------------------- */
 
+/* Leaf l as direct() sees it at x: lit and within one edge of x on every
+ * axis (near), its tent weight Π (1 - |d|), its surface distance s. */
+typedef struct leaf_view {
+    int near;
+    double tent, surface;
+} leaf_view;
+
+static leaf_view view_leaf(const gb_light_octree *octree, uint32_t l, const float x[3],
+                           const float ng[3])
+{
+    const gb_light_octree_header *h = &octree->header;
+    const gb_light_octree_leaf *leaf = &octree->leaves[l];
+    double cell = h->size / (double)(1u << h->depth), off_plane = -leaf->plane / 32767.0;
+    uint32_t leaf_cell[3];
+    float normal[3];
+    gb_light_octree_leaf_cell(leaf, leaf_cell);
+    gb_light_octree_leaf_normal(leaf, normal);
+    leaf_view v = {leaf->vdl_count > 0, 1.0, 0.0};
+    for (int k = 0; k < 3; ++k) {
+        double d = (x[k] - (h->origin[k] + (leaf_cell[k] + 0.5) * cell)) / cell;
+        v.near &= fabs(d) < 1.0;
+        v.tent *= 1.0 - fabs(d);
+        off_plane += normal[k] * d;
+    }
+    v.surface = fabs(off_plane) + 1.0 - fabs(dot3(normal, ng));
+    return v;
+}
+
 /* Σ w sum / Σ w over the leaves with VDLs whose centre is within one leaf
  * edge of x on every axis, w = max(Π (1 - |d|), 10^-6) max(1 - (s -
  * s_min) / 0.25, 10^-3), s the distance of x from the leaf's plane in leaf
@@ -250,45 +281,25 @@ static void direct(const gb_light_octree *octree, const float x[3], const float 
                    const float ng[3], double out[3])
 {
     const gb_light_octree_header *h = &octree->header;
-    double cell = h->size / (double)(1u << h->depth), total[3] = {0, 0, 0}, weight = 0.0;
-    double *surface = malloc(h->leaf_count * sizeof *surface), nearest = INFINITY;
+    double total[3] = {0, 0, 0}, weight = 0.0, nearest = INFINITY;
+    leaf_view *views = malloc(h->leaf_count * sizeof *views);
     for (uint32_t l = 0; l < h->leaf_count; ++l) {
-        const gb_light_octree_leaf *leaf = &octree->leaves[l];
-        uint32_t leaf_cell[3];
-        float stored_normal[3];
-        gb_light_octree_leaf_cell(leaf, leaf_cell);
-        gb_light_octree_leaf_normal(leaf, stored_normal);
-        int near = leaf->vdl_count > 0;
-        double off_plane = -leaf->plane / 32767.0;
-        for (int k = 0; k < 3; ++k) {
-            double d = (x[k] - (h->origin[k] + (leaf_cell[k] + 0.5) * cell)) / cell;
-            near &= fabs(d) < 1.0;
-            off_plane += stored_normal[k] * d;
-        }
-        surface[l] = fabs(off_plane) + 1.0 - fabs(dot3(stored_normal, ng));
-        if (near)
-            nearest = fmin(nearest, surface[l]);
+        views[l] = view_leaf(octree, l, x, ng);
+        if (views[l].near)
+            nearest = fmin(nearest, views[l].surface);
     }
     for (uint32_t l = 0; l < h->leaf_count; ++l) {
         const gb_light_octree_leaf *leaf = &octree->leaves[l];
-        uint32_t leaf_cell[3];
-        float stored_normal[3];
-        gb_light_octree_leaf_cell(leaf, leaf_cell);
-        gb_light_octree_leaf_normal(leaf, stored_normal);
-        double w = 1.0;
-        int near = leaf->vdl_count > 0;
-        for (int k = 0; k < 3; ++k) {
-            double d = (x[k] - (h->origin[k] + (leaf_cell[k] + 0.5) * cell)) / cell;
-            near &= fabs(d) < 1.0;
-            w *= 1.0 - fabs(d);
-        }
-        if (!near)
+        if (!views[l].near)
             continue;
-        w = fmax(w, 1e-6) * fmax(1.0 - (surface[l] - nearest) / 0.25, 1e-3);
+        float normal[3];
+        gb_light_octree_leaf_normal(leaf, normal);
+        double w = fmax(views[l].tent, 1e-6) *
+                   fmax(1.0 - (views[l].surface - nearest) / 0.25, 1e-3);
         for (uint32_t v = leaf->first_vdl; v < leaf->first_vdl + leaf->vdl_count; ++v) {
             float d[3];
             gb_photon_unpack_direction(octree->vdls[v].direction, d);
-            double c = dot3(n, d) / fmax(fabs(dot3(stored_normal, d)), 0.25);
+            double c = dot3(n, d) / fmax(fabs(dot3(normal, d)), 0.25);
             if (c > 0.0 && dot3(ng, d) > 0.0)
                 for (int k = 0; k < 3; ++k)
                     total[k] += w * octree->vdls[v].irradiance[k] * c;
@@ -297,7 +308,7 @@ static void direct(const gb_light_octree *octree, const float x[3], const float 
     }
     for (int k = 0; k < 3; ++k)
         out[k] = weight > 0.0 ? total[k] / weight : 0.0;
-    free(surface);
+    free(views);
 }
 
 static void test_direct(const gb_light_octree *octree)
