@@ -751,6 +751,10 @@ static void test_corrupt(const gb_light_octree *good)
     bad.header.depth = 11;
     CHECK(gb_light_octree_check(&bad, "x", &error) == GB_ERROR_FORMAT, "depth 11 refused");
     RESET();
+    bad.header.interpolation = GB_LIGHT_OCTREE_SURFACE + 1;
+    CHECK(gb_light_octree_check(&bad, "x", &error) == GB_ERROR_FORMAT,
+          "an interpolation other than trilinear or surface refused");
+    RESET();
     leaves[1].cell ^= 1;
     CHECK(gb_light_octree_check(&bad, "x", &error) == GB_ERROR_FORMAT,
           "a leaf naming another cell refused");
