@@ -20,18 +20,19 @@
 set -e
 report=$1 bin=$2 sweep=$3
 cd "$report"
-header="scene,scene_hash,method,point,resolution,frames,spp,vplspp,navg,tiling,bins,bounces,vpls,visibility,voxels,photons,depth,vdls,bake,bake_wall_s,bake_cpu_s,voxelize_wall_s,voxelize_cpu_s,voxelize_rss_kib,thin_wall_s,thin_cpu_s,thin_rss_kib,segment_wall_s,segment_cpu_s,segment_rss_kib,photons_wall_s,photons_cpu_s,photons_rss_kib,cluster_wall_s,cluster_cpu_s,cluster_rss_kib,bake_bytes,gbview_rss_kib,frame_ms,frame_first_ms,passes_ms,full_ref,full_rel_mse,full_mse_srgb8,full_psnr,full_max_error,full_floor_rel_mse,full_floor_mse_srgb8,full_within_2x_floor,own_ref,own_rel_mse,own_mse_srgb8,own_psnr,own_max_error,own_floor_rel_mse,own_floor_mse_srgb8,own_within_2x_floor,time_ms,status,full_rel_mse_trimmed,own_rel_mse_trimmed,direct_pass_rel_mse,direct_share,tolerance"
+header="scene,scene_hash,method,point,resolution,frames,spp,vplspp,navg,tiling,bins,bounces,vpls,visibility,voxels,photons,depth,vdls,bake,bake_wall_s,bake_cpu_s,voxelize_wall_s,voxelize_cpu_s,voxelize_rss_kib,thin_wall_s,thin_cpu_s,thin_rss_kib,segment_wall_s,segment_cpu_s,segment_rss_kib,photons_wall_s,photons_cpu_s,photons_rss_kib,cluster_wall_s,cluster_cpu_s,cluster_rss_kib,bake_bytes,gbview_rss_kib,frame_ms,frame_first_ms,passes_ms,full_ref,full_rel_mse,full_mse_srgb8,full_psnr,full_max_error,full_floor_rel_mse,full_floor_mse_srgb8,full_within_2x_floor,own_ref,own_rel_mse,own_mse_srgb8,own_psnr,own_max_error,own_floor_rel_mse,own_floor_mse_srgb8,own_within_2x_floor,time_ms,status,full_rel_mse_trimmed,own_rel_mse_trimmed,direct_pass_rel_mse,direct_share,tolerance,interpolation"
 # Columns (results.csv): 42 full_ref, 43 full_rel_mse, 51 own_rel_mse, 58
 # time_ms, 59 status, 60 full_rel_mse_trimmed, 61 own_rel_mse_trimmed, 62
 # direct_pass_rel_mse (the direct points': bench/report_point.sh; the others'
 # copied here from the direct point of the same full reference, the first in
-# the sweep), 63 direct_share = 62 / 43, 64 tolerance (octree: cluster
-# --tolerance; the last column of points.tsv).
+# the sweep), 63 direct_share = 62 / 43, 64 tolerance and 65 interpolation
+# (octree: cluster --tolerance and --interpolation; the last two columns of
+# points.tsv).
 {
     echo "$header"
     cut -f 1 points.tsv | while read -r id; do cat "points/$id.csv"; done
 } | awk -F, -v OFS=, '
-    BEGIN { while ((getline line < "points.tsv") > 0) { n = split(line, f, "\t"); tolerance[f[1]] = f[n] } }
+    BEGIN { while ((getline line < "points.tsv") > 0) { n = split(line, f, "\t"); tolerance[f[1]] = f[n - 1]; interpolation[f[1]] = f[n] } }
     { row[NR] = $0 }
     NR > 1 && $3 == "direct" && $59 == "ok" && !($42 in pass) { pass[$42] = $62 }
     END {
@@ -40,6 +41,7 @@ header="scene,scene_hash,method,point,resolution,frames,spp,vplspp,navg,tiling,b
             if ($59 == "ok" && $62 == "" && ($42 in pass)) $62 = pass[$42]
             $63 = ($62 != "" && $43 + 0 > 0) ? sprintf("%.4g", $62 / $43) : ""
             $64 = tolerance[$4]
+            $65 = interpolation[$4]
             print }
     }' >results.csv.tmp
 
@@ -65,7 +67,7 @@ settings='function settings(m,   s) {
     else if (m == "flc-iv") s = "navg=" $9 " frames=" $6 ($10 + 0 ? " tiling=" $10 : "") " bins=" $11
     else if (m == "implicit") s = "bins=" $11 " bounces=" $12
     else if (m == "topo") s = "vpls=" $13 " visibility=" $14 " voxels=" $15
-    else if (m == "octree") s = "photons=" $16 " depth=" $17 " vdls=" $18 " tolerance=" $64
+    else if (m == "octree") s = "photons=" $16 " depth=" $17 " vdls=" $18 " tolerance=" $64 ($65 == "surface" ? " interpolation=surface" : "")
     else s = "-"
     return s " " $5
 }'

@@ -8,7 +8,8 @@
 # (compared with OWNREF, the method's own reference); direct's own
 # comparison is its frame against reference --mode direct. Writes
 # REPORT/points/ID.csv (one row, the columns of bench/report_finish.sh's
-# header but the last, direct_share, which report_finish.sh adds),
+# header but the last three, direct_share, tolerance and interpolation,
+# which report_finish.sh adds),
 # REPORT/img/ID.png (the frame), ID-heat.png (imgdiff --heatmap against
 # FULLREF) and appends "render ID" to REPORT/render.log.
 #

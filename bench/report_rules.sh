@@ -146,7 +146,7 @@ $1 == "set" {
     pointfiles = pointfiles " $(REPORT)/points/" id ".csv"
     line = id "\t" name "\t" file "\t" method
     for (i = 1; i <= 14; i++) line = line "\t" (index(common own[method], " " order[i] " ") ? p[order[i]] : "")
-    print line "\t" (bake == "" ? "" : bake) "\t" full "\t" ownref "\t" (method == "octree" ? p["tolerance"] : "") > points
+    print line "\t" (bake == "" ? "" : bake) "\t" full "\t" ownref "\t" (method == "octree" ? p["tolerance"] : "") "\t" (method == "octree" ? p["interpolation"] : "") > points
     npoints++
 }
 function reference(name, file, res, mode, spp, vpls, what,    id, flags, s) {

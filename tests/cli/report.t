@@ -174,6 +174,16 @@ echo "# Cornell octree .lot bytes: tolerance 0.2 $chosen, 0 (K_max always) $alwa
     awk -v a="$chosen" -v b="$always" 'BEGIN { exit !(a + 0 > 0 && a + 0 < b + 0) }'
 ok $? "octree rows carry their tolerance; 0.2 makes a smaller .lot than K_max always"
 
+# cluster --interpolation surface against trilinear, the same photons and
+# settings: make report's sweep measures it 0.8x trilinear's error on the
+# Cornell box (docs/figures.md, "light octree: surface interpolation").
+trilinear=$(err cornell octree -t0.2-64x64 own_rel_mse)
+surface=$(err cornell octree -t0.2-surface- own_rel_mse)
+echo "# Cornell octree against its own reference: trilinear $trilinear, surface $surface"
+[ "$(err cornell octree -t0.2-surface- interpolation)" = surface ] &&
+    [ "$(err cornell octree -t0.2-64x64 interpolation)" = trilinear ] && below "$surface" "$trilinear"
+ok $? "octree rows carry their interpolation; surface below trilinear on the Cornell box"
+
 direct=$(err cornell direct . full_rel_mse)
 octree=$(err cornell octree -t0.2- full_rel_mse)
 implicit=$(err cornell implicit . full_rel_mse)
