@@ -34,16 +34,15 @@ float gb_light_octree_vdl_gain(const float n[3], const float leaf_normal[3], con
 }
 
 /* leaf_light: the sum of the leaf's VDLs, E max(0, n.w) / max(|nl.w|,
- * MIN_COS), those from behind ng dropped; 0 (and sum 0) for no leaf or a
- * leaf without VDLs, else 1. */
+ * MIN_COS), those from behind ng dropped, and the leaf's normal nl; 0 (and
+ * sum 0) for no leaf or a leaf without VDLs, else 1. */
 static int leaf_light(const gb_light_octree *octree, uint32_t index, const float n[3],
-                      const float ng[3], float sum[3])
+                      const float ng[3], float sum[3], float leaf_normal[3])
 {
     sum[0] = sum[1] = sum[2] = 0.0f;
     if (index == GB_LIGHT_OCTREE_NONE || octree->leaves[index].vdl_count == 0)
         return 0;
     const gb_light_octree_leaf *leaf = &octree->leaves[index];
-    float leaf_normal[3];
     gb_light_octree_leaf_normal(leaf, leaf_normal);
     for (uint32_t i = leaf->first_vdl; i < leaf->first_vdl + leaf->vdl_count; ++i) {
         const gb_light_octree_vdl *vdl = &octree->vdls[i];
@@ -61,11 +60,9 @@ static int leaf_light(const gb_light_octree *octree, uint32_t index, const float
  * its distance from the leaf's plane plus 1 - |n_leaf.ng| (a leaf of
  * another orientation is another surface); offset = x - the leaf's centre
  * in cell edges. */
-static float surface_distance(const gb_light_octree_leaf *leaf, const float offset[3],
-                              const float ng[3])
+static float surface_distance(const gb_light_octree_leaf *leaf, const float leaf_normal[3],
+                              const float offset[3], const float ng[3])
 {
-    float leaf_normal[3];
-    gb_light_octree_leaf_normal(leaf, leaf_normal);
     float plane = (float)leaf->plane / GB_LIGHT_OCTREE_PLANE_ONE;
     return fabsf(gb_dot3(leaf_normal, offset) - plane) +
            (1.0f - fabsf(gb_dot3(leaf_normal, ng)));
@@ -93,7 +90,7 @@ void gb_light_octree_irradiance(const gb_light_octree *octree, const float x[3],
     int lit[8];
     for (int c = 0; c < 8; ++c) {
         int o[3] = {c & 1, (c >> 1) & 1, c >> 2}, cell[3];
-        float t = 1.0f, offset[3];
+        float t = 1.0f, offset[3], leaf_normal[3];
         for (int k = 0; k < 3; ++k) {
             t *= o[k] ? f[k] : 1.0f - f[k];
             cell[k] = (int)base[k] + o[k];
@@ -101,10 +98,10 @@ void gb_light_octree_irradiance(const gb_light_octree *octree, const float x[3],
         }
         w[c] = fmaxf(t, GB_LIGHT_OCTREE_MIN_WEIGHT);
         uint32_t index = find_leaf(octree, cell);
-        lit[c] = leaf_light(octree, index, n, ng, sums[c]);
+        lit[c] = leaf_light(octree, index, n, ng, sums[c], leaf_normal);
         distance[c] = 0.0f;
         if (lit[c] && h->interpolation == GB_LIGHT_OCTREE_SURFACE)
-            distance[c] = surface_distance(&octree->leaves[index], offset, ng);
+            distance[c] = surface_distance(&octree->leaves[index], leaf_normal, offset, ng);
         if (lit[c])
             nearest = fminf(nearest, distance[c]);
     }

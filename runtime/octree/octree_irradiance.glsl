@@ -35,14 +35,15 @@ uint find_leaf(ivec3 cell) {
 }
 #include "runtime/gbuffer_octahedral.glsl"
 #include "runtime/octree/octree_vdl_direction.glsl"
-// Sum of the leaf's VDLs, E max(0, n.w) / max(|nl.w|, MIN_COS) (octree.h);
-// false for no leaf or no VDL.
-bool leaf_light(uint leaf, vec3 n, vec3 ng, out vec3 sum) {
+// Sum of the leaf's VDLs, E max(0, n.w) / max(|nl.w|, MIN_COS) (octree.h),
+// and the leaf's normal nl; false for no leaf or no VDL.
+bool leaf_light(uint leaf, vec3 n, vec3 ng, out vec3 sum, out vec3 nl) {
     sum = vec3(0.0);
+    nl = vec3(0.0);
     if (leaf == NONE || (leaves[4u * leaf + 2u] & 0xffffu) == 0u)
         return false;
     uint first = leaves[4u * leaf + 1u], end = first + (leaves[4u * leaf + 2u] & 0xffffu);
-    vec3 nl = vdl_direction(leaves[4u * leaf]);
+    nl = vdl_direction(leaves[4u * leaf]);
     for (uint i = first; i < end; ++i) {
         vec3 w = vdl_direction(vdls[4u * i + 3u]);
         float c = dot(n, w) / max(abs(dot(nl, w)), MIN_COS);
@@ -55,8 +56,7 @@ bool leaf_light(uint leaf, vec3 n, vec3 ng, out vec3 sum) {
 // How far x is from the leaf's surface in cell edges: its distance from
 // the leaf's plane plus 1 - |n_leaf.ng|; offset = x - the leaf's centre in
 // cell edges (gb_light_octree_irradiance's surface_distance).
-float surface_distance(uint leaf, vec3 offset, vec3 ng) {
-    vec3 nl = vdl_direction(leaves[4u * leaf]);
+float surface_distance(uint leaf, vec3 nl, vec3 offset, vec3 ng) {
     float plane = float(int(leaves[4u * leaf + 2u]) >> 16) / PLANE_ONE;
     return abs(dot(nl, offset) - plane) + (1.0 - abs(dot(nl, ng)));
 }
@@ -81,8 +81,9 @@ vec3 interpolate(vec3 x, vec3 n, vec3 ng) {
         vec3 t = mix(1.0 - f, f, vec3(o));
         w[c] = max(t.x * t.y * t.z, MIN_WEIGHT);
         uint leaf = find_leaf(ivec3(base) + o);
-        lit[c] = leaf_light(leaf, n, ng, sums[c]);
-        distance[c] = lit[c] && surface_interpolation ? surface_distance(leaf, f - vec3(o), ng)
+        vec3 nl;
+        lit[c] = leaf_light(leaf, n, ng, sums[c], nl);
+        distance[c] = lit[c] && surface_interpolation ? surface_distance(leaf, nl, f - vec3(o), ng)
                                                       : 0.0;
         if (lit[c])
             nearest = min(nearest, distance[c]);

@@ -14,7 +14,10 @@
  *     lower floor; the plane rule gives 1 within the other surface's
  *     MIN_SURFACE share, (0.6 + 0.4e-3 x 10) / (0.6 + 0.4e-3) = 1.006; an
  *     octree clustered for trilinear interpolation gives 4.6.
- *  2. One tilted plane through many leaves (y = 0.5 x + 1.2), irradiance
+ *  2. Another orientation on the same plane: a wall's leaves in layer 2
+ *     whose plane holds the lower floor's point, told apart by the normal
+ *     term alone: 0.6 / (0.6 + 0.4e-3) where trilinear gives 0.6.
+ *  3. One tilted plane through many leaves (y = 0.5 x + 1.2), irradiance
  *     linear in the leaf's centre: at points of the plane every leaf's
  *     plane holds the point (within the 16-bit rounding of normal and
  *     offset), so the result is plain trilinear interpolation, computed
@@ -50,11 +53,13 @@ typedef struct hand_octree {
 } hand_octree;
 
 /* Every cell a leaf (preorder: the root, then its 8 children in order,
- * each the parent of 8 leaves), leaf (x, y, z) as spec says. */
-static void hand_octree_make(hand_octree *o, leaf_spec (*spec)(const uint32_t cell[3]))
+ * each the parent of 8 leaves), leaf (x, y, z) as spec says, a lit one's
+ * VDL from along its normal; checked as the reader checks it (what:
+ * the test's name). The caller frees it. */
+static hand_octree *hand_octree_make(leaf_spec (*spec)(const uint32_t cell[3]), const char *what)
 {
-    memset(o, 0, sizeof *o);
-    uint32_t leaf = 0;
+    hand_octree *o = calloc(1, sizeof *o);
+    uint32_t leaf = 0, next = 0;
     for (uint32_t c = 0; c < 8; ++c) {
         o->nodes[0].child[c] = 1 + c;
         for (uint32_t d = 0; d < 8; ++d) {
@@ -65,24 +70,15 @@ static void hand_octree_make(hand_octree *o, leaf_spec (*spec)(const uint32_t ce
             l->normal = gb_photon_pack_direction(s.normal);
             l->plane = (int16_t)lrint(s.offset * GB_LIGHT_OCTREE_PLANE_ONE);
             l->cell = gb_light_octree_pack_cell(cell);
-            l->first_vdl = leaf;
+            l->first_vdl = next;
             l->vdl_count = s.lit ? 1 : 0;
+            if (s.lit) {
+                gb_light_octree_vdl *v = &o->vdls[next++];
+                v->irradiance[0] = v->irradiance[1] = v->irradiance[2] = s.irradiance;
+                v->direction = l->normal;
+            }
             o->nodes[1 + c].child[d] = leaf++;
         }
-    }
-    /* VDLs follow the leaves: those of unlit leaves are left out */
-    uint32_t next = 0;
-    for (uint32_t i = 0; i < CELLS; ++i) {
-        gb_light_octree_leaf *l = &o->leaves[i];
-        uint32_t cell[3];
-        gb_light_octree_leaf_cell(l, cell);
-        leaf_spec s = spec(cell);
-        l->first_vdl = next;
-        if (!s.lit)
-            continue;
-        gb_light_octree_vdl *v = &o->vdls[next++];
-        v->irradiance[0] = v->irradiance[1] = v->irradiance[2] = s.irradiance;
-        v->direction = l->normal;
     }
     o->octree.header = (gb_light_octree_header){
         .depth = DEPTH, .node_count = 9, .leaf_count = CELLS, .vdl_count = next,
@@ -92,6 +88,11 @@ static void hand_octree_make(hand_octree *o, leaf_spec (*spec)(const uint32_t ce
     o->octree.nodes = o->nodes;
     o->octree.leaves = o->leaves;
     o->octree.vdls = o->vdls;
+    gb_error error;
+    char text[96];
+    snprintf(text, sizeof text, "%s: the hand-made octree passes the reader's checks", what);
+    CHECK(gb_light_octree_check(&o->octree, what, &error) == GB_OK, text);
+    return o;
 }
 
 /* ---- 1. two surfaces across a leaf boundary ------------------------------- */
@@ -110,11 +111,7 @@ static leaf_spec two_floors(const uint32_t cell[3])
 
 static void test_two_surfaces(void)
 {
-    hand_octree *o = calloc(1, sizeof *o);
-    gb_error error;
-    hand_octree_make(o, two_floors);
-    CHECK(gb_light_octree_check(&o->octree, "two floors", &error) == GB_OK,
-          "two floors: the hand-made octree passes the reader's checks");
+    hand_octree *o = hand_octree_make(two_floors, "two floors");
     const float up[3] = {0.0f, 1.0f, 0.0f};
     const float lower[3] = {1.5f, (float)LOWER_FLOOR, 2.3f}, upper[3] = {2.2f, (float)UPPER_FLOOR, 1.5f};
     float e[3], f[3];
@@ -137,7 +134,37 @@ static void test_two_surfaces(void)
     free(o);
 }
 
-/* ---- 2. one tilted plane -------------------------------------------------- */
+/* ---- 2. another orientation across a leaf boundary ------------------------ */
+
+/* The lower floor of 1 in layer 1; in layer 2 leaves of a wall facing +x
+ * whose plane, x = 1.5, holds the point below: only the normal term,
+ * 1 - |n_leaf.ng|, tells them from the floor. Their VDL, along +x, gives
+ * a floor point nothing, so trilinear alone reads 0.6 x 1 + 0.4 x 0. */
+static leaf_spec floor_and_wall(const uint32_t cell[3])
+{
+    leaf_spec s = two_floors(cell);
+    if (cell[1] == 2) {
+        s.normal[0] = 1.0f, s.normal[1] = 0.0f;
+        s.offset = 1.5 - (cell[0] + 0.5);
+    }
+    return s;
+}
+
+static void test_other_orientation(void)
+{
+    hand_octree *o = hand_octree_make(floor_and_wall, "floor and wall");
+    const float up[3] = {0.0f, 1.0f, 0.0f}, point[3] = {1.5f, (float)LOWER_FLOOR, 2.3f};
+    float e[3];
+    gb_light_octree_irradiance(&o->octree, point, up, up, e);
+    double expected = 0.6 / (0.6 + 0.4e-3);
+    printf("# under the wall's leaves: %.6g (trilinear alone 0.6, expected %.6g)\n", e[1],
+           expected);
+    CHECK(fabs(e[1] - expected) < 1e-3 * expected,
+          "leaves of another orientation on the point's plane weigh MIN_SURFACE");
+    free(o);
+}
+
+/* ---- 3. one tilted plane -------------------------------------------------- */
 
 /* y = SLOPE x + HEIGHT */
 #define SLOPE 0.5
@@ -194,11 +221,7 @@ static double trilinear(const hand_octree *o, const double x[3])
 
 static void test_tilted_plane(void)
 {
-    hand_octree *o = calloc(1, sizeof *o);
-    gb_error error;
-    hand_octree_make(o, tilted_plane);
-    CHECK(gb_light_octree_check(&o->octree, "tilted plane", &error) == GB_OK,
-          "tilted plane: the hand-made octree passes the reader's checks");
+    hand_octree *o = hand_octree_make(tilted_plane, "tilted plane");
     float n[3];
     plane_normal(n);
     double worst = 0.0;
@@ -225,6 +248,7 @@ static void test_tilted_plane(void)
 int main(void)
 {
     test_two_surfaces();
+    test_other_orientation();
     test_tilted_plane();
     return tap_done();
 }

@@ -350,8 +350,9 @@ static int pixel_point(const gb_camera_frame *frame, int px, int py, float x[3])
  * the ray's, float rounding of the same sums). */
 #define GPU_TOLERANCE 1e-4
 
-static void test_gpu(const gb_scene *scene, const gb_light_octree *octree)
+static void test_gpu(const gb_scene *scene, const gb_light_octree *octree, const char *what)
 {
+    char text[160];
     gb_image image;
     gb_camera_frame frame;
     gb_error error;
@@ -380,8 +381,29 @@ static void test_gpu(const gb_scene *scene, const gb_light_octree *octree)
            "difference %.3g (darkest expected %.4g)\n", compared, worst, lowest);
     CHECK(compared == FLOOR_IMAGE_SIZE * FLOOR_IMAGE_SIZE, "every pixel sees the floor");
     CHECK(lowest > 0.0, "no pixel expects black");
-    CHECK(worst < GPU_TOLERANCE, "every pixel: Kd/pi x gb_light_octree_irradiance within 10^-4");
+    snprintf(text, sizeof text, "%s: every pixel: Kd/pi x gb_light_octree_irradiance within 10^-4",
+             what);
+    CHECK(worst < GPU_TOLERANCE, text);
     gb_image_free(&image);
+}
+
+/* The same with every other leaf's normal turned 60 degrees about z: the
+ * surface factor's normal term, 1 - |n_leaf.ng|, now differs between
+ * leaves (with one normal it is the same for all and cancels). The leaves
+ * are put back as they were. */
+static void test_gpu_two_orientations(floor_octree *h, const gb_scene *scene,
+                                      const gb_light_octree *octree)
+{
+    const float turned[3] = {0.8660254f, 0.5f, 0.0f};
+    uint32_t kept[FLOOR_GRID * FLOOR_GRID];
+    for (uint32_t i = 0; i < h->leaf_count; ++i) {
+        kept[i] = h->leaves[i].normal;
+        if (i % 2)
+            h->leaves[i].normal = gb_photon_pack_direction(turned);
+    }
+    test_gpu(scene, octree, "leaves of two orientations");
+    for (uint32_t i = 0; i < h->leaf_count; ++i)
+        h->leaves[i].normal = kept[i];
 }
 
 /* ---- 4. the lightmap of a hand-made atlas --------------------------------- */
@@ -604,7 +626,8 @@ int main(void)
     CHECK_EQ_INT(h->leaf_count, FLOOR_GRID * FLOOR_GRID - 2, "two leaves missing");
     test_by_hand(&octree);
     test_direct(&octree);
-    test_gpu(&scene, &octree);
+    test_gpu(&scene, &octree, "one leaf normal");
+    test_gpu_two_orientations(h, &scene, &octree);
     floor_atlas atlas;
     gb_image lightmap = {0};
     floor_atlas_make(&scene, SQUARE, PADDING, 1, &atlas);
