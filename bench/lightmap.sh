@@ -2,7 +2,8 @@
 # lightmap.sh — the lightmap's error against its bake's CPU time (issue 49),
 # on LIGHTMAP_SCENES (default McGuire's Cornell box) at LIGHTMAP_SIZE
 # (default 512: atlas --size) from LIGHTMAP_PHOTONS photons (default 1 M;
-# cluster's defaults).
+# cluster's defaults, or LIGHTMAP_CLUSTER_FLAGS, e.g. "--interpolation
+# surface").
 #
 # Rows: lightmap --quality Q for Q in LIGHTMAP_QUALITIES (default 0 16 64
 # 256; 0 reads the octree at the texel, Q > 0 is the final gather reading
@@ -56,7 +57,7 @@ for scene in $LIGHTMAP_SCENES; do
     name=$(basename "$scene" .scene)
     b=$dir/$name
     timed "$b.photons.time" "$GB_BIN/photons" -q -n "$LIGHTMAP_PHOTONS" "$scene" -o "$b.phot"
-    timed "$b.cluster.time" "$GB_BIN/cluster" -q "$scene" "$b.phot" -o "$b.lot"
+    timed "$b.cluster.time" "$GB_BIN/cluster" -q $LIGHTMAP_CLUSTER_FLAGS "$scene" "$b.phot" -o "$b.lot"
     timed "$b.atlas.time" "$GB_BIN/atlas" -q --size "$LIGHTMAP_SIZE" "$scene" -o "$b.atlas"
     octree_cpu=$(cat "$b.photons.time" "$b.cluster.time" "$b.atlas.time" |
         awk '{ s += $1 + $2 } END { printf "%.2f", s }')
