@@ -68,22 +68,25 @@ static int trace(const gb_final_gather *gather, const gb_texel_surface *p, gb_ve
                                &state->rays);
 }
 
-void gb_final_gather_irradiance(const gb_final_gather *gather, const gb_texel_surface *p,
-                                float offset, int rays, gb_path_state *state, float out[3])
+float gb_final_gather_irradiance(const gb_final_gather *gather, const gb_texel_surface *p,
+                                 float offset, int rays, gb_path_state *state, float out[3])
 {
     lattice l = lattice_make(p->n, rays, state);
     gb_vec3 origin = gb_vec3_madd(p->x, p->ng, offset);
     gb_vec3 sum = {0.0f, 0.0f, 0.0f};
+    double inverse_distances = 0.0;
     for (int j = 0; j < rays; ++j) {
         gb_vec3 dir = lattice_direction(&l, j);
         gb_hit hit;
         if (!trace(gather, p, origin, dir, &hit, state))
             continue;
+        inverse_distances += 1.0 / fmax(hit.t, 1e-30);
         gb_surface y;
         gb_surface_at_hit(gather->paths.surfaces, &hit, dir, &y);
         sum = gb_vec3_add(sum, light_from(gather, &y, state));
     }
     gb_vec3_store(gb_vec3_scale(sum, PI / (float)rays), out);
+    return inverse_distances > 0.0 ? (float)((double)rays / inverse_distances) : INFINITY;
 }
 
 int gb_final_gather_openness(const gb_final_gather *gather, const gb_texel_surface *p,

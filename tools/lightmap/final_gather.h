@@ -46,8 +46,12 @@ typedef struct gb_final_gather {
 } gb_final_gather;
 
 /* The irradiance E (W/m^2, linear RGB) at p from `rays` directions, which
- * leave from p->x moved offset along p->ng. */
-void gb_final_gather_irradiance(const gb_final_gather *gather, const gb_texel_surface *p,
+ * leave from p->x moved offset along p->ng. Returns the harmonic mean of
+ * the distances the rays travel to the scene, rays / Σ 1/t (a ray that
+ * meets nothing counts as infinitely long; INFINITY when none meets it):
+ * the scale over which E changes (Ward, Rubinstein and Clear 1988's R_i,
+ * texel_interpolation.h). */
+float gb_final_gather_irradiance(const gb_final_gather *gather, const gb_texel_surface *p,
                                 float offset, int rays, gb_path_state *state, float out[3]);
 
 /* Open minus closed directions of `rays` at p (Embree's closest hits only). */

@@ -86,6 +86,9 @@ static gb_result bake_gathered_texels(const bake_job *job, const gb_lightmap_opt
         .octree = options->paths ? NULL : job->octree,
         .rays = options->quality,
         .octree_bounces = options->bounces > 0 ? options->bounces : 1,
+        .accuracy = options->accuracy == 0.0  ? GB_LIGHTMAP_ACCURACY
+                    : options->accuracy < 0.0 ? 0.0
+                                              : options->accuracy,
         .seed = options->seed,
         .threads = options->threads,
         .progress = options->progress,

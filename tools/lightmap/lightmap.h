@@ -45,7 +45,8 @@
  * which random streams a texel draws from).
  *
  * The caller owns the scene, the atlas, the octree (checked against the
- * scene before the call) and the image it gets (gb_image_free).
+ * scene before the call; NULL with options.paths, which reads none) and
+ * the image it gets (gb_image_free).
  */
 #ifndef GB_LIGHTMAP_H
 #define GB_LIGHTMAP_H
@@ -59,12 +60,16 @@
 #include "result.h"
 #include "scene.h"
 
+#define GB_LIGHTMAP_ACCURACY 0.2
+
 typedef struct gb_lightmap_options {
     int threads;                    /* 0: every core */
     int quality;                    /* final gather rays per texel; 0: none */
     int paths;                      /* the gathers trace paths on, the octree unused */
     int bounces;                    /* reflections a gather traces before it reads the
                                        octree; 0: 1, the final gather */
+    double accuracy;                /* Ward's a of the gathers (texel_interpolation.h); 0:
+                                       GB_LIGHTMAP_ACCURACY, < 0: every texel gathers */
     uint64_t seed;                  /* of the gathers' random streams */
     gb_progress_callback progress;  /* may be NULL */
     void *progress_user;

@@ -21,6 +21,7 @@
 
 static const char usage[] =
     "usage: lightmap [options] SCENE NAME.atlas NAME.lot -o OUT.exr [--glb OUT.glb]\n"
+    "       lightmap [options] --paths --quality N SCENE NAME.atlas -o OUT.exr\n"
     "Bakes the light octree NAME.lot of SCENE into its atlas NAME.atlas\n"
     "(vivianloc-2007 4.2.3): per texel, the indirect irradiance on the plane of\n"
     "the triangle nearest the texel's centre, within sqrt 2 texels (W/m^2,\n"
@@ -41,7 +42,11 @@ typedef struct arguments {
     const char *output, *glb, *scene, *atlas, *octree;
 } arguments;
 
-enum { OPTION_GLB = 256, OPTION_QUALITY, OPTION_PATHS, OPTION_BOUNCES };
+/* A macro's value as a string literal, for the help's defaults. */
+#define TEXT_OF(value) #value
+#define DEFAULT_TEXT(macro) TEXT_OF(macro)
+
+enum { OPTION_GLB = 256, OPTION_QUALITY, OPTION_PATHS, OPTION_BOUNCES, OPTION_ACCURACY };
 
 static const gb_cli_entry entries[] = {
     GB_CLI_OPTION('o', "output", "FILE", "the lightmap to write (.exr)"),
@@ -59,6 +64,13 @@ static const gb_cli_entry entries[] = {
                   "read the octree, 1..16 (default 1: the final\n"
                   "gather; more push the octree's errors further\n"
                   "away, for more noise and time)"),
+    GB_CLI_OPTION(OPTION_ACCURACY, "accuracy", "A",
+                  "a texel between gathered ones takes their mean\n"
+                  "when each is within A of it by Ward's error: its\n"
+                  "distance over that gather's mean distance to the\n"
+                  "scene, plus sqrt(1 - n.n'); 0..1 (default "
+                  DEFAULT_TEXT(GB_LIGHTMAP_ACCURACY) "; 0:\n"
+                  "every texel gathers)"),
     GB_CLI_SEED("N", "the gathers' random streams (default 0)"),
     GB_CLI_THREADS(256, NULL),
     GB_CLI_STATS("print texels, seconds, bytes and the PNG's error"),
@@ -81,6 +93,9 @@ static int parse_option(int option, const char *text, void *context)
     case OPTION_PATHS: a->lightmap.paths = 1; return 0;
     case OPTION_BOUNCES:
         return gb_cli_int(command.tool, "bounces", text, 1, 16, &a->lightmap.bounces);
+    case OPTION_ACCURACY:
+        return gb_cli_number_keep_zero(command.tool, "accuracy", text, 0.0, 1.0,
+                                       &a->lightmap.accuracy);
     default: abort();   /* an entry with no case here */
     }
 }
@@ -89,16 +104,18 @@ static int parse_option(int option, const char *text, void *context)
 static int check_operands(int count, char **operands, void *context)
 {
     arguments *a = context;
-    if (!a->output || count != 3)
+    if (!a->output || count < 2 + !a->lightmap.paths || count > 3)
         return gb_cli_usage_error(command.tool, "expected SCENE NAME.atlas NAME.lot and -o "
-                                              "OUT.exr");
+                                              "OUT.exr (no NAME.lot needed with --paths)");
     a->scene = operands[0];
     a->atlas = operands[1];
-    a->octree = operands[2];
+    a->octree = count == 3 ? operands[2] : NULL;
     a->lightmap.threads = a->shared.threads;
     a->lightmap.seed = a->shared.seed;
-    if ((a->lightmap.paths || a->lightmap.bounces) && a->lightmap.quality == 0)
-        return gb_cli_usage_error(command.tool, "--paths and --bounces need --quality N > 0");
+    if ((a->lightmap.paths || a->lightmap.bounces || a->lightmap.accuracy != 0.0) &&
+        a->lightmap.quality == 0)
+        return gb_cli_usage_error(command.tool, "--paths, --bounces and --accuracy need "
+                                                "--quality N > 0");
     if (a->lightmap.paths && a->lightmap.bounces)
         return gb_cli_usage_error(command.tool, "--bounces reads the octree: not with --paths");
     return GB_CLI_GO_ON;
@@ -153,9 +170,9 @@ static gb_result read_inputs(const arguments *a, gb_scene *scene, gb_atlas *atla
     if (result == GB_OK)
         result = gb_atlas_check_scene(atlas, scene->hash, scene->triangle_count, a->atlas,
                                       error);
-    if (result == GB_OK)
+    if (result == GB_OK && a->octree)
         result = gb_light_octree_read(a->octree, octree, error);
-    if (result == GB_OK)
+    if (result == GB_OK && a->octree)
         result = gb_light_octree_check_scene(octree, scene->hash, a->octree, error);
     return result;
 }
@@ -167,7 +184,8 @@ static gb_result bake(arguments *a, const gb_scene *scene, const gb_atlas *atlas
     gb_progress progress;
     gb_progress_begin_for(&progress, command.tool, a->shared.quiet, &a->lightmap.progress,
                           &a->lightmap.progress_user);
-    gb_result result = gb_lightmap_bake(scene, atlas, octree, &a->lightmap, image, stats, error);
+    gb_result result = gb_lightmap_bake(scene, atlas, a->octree ? octree : NULL, &a->lightmap,
+                                        image, stats, error);
     gb_progress_end(&progress);
     return result;
 }
@@ -184,7 +202,8 @@ static gb_result write_depfile(const arguments *a, const gb_scene *scene, gb_err
     for (uint32_t i = 0; i < scene->input_count; ++i)
         inputs[count++] = scene->inputs[i];
     inputs[count++] = a->atlas;
-    inputs[count++] = a->octree;
+    if (a->octree)
+        inputs[count++] = a->octree;
     int textures_read = a->glb || a->lightmap.quality > 0;
     for (uint32_t m = 0; textures_read && m < scene->material_count; ++m)
         if (scene->materials[m].map_Kd)

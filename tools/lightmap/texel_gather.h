@@ -1,14 +1,17 @@
 /* texel_gather.h — the lightmap's covered texels by final gather
  * (final_gather.h), in two passes of atlas rows on a work queue:
- *   1. probes: at each texel, GB_TEXEL_GATHER_PROBES directions from each
- *      side of its triangle say how open that side is; summed over the
- *      triangle's texels they choose the side the whole triangle keeps
- *      (the side the winding faces on a tie): one side per triangle, so
- *      that no surface is speckled with both;
- *   2. the gather: `rays` directions from the kept side.
- * Texel i draws from PCG32 streams 3 i and 3 i + 1 (its sides' probes) and
- * 3 i + 2 (its gather) of the seed: the image never depends on the number
- * of threads.
+ *   1. probes: per triangle, GB_TEXEL_GATHER_PROBES per texel it covers
+ *      but at most GB_TEXEL_GATHER_TRIANGLE_PROBES, each a point drawn
+ *      uniformly over it and one direction, from each side, say how open
+ *      that side is; the more open side is the one the whole triangle
+ *      keeps (the side the winding faces on a tie): one side per triangle,
+ *      so that no surface is speckled with both;
+ *   2. the gather: `rays` directions from the kept side, on the texels
+ *      texel_interpolation.h chooses, coarsest lattice first, one pass
+ *      per stride; the others interpolated between them.
+ * Texel i's gather draws from PCG32 stream i of the seed, and triangle t's
+ * sides' probes from streams T + 2 t and T + 2 t + 1, T the atlas's texel
+ * count: the image never depends on the number of threads.
  *
  * The caller owns every argument; the tables for Embree and the lights are
  * built and freed here.
@@ -27,7 +30,8 @@
 #include "texel_cover.h"
 
 enum {
-    GB_TEXEL_GATHER_PROBES = 16,        /* per texel side */
+    GB_TEXEL_GATHER_PROBES = 16,        /* per texel of a triangle's side */
+    GB_TEXEL_GATHER_TRIANGLE_PROBES = 256, /* the most per triangle's side */
     GB_TEXEL_GATHER_PATH_BOUNCES = 64,  /* --paths: most reflections, as reference's */
 };
 /* final_gather.h's near_distance, over the scene's bounding diagonal */
@@ -40,6 +44,7 @@ typedef struct gb_texel_gather {
     const gb_light_octree *octree;  /* read at the hits; NULL: paths traced on */
     int rays;                       /* per texel, >= 1 */
     int octree_bounces;             /* final_gather.h's, >= 1 */
+    double accuracy;                /* Ward's a (texel_interpolation.h); 0: every texel gathers */
     uint64_t seed;
     int threads;                    /* 0: every core */
     gb_progress_callback progress;  /* of the gather pass; may be NULL */
