@@ -6,12 +6,18 @@
 #
 # The quantity: the indirect irradiance E per atlas texel (W/m^2, linear
 # RGB, light that has bounced at least once, without the albedo), as
-# `lightmap` writes it. gibake's bake: photons -n LIGHTMAP_PEER_PHOTONS,
-# cluster, atlas --size SIZE --padding LIGHTMAP_PEER_PADDING, then
-# `lightmap --quality Q` for each Q of the scene's list (0: the light octree
-# read at the texel; N: a final gather of N rays reading the octree where
-# they meet the scene). Its CPU seconds are the whole bake's: photons +
-# cluster + atlas + that lightmap run (user + system, /usr/bin/time).
+# `lightmap` writes it. gibake's bakes:
+#   octree: photons -n LIGHTMAP_PEER_PHOTONS, cluster, atlas --size SIZE
+#     --padding LIGHTMAP_PEER_PADDING, then `lightmap --quality Q` for each
+#     Q of the scene's list (0: the light octree read at the texel; N: a
+#     final gather of N rays reading the octree where they meet the scene,
+#     at lightmap's default --accuracy: gathers on a lattice of texels, the
+#     texels between interpolated); CPU seconds: photons + cluster + atlas +
+#     that lightmap run;
+#   paths: atlas, then `lightmap --paths --quality Q` (no octree, no
+#     photons: the unbiased gather) for each Q of the scene's paths list;
+#     CPU seconds: atlas + that lightmap run.
+# (user + system, /usr/bin/time).
 # Cycles' bake: bench/cycles_bake.py (its header says how) in one Blender
 # process per sample count, from the glb `lightmap --glb` writes (atlas UVs
 # as TEXCOORD_1; the .scene's point and directional lights and environment
@@ -23,27 +29,29 @@
 # LIGHTMAP_PEER_THREADS threads (default 2; atlas has no such option), one
 # at a time.
 #
-# The truth: `lightmap --paths --quality T` (unbiased path-traced gather),
-# the mean of seeds 1 and 2 (the rows use seed 0); its noise floor is the
-# relative MSE of seed 1 against seed 2, / 4 (each seed's noise is half
-# their difference's, the mean's half again). The error:
-# bench/lightmap_error's relative MSE against the truth on "seen" (by the
-# scene's camera), "interior" (5 texels or more from a chart's edge) and
-# "covered" texels, and the ratio of means mean(bake) / mean(truth) (a
-# bias; it checks that both bake the same quantity).
+# The truth: `lightmap --paths --quality T --accuracy 0` (unbiased
+# path-traced gather at every texel), the mean of seeds 1 and 2 (the rows
+# use seed 0); its noise floor is the relative MSE of seed 1 against seed
+# 2, / 4 (each seed's noise is half their difference's, the mean's half
+# again). The error: bench/lightmap_error's relative MSE against the truth
+# on "seen" (by the scene's camera), "interior" (5 texels or more from a
+# chart's edge) and "covered" texels, and the ratio of means mean(bake) /
+# mean(truth) (a bias; it checks that both bake the same quantity).
 #
 # Then the crossing points: for each Cycles row, the gibake CPU seconds
-# that reach the same seen-texel error (log-log interpolation between the
-# cheapest pair of gibake rows that brackets it; "<" or ">" outside their
-# range) and Cycles' CPU seconds over those; again by interior texels,
-# where the two bakes' conventions agree (seen and covered texels include
-# those at a chart's edge, whose centre lies outside the triangle: Cycles
-# extends its neighbours' values there, gibake evaluates the triangle's
-# plane extended).
+# that reach the same seen-texel error (per bake, octree or paths, log-log
+# interpolation between the cheapest pair of its rows that brackets it;
+# the cheaper bake's; "<" or ">" outside every row's range) and Cycles' CPU
+# seconds over those; again by interior texels, where the two bakes'
+# conventions agree (seen and covered texels include those at a chart's
+# edge, whose centre lies outside the triangle: Cycles extends its
+# neighbours' values there, gibake evaluates the triangle's plane
+# extended).
 #
-# LIGHTMAP_PEER_SCENES: entries PATH:SIZE:QUALITIES:SPPS:T (PATH under
-# scenes/; QUALITIES and SPPS comma-separated; T the truth's rays); default
-# the Cornell box at 512 and Sponza at 1024 with fewer rows (about 30 and 20
+# LIGHTMAP_PEER_SCENES: entries PATH:SIZE:QUALITIES:SPPS:T[:PATHS] (PATH
+# under scenes/; QUALITIES, SPPS and PATHS comma-separated; T the truth's
+# rays; PATHS the paths bake's qualities, none when left out); default the
+# Cornell box at 512 and Sponza at 1024 with fewer rows (about 30 and 20
 # minutes on 2 cores). LIGHTMAP_PEER_CYCLES_TRUTH: if not 0, also a Cycles
 # bake at that many samples (seed 1) measured against the truth (default
 # 0). LIGHTMAP_PEER_BLENDER: the blender to run (default blender). GB_BIN:
@@ -54,8 +62,8 @@ needs photons cluster atlas lightmap
 error_program=$(bench_program lightmap_error) || exit 1
 c=shared/cornell-original.scene
 s=shared/sponza.scene
-scenes=${LIGHTMAP_PEER_SCENES:-"$c:512:0,16,64,256,1024:16,64,256,1024:4096 \
-$s:1024:0,16,64,256:16,64,256:512"}
+scenes=${LIGHTMAP_PEER_SCENES:-"$c:512:0,16,64,256,1024:16,64,256,1024:4096:4,8,16 \
+$s:1024:0,16,64,256:16,64,256:512:4,16"}
 threads=${LIGHTMAP_PEER_THREADS:-2}
 photon_count=${LIGHTMAP_PEER_PHOTONS:-1000000}
 padding=${LIGHTMAP_PEER_PADDING:-2}
@@ -119,20 +127,24 @@ for entry in $scenes; do
     qualities=$(echo "${rest%%:*}" | tr , ' ')
     rest=${rest#*:}
     spps=$(echo "${rest%%:*}" | tr , ' ')
-    truth=${rest#*:}
+    rest=${rest#*:}
+    truth=${rest%%:*}
+    paths_qualities=
+    [ "$rest" = "$truth" ] || paths_qualities=$(echo "${rest#*:}" | tr , ' ')
     scene=$root/scenes/$path
     name=$(basename "$scene" .scene)
     bake=$dir/$name
     mkdir -p "$bake"
     j="-j $threads"
 
-    # The shared steps, once.
-    timed "$GB_BIN/photons" -q $j -n "$photon_count" "$scene" -o "$bake/phot" || exit 1
-    shared=$(cpu)
-    timed "$GB_BIN/cluster" -q $j "$scene" "$bake/phot" -o "$bake/lot" || exit 1
-    shared=$(echo "$shared $(cpu)" | awk '{ print $1 + $2 }')
+    # The shared steps, once: the atlas (every bake's), the photons and
+    # cluster (the octree bake's).
     timed "$GB_BIN/atlas" -q --stats --size "$size" --padding "$padding" "$scene" \
         -o "$bake/atlas" >"$bake/atlas.stats" || exit 1
+    atlas_cpu=$(cpu)
+    timed "$GB_BIN/photons" -q $j -n "$photon_count" "$scene" -o "$bake/phot" || exit 1
+    shared=$(echo "$atlas_cpu $(cpu)" | awk '{ print $1 + $2 }')
+    timed "$GB_BIN/cluster" -q $j "$scene" "$bake/phot" -o "$bake/lot" || exit 1
     shared=$(echo "$shared $(cpu)" | awk '{ print $1 + $2 }')
     texels=$(value size "$bake/atlas.stats")
     width=${texels%x*}
@@ -144,19 +156,21 @@ for entry in $scenes; do
 
     # The truth and its noise floor.
     for seed in 1 2; do
-        lightmap --paths --quality "$truth" --seed "$seed" -o "$bake/truth$seed.exr" || exit 1
+        lightmap --paths --quality "$truth" --accuracy 0 --seed "$seed" \
+            -o "$bake/truth$seed.exr" || exit 1
     done
     oiiotool "$bake/truth1.exr" "$bake/truth2.exr" --add --mulc 0.5 -d float \
         -o "$bake/truth.exr" || exit 1
     "$error_program" "$scene" "$bake/atlas" "$bake/truth1.exr" "$bake/truth2.exr" >"$dir/error"
-    echo "$name: truth lightmap --paths --quality $truth, seeds 1 and 2 averaged; noise floor" \
+    echo "$name: truth lightmap --paths --quality $truth --accuracy 0, seeds 1 and 2 averaged;" \
+        "noise floor" \
         "(seed 1 against 2, / 4): seen $(value seen_relative_mse "$dir/error" |
             awk '{ printf "%.3g", $1 / 4 }'), interior $(value interior_relative_mse \
             "$dir/error" | awk '{ printf "%.3g", $1 / 4 }'), covered $(value \
             covered_relative_mse "$dir/error" | awk '{ printf "%.3g", $1 / 4 }');" \
         "$(value seen_texels "$dir/error") seen, $(value interior_texels "$dir/error")" \
         "interior, $(value covered_texels "$dir/error") covered texels of ${width}x$height;" \
-        "photons + cluster + atlas: $shared CPU s" >>"$dir/notes"
+        "atlas: $atlas_cpu CPU s, photons + cluster + atlas: $shared CPU s" >>"$dir/notes"
 
     for q in $qualities; do
         timed "$GB_BIN/lightmap" -q $j --quality "$q" "$scene" "$bake/atlas" "$bake/lot" \
@@ -165,6 +179,14 @@ for entry in $scenes; do
         error "$bake/q$q.exr" || exit 1
         row gibake "--quality $q" "$(echo "$shared $step" | awk '{ printf "%.2f", $1 + $2 }')" \
             "$step"
+    done
+    for q in $paths_qualities; do
+        timed "$GB_BIN/lightmap" -q $j --paths --quality "$q" "$scene" "$bake/atlas" \
+            -o "$bake/paths$q.exr" || exit 1
+        step=$(cpu)
+        error "$bake/paths$q.exr" || exit 1
+        row gibake "--paths --quality $q" \
+            "$(echo "$atlas_cpu $step" | awk '{ printf "%.2f", $1 + $2 }')" "$step"
     done
     for spp in $spps; do
         cycles "$spp" 0 "$bake/cycles$spp.exr"
@@ -196,30 +218,46 @@ crossing() {
     echo "|---|---:|---:|---:|---:|---:|"
     awk -v column="$2" '
     { scene = $1; cpu = $(NF - 2); err = $(NF - column) }
-    $2 == "gibake" { n = count[scene]++; t[scene, n] = cpu; e[scene, n] = err }
+    $2 == "gibake" {
+        key = scene SUBSEP $3   # the bake: --quality (octree) or --paths
+        if (!(key in count)) { families[scene] = families[scene] " " $3 }
+        n = count[key]++; t[key, n] = cpu; e[key, n] = err
+        n_all = all[scene]++; t_all[scene, n_all] = cpu; e_all[scene, n_all] = err
+    }
     $2 == "Cycles" { ++m; cs[m] = scene; spp[m] = $3; tc[m] = cpu; ec[m] = err }
     END {
         for (k = 1; k <= m; ++k) {
-            scene = cs[k]; rows = count[scene]; at = "-"; ratio = "-"
-            # the cheapest gibake segment whose errors bracket the row'"'"'s
-            for (i = 0; i + 1 < rows && at == "-"; ++i) {
-                e0 = e[scene, i]; e1 = e[scene, i + 1]
-                if ((e0 - ec[k]) * (e1 - ec[k]) <= 0 && e0 != e1) {
-                    x = (log(ec[k]) - log(e0)) / (log(e1) - log(e0))
-                    tg = exp(log(t[scene, i]) + x * (log(t[scene, i + 1]) - log(t[scene, i])))
-                    at = sprintf("%.2f", tg); ratio = sprintf("%.2f", tc[k] / tg)
+            scene = cs[k]; best = -1
+            split(substr(families[scene], 2), names, " ")
+            for (f in names) {
+                key = scene SUBSEP names[f]; rows = count[key]
+                # the cheapest segment of this bake whose errors bracket the row'"'"'s
+                for (i = 0; i + 1 < rows; ++i) {
+                    e0 = e[key, i]; e1 = e[key, i + 1]
+                    if ((e0 - ec[k]) * (e1 - ec[k]) <= 0 && e0 != e1) {
+                        x = (log(ec[k]) - log(e0)) / (log(e1) - log(e0))
+                        tg = exp(log(t[key, i]) + x * (log(t[key, i + 1]) - log(t[key, i])))
+                        if (best < 0 || tg < best) best = tg
+                        break
+                    }
                 }
             }
-            if (at == "-" && rows > 0) {
-                best = 0
-                for (i = 1; i < rows; ++i)
-                    if (e[scene, i] < e[scene, best]) best = i
-                if (ec[k] < e[scene, best]) {
-                    at = sprintf("> %.2f", t[scene, best])
-                    ratio = sprintf("< %.2f", tc[k] / t[scene, best])
+            if (best >= 0) {
+                at = sprintf("%.2f", best); ratio = sprintf("%.2f", tc[k] / best)
+            } else {
+                # none brackets it: the cheapest row at or under its error, else the best row
+                upper = -1; lowest = -1
+                for (i = 0; i < all[scene]; ++i) {
+                    if (e_all[scene, i] <= ec[k] && (upper < 0 || t_all[scene, i] < upper))
+                        upper = t_all[scene, i]
+                    if (lowest < 0 || e_all[scene, i] < e_all[scene, lowest]) lowest = i
+                }
+                if (lowest < 0) { at = "-"; ratio = "-" }
+                else if (upper >= 0) {
+                    at = sprintf("< %.2f", upper); ratio = sprintf("> %.2f", tc[k] / upper)
                 } else {
-                    at = sprintf("< %.2f", t[scene, 0])
-                    ratio = sprintf("> %.2f", tc[k] / t[scene, 0])
+                    at = sprintf("> %.2f", t_all[scene, lowest])
+                    ratio = sprintf("< %.2f", tc[k] / t_all[scene, lowest])
                 }
             }
             printf "| %s | %s | %s | %.4g | %s | %s |\n", scene, spp[k], tc[k], ec[k], at, ratio

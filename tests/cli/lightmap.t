@@ -72,17 +72,32 @@ expect_failure "--bounces with --paths" 2 "not with --paths" --quality 4 --bounc
     "$scene" a.atlas a.lot -o "$dir/x.exr"
 expect_failure "--quality -1" 2 "quality: '-1'" --quality -1 "$scene" a.atlas a.lot \
     -o "$dir/x.exr"
+expect_failure "--accuracy without --quality" 2 "need --quality N > 0" --accuracy 0.1 \
+    "$scene" a.atlas a.lot -o "$dir/x.exr"
+expect_failure "--accuracy 2" 2 "accuracy: '2'" --quality 4 --accuracy 2 "$scene" a.atlas \
+    a.lot -o "$dir/x.exr"
+expect_failure "no .lot without --paths" 2 "expected SCENE NAME.atlas NAME.lot" --quality 4 \
+    "$scene" "$dir/cornell.atlas" -o "$dir/x.exr"
+"$tool" --quiet --quality 4 --paths "$scene" "$dir/cornell.atlas" "$dir/cornell.lot" \
+    -o "$dir/paths_lot.exr" 2>"$dir/err" &&
+    "$tool" --quiet --quality 4 --paths "$scene" "$dir/cornell.atlas" -o "$dir/paths.exr" \
+        2>>"$dir/err"
+status=$?
+[ $status = 0 ] || sed 's/^/# /' "$dir/err"
+ok "$([ $status = 0 ] && cmp -s "$dir/paths_lot.exr" "$dir/paths.exr"; echo $?)" \
+    "--paths without NAME.lot: the same lightmap as with it"
 for threads in 1 2; do
     "$tool" --quiet -j $threads --quality 8 "$scene" "$dir/cornell.atlas" "$dir/cornell.lot" \
         -o "$dir/gather$threads.exr" 2>"$dir/err" || sed 's/^/# /' "$dir/err"
 done
 ok "$([ -s "$dir/gather1.exr" ] && cmp -s "$dir/gather1.exr" "$dir/gather2.exr"; echo $?)" \
     "--quality 8: 1 thread or 2, byte-identical"
-# The truth: the unbiased gather (--paths), 128 rays; two seeds of it differ
+# The truth: the unbiased gather (--paths) at every texel, 128 rays; two seeds of it differ
 # by 0.008 (measured), the octree read by 0.10, the octree's gather of 16
-# rays by 0.015: the gather must bring the octree's error down.
-"$tool" --quiet --quality 128 --paths "$scene" "$dir/cornell.atlas" "$dir/cornell.lot" \
-    -o "$dir/truth.exr" 2>"$dir/err" &&
+# rays by 0.013 (interpolated at the default --accuracy): the gather must bring
+# the octree's error down.
+"$tool" --quiet --quality 128 --paths --accuracy 0 "$scene" "$dir/cornell.atlas" \
+    "$dir/cornell.lot" -o "$dir/truth.exr" 2>"$dir/err" &&
     "$tool" --quiet --quality 16 "$scene" "$dir/cornell.atlas" "$dir/cornell.lot" \
         -o "$dir/gather16.exr" 2>>"$dir/err" &&
     "$GB_BIN/imgdiff" "$dir/a.exr" "$dir/truth.exr" >"$dir/octree_error" 2>>"$dir/err" &&

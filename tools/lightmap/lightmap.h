@@ -13,7 +13,9 @@
  *                   read there (light_octree_shading.h, as the runtime's
  *                   display); else a final gather of `quality` rays
  *                   (texel_gather.h, final_gather.h) that reads the octree,
- *                   or traces paths on, where its rays meet the scene
+ *                   or traces paths on, where its rays meet the scene, at
+ *                   the texels texel_interpolation.c chooses, the others
+ *                   interpolated between them
  *   gutter.c        the rest of the gutter filled from the filled texels
  *                   (padding - 1 rounds), so bilinear reads never reach
  *                   black
