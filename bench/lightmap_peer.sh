@@ -41,7 +41,8 @@
 # Then the crossing points: for each Cycles row, the gibake CPU seconds
 # that reach the same seen-texel error (per bake, octree or paths, log-log
 # interpolation between the cheapest pair of its rows that brackets it;
-# the cheaper bake's; "<" or ">" outside every row's range) and Cycles' CPU
+# the cheaper bake's, or "<=" a cheaper row at or under that error; ">"
+# when no row reaches it) and Cycles' CPU
 # seconds over those; again by interior texels, where the two bakes'
 # conventions agree (seen and covered texels include those at a chart's
 # edge, whose centre lies outside the triangle: Cycles extends its
@@ -62,8 +63,8 @@ needs photons cluster atlas lightmap
 error_program=$(bench_program lightmap_error) || exit 1
 c=shared/cornell-original.scene
 s=shared/sponza.scene
-scenes=${LIGHTMAP_PEER_SCENES:-"$c:512:0,16,64,256,1024:16,64,256,1024:4096:4,8,16 \
-$s:1024:0,16,64,256:16,64,256:512:4,16"}
+scenes=${LIGHTMAP_PEER_SCENES:-"$c:512:0,16,64,256,1024:16,64,256,1024:4096:4,8,16,32,64,256 \
+$s:1024:0,16,64,256:16,64,256:512:4,16,64"}
 threads=${LIGHTMAP_PEER_THREADS:-2}
 photon_count=${LIGHTMAP_PEER_PHOTONS:-1000000}
 padding=${LIGHTMAP_PEER_PADDING:-2}
@@ -242,23 +243,22 @@ crossing() {
                     }
                 }
             }
-            if (best >= 0) {
+            # a row at or under its error bounds the time from above
+            upper = -1; lowest = -1
+            for (i = 0; i < all[scene]; ++i) {
+                if (e_all[scene, i] <= ec[k] && (upper < 0 || t_all[scene, i] < upper))
+                    upper = t_all[scene, i]
+                if (lowest < 0 || e_all[scene, i] < e_all[scene, lowest]) lowest = i
+            }
+            if (best >= 0 && (upper < 0 || best <= upper)) {
                 at = sprintf("%.2f", best); ratio = sprintf("%.2f", tc[k] / best)
+            } else if (upper >= 0) {
+                at = sprintf("<= %.2f", upper); ratio = sprintf(">= %.2f", tc[k] / upper)
+            } else if (lowest >= 0) {
+                at = sprintf("> %.2f", t_all[scene, lowest])
+                ratio = sprintf("< %.2f", tc[k] / t_all[scene, lowest])
             } else {
-                # none brackets it: the cheapest row at or under its error, else the best row
-                upper = -1; lowest = -1
-                for (i = 0; i < all[scene]; ++i) {
-                    if (e_all[scene, i] <= ec[k] && (upper < 0 || t_all[scene, i] < upper))
-                        upper = t_all[scene, i]
-                    if (lowest < 0 || e_all[scene, i] < e_all[scene, lowest]) lowest = i
-                }
-                if (lowest < 0) { at = "-"; ratio = "-" }
-                else if (upper >= 0) {
-                    at = sprintf("< %.2f", upper); ratio = sprintf("> %.2f", tc[k] / upper)
-                } else {
-                    at = sprintf("> %.2f", t_all[scene, lowest])
-                    ratio = sprintf("< %.2f", tc[k] / t_all[scene, lowest])
-                }
+                at = "-"; ratio = "-"
             }
             printf "| %s | %s | %s | %.4g | %s | %s |\n", scene, spp[k], tc[k], ec[k], at, ratio
         }

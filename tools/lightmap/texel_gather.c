@@ -103,14 +103,16 @@ static int probe_triangle(void *context, uint64_t item)
 {
     pass *p = context;
     uint32_t t = (uint32_t)item;
-    uint64_t probes = (uint64_t)p->texels[t] * GB_TEXEL_GATHER_PROBES;
-    if (probes > GB_TEXEL_GATHER_TRIANGLE_PROBES)
-        probes = GB_TEXEL_GATHER_TRIANGLE_PROBES;
+    uint32_t probes = p->texels[t] < GB_TEXEL_GATHER_MIN_PROBES   ? GB_TEXEL_GATHER_MIN_PROBES
+                      : p->texels[t] > GB_TEXEL_GATHER_MAX_PROBES ? GB_TEXEL_GATHER_MAX_PROBES
+                                                                  : p->texels[t];
+    if (p->texels[t] == 0)
+        probes = 0;
     int openness[2] = {0, 0};
     uint64_t rays = 0;
     for (int k = 0; k < 2; ++k) {
         gb_path_state state = probe_state(p, t, k);
-        for (uint64_t m = 0; m < probes; ++m) {
+        for (uint32_t m = 0; m < probes; ++m) {
             double w[3];
             uniform_weights(&state, w);
             gb_texel_surface s = gb_texel_surface_at(p->options->scene, t, w, k ? -1.0f : 1.0f);

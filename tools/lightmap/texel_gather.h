@@ -1,8 +1,9 @@
 /* texel_gather.h — the lightmap's covered texels by final gather
  * (final_gather.h), in two passes of atlas rows on a work queue:
- *   1. probes: per triangle, GB_TEXEL_GATHER_PROBES per texel it covers
- *      but at most GB_TEXEL_GATHER_TRIANGLE_PROBES, each a point drawn
- *      uniformly over it and one direction, from each side, say how open
+ *   1. probes: per triangle that covers a texel, one per texel it covers,
+ *      at least GB_TEXEL_GATHER_MIN_PROBES and at most
+ *      GB_TEXEL_GATHER_MAX_PROBES, each a point drawn uniformly over it
+ *      and one direction, from each side, say how open
  *      that side is; the more open side is the one the whole triangle
  *      keeps (the side the winding faces on a tie): one side per triangle,
  *      so that no surface is speckled with both;
@@ -30,8 +31,8 @@
 #include "texel_cover.h"
 
 enum {
-    GB_TEXEL_GATHER_PROBES = 16,        /* per texel of a triangle's side */
-    GB_TEXEL_GATHER_TRIANGLE_PROBES = 256, /* the most per triangle's side */
+    GB_TEXEL_GATHER_MIN_PROBES = 16,    /* per side of a triangle that covers a texel */
+    GB_TEXEL_GATHER_MAX_PROBES = 64,    /* per side of a triangle */
     GB_TEXEL_GATHER_PATH_BOUNCES = 64,  /* --paths: most reflections, as reference's */
 };
 /* final_gather.h's near_distance, over the scene's bounding diagonal */
