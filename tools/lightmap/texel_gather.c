@@ -103,11 +103,11 @@ static int probe_triangle(void *context, uint64_t item)
 {
     pass *p = context;
     uint32_t t = (uint32_t)item;
-    uint32_t probes = p->texels[t] < GB_TEXEL_GATHER_MIN_PROBES   ? GB_TEXEL_GATHER_MIN_PROBES
-                      : p->texels[t] > GB_TEXEL_GATHER_MAX_PROBES ? GB_TEXEL_GATHER_MAX_PROBES
-                                                                  : p->texels[t];
-    if (p->texels[t] == 0)
-        probes = 0;
+    uint32_t texels = p->texels[t];
+    uint32_t probes = texels == 0                            ? 0
+                      : texels < GB_TEXEL_GATHER_MIN_PROBES ? GB_TEXEL_GATHER_MIN_PROBES
+                      : texels > GB_TEXEL_GATHER_MAX_PROBES ? GB_TEXEL_GATHER_MAX_PROBES
+                                                            : texels;
     int openness[2] = {0, 0};
     uint64_t rays = 0;
     for (int k = 0; k < 2; ++k) {
