@@ -59,6 +59,13 @@ static void weights_inside(double w[3])
         w[c] = (1.0 - INSET) * (sum > 0.0 ? w[c] / sum : 1.0 / 3.0) + INSET / 3.0;
 }
 
+/* The weights of texel (i, j)'s centre in triangle t, moved inside. */
+static void texel_weights(const pass *p, uint32_t t, uint32_t i, uint32_t j, double w[3])
+{
+    gb_texel_barycentric(p->options->atlas, t, i, j, w);
+    weights_inside(w);
+}
+
 /* Calls visit(p, texel, triangle, weights) for each covered texel of row
  * `row` (weights_inside), and counts the rays its states traced. */
 typedef uint64_t (*texel_visit)(pass *p, size_t texel, uint32_t t, const double w[3]);
@@ -73,8 +80,7 @@ static void visit_row(pass *p, uint32_t row, texel_visit visit)
         if (t == GB_TEXEL_NONE)
             continue;
         double w[3];
-        gb_texel_barycentric(p->options->atlas, t, i, row, w);
-        weights_inside(w);
+        texel_weights(p, t, i, row, w);
         rays += visit(p, texel, t, w);
     }
     atomic_fetch_add(&p->rays, rays);
@@ -125,16 +131,9 @@ static int probe_triangle(void *context, uint64_t item)
     return 0;
 }
 
-/* The surface texel (i, j) stands for on the side its triangle keeps. */
-static gb_texel_surface surface_of(const pass *p, uint32_t i, uint32_t j, uint32_t t,
-                                   const double w[3])
+/* The surface at weights w of triangle t, on the side it keeps. */
+static gb_texel_surface kept_surface(const pass *p, uint32_t t, const double w[3])
 {
-    double inside[3];
-    if (!w) {
-        gb_texel_barycentric(p->options->atlas, t, i, j, inside);
-        weights_inside(inside);
-        w = inside;
-    }
     return gb_texel_surface_at(p->options->scene, t, w, p->kept[t] ? -1.0f : 1.0f);
 }
 
@@ -153,7 +152,9 @@ static int interpolate_texel(pass *p, uint32_t i, uint32_t j, uint32_t t,
         uint32_t tk = cover->triangle[corner];
         if (tk == GB_TEXEL_NONE || charts[tk] != charts[t] || p->kept[tk] != p->kept[t])
             return 0;
-        gb_texel_surface sk = surface_of(p, corners[k].i, corners[k].j, tk, NULL);
+        double wk[3];
+        texel_weights(p, tk, corners[k].i, corners[k].j, wk);
+        gb_texel_surface sk = kept_surface(p, tk, wk);
         if (gb_ward_error(s->x, s->n, sk.x, sk.n, p->distance[corner]) > p->options->accuracy)
             return 0;
         for (int c = 0; c < 3; ++c)
@@ -175,7 +176,7 @@ static uint64_t gather_texel(pass *p, size_t texel, uint32_t t, const double w[3
     uint32_t j = (uint32_t)(texel / p->options->cover->width);
     if (gb_texel_stride(i, j, p->top_stride) != p->stride)
         return 0;
-    gb_texel_surface s = surface_of(p, i, j, t, w);
+    gb_texel_surface s = kept_surface(p, t, w);
     if (p->stride < p->top_stride && interpolate_texel(p, i, j, t, &s))
         return 0;
     gb_path_state state = texel_state(p, texel);
