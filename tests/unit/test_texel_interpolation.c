@@ -13,6 +13,8 @@
  *     the unbiased gather at every texel with 16 times the rays: the
  *     block's footprint stays dark (no light interpolated into it from
  *     outside), the rim just outside it within 5 % of the truth, the
+ *     texels within 1.5 texels of its walls (turned so that they cross the
+ *     texels at every offset) no worse than gathered at every texel, the
  *     floor's error no larger than the same rays' gather at every texel,
  *     for less than a third of the rays.
  */
@@ -101,6 +103,17 @@ static void test_ward_error(void)
 
 enum { FLOOR_TRIANGLES = 2 };
 static const float HALF_FLOOR = 2.0f, HALF_BLOCK = 0.5f, BLOCK_HEIGHT = 1.0f;
+/* The block turned about the vertical, so that its walls cross the atlas's
+ * texels at every offset. */
+static const double BLOCK_TURN = 0.12;
+
+/* Point (x, z) of the floor turned by angle about the vertical. */
+static void turn(double angle, double *x, double *z)
+{
+    double c = cos(angle), s = sin(angle), turned = c * *x - s * *z;
+    *z = s * *x + c * *z;
+    *x = turned;
+}
 
 /* The floor (triangles 0 and 1, front up) and a block standing on it, its
  * five faces out (no bottom: it rests on the floor); grey 0.5; a point
@@ -120,10 +133,20 @@ static void build_block_on_floor(gb_scene *scene)
         {{-b, 0, -b}, {-b, 0, b}, {-b, h, b}, {-b, h, -b}}, /* x = -b */
         {{b, 0, -b}, {b, 0, b}, {b, h, b}, {b, h, -b}},     /* x = +b */
     };
-    const float outward[5][3] = {{0, 10, 0}, {0, 0.5f, -10}, {0, 0.5f, 10}, {-10, 0.5f, 0},
-                                 {10, 0.5f, 0}};
-    for (int k = 0; k < 5; ++k)
-        add_quad_facing(scene, faces[k], outward[k], grey);
+    float block[5][4][3], outward[5][3] = {{0, 10, 0}, {0, 0.5f, -10}, {0, 0.5f, 10},
+                                          {-10, 0.5f, 0}, {10, 0.5f, 0}};
+    for (int k = 0; k < 5; ++k) {
+        for (int c = 0; c < 5; ++c) {
+            float *p = c < 4 ? block[k][c] : outward[k];
+            const float *from = c < 4 ? faces[k][c] : outward[k];
+            double x = from[0], z = from[2];
+            turn(BLOCK_TURN, &x, &z);
+            p[0] = (float)x;
+            p[1] = from[1];
+            p[2] = (float)z;
+        }
+        add_quad_facing(scene, block[k], outward[k], grey);
+    }
     const float light[3] = {1.2f, 2.5f, 0.8f}, intensity[3] = {20.0f, 20.0f, 20.0f};
     add_point_light(scene, GB_LIGHT_POINT, light, NULL, intensity);
     const float eye[3] = {0.0f, 4.0f, 6.0f}, target[3] = {0.0f, 0.0f, 0.0f};
@@ -140,7 +163,7 @@ typedef struct texel_sums {
 } texel_sums;
 
 typedef struct floor_classes {
-    texel_sums footprint, rim, floor;
+    texel_sums footprint, rim, wall, floor;
 } floor_classes;
 
 static double texel_mean(const gb_image *image, size_t k)
@@ -176,21 +199,23 @@ static floor_classes classify(const gb_scene *scene, const gb_atlas *atlas,
                 x += w[c] * v[0];
                 z += w[c] * v[2];
             }
+            turn(-BLOCK_TURN, &x, &z);
             double outside = fmax(fabs(x), fabs(z)) - HALF_BLOCK;  /* Chebyshev, in units */
             texel_sums *in = outside <= -1.5 * texel ? &classes.footprint
                              : outside >= 0.5 * texel && outside <= 2.5 * texel ? &classes.rim
                                                                                  : NULL;
             double a = texel_mean(bake, k), g = texel_mean(gathered, k),
                    b = texel_mean(truth, k);
-            texel_sums *both[2] = {in, &classes.floor};
-            for (int m = 0; m < 2; ++m)
-                if (both[m]) {
-                    both[m]->bake += a;
-                    both[m]->truth += b;
-                    both[m]->squared_error += (a - b) * (a - b) / (b * b + 0.01 * 0.25);
-                    both[m]->gathered_squared_error += (g - b) * (g - b) /
+            texel_sums *wall = fabs(outside) <= 1.5 * texel ? &classes.wall : NULL;
+            texel_sums *all[3] = {in, wall, &classes.floor};
+            for (int m = 0; m < 3; ++m)
+                if (all[m]) {
+                    all[m]->bake += a;
+                    all[m]->truth += b;
+                    all[m]->squared_error += (a - b) * (a - b) / (b * b + 0.01 * 0.25);
+                    all[m]->gathered_squared_error += (g - b) * (g - b) /
                                                        (b * b + 0.01 * 0.25);
-                    ++both[m]->texels;
+                    ++all[m]->texels;
                 }
         }
     gb_texel_cover_free(&cover);
@@ -243,6 +268,10 @@ static void test_block_on_floor(void)
                c.floor.squared_error / c.floor.texels,
                c.floor.gathered_squared_error / c.floor.texels,
                (unsigned long long)interpolated_rays, (unsigned long long)gathered_rays);
+        printf("# wall: %d texels, relative MSE %.4g interpolated, %.4g every texel; bake mean "
+               "%.4g, truth %.4g\n", c.wall.texels, c.wall.squared_error / c.wall.texels,
+               c.wall.gathered_squared_error / c.wall.texels, c.wall.bake / c.wall.texels,
+               c.wall.truth / c.wall.texels);
         CHECK(c.footprint.texels > 100 &&
                   c.footprint.bake <= 2.0 * c.footprint.truth +
                                           0.01 * c.rim.truth / c.rim.texels * c.footprint.texels,
@@ -251,6 +280,12 @@ static void test_block_on_floor(void)
         CHECKF(c.rim.texels > 50 && fabs(rim - 1.0) < 0.05,
               "the rim 0.5 to 2.5 texels outside the block: within 5 %% of the truth (%.4f)",
               rim);
+        CHECKF(c.wall.texels > 100 &&
+                   c.wall.squared_error <= 1.1 * c.wall.gathered_squared_error,
+               "the texels within 1.5 of the block's walls: no light carried across them "
+               "(relative MSE %.4g, against %.4g gathered at every texel)",
+               c.wall.squared_error / c.wall.texels,
+               c.wall.gathered_squared_error / c.wall.texels);
         CHECK(c.floor.squared_error <= c.floor.gathered_squared_error,
               "the floor's relative MSE: interpolated no more than gathered at every texel");
         CHECK(3 * interpolated_rays < gathered_rays,
