@@ -37,6 +37,11 @@ no light threshold) and up to --bounces bounces.
 Prints on stdout "bake_seconds_direct_indirect S" and "bake_seconds_direct
 S", the process's CPU seconds (user + system, all threads) of each bake
 call alone.
+
+With --unwrap it bakes nothing: it gives the mesh lightmap UVs of Blender's
+own (UV > Lightmap Pack, every face into one image of --size), what a
+Blender user bakes into when a scene has none, and prints
+"unwrap_seconds S", that call's CPU seconds: the peer of `atlas`.
 """
 import argparse
 import json
@@ -60,7 +65,7 @@ def arguments():
     p = argparse.ArgumentParser(prog="cycles_bake.py")
     p.add_argument("scene", help="the .scene file (its light and environment lines)")
     p.add_argument("glb", help="lightmap --glb's output")
-    p.add_argument("-o", "--output", required=True, help="the EXR to write")
+    p.add_argument("-o", "--output", help="the EXR to write")
     p.add_argument("--size", type=int, nargs=2, required=True, metavar=("W", "H"),
                    help="the atlas's size in texels")
     p.add_argument("--samples", type=int, default=64, help="samples per texel")
@@ -68,7 +73,13 @@ def arguments():
     p.add_argument("--margin", type=int, default=0, help="texels of gutter (the atlas padding)")
     p.add_argument("--bounces", type=int, default=64, help="most bounces of a path")
     p.add_argument("--pass", dest="which", choices=("indirect", "direct"), default="indirect")
-    return p.parse_args(argv)
+    p.add_argument("--unwrap", action="store_true",
+                   help="no bake: Blender's own lightmap UVs for the mesh instead (the peer "
+                   "of `atlas`), their CPU seconds printed")
+    a = p.parse_args(argv)
+    if not a.unwrap and not a.output:
+        p.error("-o is required (but with --unwrap)")
+    return a
 
 
 def fail(message):
@@ -275,6 +286,23 @@ def bake(mesh, uv_name, a, filter_):
     return time.process_time() - start
 
 
+def unwrap(mesh, a):
+    """New lightmap UVs for the mesh, as a Blender user makes them to bake
+    into (UV > Lightmap Pack of every face into one image of --size, its
+    default margin); the call's CPU seconds."""
+    bpy.ops.object.select_all(action="DESELECT")
+    mesh.select_set(True)
+    bpy.context.view_layer.objects.active = mesh
+    bpy.ops.object.mode_set(mode="EDIT")
+    bpy.ops.mesh.select_all(action="SELECT")
+    start = time.process_time()
+    bpy.ops.uv.lightmap_pack(PREF_CONTEXT="ALL_FACES", PREF_PACK_IN_ONE=True,
+                             PREF_NEW_UVLAYER=True, PREF_IMG_PX_SIZE=max(a.size))
+    seconds = time.process_time() - start
+    bpy.ops.object.mode_set(mode="OBJECT")
+    return seconds
+
+
 def pixels(image):
     buffer = numpy.empty(len(image.pixels), dtype=numpy.float32)
     image.pixels.foreach_get(buffer)
@@ -286,6 +314,9 @@ def main():
     lights, environment = scene_lights(a.scene)
     bpy.ops.wm.read_factory_settings(use_empty=True)
     mesh = import_mesh(a.glb)
+    if a.unwrap:
+        print("unwrap_seconds %.3f" % unwrap(mesh, a))
+        return
     if len(mesh.data.uv_layers) < 2:
         fail("%s: no TEXCOORD_1 (the atlas UVs)" % a.glb)
     uv = mesh.data.uv_layers[1]

@@ -49,11 +49,17 @@
 # neighbours' values there, gibake evaluates the triangle's plane
 # extended).
 #
+# With LIGHTMAP_PEER_UNWRAP not 0, Blender also makes lightmap UVs of its
+# own for each scene (cycles_bake.py --unwrap: UV > Lightmap Pack, what a
+# Blender user bakes into when a scene has none: the peer of `atlas`, which
+# gibake's rows are charged), and the crossing tables add a column with
+# that call's CPU seconds added to Cycles'.
+#
 # LIGHTMAP_PEER_SCENES: entries PATH:SIZE:QUALITIES:SPPS:T[:PATHS] (PATH
 # under scenes/; QUALITIES, SPPS and PATHS comma-separated; T the truth's
 # rays; PATHS the paths bake's qualities, none when left out); default the
-# Cornell box at 512 and Sponza at 1024 with fewer rows (about 30 and 20
-# minutes on 2 cores). LIGHTMAP_PEER_CYCLES_TRUTH: if not 0, also a Cycles
+# Cornell box at 512 and Sponza at 1024 with fewer rows (about 30 minutes
+# each on 2 cores). LIGHTMAP_PEER_CYCLES_TRUTH: if not 0, also a Cycles
 # bake at that many samples (seed 1) measured against the truth (default
 # 0). LIGHTMAP_PEER_BLENDER: the blender to run (default blender). GB_BIN:
 # the tools (default build/bin). Prints Markdown tables on stdout.
@@ -64,11 +70,12 @@ error_program=$(bench_program lightmap_error) || exit 1
 c=shared/cornell-original.scene
 s=shared/sponza.scene
 scenes=${LIGHTMAP_PEER_SCENES:-"$c:512:0,16,64,256,1024:16,64,256,1024:4096:4,8,16,32,64,256 \
-$s:1024:0,16,64,256:16,64,256:512:4,16,64"}
+$s:1024:0,16,64:16,64,256:512:4,8,16,32,64"}
 threads=${LIGHTMAP_PEER_THREADS:-2}
 photon_count=${LIGHTMAP_PEER_PHOTONS:-1000000}
 padding=${LIGHTMAP_PEER_PADDING:-2}
 cycles_truth=${LIGHTMAP_PEER_CYCLES_TRUTH:-0}
+unwrap=${LIGHTMAP_PEER_UNWRAP:-0}
 blender=${LIGHTMAP_PEER_BLENDER:-blender}
 if ! command -v "$blender" >/dev/null 2>&1 || ! command -v oiiotool >/dev/null 2>&1; then
     echo "lightmap_peer.sh: no $blender or oiiotool (make bench-deps installs them)" >&2
@@ -99,11 +106,12 @@ row() {
     echo "$name $1 $2 $3 $(e seen_relative_mse) $(e interior_relative_mse)" >>"$dir/rows"
 }
 
-# cycles SPP SEED OUT: Cycles' bake of the scene into OUT.
+# cycles OPTIONS...: bench/cycles_bake.py on the scene's glb, its output in
+# $bake/cycles.out.
 cycles() {
     timed "$blender" -b --factory-startup -t "$threads" --python-exit-code 1 \
-        -P "$root/bench/cycles_bake.py" -- "$scene" "$bake/scene.glb" -o "$3" \
-        --size "$width" "$height" --samples "$1" --seed "$2" --margin "$padding" \
+        -P "$root/bench/cycles_bake.py" -- "$scene" "$bake/scene.glb" \
+        --size "$width" "$height" --margin "$padding" "$@" \
         >"$bake/cycles.out" 2>"$bake/cycles.err" || {
         echo "lightmap_peer.sh: $name: blender failed:" >&2
         tail -n 5 "$bake/cycles.err" >&2
@@ -190,12 +198,19 @@ for entry in $scenes; do
             "$(echo "$atlas_cpu $step" | awk '{ printf "%.2f", $1 + $2 }')" "$step"
     done
     for spp in $spps; do
-        cycles "$spp" 0 "$bake/cycles$spp.exr"
+        cycles --samples "$spp" --seed 0 -o "$bake/cycles$spp.exr"
         error "$bake/cycles$spp.exr" || exit 1
         row Cycles "$spp spp" "$(cpu)" "$(value bake_seconds_direct_indirect "$bake/cycles.out")"
     done
+    if [ "$unwrap" != 0 ]; then
+        cycles --unwrap
+        echo "$name $(value unwrap_seconds "$bake/cycles.out")" >>"$dir/unwrap"
+        echo "$name: Blender's own lightmap UVs (cycles_bake.py --unwrap, UV > Lightmap" \
+            "Pack): $(value unwrap_seconds "$bake/cycles.out") CPU s, the Blender" \
+            "process $(cpu) CPU s" >>"$dir/notes"
+    fi
     if [ "$cycles_truth" != 0 ]; then
-        cycles "$cycles_truth" 1 "$bake/cycles-truth.exr"
+        cycles --samples "$cycles_truth" --seed 1 -o "$bake/cycles-truth.exr"
         error "$bake/cycles-truth.exr" || exit 1
         echo "$name: Cycles at $cycles_truth spp (seed 1, $(cpu) CPU s) against the truth:" \
             "relative MSE seen $(value seen_relative_mse "$dir/error"), interior" \
@@ -214,10 +229,16 @@ crossing() {
     echo
     echo "Crossing points by $1 texels: the gibake CPU seconds at each Cycles row's error."
     echo
+    touch "$dir/unwrap"
+    unwrap_column= unwrap_rule=
+    if [ -s "$dir/unwrap" ]; then
+        unwrap_column=" (Cycles + Lightmap Pack) / gibake |" unwrap_rule="---:|"
+    fi
     echo "| scene | Cycles spp | Cycles CPU s | $1 rel. MSE | gibake CPU s, same error |" \
-        "Cycles / gibake |"
-    echo "|---|---:|---:|---:|---:|---:|"
+        "Cycles / gibake |$unwrap_column"
+    echo "|---|---:|---:|---:|---:|---:|$unwrap_rule"
     awk -v column="$2" '
+    FILENAME ~ /unwrap$/ { unwrap[$1] = $2; next }
     { scene = $1; cpu = $(NF - 2); err = $(NF - column) }
     $2 == "gibake" {
         key = scene SUBSEP $3   # the bake: --quality (octree) or --paths
@@ -250,19 +271,25 @@ crossing() {
                     upper = t_all[scene, i]
                 if (lowest < 0 || e_all[scene, i] < e_all[scene, lowest]) lowest = i
             }
+            # the ratio of Cycles seconds to gibake seconds, and its bound
             if (best >= 0 && (upper < 0 || best <= upper)) {
-                at = sprintf("%.2f", best); ratio = sprintf("%.2f", tc[k] / best)
+                at = sprintf("%.2f", best); bound = ""; tg = best
             } else if (upper >= 0) {
-                at = sprintf("<= %.2f", upper); ratio = sprintf(">= %.2f", tc[k] / upper)
+                at = sprintf("<= %.2f", upper); bound = ">= "; tg = upper
             } else if (lowest >= 0) {
-                at = sprintf("> %.2f", t_all[scene, lowest])
-                ratio = sprintf("< %.2f", tc[k] / t_all[scene, lowest])
+                tg = t_all[scene, lowest]; at = sprintf("> %.2f", tg); bound = "< "
             } else {
-                at = "-"; ratio = "-"
+                at = "-"; tg = -1
             }
-            printf "| %s | %s | %s | %.4g | %s | %s |\n", scene, spp[k], tc[k], ec[k], at, ratio
+            ratio = tg > 0 ? sprintf("%s%.2f", bound, tc[k] / tg) : "-"
+            with_unwrap = ""
+            if (scene in unwrap)
+                with_unwrap = tg > 0 ? sprintf(" %s%.2f |", bound, (tc[k] + unwrap[scene]) / tg) \
+                                     : " - |"
+            printf "| %s | %s | %s | %.4g | %s | %s |%s\n", scene, spp[k], tc[k], ec[k], at, ratio,
+                with_unwrap
         }
-    }' "$dir/rows"
+    }' "$dir/unwrap" "$dir/rows"
 }
 crossing seen 1
 crossing interior 0
