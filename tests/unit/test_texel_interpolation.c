@@ -115,9 +115,19 @@ static void turn(double angle, double *x, double *z)
     *x = turned;
 }
 
-/* The floor (triangles 0 and 1, front up) and a block standing on it, its
- * five faces out (no bottom: it rests on the floor); grey 0.5; a point
- * light above one corner. */
+/* Point p turned by BLOCK_TURN about the vertical, into turned. */
+static void turn_point(const float p[3], float turned[3])
+{
+    double x = p[0], z = p[2];
+    turn(BLOCK_TURN, &x, &z);
+    turned[0] = (float)x;
+    turned[1] = p[1];
+    turned[2] = (float)z;
+}
+
+/* The floor (triangles 0 and 1, front up) and a block standing on it,
+ * turned by BLOCK_TURN, its five faces out (no bottom: it rests on the
+ * floor); grey 0.5; a point light above one corner. */
 static void build_block_on_floor(gb_scene *scene)
 {
     memset(scene, 0, sizeof *scene);
@@ -133,19 +143,14 @@ static void build_block_on_floor(gb_scene *scene)
         {{-b, 0, -b}, {-b, 0, b}, {-b, h, b}, {-b, h, -b}}, /* x = -b */
         {{b, 0, -b}, {b, 0, b}, {b, h, b}, {b, h, -b}},     /* x = +b */
     };
-    float block[5][4][3], outward[5][3] = {{0, 10, 0}, {0, 0.5f, -10}, {0, 0.5f, 10},
-                                          {-10, 0.5f, 0}, {10, 0.5f, 0}};
+    const float outward[5][3] = {{0, 10, 0}, {0, 0.5f, -10}, {0, 0.5f, 10}, {-10, 0.5f, 0},
+                                 {10, 0.5f, 0}};
     for (int k = 0; k < 5; ++k) {
-        for (int c = 0; c < 5; ++c) {
-            float *p = c < 4 ? block[k][c] : outward[k];
-            const float *from = c < 4 ? faces[k][c] : outward[k];
-            double x = from[0], z = from[2];
-            turn(BLOCK_TURN, &x, &z);
-            p[0] = (float)x;
-            p[1] = from[1];
-            p[2] = (float)z;
-        }
-        add_quad_facing(scene, block[k], outward[k], grey);
+        float face[4][3], facing[3];
+        for (int c = 0; c < 4; ++c)
+            turn_point(faces[k][c], face[c]);
+        turn_point(outward[k], facing);
+        add_quad_facing(scene, face, facing, grey);
     }
     const float light[3] = {1.2f, 2.5f, 0.8f}, intensity[3] = {20.0f, 20.0f, 20.0f};
     add_point_light(scene, GB_LIGHT_POINT, light, NULL, intensity);
