@@ -105,11 +105,13 @@ void gb_light_octree_irradiance(const gb_light_octree *octree, const float x[3],
         if (lit[c])
             nearest = fminf(nearest, distance[c]);
     }
+    float trust = fminf(fmaxf(2.0f - 2.0f * nearest / GB_LIGHT_OCTREE_SURFACE_REACH, 0.0f), 1.0f);
     for (int c = 0; c < 8; ++c) {
         if (!lit[c])
             continue;
-        float surface = fmaxf(1.0f - (distance[c] - nearest) / GB_LIGHT_OCTREE_SURFACE_REACH,
-                              GB_LIGHT_OCTREE_MIN_SURFACE);
+        float factor = fmaxf(1.0f - (distance[c] - nearest) / GB_LIGHT_OCTREE_SURFACE_REACH,
+                             GB_LIGHT_OCTREE_MIN_SURFACE);
+        float surface = 1.0f - trust * (1.0f - factor);
         for (int k = 0; k < 3; ++k)
             total[k] += w[c] * surface * sums[c][k];
         weight += w[c] * surface;

@@ -19,14 +19,18 @@
  *
  * An octree clustered with GB_LIGHT_OCTREE_SURFACE interpolation (cluster
  * --interpolation surface) also scales each w by its surface factor
- *     max(1 - (s - s_min) / SURFACE_REACH, MIN_SURFACE),
+ *     1 - trust (1 - max(1 - (s - s_min) / SURFACE_REACH, MIN_SURFACE)),
  *     s = |n_leaf·(x - centre) - plane| + 1 - |n_leaf·ng|   (cell edges),
+ *     trust = clamp(2 - 2 s_min / SURFACE_REACH, 0, 1),
  * s_min the least s of the 8: a leaf of another surface (another plane, a
  * quarter of an edge off, or another orientation) lends x almost nothing
  * (issue 49: McGuire's light, 0.3 mm under a leaf boundary, read the
  * hidden ceiling 1 cm above it through the leaf above, and the boxes'
- * corners mixed walls and floor). Measured better on the Cornell boxes and
- * worse on the living room, so not the default: docs/figures.md, "light
+ * corners mixed walls and floor), as long as some leaf holds x: where
+ * none is within half a reach (a window's reveal among leaves of the wall,
+ * a table leg), the factors fade to 1, plain trilinear, by a whole reach.
+ * Measured better on the Cornell boxes, within 4 % of trilinear elsewhere
+ * but 2–4 % worse on Sponza, so not the default: docs/figures.md, "light
  * octree: surface interpolation".
  *
  * Preconditions: the octree passed gb_light_octree_check; n (shading) and

@@ -68,7 +68,9 @@ float surface_distance(uint leaf, vec3 nl, vec3 offset, vec3 ng) {
 // changes the result by under 10^-5. With surface interpolation each is
 // also scaled by max(1 - (s - s_min) / SURFACE_REACH, MIN_SURFACE), s the
 // leaf's surface_distance and s_min the least of the 8: a leaf of another
-// surface lends x almost nothing (light_octree_shading.h).
+// surface lends x almost nothing; that factor fades to 1 (trust to 0) as
+// s_min grows from half a reach to one: where no leaf holds x, trilinear
+// (light_octree_shading.h).
 vec3 interpolate(vec3 x, vec3 n, vec3 ng) {
     vec3 g = (x - origin) / cell_size - 0.5;
     vec3 base = floor(g), f = g - base;
@@ -90,10 +92,12 @@ vec3 interpolate(vec3 x, vec3 n, vec3 ng) {
     }
     vec3 total = vec3(0.0);
     float weight = 0.0;
+    float trust = clamp(2.0 - 2.0 * nearest / SURFACE_REACH, 0.0, 1.0);
     for (int c = 0; c < 8; ++c) {
         if (!lit[c])
             continue;
-        float surface = max(1.0 - (distance[c] - nearest) / SURFACE_REACH, MIN_SURFACE);
+        float factor = max(1.0 - (distance[c] - nearest) / SURFACE_REACH, MIN_SURFACE);
+        float surface = 1.0 - trust * (1.0 - factor);
         total += w[c] * surface * sums[c];
         weight += w[c] * surface;
     }

@@ -22,6 +22,11 @@
  *     plane holds the point (within the 16-bit rounding of normal and
  *     offset), so the result is plain trilinear interpolation, computed
  *     here by brute force over the leaves.
+ *  4. A point no leaf holds: floors at y = 1.6 (layer 1, irradiance 1) and
+ *     2.6 (layer 2, irradiance 10), a point between them at y = 2, 0.4 and
+ *     0.6 cell edges from their planes (a window's reveal between the
+ *     wall's leaves): plain trilinear, 0.5 x 1 + 0.5 x 10 = 5.5, where the
+ *     surface factors alone (0.2 for the farther floor) would give 2.5.
  */
 #include <math.h>
 #include <stdio.h>
@@ -245,10 +250,33 @@ static void test_tilted_plane(void)
     free(o);
 }
 
+/* ---- 4. a point no leaf holds -------------------------------------------- */
+
+static leaf_spec far_floors(const uint32_t cell[3])
+{
+    leaf_spec s = two_floors(cell);
+    s.offset = (cell[1] == 1 ? 1.6 : 2.6) - (cell[1] + 0.5);
+    return s;
+}
+
+static void test_no_leaf_holds(void)
+{
+    hand_octree *o = hand_octree_make(far_floors, "floors a cell apart");
+    const float up[3] = {0.0f, 1.0f, 0.0f}, point[3] = {1.5f, 2.0f, 2.5f};
+    float e[3];
+    gb_light_octree_irradiance(&o->octree, point, up, up, e);
+    printf("# between floors 0.4 and 0.6 away: %.6g (trilinear 5.5; the surface factors "
+           "alone 2.5)\n", e[1]);
+    CHECK(fabs(e[1] - 5.5) < 1e-5 * 5.5,
+          "a point no leaf's plane holds, within a reach: plain trilinear");
+    free(o);
+}
+
 int main(void)
 {
     test_two_surfaces();
     test_other_orientation();
     test_tilted_plane();
+    test_no_leaf_holds();
     return tap_done();
 }

@@ -164,10 +164,18 @@ static double plane_by_hand(double li, double lk, double i, double k)
     return fabs(n[0] * (i - li) + n[1] * -centre_height + n[2] * (k - lk) - stored);
 }
 
+/* A leaf's surface factor, s its surface distance, s_min the least of the
+ * point's 8 (light_octree_shading.h): max(1 - (s - s_min) / 0.25, 10^-3),
+ * faded to 1 as s_min goes from 0.125 to 0.25. */
+static double surface_factor(double s, double s_min)
+{
+    double trust = fmin(fmax(2.0 - 2.0 * s_min / 0.25, 0.0), 1.0);
+    return 1.0 - trust * (1.0 - fmax(1.0 - (s - s_min) / 0.25, 1e-3));
+}
+
 /* The mean of leaf sums over leaves (li[j], lk[j]), j < count (the lit
  * ones among the point's 8, at equal trilinear weights), each weighted by
- * its surface factor at the floor point over (i, k): max(1 - (s - s_min) /
- * 0.25, 10^-3). */
+ * its surface factor at the floor point over (i, k). */
 static double planed_mean(const double *li, const double *lk, int count, double i, double k,
                           const float n[3], const float ng[3], int c)
 {
@@ -175,7 +183,7 @@ static double planed_mean(const double *li, const double *lk, int count, double 
     for (int j = 0; j < count; ++j)
         nearest = fmin(nearest, plane_by_hand(li[j], lk[j], i, k));
     for (int j = 0; j < count; ++j) {
-        double f = fmax(1.0 - (plane_by_hand(li[j], lk[j], i, k) - nearest) / 0.25, 1e-3);
+        double f = surface_factor(plane_by_hand(li[j], lk[j], i, k), nearest);
         total += f * leaf_sum(li[j], lk[j], n, ng, c);
         weight += f;
     }
@@ -294,8 +302,7 @@ static void direct(const gb_light_octree *octree, const float x[3], const float 
             continue;
         float normal[3];
         gb_light_octree_leaf_normal(leaf, normal);
-        double w = fmax(views[l].tent, 1e-6) *
-                   fmax(1.0 - (views[l].surface - nearest) / 0.25, 1e-3);
+        double w = fmax(views[l].tent, 1e-6) * surface_factor(views[l].surface, nearest);
         for (uint32_t v = leaf->first_vdl; v < leaf->first_vdl + leaf->vdl_count; ++v) {
             float d[3];
             gb_photon_unpack_direction(octree->vdls[v].direction, d);
