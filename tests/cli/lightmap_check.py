@@ -185,9 +185,11 @@ class Octree:
                 if self.surface else 0.0
             lit.append((w, s, self.leaf_light(leaf, n, ng)))
         nearest = min((s for _, s, _ in lit), default=0.0)
+        # where no leaf holds x (nearest from half a reach to one), trilinear
+        trust = min(max(2.0 - 2.0 * nearest / SURFACE_REACH, 0.0), 1.0)
         total, weight = [0.0, 0.0, 0.0], 0.0
         for w, s, light in lit:
-            w *= max(1.0 - (s - nearest) / SURFACE_REACH, 1e-3)
+            w *= 1.0 - trust * (1.0 - max(1.0 - (s - nearest) / SURFACE_REACH, 1e-3))
             for k in range(3):
                 total[k] += w * light[k]
             weight += w
