@@ -286,13 +286,18 @@ def bake(mesh, uv_name, a, filter_):
     return time.process_time() - start
 
 
+def select_only(mesh):
+    """The mesh selected and active, the operators' subject."""
+    bpy.ops.object.select_all(action="DESELECT")
+    mesh.select_set(True)
+    bpy.context.view_layer.objects.active = mesh
+
+
 def unwrap(mesh, a):
     """New lightmap UVs for the mesh, as a Blender user makes them to bake
     into (UV > Lightmap Pack of every face into one image of --size, its
     default margin); the call's CPU seconds."""
-    bpy.ops.object.select_all(action="DESELECT")
-    mesh.select_set(True)
-    bpy.context.view_layer.objects.active = mesh
+    select_only(mesh)
     bpy.ops.object.mode_set(mode="EDIT")
     bpy.ops.mesh.select_all(action="SELECT")
     start = time.process_time()
@@ -329,9 +334,7 @@ def main():
             lambertian(slot.material, image)
     add_lights(lights, environment)
     set_cycles(a)
-    bpy.ops.object.select_all(action="DESELECT")
-    mesh.select_set(True)
-    bpy.context.view_layer.objects.active = mesh
+    select_only(mesh)
 
     rgb = numpy.zeros((width * height, 3), dtype=numpy.float64)
     if a.which == "indirect":

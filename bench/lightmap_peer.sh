@@ -128,6 +128,7 @@ echo "| scene | bake | setting | CPU s | step CPU s | seen rel. MSE | interior r
     "covered rel. MSE | seen ratio of means | interior ratio of means |"
 echo "|---|---|---|---:|---:|---:|---:|---:|---:|---:|"
 : >"$dir/notes"
+: >"$dir/unwrap"
 for entry in $scenes; do
     path=${entry%%:*}
     rest=${entry#*:}
@@ -229,7 +230,6 @@ crossing() {
     echo
     echo "Crossing points by $1 texels: the gibake CPU seconds at each Cycles row's error."
     echo
-    touch "$dir/unwrap"
     unwrap_column= unwrap_rule=
     if [ -s "$dir/unwrap" ]; then
         unwrap_column=" (Cycles + Lightmap Pack) / gibake |" unwrap_rule="---:|"
