@@ -15,8 +15,9 @@
 # (12) [implicit, flc-iv] bounces (1) [implicit], vpls (1024) visibility=none|clusters|full (full)
 # voxels (64; voxelize -r) [topo], photons (200000; photons -n) depth (6)
 # vdls (8) tolerance (0.2; cluster --depth, --vdls, --tolerance; 0: K_max
-# VDLs a leaf always) interpolation=trilinear|surface (trilinear; cluster
-# --interpolation) [octree].
+# VDLs a leaf always) interpolation=trilinear|surface (trilinear, the
+# paper's, although cluster's own default is surface: a point's settings
+# keep their meaning; cluster --interpolation) [octree].
 # A bad line stops with "SWEEP:LINE: what is wrong".
 #
 # Each point is compared with two references: reference --mode full, and the

@@ -29,9 +29,11 @@
  * corners mixed walls and floor), as long as some leaf holds x: where
  * none is within half a reach (a window's reveal among leaves of the wall,
  * a table leg), the factors fade to 1, plain trilinear, by a whole reach.
- * Measured better on the Cornell boxes, within 4 % of trilinear elsewhere
- * but 2–4 % worse on Sponza, so not the default: docs/figures.md, "light
- * octree: surface interpolation".
+ * Over 8 photon seeds (bench/octree_interpolation.sh) 11–27 % better than
+ * trilinear on the Cornell boxes, 1–5 % on the living room and the
+ * staircase, and on Sponza from 8 % better to 2 % worse (within the
+ * seeds' spread): cluster's default (docs/figures.md, "light octree:
+ * surface interpolation").
  *
  * Preconditions: the octree passed gb_light_octree_check; n (shading) and
  * ng (geometric) are unit, n on ng's side. Nothing is allocated; the

@@ -55,7 +55,8 @@ typedef struct gb_cluster_options {
     unsigned restarts;          /* k-means runs per clustering, the best kept
                                    (kmeans.h); 0: 1 */
     uint32_t interpolation;     /* the octree's, light_octree.h: GB_LIGHT_OCTREE_TRILINEAR
-                                   (0, the default) or GB_LIGHT_OCTREE_SURFACE */
+                                   (0) or GB_LIGHT_OCTREE_SURFACE (the
+                                   command's default) */
     uint64_t seed;
     int threads;                /* 0: every core */
     uint32_t part, part_count;  /* --shard I/N: only the leaves of part I of N

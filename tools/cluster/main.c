@@ -55,9 +55,10 @@ static const gb_cli_entry entries[] = {
                   "(default 1)"),
     GB_CLI_OPTION(OPTION_INTERPOLATION, "interpolation", "HOW",
                   "between leaves, as the runtime and lightmap read the\n"
-                  "octree: trilinear (default, the paper's) or surface\n"
-                  "(each leaf weighed by how near its plane and normal\n"
-                  "are to the point's: no light from another surface)"),
+                  "octree: surface (default: each leaf weighed by how\n"
+                  "near its plane and normal are to the point's, no\n"
+                  "light from another surface) or trilinear (the\n"
+                  "paper's)"),
     GB_CLI_SEED("N", "k-means++ seed (default 0)"),
     GB_CLI_THREADS(256, NULL),
     GB_CLI_OPTION(OPTION_SHARD, "shard", "I/N",
@@ -231,5 +232,6 @@ static gb_result run(void *context, gb_error *error)
 
 int main(int argc, char **argv)
 {
-    return gb_cli_main(&command, argc, argv, run, &(arguments){0});
+    return gb_cli_main(&command, argc, argv, run,
+                       &(arguments){.cluster.interpolation = GB_LIGHT_OCTREE_SURFACE});
 }
