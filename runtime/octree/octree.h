@@ -7,7 +7,9 @@
  * draw    one full-screen pass over the G-buffer (octree_display.frag.glsl):
  *         per pixel, the world point x, walked from the root to the leaves
  *         of the 8 leaf cells around it (δ node fetches each, Figure 6),
- *         their VDL sums interpolated trilinearly between the leaf centres.
+ *         their VDL sums interpolated trilinearly between the leaf centres
+ *         (with surface interpolation, cluster's default, each weight also
+ *         scaled by its leaf's surface factor: light_octree_shading.h).
  *         Neighbours without a leaf or without VDLs get no weight and the
  *         weights are renormalised over the rest (the paper's interpolation
  *         holes, Fig. 16c): no dark seams. Every weight is at least 10^-6, so a
