@@ -22,7 +22,7 @@
 # the frame size and reference spp; default make report's five octree
 # scenes at its sizes); OCTREE_INTERPOLATION_POINTS: photons:depth:vdls
 # entries (default make report's three: 200000:5:1 200000:5:4
-# 600000:6:4); OCTREE_INTERPOLATION_SEEDS (default 8). About 20 minutes on
+# 600000:6:4); OCTREE_INTERPOLATION_SEEDS (default 8). About 13 minutes on
 # 2 cores with the defaults. Run by `make bench`; prints a Markdown table.
 
 . "$(dirname "$0")/common.sh"
